@@ -1,0 +1,14 @@
+// fluid — 2D SPH liquid for games. The umbrella header: include this one.
+#pragma once
+
+#include <fluid/error.h>
+#include <fluid/handle.h>
+#include <fluid/material.h>
+#include <fluid/plugin.h>
+#include <fluid/registry.h>
+#include <fluid/task.h>
+#include <fluid/world.h>
+
+#include <fluid/plugins/box_container.h>
+#include <fluid/plugins/builtin.h>
+#include <fluid/plugins/gravity.h>

@@ -1,0 +1,33 @@
+// fluid — 2D SPH liquid for games.
+#pragma once
+
+#include <cstdint>
+
+namespace fluid {
+
+/// A particle's stable name. Slots in the particle arrays move every sub-step (they are sorted
+/// by grid cell); a handle keeps naming the same particle until it is removed, after which it is
+/// stale: `World::isValid` says false and calls that need the particle throw `fluid::Error`.
+/// The all-zero handle is null. Thread rule: a plain value, copy it anywhere.
+struct ParticleHandle {
+    /// Slot in the world's handle table (unit: index; 0 .. maxParticles-1).
+    uint32_t slot = 0;
+    /// Generation of the slot when the handle was made (unit: count; 0 means null).
+    uint32_t generation = 0;
+
+    /// True for the null handle.
+    constexpr bool isNull() const { return generation == 0; }
+    /// Handles are equal when slot and generation are.
+    friend constexpr bool operator==(ParticleHandle, ParticleHandle) = default;
+};
+
+/// Index of a material in its world (unit: index, 0 .. materialCount()-1).
+/// Returned by `World::addMaterial`. Thread rule: a plain value.
+struct MaterialId {
+    /// Index into the world's material table.
+    uint16_t index = 0;
+    /// Ids are equal when their indices are.
+    friend constexpr bool operator==(MaterialId, MaterialId) = default;
+};
+
+} // namespace fluid

@@ -1,0 +1,68 @@
+// fluid — 2D SPH liquid for games.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace fluid {
+
+/// A liquid's physical parameters: the fields of the seed report's Table 4.1 plus surface tension.
+///
+/// Reading 3D quantities in a 2D world (read once here; every other comment refers back to it):
+/// the world is a slab of fluid of depth `WorldDef::depth` (unit: m, default 0.1293 m, see
+/// `kDefaultDepth`). A particle is a column of that slab: it carries the material's 3D `mass`
+/// (kg) and covers an area `A = mass / (restDensity * depth)` (m^2) of the plane, so at rest the
+/// 3D density of the slab is `restDensity`. Densities are therefore 3D (kg/m^3), computed with a
+/// kernel normalised over the plane: `rho_i = sum_j (m_j / depth) W2(|x_i - x_j|, h)`.
+/// Momentum, forces and energies use the 3D mass, so a body coupled to the fluid sees an areal
+/// density of `restDensity * depth` kg/m^2 (129.3 kg/m^2 for water at the default depth).
+/// Blobs are filled on a square lattice of spacing `sqrt(A)`. `kernelParticles` is the table's
+/// count of particles inside the support circle; the default depth is the one at which water's
+/// count is exactly 32 (`depth = m N / (rho0 pi h^2)`); yoghurt then reads 48.75 (the table's
+/// 50 cannot hold for both presets at one depth: the table is a 3D tuning). Both presets get a
+/// spacing of about 0.0100 m.
+struct Material {
+    /// Particle mass (unit: kg; range (0, 1e3]). Seed water: 0.013, yoghurt: 0.014.
+    float mass = 0.013f;
+    /// Rest ("ideal") density (unit: kg/m^3; range (0, 1e5]). Seed water: 1000, yoghurt: 1050.
+    float restDensity = 1000.0f;
+    /// Dynamic viscosity mu of the seed's eq. 2.6 (unit: Pa*s; range [0, 1e4]). Seed water: 3.5,
+    /// yoghurt: 20.0 (tuned values from the seed, far above real water's 0.001).
+    float viscosity = 3.5f;
+    /// Stiffness k of the seed's linear equation of state p = k (rho - rho0) (unit: J/kg, i.e.
+    /// m^2/s^2: its square root is the sound speed; range (0, 1e8]). Seed water: 3.0, yoghurt: 5.0.
+    /// Used by `EquationOfState::Linear`, and as the sound-speed floor sqrt(k) of `Tait`.
+    float stiffness = 3.0f;
+    /// Smoothing distance: the kernel's support radius h (unit: m; range [1e-4, 10]).
+    /// Seed water: 0.032, yoghurt: 0.04.
+    float smoothingDistance = 0.032f;
+    /// Particles inside the support circle that the material was tuned for (unit: count; range
+    /// [4, 400]). Seed water: 32, yoghurt: 50. Informational: see the 2D reading above.
+    float kernelParticles = 32.0f;
+    /// Surface tension / cohesion coefficient gamma of [Akinci 2013] (unit: m^3/(kg s^2); range
+    /// [0, 1e3]). 0 disables it. Not in the seed's table; presets: water 0.1, yoghurt 0.1.
+    float surfaceTension = 0.1f;
+    /// Display name (free text, for tools and error messages).
+    std::string name = "water";
+};
+
+/// The seed's water (Table 4.1, values unchanged). Thread rule: any thread.
+Material water();
+/// The seed's yoghurt (Table 4.1, values unchanged). Thread rule: any thread.
+Material yoghurt();
+
+/// Checks every field is finite and inside its documented range; throws `fluid::Error` naming
+/// the field and its value, e.g. "material 'water': viscosity = -1 is out of range [0, 10000]
+/// (unit: Pa*s)". Thread rule: any thread.
+void validate(const Material& material);
+
+/// Default slab depth (unit: m): the depth at which the water preset has exactly its table's
+/// 32 kernel particles, 0.013 * 32 / (1000 * pi * 0.032^2) = 0.12931 m.
+inline constexpr float kDefaultDepth = 0.12931339f;
+
+/// Area one particle of `material` covers in a slab of `depth` (unit: m^2): mass/(rho0 depth).
+float particleArea(const Material& material, float depth);
+/// Lattice spacing of `material` in a slab of `depth` (unit: m): sqrt(particleArea).
+float particleSpacing(const Material& material, float depth);
+
+} // namespace fluid

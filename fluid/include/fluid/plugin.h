@@ -1,0 +1,197 @@
+// fluid — 2D SPH liquid for games.
+#pragma once
+
+#include <fluid/material.h>
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fluid {
+
+/// One parameter a plugin declares: what level files, tuning panels and error messages show.
+/// Thread rule: plain data, usually a `static constexpr` array in the plugin class.
+struct ParamDecl {
+    /// Key in level files and `Plugin::setParam` (ASCII identifier, e.g. "strength").
+    std::string_view name;
+    /// SI unit shown next to the value (e.g. "m/s^2"; "1" for dimensionless).
+    std::string_view unit;
+    /// Value a new plugin starts with (unit: `unit`).
+    double defaultValue = 0.0;
+    /// Smallest accepted value (unit: `unit`).
+    double minValue = 0.0;
+    /// Largest accepted value (unit: `unit`).
+    double maxValue = 0.0;
+    /// One line for humans.
+    std::string_view description;
+};
+
+/// Which hook set a plugin implements.
+enum class PluginKind : uint8_t {
+    /// `ForcePlugin`: adds acceleration to particles.
+    Force,
+    /// `BoundaryPlugin`: solids the fluid cannot enter.
+    Boundary,
+};
+
+/// The particles as plugins see them during a sub-step: structure of arrays in the sub-step's
+/// (cell-sorted) order, all spans `count` long. Valid only inside the hook call.
+struct ParticleView {
+    /// Position x, y (unit: m).
+    std::span<const float> px, py;
+    /// Velocity x, y (unit: m/s).
+    std::span<const float> vx, vy;
+    /// Material index of each particle (see `World::material`).
+    std::span<const uint16_t> material;
+    /// The world's materials, by index.
+    std::span<const Material> materials;
+    /// Number of particles (unit: count).
+    uint32_t count = 0;
+};
+
+/// Base of every plugin: a type name and the declared parameters with their current values.
+/// Thread rule: `setParam` and `param` only between steps, on the stepping thread.
+class Plugin {
+public:
+    /// `type` is the registry's string ("force.gravity"); `params` must outlive the plugin
+    /// (a static array); values start at their defaults.
+    Plugin(std::string_view type, PluginKind kind, std::span<const ParamDecl> params);
+    virtual ~Plugin() = default;
+    Plugin(const Plugin&) = delete;
+    Plugin& operator=(const Plugin&) = delete;
+
+    /// Registry type string, e.g. "boundary.box".
+    std::string_view type() const { return m_type; }
+    /// Force or boundary.
+    PluginKind kind() const { return m_kind; }
+    /// Declared parameters, in declaration order.
+    std::span<const ParamDecl> params() const { return m_decls; }
+    /// Current value of parameter `name` (unit: its `ParamDecl::unit`); throws `fluid::Error`
+    /// naming the plugin type and the unknown name.
+    double param(std::string_view name) const;
+    /// Sets parameter `name`; throws `fluid::Error` for an unknown name, a non-finite value or
+    /// a value outside [minValue, maxValue], naming the plugin, key, value, range and unit.
+    void setParam(std::string_view name, double value);
+
+protected:
+    /// Current value of the parameter at `index` in declaration order (for plugin code).
+    double value(std::size_t index) const { return m_values[index]; }
+    /// Called after `setParam` changed a value (stepping thread). Default: nothing.
+    virtual void onParamChanged(std::size_t /*index*/) {}
+
+private:
+    std::string m_type;
+    PluginKind m_kind;
+    std::span<const ParamDecl> m_decls;
+    std::vector<double> m_values;
+};
+
+/// What a force plugin gets once per sub-step.
+struct ForceContext {
+    /// The particles (read only).
+    ParticleView particles;
+    /// Acceleration accumulators x, y (unit: m/s^2): add to slot i for i in your range only.
+    std::span<float> ax, ay;
+    /// Sub-step length (unit: s).
+    float dt = 0.0f;
+    /// Simulated time at the start of the sub-step (unit: s).
+    double time = 0.0;
+};
+
+/// What every plugin gets once per `World::step`, before the sub-steps.
+struct StepContext {
+    /// The frame time passed to `World::step` (unit: s).
+    float frameDt = 0.0f;
+    /// Simulated time at the start of the step (unit: s).
+    double time = 0.0;
+    /// Spacing at which boundary samples are laid (unit: m): the first material's lattice
+    /// spacing.
+    float sampleSpacing = 0.0f;
+    /// Largest smoothing distance of the world's materials (unit: m).
+    float supportRadius = 0.0f;
+};
+
+/// An external acceleration field (gravity, wind, vortex, pointer...).
+/// Thread rule: `prepare` runs on the stepping thread once per step; `apply` runs on worker
+/// threads in parallel over disjoint ranges and must write only `ax[i], ay[i]` for i in
+/// [begin, end), reading anything in the context; keep it free of shared mutable state.
+class ForcePlugin : public Plugin {
+public:
+    /// See `Plugin::Plugin`.
+    ForcePlugin(std::string_view type, std::span<const ParamDecl> params)
+        : Plugin(type, PluginKind::Force, params) {}
+    /// Once per step before the sub-steps (read host input, precompute). Default: nothing.
+    virtual void prepare(const StepContext& /*context*/) {}
+    /// Adds this field's acceleration to particles [begin, end).
+    virtual void apply(const ForceContext& context, uint32_t begin, uint32_t end) = 0;
+};
+
+/// Boundary samples: points filling a solid's skin, at `StepContext::sampleSpacing`, several
+/// layers deep (enough to cover one support radius). They act as fluid at rest density in the
+/// density sum, carry a pressure extrapolated from the fluid [Adami 2012, eq. 27] and so push
+/// back, and pass their velocity to the fluid through the wall viscosity. Volume of each sample:
+/// sampleSpacing^2 (unit: m^2).
+struct BoundarySamples {
+    /// Position x, y (unit: m).
+    std::vector<float> px, py;
+    /// Velocity x, y of the solid at the sample (unit: m/s); the world moves samples with it
+    /// during the sub-steps of a step.
+    std::vector<float> vx, vy;
+    /// Drops every sample.
+    void clear() { px.clear(); py.clear(); vx.clear(); vy.clear(); }
+    /// Appends one sample.
+    void add(float x, float y, float velX = 0.0f, float velY = 0.0f) {
+        px.push_back(x); py.push_back(y); vx.push_back(velX); vy.push_back(velY);
+    }
+    /// Number of samples (unit: count).
+    std::size_t size() const { return px.size(); }
+};
+
+/// What a boundary plugin's `project` gets after each sub-step's integration.
+struct ProjectContext {
+    /// Position x, y (unit: m), writable for slots in your range only.
+    std::span<float> px, py;
+    /// Velocity x, y (unit: m/s), writable for slots in your range only.
+    std::span<float> vx, vy;
+    /// Material index of each particle.
+    std::span<const uint16_t> material;
+    /// Sub-step length (unit: s).
+    float dt = 0.0f;
+    /// Time since the start of the step at the end of this sub-step (unit: s).
+    float timeInStep = 0.0f;
+    /// Lattice spacing of the world's first material (unit: m).
+    float spacing = 0.0f;
+};
+
+/// A solid the fluid cannot enter (container, polygon, moving paddle, rigid body...).
+/// Thread rule: `prepare` and `receiveForces` run on the stepping thread; `project` runs on
+/// worker threads in parallel over disjoint ranges and writes only slots [begin, end).
+class BoundaryPlugin : public Plugin {
+public:
+    /// See `Plugin::Plugin`.
+    BoundaryPlugin(std::string_view type, std::span<const ParamDecl> params)
+        : Plugin(type, PluginKind::Boundary, params) {}
+    /// Once per step: refresh `samples()` (positions at the start of the step and velocities).
+    virtual void prepare(const StepContext& context) = 0;
+    /// Safety net after integration: moves particles [begin, end) that ended up inside the
+    /// solid back to its surface and removes their velocity into it.
+    virtual void project(const ProjectContext& context, uint32_t begin, uint32_t end) = 0;
+    /// True to have the fluid's force on each sample reported through `receiveForces`.
+    virtual bool wantsForces() const { return false; }
+    /// After the step: the fluid's force on each sample, averaged over the step's sub-steps
+    /// (unit: N), in sample order. Default: nothing.
+    virtual void receiveForces(std::span<const float> /*fx*/, std::span<const float> /*fy*/) {}
+    /// Wall friction: scale of the fluid's viscosity against this solid (unit: 1; 0 = free slip,
+    /// 1 = the fluid's own viscosity, larger = stickier).
+    virtual float friction() const { return 0.0f; }
+    /// The samples, as left by the last `prepare`.
+    const BoundarySamples& samples() const { return m_samples; }
+
+protected:
+    /// Filled by the plugin in `prepare`.
+    BoundarySamples m_samples;
+};
+
+} // namespace fluid

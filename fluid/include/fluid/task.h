@@ -1,0 +1,75 @@
+// fluid — 2D SPH liquid for games.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace fluid {
+
+/// Work the step hands to the host's workers: process items [begin, end) as worker `worker`
+/// (0 .. workerCount-1, each index used by one thread at a time). Every fluid task writes only
+/// the items of its range, so any split gives the same result.
+using TaskCallback = void(uint32_t begin, uint32_t end, uint32_t worker, void* taskContext);
+
+/// The host's thread system, lent to a world (the shape of Box2D v3's task hooks).
+/// Leave `enqueue` null to run everything serially on the stepping thread.
+/// Thread rule: `enqueue` and `finish` are called from the stepping thread only, one task at a
+/// time (enqueue, then finish, before the next enqueue).
+struct TaskHook {
+    /// Starts `callback` over [0, itemCount) in ranges of at least `minRange` items (unit: items);
+    /// may run it inline. Returns a token for `finish`, or nullptr when the work is already done.
+    void* (*enqueue)(TaskCallback* callback, uint32_t itemCount, uint32_t minRange,
+                     void* taskContext, void* userContext) = nullptr;
+    /// Blocks until the task behind `userTask` (from `enqueue`) has finished every range.
+    void (*finish)(void* userTask, void* userContext) = nullptr;
+    /// Number of distinct worker indices the callback may see (unit: count; 1 .. 256).
+    uint32_t workerCount = 1;
+    /// Passed back to `enqueue` and `finish` untouched.
+    void* userContext = nullptr;
+};
+
+/// A small fixed-size thread pool for hosts without their own: `workerCount - 1` background
+/// threads plus the calling thread. Thread rule: `hook()` may be shared by several worlds that
+/// step on the same thread; a pool must outlive the worlds using its hook.
+class ThreadPool {
+public:
+    /// Starts `workerCount - 1` threads (unit: count; 1 .. 256; 1 means serial, no threads).
+    explicit ThreadPool(uint32_t workerCount);
+    /// Joins the threads. Must not be called while a task runs.
+    ~ThreadPool();
+    ThreadPool(const ThreadPool&) = delete;
+    ThreadPool& operator=(const ThreadPool&) = delete;
+
+    /// The hook to put in `WorldDef::tasks`.
+    TaskHook hook();
+    /// Number of workers, the calling thread included (unit: count).
+    uint32_t workerCount() const { return m_workerCount; }
+
+private:
+    static void* enqueueTask(TaskCallback* callback, uint32_t itemCount, uint32_t minRange,
+                             void* taskContext, void* userContext);
+    static void finishTask(void* userTask, void* userContext);
+    void workerMain(uint32_t worker);
+    void runRanges(uint32_t worker);
+
+    uint32_t m_workerCount = 1;
+    std::vector<std::thread> m_threads;
+    std::mutex m_mutex;
+    std::condition_variable m_wake;
+    std::condition_variable m_done;
+    // The running task (guarded by m_mutex, except the range counter, claimed atomically).
+    TaskCallback* m_callback = nullptr;
+    void* m_context = nullptr;
+    uint32_t m_itemCount = 0;
+    uint32_t m_rangeSize = 1;
+    std::atomic<uint32_t> m_nextBegin{0};
+    uint32_t m_busy = 0;
+    uint64_t m_generation = 0;
+    bool m_stop = false;
+};
+
+} // namespace fluid

@@ -1,0 +1,226 @@
+// fluid — 2D SPH liquid for games.
+#pragma once
+
+#include <fluid/handle.h>
+#include <fluid/material.h>
+#include <fluid/plugin.h>
+#include <fluid/task.h>
+
+#include <glm/vec2.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace fluid {
+
+/// The pressure solver a world runs every sub-step.
+enum class Solver : uint8_t {
+    /// The seed's explicit loop: density (eq. 2.3), equation of state (2.4), symmetric pressure
+    /// force (2.5), viscosity (2.6), external forces, symplectic Euler (2.8, 2.9).
+    Explicit,
+};
+
+/// Pressure from density for `Solver::Explicit`.
+enum class EquationOfState : uint8_t {
+    /// The seed's eq. 2.4, p = k (rho - rho0), k = `Material::stiffness`. Negative pressure kept.
+    /// Soft: fine for small zero-g blobs, not for tanks (water's k = 3 is a 1.7 m/s sound speed).
+    Linear,
+    /// Tait [Becker & Teschner 2007]: p = rho0 c^2 / 7 ((rho/rho0)^7 - 1), clamped at 0 (free
+    /// surfaces held by cohesion instead), c = `WorldDef::soundSpeed` or derived from the scene.
+    Tait,
+};
+
+/// Everything a world is created from. Every field has a usable default.
+struct WorldDef {
+    /// Pressure solver. Default: `Solver::Explicit` (the only one yet).
+    Solver solver = Solver::Explicit;
+    /// Equation of state of the explicit solver. Default Tait (stiff water under gravity).
+    EquationOfState equationOfState = EquationOfState::Tait;
+    /// Tait sound speed c (unit: m/s; range 0 or [0.1, 1e4]). 0 derives it from the scene at
+    /// every step: c = max(sqrt(k_max), 10 sqrt(g H)), g the largest external acceleration and H
+    /// the fluid's extent along it, never decreasing over the world's life (the dam-break column
+    /// collapses, its speed does not). 10 sqrt(g H) keeps density errors near 1%.
+    float soundSpeed = 0.0f;
+    /// Slab depth that reads the materials' 3D mass and density in 2D (unit: m; range
+    /// [1e-4, 1e3]). See `Material`. Default `kDefaultDepth` = 0.1293 m.
+    float depth = kDefaultDepth;
+    /// Courant number lambda of the sub-step dt <= lambda * spacing / (c + v_max) (unit: 1;
+    /// range [0.01, 1]). Default 0.4.
+    float courant = 0.4f;
+    /// Most sub-steps one `step` may take (unit: count; range [1, 10000]). When the CFL limit
+    /// asks for more, the step uses this many, longer sub-steps and the speed cap holds it.
+    uint32_t maxSubsteps = 512;
+    /// Most particles the world holds (unit: count; range [1, 2^26]); adding more throws.
+    uint32_t maxParticles = 1u << 20;
+    /// Worker threads of the world's own pool when `tasks.enqueue` is null (unit: count; range
+    /// [1, 256]). 1 = serial on the stepping thread.
+    uint32_t workerCount = 1;
+    /// The host's thread system; when `enqueue` is set it is used and `workerCount` ignored.
+    TaskHook tasks{};
+};
+
+/// Shape of a spawned blob.
+enum class BlobShape : uint8_t {
+    /// Axis-aligned rectangle: `center`, `halfExtents`.
+    Rectangle,
+    /// Circle: `center`, `radius`.
+    Circle,
+    /// Simple polygon (convex or concave, either winding): `vertices`.
+    Polygon,
+};
+
+/// A block of liquid to spawn: the shape is filled on a square lattice at the material's spacing
+/// (lattice points whose position lies inside the shape).
+struct BlobDef {
+    /// Which shape fields are read.
+    BlobShape shape = BlobShape::Rectangle;
+    /// Centre of a rectangle or circle (unit: m).
+    glm::vec2 center{0.0f, 0.0f};
+    /// Half width and half height of a rectangle (unit: m; each > 0). Typical: 0.25.
+    glm::vec2 halfExtents{0.25f, 0.25f};
+    /// Radius of a circle (unit: m; > 0). Typical: 0.2.
+    float radius = 0.2f;
+    /// Polygon vertices in world space (unit: m; 3 or more, no self-intersection).
+    std::vector<glm::vec2> vertices;
+    /// Initial velocity of every particle (unit: m/s; finite).
+    glm::vec2 velocity{0.0f, 0.0f};
+    /// Material of the particles (from `World::addMaterial`).
+    MaterialId material{};
+};
+
+/// Timings and counters of the last `World::step`. Times are wall-clock milliseconds summed over
+/// the step's sub-steps; counters describe the last step.
+struct Profile {
+    /// Whole step (unit: ms).
+    float step = 0.0f;
+    /// Counting sort by grid cell and reordering of all channels (unit: ms).
+    float sort = 0.0f;
+    /// Force plugins' accelerations (unit: ms).
+    float external = 0.0f;
+    /// Density sums, fluid and boundary (unit: ms).
+    float density = 0.0f;
+    /// Equation of state and boundary pressure extrapolation (unit: ms).
+    float pressure = 0.0f;
+    /// Pressure, viscosity and surface-tension forces, and forces on boundaries (unit: ms).
+    float forces = 0.0f;
+    /// Symplectic Euler update (unit: ms).
+    float integrate = 0.0f;
+    /// Boundary plugins' projection (unit: ms).
+    float boundaries = 0.0f;
+    /// Sub-steps taken (unit: count).
+    uint32_t substeps = 0;
+    /// Solver iterations per sub-step (unit: count; 0 for the explicit solver).
+    uint32_t iterations = 0;
+    /// Sub-step chosen by the CFL condition before the cap (unit: s).
+    float cflDt = 0.0f;
+    /// Tait sound speed used (unit: m/s; 0 with the linear equation of state).
+    float soundSpeed = 0.0f;
+    /// Largest compression max(rho/rho0 - 1, 0) over particles after the last sub-step (unit: 1).
+    float densityErrorMax = 0.0f;
+    /// Mean compression over particles after the last sub-step (unit: 1).
+    float densityErrorAvg = 0.0f;
+    /// Particles whose speed hit the safety cap during the step (unit: count, summed over
+    /// sub-steps).
+    uint32_t speedClamped = 0;
+    /// Particles whose acceleration was non-finite and was zeroed (unit: count; should be 0).
+    uint32_t nonFiniteRepaired = 0;
+    /// Particles in the world (unit: count).
+    uint32_t particles = 0;
+};
+
+namespace detail {
+struct WorldState;
+}
+
+/// A liquid simulation: particles, materials, plugins. No globals: worlds are independent.
+/// Thread rule: a world is used from one thread at a time (the stepping thread); it uses the
+/// task hook's workers only inside `step`. Spans returned by accessors stay valid until the next
+/// call that changes the world (`step`, add, remove, spawn).
+class World {
+public:
+    /// Creates an empty world; throws `fluid::Error` naming the first out-of-range field.
+    explicit World(const WorldDef& def = {});
+    ~World();
+    World(World&&) noexcept;
+    World& operator=(World&&) noexcept;
+
+    /// Adds a material (validated, see `validate(Material)`); at most 65535.
+    MaterialId addMaterial(const Material& material);
+    /// Replaces a material's parameters (validated). Throws for an unknown id.
+    void setMaterial(MaterialId id, const Material& material);
+    /// The material behind `id`; throws for an unknown id.
+    const Material& material(MaterialId id) const;
+    /// Number of materials (unit: count).
+    uint32_t materialCount() const;
+
+    /// Adds one particle (finite position and velocity, unit: m and m/s; known material).
+    /// Throws when the world is full (`WorldDef::maxParticles`).
+    ParticleHandle addParticle(glm::vec2 position, glm::vec2 velocity, MaterialId material);
+    /// Fills the blob's shape on its material's lattice; all or nothing. Returns the particle
+    /// count added (0 if the shape holds no lattice point). Throws for bad geometry or a full world.
+    uint32_t spawnBlob(const BlobDef& blob);
+    /// Removes the particle; throws `fluid::Error` for a stale or null handle.
+    void removeParticle(ParticleHandle handle);
+    /// True while the particle behind `handle` exists.
+    bool isValid(ParticleHandle handle) const;
+    /// Current slot of the particle in the spans below, or nullopt for a stale handle.
+    std::optional<uint32_t> indexOf(ParticleHandle handle) const;
+    /// Handle of the particle in slot `index` (unit: index < particleCount()).
+    ParticleHandle handleAt(uint32_t index) const;
+    /// Position of a particle (unit: m); throws for a stale handle.
+    glm::vec2 position(ParticleHandle handle) const;
+    /// Velocity of a particle (unit: m/s); throws for a stale handle.
+    glm::vec2 velocity(ParticleHandle handle) const;
+    /// Sets a particle's velocity (unit: m/s, finite); throws for a stale handle.
+    void setVelocity(ParticleHandle handle, glm::vec2 velocity);
+
+    /// Adds a force plugin; the world owns it. Returns a reference valid for the world's life.
+    ForcePlugin& addForce(std::unique_ptr<ForcePlugin> plugin);
+    /// Adds a boundary plugin; the world owns it.
+    BoundaryPlugin& addBoundary(std::unique_ptr<BoundaryPlugin> plugin);
+    /// The force plugins, in the order added (they are applied in this order).
+    std::span<const std::unique_ptr<ForcePlugin>> forces() const;
+    /// The boundary plugins, in the order added.
+    std::span<const std::unique_ptr<BoundaryPlugin>> boundaries() const;
+
+    /// Advances the world by one game frame (unit: s; finite, range (0, 1]; typically 1/60),
+    /// split into sub-steps by a CFL condition (see `Profile::substeps`). Throws `fluid::Error`
+    /// for a bad frameDt, leaving the world unchanged.
+    void step(float frameDt);
+
+    /// Particles in the world (unit: count).
+    uint32_t particleCount() const;
+    /// Position x, y per slot (unit: m).
+    std::span<const float> positionX() const;
+    /// See `positionX`.
+    std::span<const float> positionY() const;
+    /// Velocity x, y per slot (unit: m/s).
+    std::span<const float> velocityX() const;
+    /// See `velocityX`.
+    std::span<const float> velocityY() const;
+    /// Density per slot from the last sub-step (unit: kg/m^3; 0 before the first step).
+    std::span<const float> density() const;
+    /// Pressure per slot from the last sub-step (unit: Pa).
+    std::span<const float> pressure() const;
+    /// Material index per slot.
+    std::span<const uint16_t> materialIndex() const;
+
+    /// Timings and counters of the last step.
+    const Profile& profile() const;
+    /// Sub-steps the last step took (unit: count), same as `profile().substeps`.
+    uint32_t lastSubsteps() const;
+    /// Simulated time since creation (unit: s).
+    double time() const;
+    /// The definition the world was created from.
+    const WorldDef& def() const;
+    /// Lattice spacing of material `id` in this world's slab (unit: m).
+    float spacing(MaterialId id) const;
+
+private:
+    std::unique_ptr<detail::WorldState> m_state;
+};
+
+} // namespace fluid

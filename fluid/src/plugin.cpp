@@ -1,0 +1,127 @@
+// fluid — plugin parameters and the registry.
+#include <fluid/error.h>
+#include <fluid/plugin.h>
+#include <fluid/registry.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace fluid {
+
+Plugin::Plugin(std::string_view type, PluginKind kind, std::span<const ParamDecl> params)
+    : m_type(type), m_kind(kind), m_decls(params) {
+    m_values.reserve(params.size());
+    for (const ParamDecl& decl : params) {
+        m_values.push_back(decl.defaultValue);
+    }
+}
+
+namespace {
+std::size_t findParam(std::string_view type, std::span<const ParamDecl> decls,
+                      std::string_view name) {
+    for (std::size_t i = 0; i < decls.size(); ++i) {
+        if (decls[i].name == name) {
+            return i;
+        }
+    }
+    std::ostringstream s;
+    s << "plugin '" << type << "': unknown parameter '" << name << "'; known:";
+    for (const ParamDecl& decl : decls) {
+        s << ' ' << decl.name;
+    }
+    if (decls.empty()) {
+        s << " (none)";
+    }
+    throw Error(s.str());
+}
+
+void checkValue(std::string_view type, const ParamDecl& decl, double value) {
+    if (std::isfinite(value) && value >= decl.minValue && value <= decl.maxValue) {
+        return;
+    }
+    std::ostringstream s;
+    s << "plugin '" << type << "': parameter '" << decl.name << "' = " << value << " is "
+      << (std::isfinite(value) ? "out of range" : "not finite; expected") << " ["
+      << decl.minValue << ", " << decl.maxValue << "] (unit: " << decl.unit << ")";
+    throw Error(s.str());
+}
+} // namespace
+
+double Plugin::param(std::string_view name) const {
+    return m_values[findParam(m_type, m_decls, name)];
+}
+
+void Plugin::setParam(std::string_view name, double value) {
+    const std::size_t index = findParam(m_type, m_decls, name);
+    checkValue(m_type, m_decls[index], value);
+    m_values[index] = value;
+    onParamChanged(index);
+}
+
+void Registry::add(PluginInfo info) {
+    if (info.type.empty()) {
+        throw Error("Registry::add: empty plugin type");
+    }
+    if (find(info.type) != nullptr) {
+        throw Error("Registry::add: plugin type '" + info.type + "' is already registered");
+    }
+    if (!info.create) {
+        throw Error("Registry::add: plugin type '" + info.type + "' has no factory");
+    }
+    for (const ParamDecl& decl : info.params) {
+        checkValue(info.type, decl, decl.defaultValue);
+    }
+    m_infos.push_back(std::move(info));
+}
+
+const PluginInfo* Registry::find(std::string_view type) const {
+    for (const PluginInfo& info : m_infos) {
+        if (info.type == type) {
+            return &info;
+        }
+    }
+    return nullptr;
+}
+
+std::unique_ptr<Plugin> Registry::create(std::string_view type,
+                                         std::span<const ParamValue> values) const {
+    const PluginInfo* info = find(type);
+    if (info == nullptr) {
+        std::ostringstream s;
+        s << "unknown plugin type '" << type << "'; known:";
+        for (const PluginInfo& known : m_infos) {
+            s << ' ' << known.type;
+        }
+        if (m_infos.empty()) {
+            s << " (none: call registerBuiltinPlugins first)";
+        }
+        throw Error(s.str());
+    }
+    std::unique_ptr<Plugin> plugin = info->create();
+    for (const ParamValue& value : values) {
+        plugin->setParam(value.first, value.second);
+    }
+    return plugin;
+}
+
+namespace {
+template <class P>
+std::unique_ptr<P> downcast(std::unique_ptr<Plugin> plugin, PluginKind kind, const char* what) {
+    if (plugin->kind() != kind) {
+        throw Error("plugin '" + std::string(plugin->type()) + "' is not a " + what + " plugin");
+    }
+    return std::unique_ptr<P>(static_cast<P*>(plugin.release()));
+}
+} // namespace
+
+std::unique_ptr<ForcePlugin> Registry::createForce(std::string_view type,
+                                                   std::span<const ParamValue> values) const {
+    return downcast<ForcePlugin>(create(type, values), PluginKind::Force, "force");
+}
+
+std::unique_ptr<BoundaryPlugin> Registry::createBoundary(std::string_view type,
+                                                         std::span<const ParamValue> values) const {
+    return downcast<BoundaryPlugin>(create(type, values), PluginKind::Boundary, "boundary");
+}
+
+} // namespace fluid

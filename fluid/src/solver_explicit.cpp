@@ -1,0 +1,701 @@
+// fluid — the explicit solver: the seed's SPH loop, sub-stepped by a CFL condition.
+//
+// One World::step(frameDt):
+//   prepare      plugins' prepare hooks, boundary samples, scene sound speed, CFL sub-steps
+//   per sub-step (seed section 2.3, in order):
+//     sort        counting sort by grid cell; every channel follows (grid.cpp)
+//     external    force plugins' accelerations (seed step 5, computed first: the boundary
+//                 pressure extrapolation needs them)
+//     density     rho_i = sum_j (m_j/depth) W_ij + boundary samples            (seed eq. 2.3)
+//     pressure    p_i = k (rho_i - rho0) or Tait; boundary pressure [Adami 2012] (seed eq. 2.4)
+//     forces      symmetric pressure force (2.5), viscosity (2.6), surface tension [Akinci 2013]
+//     integrate   v += dt a, x += dt v: symplectic Euler                        (seed eq. 2.8, 2.9)
+//     boundaries  boundary plugins keep particles out of solids (safety net)
+#include "kernels.h"
+#include "parallel.h"
+#include "world_state.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace fluid::detail {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+template <class F>
+void timed(float& total, F&& f) {
+    const Clock::time_point t0 = Clock::now();
+    f();
+    total += std::chrono::duration<float, std::milli>(Clock::now() - t0).count();
+}
+
+constexpr uint32_t kGrain = 256; // smallest range handed to a worker (particles)
+
+// Everything one sub-step reads that does not change inside it.
+struct SubstepConstants {
+    uint32_t materialCount = 0;
+    const MaterialConstants* mat = nullptr;
+    const float* pairSupport = nullptr;
+    float sampleVolume = 0; // V_w = spacing^2 (m^2)
+    float minSupport = 0;
+    bool tait = true;
+    bool surfaceTension = false;
+};
+
+void permute(std::vector<float>& channel, std::span<const uint32_t> order, std::vector<float>& tmp) {
+    tmp.resize(channel.size());
+    for (size_t k = 0; k < order.size(); ++k) {
+        tmp[k] = channel[order[k]];
+    }
+    channel.swap(tmp);
+}
+
+// ---- prepare -------------------------------------------------------------------------------
+
+void refreshConstants(WorldState& s, float soundSpeed) {
+    const size_t m = s.materials.size();
+    s.constants.resize(m);
+    s.pairSupport.resize(m * m);
+    for (size_t i = 0; i < m; ++i) {
+        const Material& mat = s.materials[i];
+        MaterialConstants& c = s.constants[i];
+        c.mass = mat.mass;
+        c.massPerDepth = mat.mass / s.def.depth;
+        c.restDensity = mat.restDensity;
+        c.viscosity = mat.viscosity;
+        c.stiffness = mat.stiffness;
+        c.taitB = mat.restDensity * soundSpeed * soundSpeed / 7.0f;
+        c.support = mat.smoothingDistance;
+        c.gamma = mat.surfaceTension;
+    }
+    for (size_t i = 0; i < m; ++i) {
+        for (size_t j = 0; j < m; ++j) {
+            s.pairSupport[i * m + j] = 0.5f * (s.constants[i].support + s.constants[j].support);
+        }
+    }
+}
+
+void gatherSamples(WorldState& s, const StepContext& context) {
+    Samples& out = s.samples;
+    out.pluginBegin.clear();
+    size_t total = 0;
+    for (const auto& plugin : s.boundaries) {
+        plugin->prepare(context);
+        out.pluginBegin.push_back(static_cast<uint32_t>(total));
+        total += plugin->samples().size();
+    }
+    out.pluginBegin.push_back(static_cast<uint32_t>(total));
+    out.fx.assign(total, 0.0f);
+    out.fy.assign(total, 0.0f);
+}
+
+// Positions of all samples at `t` seconds into the step, sorted by cell (rebuilt each sub-step
+// only when some sample moves).
+void placeSamples(WorldState& s, float t, float cellSize, bool rebuild) {
+    Samples& out = s.samples;
+    const uint32_t total = out.pluginBegin.empty() ? 0 : out.pluginBegin.back();
+    if (!rebuild && out.size() == total) {
+        return;
+    }
+    // Unsorted positions at time t, in concatenation order.
+    std::vector<float> x(total), y(total), vx(total), vy(total), friction(total);
+    for (size_t p = 0; p < s.boundaries.size(); ++p) {
+        const BoundarySamples& bs = s.boundaries[p]->samples();
+        const float f = s.boundaries[p]->friction();
+        for (size_t k = 0; k < bs.size(); ++k) {
+            const size_t i = out.pluginBegin[p] + k;
+            x[i] = bs.px[k] + bs.vx[k] * t;
+            y[i] = bs.py[k] + bs.vy[k] * t;
+            vx[i] = bs.vx[k];
+            vy[i] = bs.vy[k];
+            friction[i] = f;
+        }
+    }
+    out.grid.build(x, y, cellSize, s.tasks);
+    const std::span<const uint32_t> order = out.grid.order();
+    out.px.resize(total);
+    out.py.resize(total);
+    out.vx.resize(total);
+    out.vy.resize(total);
+    out.friction.resize(total);
+    out.pressure.assign(total, 0.0f);
+    out.source.assign(order.begin(), order.end());
+    for (uint32_t k = 0; k < total; ++k) {
+        const uint32_t i = order[k];
+        out.px[k] = x[i];
+        out.py[k] = y[i];
+        out.vx[k] = vx[i];
+        out.vy[k] = vy[i];
+        out.friction[k] = friction[i];
+    }
+}
+
+bool samplesMove(const WorldState& s) {
+    for (const auto& plugin : s.boundaries) {
+        const BoundarySamples& bs = plugin->samples();
+        for (size_t k = 0; k < bs.size(); ++k) {
+            if (bs.vx[k] != 0.0f || bs.vy[k] != 0.0f) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+ParticleView view(const WorldState& s) {
+    const Particles& p = s.particles;
+    return ParticleView{p.px, p.py, p.vx, p.vy, p.material, s.materials, p.size()};
+}
+
+// Force plugins' accelerations into ex, ey (zeroed first).
+void externalForces(WorldState& s, float dt, double time) {
+    Particles& p = s.particles;
+    const ForceContext context{view(s), p.ex, p.ey, dt, time};
+    parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        std::fill(p.ex.begin() + b, p.ex.begin() + e, 0.0f);
+        std::fill(p.ey.begin() + b, p.ey.begin() + e, 0.0f);
+        for (const auto& plugin : s.forces) {
+            plugin->apply(context, b, e);
+        }
+    });
+}
+
+// The scene's Tait sound speed: c = max(sqrt(k_max), 10 sqrt(g H)) with g the largest external
+// acceleration and H the fluid's extent along the mean acceleration (or the diagonal of its
+// bounding box when accelerations point many ways, as around a planetoid). 10 sqrt(g H) is ten
+// times the fastest free-surface speed of a column of height H, so density varies by ~1%.
+float sceneSoundSpeed(WorldState& s, float frameDt) {
+    Particles& p = s.particles;
+    float kMax = 0.0f;
+    for (const Material& m : s.materials) {
+        kMax = std::max(kMax, m.stiffness);
+    }
+    if (p.size() == 0) {
+        s.soundSpeed = std::max(s.soundSpeed, std::sqrt(kMax));
+        return s.soundSpeed;
+    }
+    externalForces(s, frameDt, s.time);
+    struct Acc {
+        double sx = 0, sy = 0, sabs = 0;
+        float gmax = 0;
+        float x0 = std::numeric_limits<float>::max(), y0 = std::numeric_limits<float>::max();
+        float x1 = std::numeric_limits<float>::lowest(), y1 = std::numeric_limits<float>::lowest();
+    };
+    const Acc acc = blockReduce<Acc>(
+        s.tasks, p.size(), Acc{},
+        [&](uint32_t b, uint32_t e) {
+            Acc a;
+            for (uint32_t i = b; i < e; ++i) {
+                const float g = std::sqrt(p.ex[i] * p.ex[i] + p.ey[i] * p.ey[i]);
+                a.sx += p.ex[i];
+                a.sy += p.ey[i];
+                a.sabs += g;
+                a.gmax = std::max(a.gmax, g);
+                a.x0 = std::min(a.x0, p.px[i]);
+                a.x1 = std::max(a.x1, p.px[i]);
+                a.y0 = std::min(a.y0, p.py[i]);
+                a.y1 = std::max(a.y1, p.py[i]);
+            }
+            return a;
+        },
+        [](Acc a, const Acc& b) {
+            a.sx += b.sx;
+            a.sy += b.sy;
+            a.sabs += b.sabs;
+            a.gmax = std::max(a.gmax, b.gmax);
+            a.x0 = std::min(a.x0, b.x0);
+            a.x1 = std::max(a.x1, b.x1);
+            a.y0 = std::min(a.y0, b.y0);
+            a.y1 = std::max(a.y1, b.y1);
+            return a;
+        });
+    double height = std::hypot(double(acc.x1) - acc.x0, double(acc.y1) - acc.y0);
+    const double mean = std::hypot(acc.sx, acc.sy);
+    if (acc.sabs > 0.0 && mean >= 0.5 * acc.sabs) {
+        const float dx = float(acc.sx / mean);
+        const float dy = float(acc.sy / mean);
+        struct Range {
+            float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+        };
+        const Range r = blockReduce<Range>(
+            s.tasks, p.size(), Range{},
+            [&](uint32_t b, uint32_t e) {
+                Range q;
+                for (uint32_t i = b; i < e; ++i) {
+                    const float d = dx * p.px[i] + dy * p.py[i];
+                    q.lo = std::min(q.lo, d);
+                    q.hi = std::max(q.hi, d);
+                }
+                return q;
+            },
+            [](Range a, const Range& b) { return Range{std::min(a.lo, b.lo), std::max(a.hi, b.hi)}; });
+        height = double(r.hi) - r.lo;
+    }
+    const float scene = std::max(std::sqrt(kMax), 10.0f * float(std::sqrt(acc.gmax * height)));
+    s.soundSpeed = std::max(s.soundSpeed, scene);
+    return s.soundSpeed;
+}
+
+// ---- sub-step stages ---------------------------------------------------------------------
+
+void sortParticles(WorldState& s, float cellSize) {
+    Particles& p = s.particles;
+    s.grid.build(p.px, p.py, cellSize, s.tasks);
+    const std::span<const uint32_t> order = s.grid.order();
+    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy}) {
+        permute(*channel, order, s.sortScratch);
+    }
+    std::vector<uint16_t> material(p.size());
+    for (size_t k = 0; k < order.size(); ++k) {
+        material[k] = p.material[order[k]];
+        s.sortScratchU.resize(p.size());
+        s.sortScratchU[k] = p.slot[order[k]];
+    }
+    p.material.swap(material);
+    p.slot.swap(s.sortScratchU);
+    for (uint32_t k = 0; k < p.size(); ++k) {
+        s.slotIndex[p.slot[k]] = k;
+    }
+}
+
+// Seed eq. 2.3 with boundary samples acting as fluid of the particle's rest density.
+void computeDensity(WorldState& s, const SubstepConstants& c) {
+    Particles& p = s.particles;
+    const Samples& w = s.samples;
+    const uint32_t m = c.materialCount;
+    parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t i = b; i < e; ++i) {
+            const float xi = p.px[i], yi = p.py[i];
+            const uint32_t mi = p.material[i];
+            const float* support = c.pairSupport + mi * m;
+            float rho = 0.0f;
+            s.grid.forEachRange(xi, yi, [&](uint32_t jb, uint32_t je) {
+                for (uint32_t j = jb; j < je; ++j) {
+                    const float dx = xi - p.px[j], dy = yi - p.py[j];
+                    const float r2 = dx * dx + dy * dy;
+                    const float h = support[p.material[j]];
+                    if (r2 < h * h) {
+                        rho += c.mat[p.material[j]].massPerDepth * kernel::wendland(std::sqrt(r2), h);
+                    }
+                }
+            });
+            const float h = c.mat[mi].support;
+            float wall = 0.0f;
+            w.grid.forEachRange(xi, yi, [&](uint32_t kb, uint32_t ke) {
+                for (uint32_t k = kb; k < ke; ++k) {
+                    const float dx = xi - w.px[k], dy = yi - w.py[k];
+                    const float r2 = dx * dx + dy * dy;
+                    if (r2 < h * h) {
+                        wall += kernel::wendland(std::sqrt(r2), h);
+                    }
+                }
+            });
+            p.density[i] = rho + c.mat[mi].restDensity * c.sampleVolume * wall;
+        }
+    });
+}
+
+// Seed eq. 2.4 (or Tait), then each boundary sample's pressure extrapolated from the fluid
+// around it, hydrostatic term included [Adami 2012, eq. 27]: walls push back as hard as the
+// fluid presses, with no pressure mirroring (which pumps energy into a resting tank).
+void computePressure(WorldState& s, const SubstepConstants& c) {
+    Particles& p = s.particles;
+    parallelFor(s.tasks, p.size(), 1024, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t i = b; i < e; ++i) {
+            const MaterialConstants& mc = c.mat[p.material[i]];
+            if (c.tait) {
+                const float ratio = p.density[i] / mc.restDensity;
+                const float r2 = ratio * ratio;
+                const float r7 = r2 * r2 * r2 * ratio;
+                p.pressure[i] = std::max(0.0f, mc.taitB * (r7 - 1.0f));
+            } else {
+                p.pressure[i] = mc.stiffness * (p.density[i] - mc.restDensity);
+            }
+        }
+    });
+    Samples& w = s.samples;
+    parallelFor(s.tasks, w.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t k = b; k < e; ++k) {
+            const float xw = w.px[k], yw = w.py[k];
+            float sumW = 0.0f, sumP = 0.0f;
+            s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
+                for (uint32_t j = jb; j < je; ++j) {
+                    const float dx = xw - p.px[j], dy = yw - p.py[j];
+                    const float r2 = dx * dx + dy * dy;
+                    const float h = c.mat[p.material[j]].support;
+                    if (r2 < h * h) {
+                        const float wk = kernel::wendland(std::sqrt(r2), h);
+                        // Samples move at constant velocity within a step: their own
+                        // acceleration is zero, so (g - a_w) is the fluid's external field.
+                        sumP += (p.pressure[j] + p.density[j] * (p.ex[j] * dx + p.ey[j] * dy)) * wk;
+                        sumW += wk;
+                    }
+                }
+            });
+            w.pressure[k] = sumW > 0.0f ? std::max(0.0f, sumP / sumW) : 0.0f;
+        }
+    });
+}
+
+// Surface normals n_i = h sum_j (m_j/rho_j) grad W_ij, pointing into the fluid [Akinci 2013].
+void computeNormals(WorldState& s, const SubstepConstants& c) {
+    Particles& p = s.particles;
+    const uint32_t m = c.materialCount;
+    parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t i = b; i < e; ++i) {
+            const float xi = p.px[i], yi = p.py[i];
+            const float* support = c.pairSupport + p.material[i] * m;
+            float nx = 0.0f, ny = 0.0f;
+            s.grid.forEachRange(xi, yi, [&](uint32_t jb, uint32_t je) {
+                for (uint32_t j = jb; j < je; ++j) {
+                    const float dx = xi - p.px[j], dy = yi - p.py[j];
+                    const float r2 = dx * dx + dy * dy;
+                    const float h = support[p.material[j]];
+                    if (r2 < h * h) {
+                        const float g = c.mat[p.material[j]].massPerDepth / p.density[j] *
+                                        kernel::wendlandGradOverR(std::sqrt(r2), h);
+                        nx += g * dx;
+                        ny += g * dy;
+                    }
+                }
+            });
+            const float h = c.mat[p.material[i]].support;
+            p.nx[i] = h * nx;
+            p.ny[i] = h * ny;
+        }
+    });
+}
+
+// Seed eqs. 2.5-2.7: a_i = external - sum_j (m_j/depth) (p_i/rho_i^2 + p_j/rho_j^2) grad W_ij
+// + (mu_ij/rho_i) sum_j (m_j/depth) (v_j - v_i)/rho_j lap W_ij + surface tension, and the same
+// from boundary samples. Every pair term is antisymmetric in (i, j) once multiplied by m_i, so
+// momentum is conserved; each particle only gathers, so any thread split gives the same sums.
+void computeForces(WorldState& s, const SubstepConstants& c) {
+    Particles& p = s.particles;
+    const Samples& w = s.samples;
+    const uint32_t m = c.materialCount;
+    parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t i = b; i < e; ++i) {
+            const float xi = p.px[i], yi = p.py[i], vxi = p.vx[i], vyi = p.vy[i];
+            const uint32_t mi = p.material[i];
+            const MaterialConstants& ci = c.mat[mi];
+            const float* support = c.pairSupport + mi * m;
+            const float rhoi = p.density[i];
+            const float pi = p.pressure[i] / (rhoi * rhoi);
+            const float nxi = c.surfaceTension ? p.nx[i] : 0.0f;
+            const float nyi = c.surfaceTension ? p.ny[i] : 0.0f;
+            float ax = p.ex[i], ay = p.ey[i];
+            s.grid.forEachRange(xi, yi, [&](uint32_t jb, uint32_t je) {
+                for (uint32_t j = jb; j < je; ++j) {
+                    const float dx = xi - p.px[j], dy = yi - p.py[j];
+                    const float r2 = dx * dx + dy * dy;
+                    const uint32_t mj = p.material[j];
+                    const float h = support[mj];
+                    if (r2 >= h * h) {
+                        continue;
+                    }
+                    const MaterialConstants& cj = c.mat[mj];
+                    const float r = std::sqrt(r2);
+                    const float rhoj = p.density[j];
+                    // Pressure, seed eq. 2.5.
+                    const float fp = -cj.massPerDepth * (pi + p.pressure[j] / (rhoj * rhoj)) *
+                                     kernel::wendlandGradOverR(r, h);
+                    ax += fp * dx;
+                    ay += fp * dy;
+                    // Viscosity, seed eq. 2.6 with the pair's mean mu.
+                    const float fv = 0.5f * (ci.viscosity + cj.viscosity) / rhoi * cj.massPerDepth /
+                                     rhoj * kernel::viscosityLaplacian(r, h);
+                    ax += fv * (p.vx[j] - vxi);
+                    ay += fv * (p.vy[j] - vyi);
+                    // Cohesion and curvature [Akinci 2013, eqs. 1-6], with K_ij correcting
+                    // particle deficiency at the surface.
+                    if (c.surfaceTension) {
+                        const float gamma = 0.5f * (ci.gamma + cj.gamma);
+                        const float k = (ci.restDensity + cj.restDensity) / (rhoi + rhoj);
+                        const float coh = r > 0.0f ? cj.mass * kernel::cohesion(r, h) / r : 0.0f;
+                        const float curv = 2.0f * cj.mass / (ci.mass + cj.mass);
+                        ax -= gamma * k * (coh * dx + curv * (nxi - p.nx[j]));
+                        ay -= gamma * k * (coh * dy + curv * (nyi - p.ny[j]));
+                    }
+                }
+            });
+            const float h = ci.support;
+            const float wallScale = ci.restDensity * c.sampleVolume;
+            w.grid.forEachRange(xi, yi, [&](uint32_t kb, uint32_t ke) {
+                for (uint32_t k = kb; k < ke; ++k) {
+                    const float dx = xi - w.px[k], dy = yi - w.py[k];
+                    const float r2 = dx * dx + dy * dy;
+                    if (r2 >= h * h) {
+                        continue;
+                    }
+                    const float r = std::sqrt(r2);
+                    // The sample's density is taken equal to the particle's.
+                    const float fp = -wallScale * (pi + w.pressure[k] / (rhoi * rhoi)) *
+                                     kernel::wendlandGradOverR(r, h);
+                    ax += fp * dx;
+                    ay += fp * dy;
+                    if (w.friction[k] > 0.0f) {
+                        const float fv = w.friction[k] * ci.viscosity / rhoi * c.sampleVolume *
+                                         kernel::viscosityLaplacian(r, h);
+                        ax += fv * (w.vx[k] - vxi);
+                        ay += fv * (w.vy[k] - vyi);
+                    }
+                }
+            });
+            p.ax[i] = ax;
+            p.ay[i] = ay;
+        }
+    });
+}
+
+// The fluid's force on each boundary sample (minus what the sample exerts on the fluid in
+// computeForces), weighted by dt/frameDt so the step reports the frame's mean force.
+void computeSampleForces(WorldState& s, const SubstepConstants& c, float weight) {
+    const Particles& p = s.particles;
+    Samples& w = s.samples;
+    parallelFor(s.tasks, w.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t k = b; k < e; ++k) {
+            const float xw = w.px[k], yw = w.py[k];
+            float fx = 0.0f, fy = 0.0f;
+            s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
+                for (uint32_t j = jb; j < je; ++j) {
+                    const MaterialConstants& cj = c.mat[p.material[j]];
+                    const float dx = p.px[j] - xw, dy = p.py[j] - yw;
+                    const float r2 = dx * dx + dy * dy;
+                    const float h = cj.support;
+                    if (r2 >= h * h) {
+                        continue;
+                    }
+                    const float r = std::sqrt(r2);
+                    const float rhoj = p.density[j];
+                    const float fp = cj.mass * cj.restDensity * c.sampleVolume *
+                                     (p.pressure[j] + w.pressure[k]) / (rhoj * rhoj) *
+                                     kernel::wendlandGradOverR(r, h);
+                    fx += fp * dx;
+                    fy += fp * dy;
+                    if (w.friction[k] > 0.0f) {
+                        const float fv = cj.mass * w.friction[k] * cj.viscosity / rhoj *
+                                         c.sampleVolume * kernel::viscosityLaplacian(r, h);
+                        fx -= fv * (w.vx[k] - p.vx[j]);
+                        fy -= fv * (w.vy[k] - p.vy[j]);
+                    }
+                }
+            });
+            w.fx[w.source[k]] += weight * fx;
+            w.fy[w.source[k]] += weight * fy;
+        }
+    });
+}
+
+struct IntegrateStats {
+    uint32_t clamped = 0;
+    uint32_t repaired = 0;
+    float maxAccel2 = 0.0f;
+};
+
+// Symplectic Euler, seed eqs. 2.8 and 2.9, with two safety nets: a non-finite acceleration
+// (a broken plugin) is zeroed instead of spreading NaN, and the speed is capped at half a
+// support radius per sub-step so that no particle can jump through a wall's sample layers.
+IntegrateStats integrate(WorldState& s, float dt, float speedCap) {
+    Particles& p = s.particles;
+    return blockReduce<IntegrateStats>(
+        s.tasks, p.size(), IntegrateStats{},
+        [&](uint32_t b, uint32_t e) {
+            IntegrateStats st;
+            for (uint32_t i = b; i < e; ++i) {
+                float ax = p.ax[i], ay = p.ay[i];
+                if (!std::isfinite(ax) || !std::isfinite(ay)) {
+                    ax = ay = 0.0f;
+                    ++st.repaired;
+                }
+                st.maxAccel2 = std::max(st.maxAccel2, ax * ax + ay * ay);
+                float vx = p.vx[i] + dt * ax;
+                float vy = p.vy[i] + dt * ay;
+                const float v2 = vx * vx + vy * vy;
+                if (v2 > speedCap * speedCap) {
+                    const float scale = speedCap / std::sqrt(v2);
+                    vx *= scale;
+                    vy *= scale;
+                    ++st.clamped;
+                }
+                p.vx[i] = vx;
+                p.vy[i] = vy;
+                p.px[i] += dt * vx;
+                p.py[i] += dt * vy;
+            }
+            return st;
+        },
+        [](IntegrateStats a, const IntegrateStats& b) {
+            return IntegrateStats{a.clamped + b.clamped, a.repaired + b.repaired,
+                                  std::max(a.maxAccel2, b.maxAccel2)};
+        });
+}
+
+void projectBoundaries(WorldState& s, float dt, float timeInStep, float spacing) {
+    Particles& p = s.particles;
+    const ProjectContext context{p.px, p.py, p.vx, p.vy, p.material, dt, timeInStep, spacing};
+    for (const auto& plugin : s.boundaries) {
+        parallelFor(s.tasks, p.size(), 1024, [&](uint32_t b, uint32_t e, uint32_t) {
+            plugin->project(context, b, e);
+        });
+    }
+}
+
+void densityError(WorldState& s) {
+    const Particles& p = s.particles;
+    struct Err {
+        double sum = 0;
+        float max = 0;
+    };
+    const Err err = blockReduce<Err>(
+        s.tasks, p.size(), Err{},
+        [&](uint32_t b, uint32_t e) {
+            Err r;
+            for (uint32_t i = b; i < e; ++i) {
+                const float c = std::max(0.0f, p.density[i] / s.constants[p.material[i]].restDensity - 1.0f);
+                r.sum += c;
+                r.max = std::max(r.max, c);
+            }
+            return r;
+        },
+        [](Err a, const Err& b) { return Err{a.sum + b.sum, std::max(a.max, b.max)}; });
+    s.profile.densityErrorMax = err.max;
+    s.profile.densityErrorAvg = p.size() > 0 ? float(err.sum / p.size()) : 0.0f;
+}
+
+} // namespace
+
+void stepExplicit(WorldState& s, float frameDt) {
+    const Clock::time_point start = Clock::now();
+    Profile& prof = s.profile;
+    prof = Profile{};
+    Particles& p = s.particles;
+    const uint32_t n = p.size();
+    for (auto* channel : {&p.ax, &p.ay, &p.ex, &p.ey, &p.nx, &p.ny}) {
+        channel->resize(n);
+    }
+
+    float minSupport = std::numeric_limits<float>::max(), maxSupport = 0.0f;
+    float minSpacing = std::numeric_limits<float>::max(), maxNu = 0.0f, maxK = 0.0f;
+    bool surfaceTension = false;
+    for (const Material& m : s.materials) {
+        minSupport = std::min(minSupport, m.smoothingDistance);
+        maxSupport = std::max(maxSupport, m.smoothingDistance);
+        minSpacing = std::min(minSpacing, particleSpacing(m, s.def.depth));
+        maxNu = std::max(maxNu, m.viscosity / m.restDensity);
+        maxK = std::max(maxK, m.stiffness);
+        surfaceTension = surfaceTension || m.surfaceTension > 0.0f;
+    }
+    const float sampleSpacing = particleSpacing(s.materials[0], s.def.depth);
+
+    // Prepare: plugins, boundary samples, sound speed, sub-step count.
+    const StepContext context{frameDt, s.time, sampleSpacing, maxSupport};
+    for (const auto& plugin : s.forces) {
+        plugin->prepare(context);
+    }
+    gatherSamples(s, context);
+    float maxFriction = 0.0f;
+    for (const auto& plugin : s.boundaries) {
+        maxFriction = std::max(maxFriction, plugin->friction());
+    }
+    const bool tait = s.def.equationOfState == EquationOfState::Tait;
+    float soundSpeed = 0.0f;
+    if (tait) {
+        soundSpeed = s.def.soundSpeed > 0.0f ? s.def.soundSpeed : sceneSoundSpeed(s, frameDt);
+    }
+    refreshConstants(s, soundSpeed);
+
+    const float maxSpeed = std::sqrt(blockReduce<float>(
+        s.tasks, n, 0.0f,
+        [&](uint32_t b, uint32_t e) {
+            float v2 = 0.0f;
+            for (uint32_t i = b; i < e; ++i) {
+                v2 = std::max(v2, p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i]);
+            }
+            return v2;
+        },
+        [](float a, float b) { return std::max(a, b); }));
+    // CFL: sound and flow speed [Monaghan 1992], acceleration, and explicit viscous diffusion
+    // (the 2D viscosity Laplacian's largest eigenvalue is about 27/h^2, so 0.06 h^2/nu keeps
+    // forward Euler stable with margin); wall friction adds to the viscosity.
+    const float cfl = tait ? soundSpeed : std::sqrt(maxK);
+    float dt = s.def.courant * minSpacing / (cfl + maxSpeed);
+    if (s.lastMaxAccel > 0.0f) {
+        dt = std::min(dt, 0.25f * std::sqrt(minSupport / s.lastMaxAccel));
+    }
+    if (maxNu > 0.0f) {
+        dt = std::min(dt, 0.06f * minSupport * minSupport / (maxNu * std::max(1.0f, maxFriction)));
+    }
+    const auto wanted = static_cast<uint32_t>(std::min(1e6, std::ceil(double(frameDt) / dt)));
+    const uint32_t substeps = std::clamp(wanted, 1u, s.def.maxSubsteps);
+    const float h = frameDt / float(substeps);
+    prof.cflDt = dt;
+    prof.substeps = substeps;
+    prof.soundSpeed = soundSpeed;
+
+    SubstepConstants c;
+    c.materialCount = static_cast<uint32_t>(s.materials.size());
+    c.mat = s.constants.data();
+    c.pairSupport = s.pairSupport.data();
+    c.sampleVolume = sampleSpacing * sampleSpacing;
+    c.minSupport = minSupport;
+    c.tait = tait;
+    c.surfaceTension = surfaceTension;
+    const bool moving = samplesMove(s);
+    bool wantsForces = false;
+    for (const auto& plugin : s.boundaries) {
+        wantsForces = wantsForces || plugin->wantsForces();
+    }
+    const float speedCap = 0.5f * minSupport / h;
+
+    for (uint32_t sub = 0; sub < substeps; ++sub) {
+        const double t = s.time + double(sub) * h;
+        const float inStep = float(sub) * h;
+        timed(prof.sort, [&] {
+            sortParticles(s, maxSupport);
+            placeSamples(s, inStep, maxSupport, moving || sub == 0);
+        });
+        timed(prof.external, [&] { externalForces(s, h, t); });
+        timed(prof.density, [&] { computeDensity(s, c); });
+        timed(prof.pressure, [&] {
+            computePressure(s, c);
+            if (surfaceTension) {
+                computeNormals(s, c);
+            }
+        });
+        timed(prof.forces, [&] {
+            computeForces(s, c);
+            if (wantsForces) {
+                computeSampleForces(s, c, 1.0f / float(substeps));
+            }
+        });
+        if (sub + 1 == substeps) {
+            densityError(s);
+        }
+        IntegrateStats st;
+        timed(prof.integrate, [&] { st = integrate(s, h, speedCap); });
+        prof.speedClamped += st.clamped;
+        prof.nonFiniteRepaired += st.repaired;
+        s.lastMaxAccel = std::sqrt(st.maxAccel2);
+        timed(prof.boundaries, [&] { projectBoundaries(s, h, inStep + h, sampleSpacing); });
+    }
+
+    if (wantsForces) {
+        for (size_t k = 0; k < s.boundaries.size(); ++k) {
+            const size_t b = s.samples.pluginBegin[k], e = s.samples.pluginBegin[k + 1];
+            if (s.boundaries[k]->wantsForces()) {
+                s.boundaries[k]->receiveForces(std::span<const float>(s.samples.fx).subspan(b, e - b),
+                                               std::span<const float>(s.samples.fy).subspan(b, e - b));
+            }
+        }
+    }
+    s.time += frameDt;
+    prof.iterations = 0;
+    prof.particles = n;
+    prof.step = std::chrono::duration<float, std::milli>(Clock::now() - start).count();
+}
+
+} // namespace fluid::detail

@@ -1,0 +1,86 @@
+// fluid — a world's internal state, shared by the API (world.cpp) and the solvers.
+#pragma once
+
+#include "grid.h"
+
+#include <fluid/world.h>
+
+#include <memory>
+#include <vector>
+
+namespace fluid::detail {
+
+/// Structure of arrays of the particles. The persistent channels (position, velocity, material,
+/// slot) are permuted together when the grid sorts; the derived ones are recomputed every
+/// sub-step, except density and pressure, which are kept in slot order for readers.
+struct Particles {
+    std::vector<float> px, py, vx, vy;
+    std::vector<uint16_t> material;
+    std::vector<uint32_t> slot;
+    std::vector<float> density, pressure;
+    // Per sub-step scratch, in sorted order.
+    std::vector<float> ax, ay; // total acceleration
+    std::vector<float> ex, ey; // external (plugin) acceleration
+    std::vector<float> nx, ny; // surface normals [Akinci 2013]
+
+    uint32_t size() const { return static_cast<uint32_t>(px.size()); }
+};
+
+/// Per-material constants the hot loops read, refreshed at the start of every step.
+struct MaterialConstants {
+    float mass = 0;        // 3D mass m (kg)
+    float massPerDepth = 0; // m / depth (kg/m): the mass a 2D kernel sum weighs with
+    float restDensity = 0; // rho0 (kg/m^3)
+    float viscosity = 0;   // mu (Pa s)
+    float stiffness = 0;   // k (m^2/s^2)
+    float taitB = 0;       // rho0 c^2 / 7 (Pa)
+    float support = 0;     // h (m)
+    float gamma = 0;       // surface tension (Akinci 2013)
+};
+
+/// Boundary samples of all boundary plugins, sorted by cell for the sub-step.
+struct Samples {
+    std::vector<float> px, py, vx, vy, friction, pressure;
+    std::vector<uint32_t> source; // index in the concatenation of the plugins' sample arrays
+    std::vector<float> fx, fy;    // force on each sample (N), in concatenation order, summed over sub-steps
+    std::vector<uint32_t> pluginBegin; // first concatenated index of each plugin (+ total)
+    Grid grid;
+    uint32_t size() const { return static_cast<uint32_t>(px.size()); }
+};
+
+struct WorldState {
+    WorldDef def;
+    std::unique_ptr<ThreadPool> pool; // own pool when the host gave no hook
+    TaskHook tasks;
+
+    std::vector<Material> materials;
+    std::vector<MaterialConstants> constants;
+    std::vector<float> pairSupport; // h_ij = (h_i + h_j) / 2, by material pair
+
+    Particles particles;
+    // Handles: slot -> index and generation; free slots reused last-in first-out.
+    std::vector<uint32_t> slotIndex;
+    std::vector<uint32_t> slotGeneration;
+    std::vector<uint32_t> freeSlots;
+
+    std::vector<std::unique_ptr<ForcePlugin>> forces;
+    std::vector<std::unique_ptr<BoundaryPlugin>> boundaries;
+
+    Grid grid;
+    Samples samples;
+    std::vector<float> sortScratch;
+    std::vector<uint32_t> sortScratchU;
+
+    Profile profile;
+    double time = 0.0;
+    float soundSpeed = 0.0f; // derived Tait sound speed, never decreasing
+    float lastMaxAccel = 0.0f;
+
+    uint32_t checkedIndex(ParticleHandle handle, const char* function) const;
+    void removeAt(uint32_t index);
+};
+
+/// The explicit solver's step (solver_explicit.cpp).
+void stepExplicit(WorldState& state, float frameDt);
+
+} // namespace fluid::detail
