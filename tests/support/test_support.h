@@ -1,0 +1,241 @@
+// fluid tests — shared helpers: scene builders, measurements, hashing. Header-only, no Catch2.
+#pragma once
+
+#include <fluid/fluid.h>
+
+#include <glm/vec2.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+namespace fluid::test {
+
+/// Standard gravity used by the scenes (unit: m/s^2).
+inline constexpr float kG = 9.81f;
+/// The game frame (unit: s).
+inline constexpr float kFrame = 1.0f / 60.0f;
+
+/// Positions of all particles as vec2, in slot order.
+inline std::vector<glm::vec2> positions(const World& world) {
+    std::vector<glm::vec2> out(world.particleCount());
+    const auto px = world.positionX();
+    const auto py = world.positionY();
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        out[i] = {px[i], py[i]};
+    }
+    return out;
+}
+
+/// True when every position, velocity and density is finite.
+inline bool allFinite(const World& world) {
+    const auto px = world.positionX(), py = world.positionY();
+    const auto vx = world.velocityX(), vy = world.velocityY();
+    const auto rho = world.density();
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        if (!std::isfinite(px[i]) || !std::isfinite(py[i]) || !std::isfinite(vx[i]) ||
+            !std::isfinite(vy[i]) || !std::isfinite(rho[i])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/// Total momentum sum m v (unit: kg m/s), in double, masses from the world's materials.
+inline glm::dvec2 momentum(const World& world) {
+    const auto vx = world.velocityX(), vy = world.velocityY();
+    const auto mat = world.materialIndex();
+    glm::dvec2 p{0.0, 0.0};
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        const double m = world.material(MaterialId{mat[i]}).mass;
+        p.x += m * vx[i];
+        p.y += m * vy[i];
+    }
+    return p;
+}
+
+/// Total mass (unit: kg).
+inline double totalMass(const World& world) {
+    const auto mat = world.materialIndex();
+    double m = 0.0;
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        m += world.material(MaterialId{mat[i]}).mass;
+    }
+    return m;
+}
+
+/// Largest speed (unit: m/s).
+inline float maxSpeed(const World& world) {
+    const auto vx = world.velocityX(), vy = world.velocityY();
+    float v2 = 0.0f;
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        v2 = std::max(v2, vx[i] * vx[i] + vy[i] * vy[i]);
+    }
+    return std::sqrt(v2);
+}
+
+/// Axis-aligned bounds of the particles (optionally of one material only).
+struct Bounds {
+    float x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    uint32_t count = 0;
+};
+inline Bounds bounds(const World& world, int material = -1) {
+    Bounds b;
+    const auto px = world.positionX(), py = world.positionY();
+    const auto mat = world.materialIndex();
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        if (material >= 0 && mat[i] != material) {
+            continue;
+        }
+        b.x0 = std::min(b.x0, px[i]);
+        b.x1 = std::max(b.x1, px[i]);
+        b.y0 = std::min(b.y0, py[i]);
+        b.y1 = std::max(b.y1, py[i]);
+        ++b.count;
+    }
+    return b;
+}
+
+/// Count of particles whose centre lies outside [x0, x1] x [y0, y1] (or is NaN).
+inline uint32_t countOutside(const World& world, float x0, float y0, float x1, float y1) {
+    const auto px = world.positionX(), py = world.positionY();
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        if (!(px[i] >= x0 && px[i] <= x1 && py[i] >= y0 && py[i] <= y1)) {
+            ++n;
+        }
+    }
+    return n;
+}
+
+/// Convex hull (Andrew's monotone chain), counter-clockwise, no collinear points.
+inline std::vector<glm::dvec2> convexHull(std::vector<glm::dvec2> pts) {
+    std::sort(pts.begin(), pts.end(),
+              [](glm::dvec2 a, glm::dvec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+    if (pts.size() < 3) {
+        return pts;
+    }
+    auto cross = [](glm::dvec2 o, glm::dvec2 a, glm::dvec2 b) {
+        return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+    };
+    std::vector<glm::dvec2> hull(2 * pts.size());
+    size_t k = 0;
+    for (size_t i = 0; i < pts.size(); ++i) {
+        while (k >= 2 && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0) {
+            --k;
+        }
+        hull[k++] = pts[i];
+    }
+    for (size_t i = pts.size() - 1, t = k + 1; i > 0; --i) {
+        while (k >= t && cross(hull[k - 2], hull[k - 1], pts[i - 1]) <= 0) {
+            --k;
+        }
+        hull[k++] = pts[i - 1];
+    }
+    hull.resize(k - 1);
+    return hull;
+}
+
+/// Area and perimeter of a simple polygon (unit: m^2, m).
+inline double polygonArea(const std::vector<glm::dvec2>& poly) {
+    double a = 0.0;
+    for (size_t i = 0; i < poly.size(); ++i) {
+        const glm::dvec2 p = poly[i], q = poly[(i + 1) % poly.size()];
+        a += p.x * q.y - q.x * p.y;
+    }
+    return 0.5 * std::fabs(a);
+}
+inline double polygonPerimeter(const std::vector<glm::dvec2>& poly) {
+    double l = 0.0;
+    for (size_t i = 0; i < poly.size(); ++i) {
+        const glm::dvec2 d = poly[(i + 1) % poly.size()] - poly[i];
+        l += std::sqrt(d.x * d.x + d.y * d.y);
+    }
+    return l;
+}
+
+/// Distance from p to the boundary of a convex CCW polygon (positive inside).
+inline double insideDistance(const std::vector<glm::dvec2>& hull, glm::dvec2 p) {
+    double d = INFINITY;
+    for (size_t i = 0; i < hull.size(); ++i) {
+        const glm::dvec2 a = hull[i], b = hull[(i + 1) % hull.size()];
+        const glm::dvec2 e = b - a;
+        const double len = std::sqrt(e.x * e.x + e.y * e.y);
+        d = std::min(d, (e.x * (p.y - a.y) - e.y * (p.x - a.x)) / len);
+    }
+    return d;
+}
+
+/// FNV-1a (64 bit) over raw bytes.
+inline uint64_t fnv1a(const void* data, size_t size, uint64_t hash = 1469598103934665603ull) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < size; ++i) {
+        hash ^= bytes[i];
+        hash *= 1099511628211ull;
+    }
+    return hash;
+}
+
+/// Hash of positions and velocities, particle by particle in handle order (slot, then
+/// generation), so that it does not depend on where the grid sort left each particle.
+inline uint64_t stateHash(const World& world) {
+    const uint32_t n = world.particleCount();
+    std::vector<std::pair<ParticleHandle, uint32_t>> byHandle(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        byHandle[i] = {world.handleAt(i), i};
+    }
+    std::sort(byHandle.begin(), byHandle.end(), [](const auto& a, const auto& b) {
+        return a.first.slot < b.first.slot ||
+               (a.first.slot == b.first.slot && a.first.generation < b.first.generation);
+    });
+    const auto px = world.positionX(), py = world.positionY();
+    const auto vx = world.velocityX(), vy = world.velocityY();
+    uint64_t h = 1469598103934665603ull;
+    for (const auto& [handle, i] : byHandle) {
+        const float v[4] = {px[i], py[i], vx[i], vy[i]};
+        h = fnv1a(&handle.slot, sizeof handle.slot, h);
+        h = fnv1a(v, sizeof v, h);
+    }
+    return h;
+}
+
+/// A rectangle blob of exactly `cols` x `rows` lattice points whose lower-left point sits at
+/// (x0 + s/2, y0 + s/2), s the material's spacing: a block filling [x0, x0 + cols s] x
+/// [y0, y0 + rows s] the way a lattice fills a tank (half a spacing from each wall).
+inline BlobDef latticeBlock(const World& world, MaterialId material, float x0, float y0,
+                            uint32_t cols, uint32_t rows, glm::vec2 velocity = {0.0f, 0.0f}) {
+    const float s = world.spacing(material);
+    BlobDef b;
+    b.shape = BlobShape::Rectangle;
+    b.material = material;
+    b.velocity = velocity;
+    // A quarter spacing of slack on each side so that floor(width / s) is exactly cols.
+    b.halfExtents = {0.5f * s * (float(cols) + 0.5f), 0.5f * s * (float(rows) + 0.5f)};
+    b.center = {x0 + 0.5f * s * float(cols), y0 + 0.5f * s * float(rows)};
+    return b;
+}
+
+/// Wall-clock seconds since construction; prints a line with the label on destruction, so a
+/// test's runtime shows in the test log.
+class Stopwatch {
+public:
+    explicit Stopwatch(const char* label) : m_label(label), m_t0(std::chrono::steady_clock::now()) {}
+    ~Stopwatch() { std::printf("[time] %s: %.2f s\n", m_label, seconds()); }
+    Stopwatch(const Stopwatch&) = delete;
+    Stopwatch& operator=(const Stopwatch&) = delete;
+    double seconds() const {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_t0).count();
+    }
+
+private:
+    const char* m_label;
+    std::chrono::steady_clock::time_point m_t0;
+};
+
+} // namespace fluid::test

@@ -1,0 +1,205 @@
+// Blobs: rectangle, circle and polygon (convex and concave) fills on the material's lattice;
+// geometry errors.
+#include "test_support.h"
+
+#include <catch2/catch.hpp>
+
+#include <limits>
+
+using namespace fluid;
+using namespace fluid::test;
+
+namespace {
+
+// Even-odd point-in-polygon, with points within `tol` of an edge counted as inside.
+bool insideOrOn(const std::vector<glm::vec2>& poly, glm::vec2 p, float tol) {
+    bool inside = false;
+    for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+        const glm::vec2 a = poly[i], b = poly[j];
+        const glm::vec2 e = b - a;
+        const float len2 = e.x * e.x + e.y * e.y;
+        const float t = std::clamp(((p.x - a.x) * e.x + (p.y - a.y) * e.y) / len2, 0.0f, 1.0f);
+        const glm::vec2 c = a + t * e - p;
+        if (c.x * c.x + c.y * c.y <= tol * tol) {
+            return true;
+        }
+        if ((a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x) {
+            inside = !inside;
+        }
+    }
+    return inside;
+}
+
+double shoelace(const std::vector<glm::vec2>& poly) {
+    double a = 0.0;
+    for (size_t i = 0; i < poly.size(); ++i) {
+        const glm::vec2 p = poly[i], q = poly[(i + 1) % poly.size()];
+        a += double(p.x) * q.y - double(q.x) * p.y;
+    }
+    return 0.5 * std::fabs(a);
+}
+
+double perimeter(const std::vector<glm::vec2>& poly) {
+    double l = 0.0;
+    for (size_t i = 0; i < poly.size(); ++i) {
+        const glm::vec2 d = poly[(i + 1) % poly.size()] - poly[i];
+        l += std::sqrt(double(d.x) * d.x + double(d.y) * d.y);
+    }
+    return l;
+}
+
+// The count matches area / spacing^2 within `relative`, and within the lattice's unavoidable
+// perimeter error (half a spacing all around, plus one cell).
+void checkCount(uint32_t count, double area, double perim, double s, double relative) {
+    const double expected = area / (s * s);
+    CAPTURE(count, expected, (count - expected) / expected);
+    CHECK(std::fabs(count - expected) <= relative * expected);
+    CHECK(std::fabs(count - expected) <= 0.5 * perim / s + 1.0);
+}
+
+} // namespace
+
+TEST_CASE("rectangle blob: count, placement, velocity, material", "[unit][blob]") {
+    World world;
+    world.addMaterial(water());
+    const MaterialId y = world.addMaterial(yoghurt());
+    const float s = world.spacing(y);
+    BlobDef b;
+    b.shape = BlobShape::Rectangle;
+    b.center = {-0.3f, 0.7f};
+    b.halfExtents = {0.25f, 0.2f};
+    b.velocity = {0.5f, -1.0f};
+    b.material = y;
+    const uint32_t n = world.spawnBlob(b);
+    REQUIRE(n == world.particleCount());
+    checkCount(n, 0.5 * 0.4, 2 * (0.5 + 0.4), s, 0.04);
+    const auto px = world.positionX(), py = world.positionY();
+    for (uint32_t i = 0; i < n; ++i) {
+        REQUIRE(px[i] >= -0.55f);
+        REQUIRE(px[i] <= -0.05f);
+        REQUIRE(py[i] >= 0.5f);
+        REQUIRE(py[i] <= 0.9f);
+        REQUIRE(world.velocityX()[i] == 0.5f);
+        REQUIRE(world.velocityY()[i] == -1.0f);
+        REQUIRE(world.materialIndex()[i] == y.index);
+    }
+    // A lattice at the material's spacing: nearest neighbours are one spacing apart.
+    CHECK(std::fabs(px[1] - px[0]) == Approx(s).epsilon(1e-4));
+    // A shape smaller than one spacing holds no lattice point.
+    b.halfExtents = {0.2f * s, 0.2f * s};
+    CHECK(world.spawnBlob(b) == 0);
+    CHECK(world.particleCount() == n);
+}
+
+TEST_CASE("circle blob: count and placement", "[unit][blob]") {
+    World world;
+    const MaterialId w = world.addMaterial(water());
+    const float s = world.spacing(w);
+    BlobDef b;
+    b.shape = BlobShape::Circle;
+    b.center = {1.0f, -2.0f};
+    b.radius = 0.25f;
+    b.material = w;
+    const uint32_t n = world.spawnBlob(b);
+    checkCount(n, 3.14159265 * 0.25 * 0.25, 2 * 3.14159265 * 0.25, s, 0.04);
+    const auto px = world.positionX(), py = world.positionY();
+    for (uint32_t i = 0; i < n; ++i) {
+        const float dx = px[i] - 1.0f, dy = py[i] + 2.0f;
+        REQUIRE(dx * dx + dy * dy <= 0.25f * 0.25f * (1.0f + 1e-5f));
+    }
+}
+
+TEST_CASE("polygon blobs: convex and concave", "[unit][blob]") {
+    World world;
+    const MaterialId w = world.addMaterial(water());
+    const float s = world.spacing(w);
+
+    SECTION("convex triangle, clockwise") {
+        const std::vector<glm::vec2> tri{{0.0f, 0.0f}, {0.3f, 0.5f}, {0.6f, 0.0f}};
+        BlobDef b;
+        b.shape = BlobShape::Polygon;
+        b.vertices = tri;
+        b.material = w;
+        const uint32_t n = world.spawnBlob(b);
+        checkCount(n, shoelace(tri), perimeter(tri), s, 0.05);
+        for (const glm::vec2 p : positions(world)) {
+            REQUIRE(insideOrOn(tri, p, 1e-6f));
+        }
+    }
+    SECTION("concave L shape") {
+        const std::vector<glm::vec2> l{{-0.2f, -0.2f}, {0.3f, -0.2f}, {0.3f, -0.05f},
+                                       {-0.05f, -0.05f}, {-0.05f, 0.3f}, {-0.2f, 0.3f}};
+        BlobDef b;
+        b.shape = BlobShape::Polygon;
+        b.vertices = l;
+        b.material = w;
+        const uint32_t n = world.spawnBlob(b);
+        checkCount(n, shoelace(l), perimeter(l), s, 0.05);
+        uint32_t inNotch = 0;
+        for (const glm::vec2 p : positions(world)) {
+            REQUIRE(insideOrOn(l, p, 1e-6f));
+            inNotch += (p.x > -0.05f + 1e-6f && p.y > -0.05f + 1e-6f) ? 1 : 0;
+        }
+        CHECK(inNotch == 0);
+        // Both arms are filled.
+        const Bounds bb = bounds(world);
+        CHECK(bb.x1 > 0.28f);
+        CHECK(bb.y1 > 0.28f);
+    }
+}
+
+TEST_CASE("blob geometry errors", "[unit][blob][bad-input]") {
+    World world;
+    const MaterialId w = world.addMaterial(water());
+    BlobDef b;
+    b.shape = BlobShape::Polygon;
+    b.material = w;
+
+    SECTION("two vertices") {
+        b.vertices = {{0.0f, 0.0f}, {1.0f, 0.0f}};
+        CHECK_THROWS_MATCHES(world.spawnBlob(b), Error,
+                             Catch::Message("spawnBlob: polygon has 2 vertices; expected 3 or more"));
+    }
+    SECTION("self-intersecting bow tie") {
+        b.vertices = {{0.0f, 0.0f}, {0.1f, 0.1f}, {0.1f, 0.0f}, {0.0f, 0.2f}};
+        CHECK_THROWS_MATCHES(
+            world.spawnBlob(b), Error,
+            Catch::Message("spawnBlob: polygon edges 0 and 2 cross; expected a simple polygon"));
+    }
+    SECTION("NaN vertex") {
+        b.vertices = {{0.0f, 0.0f}, {std::numeric_limits<float>::quiet_NaN(), 0.0f}, {0.0f, 0.1f}};
+        CHECK_THROWS_MATCHES(
+            world.spawnBlob(b), Error,
+            Catch::Message("spawnBlob: polygon vertex 1 = (nan, 0) is not finite"));
+    }
+    SECTION("degenerate (zero area)") {
+        b.vertices = {{0.0f, 0.0f}, {0.1f, 0.1f}, {0.2f, 0.2f}};
+        CHECK_THROWS_MATCHES(world.spawnBlob(b), Error,
+                             Catch::Message("spawnBlob: polygon has zero area"));
+    }
+    SECTION("negative rectangle extents") {
+        b.shape = BlobShape::Rectangle;
+        b.halfExtents = {-0.1f, 0.1f};
+        CHECK_THROWS_MATCHES(world.spawnBlob(b), Error,
+                             Catch::Message("spawnBlob: halfExtents = (-0.1, 0.1) must be finite "
+                                            "and > 0 (unit: m)"));
+    }
+    SECTION("NaN circle radius") {
+        b.shape = BlobShape::Circle;
+        b.radius = std::numeric_limits<float>::quiet_NaN();
+        CHECK_THROWS_MATCHES(world.spawnBlob(b), Error,
+                             Catch::Message("spawnBlob: radius = nan must be finite and > 0 (unit: m)"));
+    }
+    SECTION("infinite velocity") {
+        b.shape = BlobShape::Circle;
+        b.velocity = {std::numeric_limits<float>::infinity(), 0.0f};
+        CHECK_THROWS_MATCHES(world.spawnBlob(b), Error,
+                             Catch::Message("spawnBlob: velocity = (inf, 0) is not finite"));
+    }
+    SECTION("unknown material") {
+        b.shape = BlobShape::Circle;
+        b.material = MaterialId{3};
+        CHECK_THROWS_AS(world.spawnBlob(b), Error);
+    }
+    CHECK(world.particleCount() == 0);
+}

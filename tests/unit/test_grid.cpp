@@ -1,0 +1,209 @@
+// Neighbour grid (fluid/src/grid.h): queries equal brute force in dense and hashed mode, cell
+// borders and negative coordinates included; the counting sort is stable.
+#include "grid.h"
+
+#include <fluid/task.h>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+#include <vector>
+
+namespace {
+
+struct Points {
+    std::vector<float> x, y;
+    void add(float px, float py) {
+        x.push_back(px);
+        y.push_back(py);
+    }
+    size_t size() const { return x.size(); }
+};
+
+// ~2000 points: random ones around the origin (negative coordinates included), points exactly
+// on cell borders (multiples of the cell size, both axes and one), and pairs exactly one cell
+// size apart across a border.
+Points makePoints(float cell, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-0.3f, 0.2f);
+    std::uniform_int_distribution<int> k(-9, 5);
+    Points p;
+    for (int i = 0; i < 1400; ++i) {
+        p.add(u(rng), u(rng));
+    }
+    for (int i = 0; i < 200; ++i) {
+        p.add(float(k(rng)) * cell, u(rng)); // on a vertical border
+        p.add(u(rng), float(k(rng)) * cell); // on a horizontal border
+        p.add(float(k(rng)) * cell, float(k(rng)) * cell); // on a corner
+    }
+    for (int i = 0; i < 100; ++i) {
+        const int c = k(rng);
+        const float y = u(rng);
+        p.add(float(c) * cell, y);
+        p.add(float(c + 1) * cell, y); // exactly one cell size apart (to float rounding)
+    }
+    return p;
+}
+
+// For every point, the multiset of neighbours (r^2 < h^2, as the solver tests) found through
+// the grid must equal brute force: nothing missing, nothing visited twice.
+void checkAgainstBruteForce(const Points& p, float cell, const fluid::detail::Grid& grid) {
+    const auto n = static_cast<uint32_t>(p.size());
+    REQUIRE(grid.size() == n);
+    const auto order = grid.order();
+    // order() is a permutation.
+    std::vector<uint32_t> sorted(order.begin(), order.end());
+    std::sort(sorted.begin(), sorted.end());
+    for (uint32_t i = 0; i < n; ++i) {
+        REQUIRE(sorted[i] == i);
+    }
+    const float h2 = cell * cell;
+    uint64_t pairs = 0;
+    uint32_t mismatches = 0;
+    std::vector<uint32_t> viaGrid, brute;
+    for (uint32_t i = 0; i < n; ++i) {
+        viaGrid.clear();
+        brute.clear();
+        grid.forEachRange(p.x[i], p.y[i], [&](uint32_t b, uint32_t e) {
+            for (uint32_t k = b; k < e; ++k) {
+                const uint32_t j = order[k];
+                const float dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j];
+                if (dx * dx + dy * dy < h2) {
+                    viaGrid.push_back(j);
+                }
+            }
+        });
+        for (uint32_t j = 0; j < n; ++j) {
+            const float dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j];
+            if (dx * dx + dy * dy < h2) {
+                brute.push_back(j);
+            }
+        }
+        std::sort(viaGrid.begin(), viaGrid.end());
+        pairs += brute.size();
+        if (viaGrid != brute) {
+            ++mismatches;
+            if (mismatches <= 5) {
+                UNSCOPED_INFO("point " << i << " at (" << p.x[i] << ", " << p.y[i] << "): grid "
+                                       << viaGrid.size() << " neighbours, brute force "
+                                       << brute.size());
+            }
+        }
+    }
+    CHECK(mismatches == 0);
+    CHECK(pairs > 8 * uint64_t(n)); // the scene is dense enough to mean something
+}
+
+} // namespace
+
+TEST_CASE("grid neighbours equal brute force (dense mode)", "[unit][grid]") {
+    for (const float cell : {0.032f, 0.04f, 0.036f}) {
+        CAPTURE(cell);
+        const Points p = makePoints(cell, 7);
+        fluid::detail::Grid grid;
+        grid.build(p.x, p.y, cell, fluid::TaskHook{});
+        REQUIRE_FALSE(grid.hashed());
+        checkAgainstBruteForce(p, cell, grid);
+    }
+}
+
+TEST_CASE("grid neighbours equal brute force (hashed mode)", "[unit][grid]") {
+    const float cell = 0.032f;
+    Points p = makePoints(cell, 11);
+    // A few far-flung points make the bounding box far too sparse for dense cells.
+    p.add(1e5f, 3.0f);
+    p.add(1e5f + 0.01f, 3.0f); // a neighbour of the far point
+    p.add(-2.5e4f, -7e4f);
+    p.add(0.0f, 5e4f);
+    fluid::detail::Grid grid;
+    grid.build(p.x, p.y, cell, fluid::TaskHook{});
+    REQUIRE(grid.hashed());
+    checkAgainstBruteForce(p, cell, grid);
+}
+
+TEST_CASE("grid build is the same with a thread pool", "[unit][grid]") {
+    // Above the grid's 4096-point grain the keys are computed in parallel.
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(-2.0f, 2.0f);
+    Points p;
+    for (int i = 0; i < 12000; ++i) {
+        p.add(u(rng), u(rng));
+    }
+    fluid::detail::Grid serial, pooled;
+    serial.build(p.x, p.y, 0.04f, fluid::TaskHook{});
+    fluid::ThreadPool pool(3);
+    pooled.build(p.x, p.y, 0.04f, pool.hook());
+    REQUIRE(serial.hashed() == pooled.hashed());
+    const auto a = serial.order(), b = pooled.order();
+    REQUIRE(std::equal(a.begin(), a.end(), b.begin(), b.end()));
+}
+
+TEST_CASE("grid counting sort is stable", "[unit][grid]") {
+    // Many points per cell, placed well inside cells so that the cell of each is unambiguous,
+    // in random input order; sorted positions of one cell must keep increasing input indices.
+    const float cell = 0.04f;
+    std::mt19937 rng(99);
+    std::uniform_int_distribution<int> c(-6, 5);
+    std::uniform_real_distribution<float> off(0.1f, 0.9f);
+    Points p;
+    std::vector<std::pair<int, int>> cellOf;
+    for (int i = 0; i < 3000; ++i) {
+        const int cx = c(rng), cy = c(rng);
+        p.add((float(cx) + off(rng)) * cell, (float(cy) + off(rng)) * cell);
+        cellOf.emplace_back(cx, cy);
+    }
+    for (const bool hashed : {false, true}) {
+        CAPTURE(hashed);
+        Points q = p;
+        auto cells = cellOf;
+        if (hashed) {
+            q.add(1e5f, 1e5f);
+            cells.emplace_back(INT32_MAX, INT32_MAX);
+        }
+        fluid::detail::Grid grid;
+        grid.build(q.x, q.y, cell, fluid::TaskHook{});
+        REQUIRE(grid.hashed() == hashed);
+        const auto order = grid.order();
+        // Inside a cell, input indices increase along the sorted order (in hashed mode cells
+        // sharing a bucket may interleave, but each keeps its own order).
+        std::map<std::pair<int, int>, uint32_t> last;
+        uint32_t violations = 0;
+        for (const uint32_t i : order) {
+            const auto it = last.find(cells[i]);
+            if (it != last.end() && !(i > it->second)) {
+                ++violations;
+            }
+            last[cells[i]] = i;
+        }
+        CHECK(violations == 0);
+        if (!hashed) {
+            // Dense mode: each cell is one contiguous run.
+            size_t runs = 0;
+            for (size_t k = 0; k < order.size(); ++k) {
+                runs += (k == 0 || cells[order[k]] != cells[order[k - 1]]) ? 1 : 0;
+            }
+            CHECK(runs == last.size());
+        }
+    }
+}
+
+TEST_CASE("grid handles empty input and a single point", "[unit][grid]") {
+    fluid::detail::Grid grid;
+    std::vector<float> none;
+    grid.build(none, none, 0.04f, fluid::TaskHook{});
+    CHECK(grid.size() == 0);
+    int calls = 0;
+    grid.forEachRange(0.0f, 0.0f, [&](uint32_t, uint32_t) { ++calls; });
+    CHECK(calls == 0);
+    std::vector<float> x{-3.0f}, y{2.0f};
+    grid.build(x, y, 0.04f, fluid::TaskHook{});
+    uint32_t found = 0;
+    grid.forEachRange(-3.0f, 2.0f, [&](uint32_t b, uint32_t e) { found += e - b; });
+    CHECK(found == 1);
+    found = 0;
+    grid.forEachRange(5.0f, 5.0f, [&](uint32_t b, uint32_t e) { found += e - b; });
+    CHECK(found == 0);
+}

@@ -1,0 +1,133 @@
+// Particle handles: add/remove, stale detection (also after slot reuse), survival across steps
+// while the grid sort moves slots.
+#include "test_support.h"
+
+#include <catch2/catch.hpp>
+
+using namespace fluid;
+using namespace fluid::test;
+
+TEST_CASE("add and remove particles; handles go stale", "[unit][handles]") {
+    World world;
+    const MaterialId w = world.addMaterial(water());
+    const ParticleHandle a = world.addParticle({0.0f, 0.0f}, {0.0f, 0.0f}, w);
+    const ParticleHandle b = world.addParticle({1.0f, 0.0f}, {0.5f, 0.0f}, w);
+    const ParticleHandle c = world.addParticle({2.0f, 0.0f}, {0.0f, 0.0f}, w);
+    REQUIRE(world.particleCount() == 3);
+    CHECK_FALSE(a.isNull());
+    CHECK(a != b);
+    CHECK(world.isValid(a));
+    CHECK(world.isValid(b));
+    CHECK(world.position(b) == glm::vec2(1.0f, 0.0f));
+    CHECK(world.velocity(b) == glm::vec2(0.5f, 0.0f));
+    CHECK(world.handleAt(*world.indexOf(c)) == c);
+
+    world.removeParticle(a);
+    CHECK(world.particleCount() == 2);
+    CHECK_FALSE(world.isValid(a));
+    CHECK_FALSE(world.indexOf(a).has_value());
+    // The others still name their particles (removal moved the last one into the hole).
+    CHECK(world.position(b) == glm::vec2(1.0f, 0.0f));
+    CHECK(world.position(c) == glm::vec2(2.0f, 0.0f));
+
+    CHECK_THROWS_MATCHES(world.removeParticle(a), Error,
+                         Catch::Message("World::removeParticle: stale particle handle {slot " +
+                                        std::to_string(a.slot) + ", generation " +
+                                        std::to_string(a.generation) +
+                                        "}: that particle was removed"));
+    CHECK_THROWS_MATCHES(world.position(a), Error,
+                         Catch::Message("World::position: stale particle handle {slot " +
+                                        std::to_string(a.slot) + ", generation " +
+                                        std::to_string(a.generation) +
+                                        "}: that particle was removed"));
+    CHECK_THROWS_AS(world.velocity(a), Error);
+    CHECK_THROWS_AS(world.setVelocity(a, {1.0f, 0.0f}), Error);
+    CHECK_THROWS_MATCHES(world.removeParticle(ParticleHandle{}), Error,
+                         Catch::Message("World::removeParticle: null particle handle"));
+    CHECK_FALSE(world.isValid(ParticleHandle{}));
+    // A handle that was never issued.
+    CHECK_FALSE(world.isValid(ParticleHandle{1000, 1}));
+    CHECK_THROWS_AS(world.position(ParticleHandle{1000, 1}), Error);
+    CHECK(world.particleCount() == 2);
+
+    SECTION("slot reuse bumps the generation") {
+        const ParticleHandle d = world.addParticle({3.0f, 0.0f}, {0.0f, 0.0f}, w);
+        CHECK(d.slot == a.slot); // the freed slot is reused...
+        CHECK(d.generation != a.generation); // ...under a new generation
+        CHECK(world.isValid(d));
+        CHECK_FALSE(world.isValid(a)); // the old handle does not name the new particle
+        CHECK_THROWS_AS(world.position(a), Error);
+        CHECK(world.position(d) == glm::vec2(3.0f, 0.0f));
+        world.removeParticle(d);
+        CHECK_FALSE(world.isValid(d));
+        CHECK(world.isValid(b));
+        CHECK(world.isValid(c));
+    }
+}
+
+TEST_CASE("handles follow their particles through steps", "[unit][handles]") {
+    World world; // zero gravity
+    const MaterialId w = world.addMaterial(water());
+    // A lone particle added first but lying far up-right, where the grid sort puts it last.
+    const ParticleHandle lone = world.addParticle({0.5f, 0.5f}, {1.0f, -0.5f}, w);
+    world.spawnBlob(latticeBlock(world, w, -0.1f, -0.1f, 20, 20));
+    const uint32_t n = world.particleCount();
+    REQUIRE(n == 401);
+    REQUIRE(*world.indexOf(lone) == 0);
+
+    // One blob particle gets a distinct velocity; remember every particle by handle.
+    const ParticleHandle marked = world.handleAt(210);
+    world.setVelocity(marked, {0.3f, 0.2f});
+    const glm::vec2 markedStart = world.position(marked);
+    std::vector<ParticleHandle> handles;
+    std::vector<glm::vec2> start;
+    for (uint32_t i = 0; i < n; ++i) {
+        handles.push_back(world.handleAt(i));
+        start.push_back(world.position(handles.back()));
+    }
+
+    // Short enough that viscosity barely slows the marked particle (one sub-step).
+    const float dt = 2e-4f;
+    world.step(dt);
+    REQUIRE(world.particleCount() == n);
+    // Sorting moved slots: the lone particle is no longer in slot 0.
+    CHECK(*world.indexOf(lone) != 0);
+    uint32_t moved = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        moved += *world.indexOf(handles[i]) != i ? 1 : 0;
+    }
+    CHECK(moved > 0);
+    // The lone particle has no neighbours: it moved exactly ballistically.
+    CHECK(world.position(lone).x == Approx(0.5f + dt * 1.0f).epsilon(1e-6));
+    CHECK(world.position(lone).y == Approx(0.5f - dt * 0.5f).epsilon(1e-6));
+    CHECK(world.velocity(lone).x == Approx(1.0f).epsilon(1e-6));
+    // The marked particle keeps (about) its distinct velocity and moved along it.
+    const glm::vec2 v = world.velocity(marked);
+    CHECK(v.x == Approx(0.3f).epsilon(0.05));
+    CHECK(v.y == Approx(0.2f).epsilon(0.05));
+    const glm::vec2 d = world.position(marked) - markedStart;
+    CHECK(d.x == Approx(0.3f * dt).epsilon(0.05));
+    CHECK(d.y == Approx(0.2f * dt).epsilon(0.05));
+    // Every handle still names the same particle: each blob particle moved far less than the
+    // spacing (the lone one, handles[0], moved 0.2 mm).
+    REQUIRE(handles[0] == lone);
+    float worst = 0.0f;
+    for (uint32_t i = 0; i < n; ++i) {
+        REQUIRE(world.isValid(handles[i]));
+        REQUIRE(world.handleAt(*world.indexOf(handles[i])) == handles[i]);
+        const glm::vec2 e = world.position(handles[i]) - start[i];
+        if (i > 0) {
+            worst = std::max(worst, std::sqrt(e.x * e.x + e.y * e.y));
+        }
+    }
+    CHECK(worst < 1e-4f);
+
+    // Removal after steps: the rest keep their identity.
+    world.removeParticle(marked);
+    CHECK_FALSE(world.isValid(marked));
+    for (int k = 0; k < 5; ++k) {
+        world.step(dt);
+    }
+    CHECK(world.particleCount() == n - 1);
+    CHECK(world.position(lone).x == Approx(0.5f + 6 * dt).epsilon(1e-5));
+}
