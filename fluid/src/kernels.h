@@ -67,4 +67,54 @@ inline float cohesion(float r, float h) {
     return kCohesionNorm / (h * h) * s;
 }
 
+/// The kernels above for one support radius, with the constants precomputed so that the pair
+/// loops multiply instead of divide. Same values as the free functions (to rounding).
+struct Kernels {
+    float h = 0, h2 = 0, invH = 0;
+    float wNorm = 0;  // 7/(pi h^2)
+    float gNorm = 0;  // -140/(pi h^4)
+    float lNorm = 0;  // 40/(pi h^5)
+    float cNorm = 0;  // kCohesionNorm/h^2
+
+    static Kernels make(float support) {
+        Kernels k;
+        k.h = support;
+        k.h2 = support * support;
+        k.invH = 1.0f / support;
+        k.wNorm = 7.0f / (kPi * k.h2);
+        k.gNorm = -140.0f / (kPi * k.h2 * k.h2);
+        k.lNorm = 40.0f / (kPi * k.h2 * k.h2 * support);
+        k.cNorm = kCohesionNorm / k.h2;
+        return k;
+    }
+    /// Wendland C2 at r < h.
+    float w(float r) const {
+        const float q = r * invH;
+        const float t = 1.0f - q;
+        const float t2 = t * t;
+        return wNorm * (t2 * t2) * (1.0f + 4.0f * q);
+    }
+    /// Wendland C2 for any r >= 0 without a branch (0 beyond h), for loops over all candidates.
+    float wClamped(float r) const {
+        const float q = r * invH;
+        const float t = q < 1.0f ? 1.0f - q : 0.0f;
+        const float t2 = t * t;
+        return wNorm * (t2 * t2) * (1.0f + 4.0f * q);
+    }
+    /// dW/dr / r at r < h.
+    float gradOverR(float r) const {
+        const float t = 1.0f - r * invH;
+        return gNorm * (t * t * t);
+    }
+    /// Viscosity Laplacian at r < h.
+    float laplacian(float r) const { return lNorm * (h - r); }
+    /// Cohesion spline at 0 < r < h.
+    float cohesion(float r) const {
+        const float u = r * invH;
+        const float a = (1.0f - u) * u;
+        const float a3 = a * a * a;
+        return cNorm * ((2.0f * u > 1.0f) ? a3 : 2.0f * a3 - 1.0f / 64.0f);
+    }
+};
+
 } // namespace fluid::kernel

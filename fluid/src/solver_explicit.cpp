@@ -13,6 +13,7 @@
 //     boundaries  boundary plugins keep particles out of solids (safety net)
 #include "kernels.h"
 #include "parallel.h"
+#include "sph_loops.h"
 #include "world_state.h"
 
 #include <algorithm>
@@ -38,7 +39,8 @@ constexpr uint32_t kGrain = 256; // smallest range handed to a worker (particles
 struct SubstepConstants {
     uint32_t materialCount = 0;
     const MaterialConstants* mat = nullptr;
-    const float* pairSupport = nullptr;
+    const kernel::Kernels* pair = nullptr; // by material pair
+    const kernel::Kernels* own = nullptr;  // by material
     float sampleVolume = 0; // V_w = spacing^2 (m^2)
     float minSupport = 0;
     bool tait = true;
@@ -58,7 +60,8 @@ void permute(std::vector<float>& channel, std::span<const uint32_t> order, std::
 void refreshConstants(WorldState& s, float soundSpeed) {
     const size_t m = s.materials.size();
     s.constants.resize(m);
-    s.pairSupport.resize(m * m);
+    s.pairKernels.resize(m * m);
+    s.ownKernels.resize(m);
     for (size_t i = 0; i < m; ++i) {
         const Material& mat = s.materials[i];
         MaterialConstants& c = s.constants[i];
@@ -73,8 +76,10 @@ void refreshConstants(WorldState& s, float soundSpeed) {
     }
     for (size_t i = 0; i < m; ++i) {
         for (size_t j = 0; j < m; ++j) {
-            s.pairSupport[i * m + j] = 0.5f * (s.constants[i].support + s.constants[j].support);
+            s.pairKernels[i * m + j] =
+                kernel::Kernels::make(0.5f * (s.constants[i].support + s.constants[j].support));
         }
+        s.ownKernels[i] = kernel::Kernels::make(s.constants[i].support);
     }
 }
 
@@ -261,43 +266,6 @@ void sortParticles(WorldState& s, float cellSize) {
     }
 }
 
-// Seed eq. 2.3 with boundary samples acting as fluid of the particle's rest density.
-void computeDensity(WorldState& s, const SubstepConstants& c) {
-    Particles& p = s.particles;
-    const Samples& w = s.samples;
-    const uint32_t m = c.materialCount;
-    parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
-        for (uint32_t i = b; i < e; ++i) {
-            const float xi = p.px[i], yi = p.py[i];
-            const uint32_t mi = p.material[i];
-            const float* support = c.pairSupport + mi * m;
-            float rho = 0.0f;
-            s.grid.forEachRange(xi, yi, [&](uint32_t jb, uint32_t je) {
-                for (uint32_t j = jb; j < je; ++j) {
-                    const float dx = xi - p.px[j], dy = yi - p.py[j];
-                    const float r2 = dx * dx + dy * dy;
-                    const float h = support[p.material[j]];
-                    if (r2 < h * h) {
-                        rho += c.mat[p.material[j]].massPerDepth * kernel::wendland(std::sqrt(r2), h);
-                    }
-                }
-            });
-            const float h = c.mat[mi].support;
-            float wall = 0.0f;
-            w.grid.forEachRange(xi, yi, [&](uint32_t kb, uint32_t ke) {
-                for (uint32_t k = kb; k < ke; ++k) {
-                    const float dx = xi - w.px[k], dy = yi - w.py[k];
-                    const float r2 = dx * dx + dy * dy;
-                    if (r2 < h * h) {
-                        wall += kernel::wendland(std::sqrt(r2), h);
-                    }
-                }
-            });
-            p.density[i] = rho + c.mat[mi].restDensity * c.sampleVolume * wall;
-        }
-    });
-}
-
 // Seed eq. 2.4 (or Tait), then each boundary sample's pressure extrapolated from the fluid
 // around it, hydrostatic term included [Adami 2012, eq. 27]: walls push back as hard as the
 // fluid presses, with no pressure mirroring (which pumps energy into a resting tank).
@@ -314,6 +282,8 @@ void computePressure(WorldState& s, const SubstepConstants& c) {
             } else {
                 p.pressure[i] = mc.stiffness * (p.density[i] - mc.restDensity);
             }
+            p.invRho[i] = 1.0f / p.density[i];
+            p.pOverRho2[i] = p.pressure[i] * p.invRho[i] * p.invRho[i];
         }
     });
     Samples& w = s.samples;
@@ -325,9 +295,9 @@ void computePressure(WorldState& s, const SubstepConstants& c) {
                 for (uint32_t j = jb; j < je; ++j) {
                     const float dx = xw - p.px[j], dy = yw - p.py[j];
                     const float r2 = dx * dx + dy * dy;
-                    const float h = c.mat[p.material[j]].support;
-                    if (r2 < h * h) {
-                        const float wk = kernel::wendland(std::sqrt(r2), h);
+                    const kernel::Kernels& kern = c.own[p.material[j]];
+                    if (r2 < kern.h2) {
+                        const float wk = kern.w(std::sqrt(r2));
                         // Samples move at constant velocity within a step: their own
                         // acceleration is zero, so (g - a_w) is the fluid's external field.
                         sumP += (p.pressure[j] + p.density[j] * (p.ex[j] * dx + p.ey[j] * dy)) * wk;
@@ -336,117 +306,6 @@ void computePressure(WorldState& s, const SubstepConstants& c) {
                 }
             });
             w.pressure[k] = sumW > 0.0f ? std::max(0.0f, sumP / sumW) : 0.0f;
-        }
-    });
-}
-
-// Surface normals n_i = h sum_j (m_j/rho_j) grad W_ij, pointing into the fluid [Akinci 2013].
-void computeNormals(WorldState& s, const SubstepConstants& c) {
-    Particles& p = s.particles;
-    const uint32_t m = c.materialCount;
-    parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
-        for (uint32_t i = b; i < e; ++i) {
-            const float xi = p.px[i], yi = p.py[i];
-            const float* support = c.pairSupport + p.material[i] * m;
-            float nx = 0.0f, ny = 0.0f;
-            s.grid.forEachRange(xi, yi, [&](uint32_t jb, uint32_t je) {
-                for (uint32_t j = jb; j < je; ++j) {
-                    const float dx = xi - p.px[j], dy = yi - p.py[j];
-                    const float r2 = dx * dx + dy * dy;
-                    const float h = support[p.material[j]];
-                    if (r2 < h * h) {
-                        const float g = c.mat[p.material[j]].massPerDepth / p.density[j] *
-                                        kernel::wendlandGradOverR(std::sqrt(r2), h);
-                        nx += g * dx;
-                        ny += g * dy;
-                    }
-                }
-            });
-            const float h = c.mat[p.material[i]].support;
-            p.nx[i] = h * nx;
-            p.ny[i] = h * ny;
-        }
-    });
-}
-
-// Seed eqs. 2.5-2.7: a_i = external - sum_j (m_j/depth) (p_i/rho_i^2 + p_j/rho_j^2) grad W_ij
-// + (mu_ij/rho_i) sum_j (m_j/depth) (v_j - v_i)/rho_j lap W_ij + surface tension, and the same
-// from boundary samples. Every pair term is antisymmetric in (i, j) once multiplied by m_i, so
-// momentum is conserved; each particle only gathers, so any thread split gives the same sums.
-void computeForces(WorldState& s, const SubstepConstants& c) {
-    Particles& p = s.particles;
-    const Samples& w = s.samples;
-    const uint32_t m = c.materialCount;
-    parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
-        for (uint32_t i = b; i < e; ++i) {
-            const float xi = p.px[i], yi = p.py[i], vxi = p.vx[i], vyi = p.vy[i];
-            const uint32_t mi = p.material[i];
-            const MaterialConstants& ci = c.mat[mi];
-            const float* support = c.pairSupport + mi * m;
-            const float rhoi = p.density[i];
-            const float pi = p.pressure[i] / (rhoi * rhoi);
-            const float nxi = c.surfaceTension ? p.nx[i] : 0.0f;
-            const float nyi = c.surfaceTension ? p.ny[i] : 0.0f;
-            float ax = p.ex[i], ay = p.ey[i];
-            s.grid.forEachRange(xi, yi, [&](uint32_t jb, uint32_t je) {
-                for (uint32_t j = jb; j < je; ++j) {
-                    const float dx = xi - p.px[j], dy = yi - p.py[j];
-                    const float r2 = dx * dx + dy * dy;
-                    const uint32_t mj = p.material[j];
-                    const float h = support[mj];
-                    if (r2 >= h * h) {
-                        continue;
-                    }
-                    const MaterialConstants& cj = c.mat[mj];
-                    const float r = std::sqrt(r2);
-                    const float rhoj = p.density[j];
-                    // Pressure, seed eq. 2.5.
-                    const float fp = -cj.massPerDepth * (pi + p.pressure[j] / (rhoj * rhoj)) *
-                                     kernel::wendlandGradOverR(r, h);
-                    ax += fp * dx;
-                    ay += fp * dy;
-                    // Viscosity, seed eq. 2.6 with the pair's mean mu.
-                    const float fv = 0.5f * (ci.viscosity + cj.viscosity) / rhoi * cj.massPerDepth /
-                                     rhoj * kernel::viscosityLaplacian(r, h);
-                    ax += fv * (p.vx[j] - vxi);
-                    ay += fv * (p.vy[j] - vyi);
-                    // Cohesion and curvature [Akinci 2013, eqs. 1-6], with K_ij correcting
-                    // particle deficiency at the surface.
-                    if (c.surfaceTension) {
-                        const float gamma = 0.5f * (ci.gamma + cj.gamma);
-                        const float k = (ci.restDensity + cj.restDensity) / (rhoi + rhoj);
-                        const float coh = r > 0.0f ? cj.mass * kernel::cohesion(r, h) / r : 0.0f;
-                        const float curv = 2.0f * cj.mass / (ci.mass + cj.mass);
-                        ax -= gamma * k * (coh * dx + curv * (nxi - p.nx[j]));
-                        ay -= gamma * k * (coh * dy + curv * (nyi - p.ny[j]));
-                    }
-                }
-            });
-            const float h = ci.support;
-            const float wallScale = ci.restDensity * c.sampleVolume;
-            w.grid.forEachRange(xi, yi, [&](uint32_t kb, uint32_t ke) {
-                for (uint32_t k = kb; k < ke; ++k) {
-                    const float dx = xi - w.px[k], dy = yi - w.py[k];
-                    const float r2 = dx * dx + dy * dy;
-                    if (r2 >= h * h) {
-                        continue;
-                    }
-                    const float r = std::sqrt(r2);
-                    // The sample's density is taken equal to the particle's.
-                    const float fp = -wallScale * (pi + w.pressure[k] / (rhoi * rhoi)) *
-                                     kernel::wendlandGradOverR(r, h);
-                    ax += fp * dx;
-                    ay += fp * dy;
-                    if (w.friction[k] > 0.0f) {
-                        const float fv = w.friction[k] * ci.viscosity / rhoi * c.sampleVolume *
-                                         kernel::viscosityLaplacian(r, h);
-                        ax += fv * (w.vx[k] - vxi);
-                        ay += fv * (w.vy[k] - vyi);
-                    }
-                }
-            });
-            p.ax[i] = ax;
-            p.ay[i] = ay;
         }
     });
 }
@@ -463,22 +322,22 @@ void computeSampleForces(WorldState& s, const SubstepConstants& c, float weight)
             s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
                 for (uint32_t j = jb; j < je; ++j) {
                     const MaterialConstants& cj = c.mat[p.material[j]];
+                    const kernel::Kernels& kern = c.own[p.material[j]];
                     const float dx = p.px[j] - xw, dy = p.py[j] - yw;
                     const float r2 = dx * dx + dy * dy;
-                    const float h = cj.support;
-                    if (r2 >= h * h) {
+                    if (r2 >= kern.h2) {
                         continue;
                     }
                     const float r = std::sqrt(r2);
-                    const float rhoj = p.density[j];
+                    const float invRhoj = p.invRho[j];
                     const float fp = cj.mass * cj.restDensity * c.sampleVolume *
-                                     (p.pressure[j] + w.pressure[k]) / (rhoj * rhoj) *
-                                     kernel::wendlandGradOverR(r, h);
+                                     (p.pOverRho2[j] + w.pressure[k] * invRhoj * invRhoj) *
+                                     kern.gradOverR(r);
                     fx += fp * dx;
                     fy += fp * dy;
                     if (w.friction[k] > 0.0f) {
-                        const float fv = cj.mass * w.friction[k] * cj.viscosity / rhoj *
-                                         c.sampleVolume * kernel::viscosityLaplacian(r, h);
+                        const float fv = cj.mass * w.friction[k] * cj.viscosity * invRhoj *
+                                         c.sampleVolume * kern.laplacian(r);
                         fx -= fv * (w.vx[k] - p.vx[j]);
                         fy -= fv * (w.vy[k] - p.vy[j]);
                     }
@@ -574,7 +433,7 @@ void stepExplicit(WorldState& s, float frameDt) {
     prof = Profile{};
     Particles& p = s.particles;
     const uint32_t n = p.size();
-    for (auto* channel : {&p.ax, &p.ay, &p.ex, &p.ey, &p.nx, &p.ny}) {
+    for (auto* channel : {&p.ax, &p.ay, &p.ex, &p.ey, &p.nx, &p.ny, &p.pOverRho2, &p.invRho}) {
         channel->resize(n);
     }
 
@@ -639,7 +498,8 @@ void stepExplicit(WorldState& s, float frameDt) {
     SubstepConstants c;
     c.materialCount = static_cast<uint32_t>(s.materials.size());
     c.mat = s.constants.data();
-    c.pairSupport = s.pairSupport.data();
+    c.pair = s.pairKernels.data();
+    c.own = s.ownKernels.data();
     c.sampleVolume = sampleSpacing * sampleSpacing;
     c.minSupport = minSupport;
     c.tait = tait;
@@ -656,18 +516,19 @@ void stepExplicit(WorldState& s, float frameDt) {
         const float inStep = float(sub) * h;
         timed(prof.sort, [&] {
             sortParticles(s, maxSupport);
+            fillMaterialChannels(s);
             placeSamples(s, inStep, maxSupport, moving || sub == 0);
         });
         timed(prof.external, [&] { externalForces(s, h, t); });
-        timed(prof.density, [&] { computeDensity(s, c); });
+        timed(prof.density, [&] { computeDensity(s, c.sampleVolume); });
         timed(prof.pressure, [&] {
             computePressure(s, c);
             if (surfaceTension) {
-                computeNormals(s, c);
+                computeNormals(s);
             }
         });
         timed(prof.forces, [&] {
-            computeForces(s, c);
+            computeForces(s, c.sampleVolume, surfaceTension);
             if (wantsForces) {
                 computeSampleForces(s, c, 1.0f / float(substeps));
             }

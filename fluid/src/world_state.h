@@ -2,6 +2,7 @@
 #pragma once
 
 #include "grid.h"
+#include "kernels.h"
 
 #include <fluid/world.h>
 
@@ -22,6 +23,11 @@ struct Particles {
     std::vector<float> ax, ay; // total acceleration
     std::vector<float> ex, ey; // external (plugin) acceleration
     std::vector<float> nx, ny; // surface normals [Akinci 2013]
+    std::vector<float> pOverRho2, invRho; // p/rho^2 and 1/rho, so pair loops do not divide
+    // Material properties per particle (sorted order), so pair loops read contiguous arrays
+    // instead of indexing the material table: support h, mass/depth, viscosity, mass, rest
+    // density, surface tension.
+    std::vector<float> h, massPerDepth, viscosity, mass, restDensity, gamma;
 
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }
 };
@@ -55,7 +61,8 @@ struct WorldState {
 
     std::vector<Material> materials;
     std::vector<MaterialConstants> constants;
-    std::vector<float> pairSupport; // h_ij = (h_i + h_j) / 2, by material pair
+    std::vector<kernel::Kernels> pairKernels; // for h_ij = (h_i + h_j) / 2, by material pair
+    std::vector<kernel::Kernels> ownKernels;  // for h_i, by material (boundary samples)
 
     Particles particles;
     // Handles: slot -> index and generation; free slots reused last-in first-out.

@@ -1,0 +1,241 @@
+// fluid — the SPH neighbour loops shared by the solvers.
+//
+// Each particle i gathers over the contiguous index ranges the grid gives for its 3x3 cells.
+// Inside a range the loop runs in blocks of kLanes candidates with one accumulator per lane and
+// no branch (candidates beyond the support radius contribute an exact 0 through the clamped
+// kernels), so the compiler turns it into SIMD code; the lanes are summed in a fixed order at
+// the end, so the result depends only on the (deterministic) grid order, never on threads.
+// Pair supports are h_ij = (h_i + h_j)/2, so every pair term is symmetric and, multiplied by
+// m_i, antisymmetric in (i, j): momentum is conserved.
+#include "sph_loops.h"
+
+#include "kernels.h"
+#include "parallel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fluid::detail {
+namespace {
+
+constexpr int kLanes = 8;
+constexpr uint32_t kGrain = 256;
+constexpr float kW = 7.0f / kernel::kPi;       // Wendland C2: W = kW / h^2 (1-q)^4 (1+4q)
+constexpr float kG = -140.0f / kernel::kPi;    // dW/dr / r = kG / h^4 (1-q)^3
+constexpr float kL = 40.0f / kernel::kPi;      // viscosity Laplacian = kL / h^4 (1-q)
+constexpr float kC = kernel::kCohesionNorm;    // cohesion = kC / h^2 spline(q)
+
+template <class T>
+T laneSum(const T (&acc)[kLanes]) {
+    T sum = acc[0];
+    for (int l = 1; l < kLanes; ++l) {
+        sum += acc[l];
+    }
+    return sum;
+}
+
+// Runs body(j, lane) over [b, e) in blocks of kLanes (the tail uses the first lanes).
+template <class Body>
+inline void lanes(uint32_t b, uint32_t e, Body&& body) {
+    uint32_t j = b;
+    for (; j + kLanes <= e; j += kLanes) {
+        for (int l = 0; l < kLanes; ++l) {
+            body(j + uint32_t(l), l);
+        }
+    }
+    for (int l = 0; j < e; ++j, ++l) {
+        body(j, l);
+    }
+}
+
+} // namespace
+
+void fillMaterialChannels(WorldState& s) {
+    Particles& p = s.particles;
+    const uint32_t n = p.size();
+    for (auto* channel : {&p.h, &p.massPerDepth, &p.viscosity, &p.mass, &p.restDensity, &p.gamma}) {
+        channel->resize(n);
+    }
+    parallelFor(s.tasks, n, 1024, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t i = b; i < e; ++i) {
+            const MaterialConstants& c = s.constants[p.material[i]];
+            p.h[i] = c.support;
+            p.massPerDepth[i] = c.massPerDepth;
+            p.viscosity[i] = c.viscosity;
+            p.mass[i] = c.mass;
+            p.restDensity[i] = c.restDensity;
+            p.gamma[i] = c.gamma;
+        }
+    });
+}
+
+void computeDensity(WorldState& s, float sampleVolume) {
+    Particles& p = s.particles;
+    const Samples& w = s.samples;
+    const float* __restrict px = p.px.data();
+    const float* __restrict py = p.py.data();
+    const float* __restrict hs = p.h.data();
+    const float* __restrict mt = p.massPerDepth.data();
+    const float* __restrict wx = w.px.data();
+    const float* __restrict wy = w.py.data();
+    parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t i = b; i < e; ++i) {
+            const float xi = px[i], yi = py[i], hi = hs[i];
+            float acc[kLanes] = {};
+            s.grid.forEachRange(xi, yi, [&](uint32_t jb, uint32_t je) {
+                lanes(jb, je, [&](uint32_t j, int l) {
+                    const float dx = xi - px[j], dy = yi - py[j];
+                    const float r = std::sqrt(dx * dx + dy * dy);
+                    const float invH = 2.0f / (hi + hs[j]);
+                    const float q = r * invH;
+                    const float t = std::max(1.0f - q, 0.0f);
+                    const float t2 = t * t;
+                    acc[l] += mt[j] * (invH * invH) * (t2 * t2) * (1.0f + 4.0f * q);
+                });
+            });
+            // Boundary samples, with the particle's own support.
+            const float invH = 1.0f / hi;
+            float wall[kLanes] = {};
+            w.grid.forEachRange(xi, yi, [&](uint32_t kb, uint32_t ke) {
+                lanes(kb, ke, [&](uint32_t k, int l) {
+                    const float dx = xi - wx[k], dy = yi - wy[k];
+                    const float q = std::sqrt(dx * dx + dy * dy) * invH;
+                    const float t = std::max(1.0f - q, 0.0f);
+                    const float t2 = t * t;
+                    wall[l] += (t2 * t2) * (1.0f + 4.0f * q);
+                });
+            });
+            p.density[i] = kW * laneSum(acc) +
+                           p.restDensity[i] * sampleVolume * kW * invH * invH * laneSum(wall);
+        }
+    });
+}
+
+void computeNormals(WorldState& s) {
+    Particles& p = s.particles;
+    const float* __restrict px = p.px.data();
+    const float* __restrict py = p.py.data();
+    const float* __restrict hs = p.h.data();
+    const float* __restrict mt = p.massPerDepth.data();
+    const float* __restrict invRho = p.invRho.data();
+    parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t i = b; i < e; ++i) {
+            const float xi = px[i], yi = py[i], hi = hs[i];
+            float accX[kLanes] = {}, accY[kLanes] = {};
+            s.grid.forEachRange(xi, yi, [&](uint32_t jb, uint32_t je) {
+                lanes(jb, je, [&](uint32_t j, int l) {
+                    const float dx = xi - px[j], dy = yi - py[j];
+                    const float r = std::sqrt(dx * dx + dy * dy);
+                    const float invH = 2.0f / (hi + hs[j]);
+                    const float t = std::max(1.0f - r * invH, 0.0f);
+                    const float invH2 = invH * invH;
+                    const float g = mt[j] * invRho[j] * (invH2 * invH2) * (t * t * t);
+                    accX[l] += g * dx;
+                    accY[l] += g * dy;
+                });
+            });
+            p.nx[i] = hi * kG * laneSum(accX);
+            p.ny[i] = hi * kG * laneSum(accY);
+        }
+    });
+}
+
+namespace {
+
+template <bool kSurface>
+void forces(WorldState& s, float sampleVolume) {
+    Particles& p = s.particles;
+    const Samples& w = s.samples;
+    const float* __restrict px = p.px.data();
+    const float* __restrict py = p.py.data();
+    const float* __restrict vx = p.vx.data();
+    const float* __restrict vy = p.vy.data();
+    const float* __restrict hs = p.h.data();
+    const float* __restrict mt = p.massPerDepth.data();
+    const float* __restrict mu = p.viscosity.data();
+    const float* __restrict mass = p.mass.data();
+    const float* __restrict rho0 = p.restDensity.data();
+    const float* __restrict gamma = p.gamma.data();
+    const float* __restrict rho = p.density.data();
+    const float* __restrict invRho = p.invRho.data();
+    const float* __restrict p2 = p.pOverRho2.data();
+    const float* __restrict nx = p.nx.data();
+    const float* __restrict ny = p.ny.data();
+    parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t i = b; i < e; ++i) {
+            const float xi = px[i], yi = py[i], vxi = vx[i], vyi = vy[i], hi = hs[i];
+            const float pi = p2[i], invRhoi = invRho[i], mui = mu[i], rhoi = rho[i];
+            const float massi = mass[i], rho0i = rho0[i], gammai = gamma[i];
+            const float nxi = kSurface ? nx[i] : 0.0f, nyi = kSurface ? ny[i] : 0.0f;
+            float accX[kLanes] = {}, accY[kLanes] = {};
+            s.grid.forEachRange(xi, yi, [&](uint32_t jb, uint32_t je) {
+                lanes(jb, je, [&](uint32_t j, int l) {
+                    const float dx = xi - px[j], dy = yi - py[j];
+                    const float r = std::sqrt(dx * dx + dy * dy);
+                    const float invH = 2.0f / (hi + hs[j]);
+                    const float q = r * invH;
+                    const float t = std::max(1.0f - q, 0.0f);
+                    const float invH2 = invH * invH;
+                    const float invH4 = invH2 * invH2;
+                    // Pressure, seed eq. 2.5: -m_j (p_i/rho_i^2 + p_j/rho_j^2) grad W.
+                    const float fp = -mt[j] * (pi + p2[j]) * kG * invH4 * (t * t * t);
+                    // Viscosity, seed eq. 2.6, with the pair's mean mu.
+                    const float fv = 0.5f * (mui + mu[j]) * invRhoi * mt[j] * invRho[j] * kL *
+                                     invH4 * t;
+                    float fx = fp * dx + fv * (vx[j] - vxi);
+                    float fy = fp * dy + fv * (vy[j] - vyi);
+                    if constexpr (kSurface) {
+                        // Cohesion and curvature [Akinci 2013, eqs. 1-6]; K_ij corrects the
+                        // particle deficiency at the surface.
+                        const float k = 0.5f * (gammai + gamma[j]) * (rho0i + rho0[j]) / (rhoi + rho[j]);
+                        const float a = t * q; // (1-u) u, and 0 beyond the support
+                        const float a3 = a * a * a;
+                        const float spline = 2.0f * q > 1.0f ? a3 : 2.0f * a3 - 1.0f / 64.0f;
+                        const float coh = mass[j] * kC * invH2 * spline / std::max(r, 1e-12f);
+                        const float inside = t > 0.0f ? 1.0f : 0.0f;
+                        const float curv = inside * 2.0f * mass[j] / (massi + mass[j]);
+                        fx -= k * (coh * dx + curv * (nxi - nx[j]));
+                        fy -= k * (coh * dy + curv * (nyi - ny[j]));
+                    }
+                    accX[l] += fx;
+                    accY[l] += fy;
+                });
+            });
+            float ax = p.ex[i] + laneSum(accX);
+            float ay = p.ey[i] + laneSum(accY);
+
+            // Boundary samples: pressure (the sample's density taken equal to the particle's)
+            // and friction, with the particle's own support.
+            const float invH = 1.0f / hi;
+            const float invH4 = invH * invH * invH * invH;
+            const float wallP = -rho0i * sampleVolume * kG * invH4;
+            const float wallV = mui * invRhoi * sampleVolume * kL * invH4;
+            const float invRho2 = invRhoi * invRhoi;
+            float wX[kLanes] = {}, wY[kLanes] = {};
+            w.grid.forEachRange(xi, yi, [&](uint32_t kb, uint32_t ke) {
+                lanes(kb, ke, [&](uint32_t k, int l) {
+                    const float dx = xi - w.px[k], dy = yi - w.py[k];
+                    const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
+                    const float fp = wallP * (pi + w.pressure[k] * invRho2) * (t * t * t);
+                    const float fv = wallV * w.friction[k] * t;
+                    wX[l] += fp * dx + fv * (w.vx[k] - vxi);
+                    wY[l] += fp * dy + fv * (w.vy[k] - vyi);
+                });
+            });
+            p.ax[i] = ax + laneSum(wX);
+            p.ay[i] = ay + laneSum(wY);
+        }
+    });
+}
+
+} // namespace
+
+void computeForces(WorldState& s, float sampleVolume, bool surfaceTension) {
+    if (surfaceTension) {
+        forces<true>(s, sampleVolume);
+    } else {
+        forces<false>(s, sampleVolume);
+    }
+}
+
+} // namespace fluid::detail
