@@ -39,8 +39,6 @@ constexpr uint32_t kGrain = 256; // smallest range handed to a worker (particles
 struct SubstepConstants {
     uint32_t materialCount = 0;
     const MaterialConstants* mat = nullptr;
-    const kernel::Kernels* pair = nullptr; // by material pair
-    const kernel::Kernels* own = nullptr;  // by material
     float sampleVolume = 0; // V_w = spacing^2 (m^2)
     float minSupport = 0;
     bool tait = true;
@@ -60,8 +58,6 @@ void permute(std::vector<float>& channel, std::span<const uint32_t> order, std::
 void refreshConstants(WorldState& s, float soundSpeed) {
     const size_t m = s.materials.size();
     s.constants.resize(m);
-    s.pairKernels.resize(m * m);
-    s.ownKernels.resize(m);
     for (size_t i = 0; i < m; ++i) {
         const Material& mat = s.materials[i];
         MaterialConstants& c = s.constants[i];
@@ -73,13 +69,6 @@ void refreshConstants(WorldState& s, float soundSpeed) {
         c.taitB = mat.restDensity * soundSpeed * soundSpeed / 7.0f;
         c.support = mat.smoothingDistance;
         c.gamma = mat.surfaceTension;
-    }
-    for (size_t i = 0; i < m; ++i) {
-        for (size_t j = 0; j < m; ++j) {
-            s.pairKernels[i * m + j] =
-                kernel::Kernels::make(0.5f * (s.constants[i].support + s.constants[j].support));
-        }
-        s.ownKernels[i] = kernel::Kernels::make(s.constants[i].support);
     }
 }
 
@@ -286,67 +275,7 @@ void computePressure(WorldState& s, const SubstepConstants& c) {
             p.pOverRho2[i] = p.pressure[i] * p.invRho[i] * p.invRho[i];
         }
     });
-    Samples& w = s.samples;
-    parallelFor(s.tasks, w.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
-        for (uint32_t k = b; k < e; ++k) {
-            const float xw = w.px[k], yw = w.py[k];
-            float sumW = 0.0f, sumP = 0.0f;
-            s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
-                for (uint32_t j = jb; j < je; ++j) {
-                    const float dx = xw - p.px[j], dy = yw - p.py[j];
-                    const float r2 = dx * dx + dy * dy;
-                    const kernel::Kernels& kern = c.own[p.material[j]];
-                    if (r2 < kern.h2) {
-                        const float wk = kern.w(std::sqrt(r2));
-                        // Samples move at constant velocity within a step: their own
-                        // acceleration is zero, so (g - a_w) is the fluid's external field.
-                        sumP += (p.pressure[j] + p.density[j] * (p.ex[j] * dx + p.ey[j] * dy)) * wk;
-                        sumW += wk;
-                    }
-                }
-            });
-            w.pressure[k] = sumW > 0.0f ? std::max(0.0f, sumP / sumW) : 0.0f;
-        }
-    });
-}
-
-// The fluid's force on each boundary sample (minus what the sample exerts on the fluid in
-// computeForces), weighted by dt/frameDt so the step reports the frame's mean force.
-void computeSampleForces(WorldState& s, const SubstepConstants& c, float weight) {
-    const Particles& p = s.particles;
-    Samples& w = s.samples;
-    parallelFor(s.tasks, w.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
-        for (uint32_t k = b; k < e; ++k) {
-            const float xw = w.px[k], yw = w.py[k];
-            float fx = 0.0f, fy = 0.0f;
-            s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
-                for (uint32_t j = jb; j < je; ++j) {
-                    const MaterialConstants& cj = c.mat[p.material[j]];
-                    const kernel::Kernels& kern = c.own[p.material[j]];
-                    const float dx = p.px[j] - xw, dy = p.py[j] - yw;
-                    const float r2 = dx * dx + dy * dy;
-                    if (r2 >= kern.h2) {
-                        continue;
-                    }
-                    const float r = std::sqrt(r2);
-                    const float invRhoj = p.invRho[j];
-                    const float fp = cj.mass * cj.restDensity * c.sampleVolume *
-                                     (p.pOverRho2[j] + w.pressure[k] * invRhoj * invRhoj) *
-                                     kern.gradOverR(r);
-                    fx += fp * dx;
-                    fy += fp * dy;
-                    if (w.friction[k] > 0.0f) {
-                        const float fv = cj.mass * w.friction[k] * cj.viscosity * invRhoj *
-                                         c.sampleVolume * kern.laplacian(r);
-                        fx -= fv * (w.vx[k] - p.vx[j]);
-                        fy -= fv * (w.vy[k] - p.vy[j]);
-                    }
-                }
-            });
-            w.fx[w.source[k]] += weight * fx;
-            w.fy[w.source[k]] += weight * fy;
-        }
-    });
+    computeSamplePressure(s);
 }
 
 struct IntegrateStats {
@@ -498,8 +427,6 @@ void stepExplicit(WorldState& s, float frameDt) {
     SubstepConstants c;
     c.materialCount = static_cast<uint32_t>(s.materials.size());
     c.mat = s.constants.data();
-    c.pair = s.pairKernels.data();
-    c.own = s.ownKernels.data();
     c.sampleVolume = sampleSpacing * sampleSpacing;
     c.minSupport = minSupport;
     c.tait = tait;
@@ -530,7 +457,7 @@ void stepExplicit(WorldState& s, float frameDt) {
         timed(prof.forces, [&] {
             computeForces(s, c.sampleVolume, surfaceTension);
             if (wantsForces) {
-                computeSampleForces(s, c, 1.0f / float(substeps));
+                computeSampleForces(s, c.sampleVolume, 1.0f / float(substeps));
             }
         });
         if (sub + 1 == substeps) {

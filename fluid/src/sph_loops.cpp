@@ -230,6 +230,75 @@ void forces(WorldState& s, float sampleVolume) {
 
 } // namespace
 
+void computeSamplePressure(WorldState& s) {
+    const Particles& p = s.particles;
+    Samples& w = s.samples;
+    const float* __restrict px = p.px.data();
+    const float* __restrict py = p.py.data();
+    const float* __restrict hs = p.h.data();
+    const float* __restrict rho = p.density.data();
+    const float* __restrict pressure = p.pressure.data();
+    const float* __restrict ex = p.ex.data();
+    const float* __restrict ey = p.ey.data();
+    parallelFor(s.tasks, w.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t k = b; k < e; ++k) {
+            const float xw = w.px[k], yw = w.py[k];
+            float accP[kLanes] = {}, accW[kLanes] = {};
+            s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
+                lanes(jb, je, [&](uint32_t j, int l) {
+                    const float dx = xw - px[j], dy = yw - py[j];
+                    const float invH = 1.0f / hs[j];
+                    const float q = std::sqrt(dx * dx + dy * dy) * invH;
+                    const float t = std::max(1.0f - q, 0.0f);
+                    const float t2 = t * t;
+                    const float wk = (invH * invH) * (t2 * t2) * (1.0f + 4.0f * q);
+                    accP[l] += (pressure[j] + rho[j] * (ex[j] * dx + ey[j] * dy)) * wk;
+                    accW[l] += wk;
+                });
+            });
+            const float sumW = laneSum(accW);
+            w.pressure[k] = sumW > 0.0f ? std::max(0.0f, laneSum(accP) / sumW) : 0.0f;
+        }
+    });
+}
+
+void computeSampleForces(WorldState& s, float sampleVolume, float weight) {
+    const Particles& p = s.particles;
+    Samples& w = s.samples;
+    const float* __restrict px = p.px.data();
+    const float* __restrict py = p.py.data();
+    const float* __restrict vx = p.vx.data();
+    const float* __restrict vy = p.vy.data();
+    const float* __restrict hs = p.h.data();
+    const float* __restrict mass = p.mass.data();
+    const float* __restrict rho0 = p.restDensity.data();
+    const float* __restrict mu = p.viscosity.data();
+    const float* __restrict invRho = p.invRho.data();
+    const float* __restrict p2 = p.pOverRho2.data();
+    parallelFor(s.tasks, w.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t k = b; k < e; ++k) {
+            const float xw = w.px[k], yw = w.py[k], pw = w.pressure[k];
+            const float vxw = w.vx[k], vyw = w.vy[k], friction = w.friction[k];
+            float accX[kLanes] = {}, accY[kLanes] = {};
+            s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
+                lanes(jb, je, [&](uint32_t j, int l) {
+                    const float dx = px[j] - xw, dy = py[j] - yw;
+                    const float invH = 1.0f / hs[j];
+                    const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
+                    const float invH4 = (invH * invH) * (invH * invH);
+                    const float fp = mass[j] * rho0[j] * (p2[j] + pw * invRho[j] * invRho[j]) * kG *
+                                     invH4 * (t * t * t);
+                    const float fv = mass[j] * friction * mu[j] * invRho[j] * kL * invH4 * t;
+                    accX[l] += fp * dx - fv * (vxw - vx[j]);
+                    accY[l] += fp * dy - fv * (vyw - vy[j]);
+                });
+            });
+            w.fx[w.source[k]] += weight * sampleVolume * laneSum(accX);
+            w.fy[w.source[k]] += weight * sampleVolume * laneSum(accY);
+        }
+    });
+}
+
 void computeForces(WorldState& s, float sampleVolume, bool surfaceTension) {
     if (surfaceTension) {
         forces<true>(s, sampleVolume);

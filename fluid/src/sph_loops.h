@@ -21,4 +21,14 @@ void computeNormals(WorldState& s);
 /// and friction. Needs density, pressure (pOverRho2, invRho), normals, the samples' pressure.
 void computeForces(WorldState& s, float sampleVolume, bool surfaceTension);
 
+/// Each boundary sample's pressure, extrapolated from the fluid around it with the hydrostatic
+/// term [Adami 2012, eq. 27]: p_w = sum_f (p_f + rho_f (g_f - a_w).(x_w - x_f)) W / sum_f W,
+/// clamped at 0. Samples move at constant velocity within a step (a_w = 0), and g_f is the
+/// fluid's external acceleration (ex, ey). Needs density and pressure.
+void computeSamplePressure(WorldState& s);
+
+/// The fluid's force on each boundary sample (N): minus what the sample exerts on the fluid in
+/// `computeForces`, times `weight`, added to the sample's entry in concatenation order.
+void computeSampleForces(WorldState& s, float sampleVolume, float weight);
+
 } // namespace fluid::detail

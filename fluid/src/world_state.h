@@ -2,7 +2,6 @@
 #pragma once
 
 #include "grid.h"
-#include "kernels.h"
 
 #include <fluid/world.h>
 
@@ -61,8 +60,6 @@ struct WorldState {
 
     std::vector<Material> materials;
     std::vector<MaterialConstants> constants;
-    std::vector<kernel::Kernels> pairKernels; // for h_ij = (h_i + h_j) / 2, by material pair
-    std::vector<kernel::Kernels> ownKernels;  // for h_i, by material (boundary samples)
 
     Particles particles;
     // Handles: slot -> index and generation; free slots reused last-in first-out.
