@@ -1,1 +1,143 @@
+// Invariants in zero gravity without boundaries: total momentum and mass are conserved (every
+// pair force is antisymmetric once multiplied by the masses).
+#include "test_support.h"
+
 #include <catch2/catch.hpp>
+
+#include <random>
+
+using namespace fluid;
+using namespace fluid::test;
+
+namespace {
+
+// Adds seeded random internal velocities (each component uniform in [-0.3, 0.3] m/s) to every
+// particle of `material`.
+void stir(World& world, int material, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-0.3f, 0.3f);
+    const auto mat = world.materialIndex();
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        if (mat[i] != material) {
+            continue;
+        }
+        const ParticleHandle h = world.handleAt(i);
+        const glm::vec2 v = world.velocity(h);
+        world.setVelocity(h, {v.x + u(rng), v.y + u(rng)});
+    }
+}
+
+struct Drift {
+    double worst = 0.0; // max over checkpoints of |P - P0| / scale
+    double atEnd = 0.0;
+};
+
+Drift runSteps(World& world, int steps, double scale) {
+    const glm::dvec2 p0 = momentum(world);
+    Drift d;
+    for (int s = 1; s <= steps; ++s) {
+        world.step(kFrame);
+        if (s % 50 == 0 || s == steps) {
+            const glm::dvec2 p = momentum(world);
+            const double e = std::hypot(p.x - p0.x, p.y - p0.y) / scale;
+            d.worst = std::max(d.worst, e);
+            d.atEnd = e;
+            INFO("step " << s << ": P = (" << p.x << ", " << p.y << "), drift " << e);
+            REQUIRE(allFinite(world));
+        }
+    }
+    return d;
+}
+
+} // namespace
+
+TEST_CASE("zero-g blob launched at 1 m/s keeps its momentum over 1,000 steps",
+          "[slow][invariants][momentum]") {
+    Stopwatch sw("momentum, one material");
+    World world(physicsDef());
+    const MaterialId w = world.addMaterial(water());
+    BlobDef blob;
+    blob.shape = BlobShape::Circle;
+    blob.radius = 0.125f;
+    blob.velocity = {1.0f, 0.0f};
+    blob.material = w;
+    const uint32_t n = world.spawnBlob(blob);
+    REQUIRE(n >= 400);
+    REQUIRE(n <= 600);
+    stir(world, w.index, 2024);
+    const double mass0 = totalMass(world);
+    const glm::dvec2 p0 = momentum(world);
+    const double scale = std::hypot(p0.x, p0.y);
+    REQUIRE(scale == Approx(mass0).epsilon(0.05)); // about M * 1 m/s
+
+    const Drift d = runSteps(world, 1000, scale);
+    const glm::dvec2 p = momentum(world);
+    CAPTURE(n, p0.x, p0.y, p.x, p.y, d.worst, d.atEnd, world.lastSubsteps());
+    std::printf("[measure] momentum one material: n %u, relative drift max %.3g, end %.3g\n", n,
+                d.worst, d.atEnd);
+    CHECK(d.worst <= 1e-5);
+    CHECK(world.particleCount() == n);
+    CHECK(totalMass(world) == mass0);
+    CHECK(world.profile().speedClamped == 0);
+    // It travelled: 1,000 frames at 1 m/s.
+    const Bounds b = bounds(world);
+    CHECK((b.x0 + b.x1) / 2 == Approx(1000.0 / 60.0).margin(0.5));
+}
+
+TEST_CASE("zero-g water and yoghurt blobs collide and keep their momentum",
+          "[slow][invariants][momentum]") {
+    Stopwatch sw("momentum, two materials");
+    World world(physicsDef());
+    const MaterialId w = world.addMaterial(water());
+    const MaterialId y = world.addMaterial(yoghurt());
+    BlobDef a;
+    a.shape = BlobShape::Circle;
+    a.center = {-0.12f, 0.02f};
+    a.radius = 0.08f;
+    a.velocity = {1.0f, 0.0f};
+    a.material = w;
+    BlobDef b = a;
+    b.center = {0.12f, -0.02f};
+    b.velocity = {-0.3f, 0.0f};
+    b.material = y;
+    const uint32_t n = world.spawnBlob(a) + world.spawnBlob(b);
+    stir(world, w.index, 7);
+    stir(world, y.index, 8);
+    const double mass0 = totalMass(world);
+    const glm::dvec2 p0 = momentum(world);
+    // Scale: the momentum each blob carries (the total alone is smaller, as they oppose).
+    double scale = 0.0;
+    {
+        const auto vx = world.velocityX();
+        const auto mat = world.materialIndex();
+        double pw = 0.0, py = 0.0;
+        for (uint32_t i = 0; i < n; ++i) {
+            (mat[i] == w.index ? pw : py) += world.material(MaterialId{mat[i]}).mass * vx[i];
+        }
+        scale = std::max(std::fabs(pw), std::fabs(py));
+        REQUIRE(std::fabs(p0.x) > 0.3 * scale);
+    }
+    scale = std::max(scale, std::hypot(p0.x, p0.y));
+
+    // 500 steps: they meet after about 0.1 s and travel on as one merged blob.
+    const Drift d = runSteps(world, 500, scale);
+    const glm::dvec2 p = momentum(world);
+    CAPTURE(n, p0.x, p0.y, p.x, p.y, scale, d.worst, d.atEnd);
+    std::printf("[measure] momentum two materials: n %u, relative drift max %.3g, end %.3g\n", n,
+                d.worst, d.atEnd);
+    CHECK(d.worst <= 1e-5);
+    CHECK(world.particleCount() == n);
+    CHECK(totalMass(world) == mass0);
+    // They did collide: the water's x velocity is no longer 1 m/s on average.
+    const auto vx = world.velocityX();
+    const auto mat = world.materialIndex();
+    double sum = 0.0;
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        if (mat[i] == w.index) {
+            sum += vx[i];
+            ++count;
+        }
+    }
+    CHECK(sum / count < 0.8);
+}
