@@ -34,13 +34,15 @@ T laneSum(const T (&acc)[kLanes]) {
     return sum;
 }
 
-// Runs body(j, lane) over [b, e) in blocks of kLanes (the tail uses the first lanes).
+// Runs body(j, lane) over [b, e) in blocks of kLanes (the tail uses the first lanes). The index
+// is a size_t: with a 32-bit index g++ cannot prove that j + l are consecutive addresses (the
+// sum could wrap) and assembles every vector from scalar loads.
 template <class Body>
 inline void lanes(uint32_t b, uint32_t e, Body&& body) {
-    uint32_t j = b;
+    size_t j = b;
     for (; j + kLanes <= e; j += kLanes) {
         for (int l = 0; l < kLanes; ++l) {
-            body(j + uint32_t(l), l);
+            body(j + size_t(l), l);
         }
     }
     for (int l = 0; j < e; ++j, ++l) {
@@ -83,7 +85,7 @@ void computeDensity(WorldState& s, float sampleVolume) {
             const float xi = px[i], yi = py[i], hi = hs[i];
             float acc[kLanes] = {};
             s.grid.forEachRange(xi, yi, [&](uint32_t jb, uint32_t je) {
-                lanes(jb, je, [&](uint32_t j, int l) {
+                lanes(jb, je, [&](size_t j, int l) {
                     const float dx = xi - px[j], dy = yi - py[j];
                     const float r = std::sqrt(dx * dx + dy * dy);
                     const float invH = 2.0f / (hi + hs[j]);
@@ -97,7 +99,7 @@ void computeDensity(WorldState& s, float sampleVolume) {
             const float invH = 1.0f / hi;
             float wall[kLanes] = {};
             w.grid.forEachRange(xi, yi, [&](uint32_t kb, uint32_t ke) {
-                lanes(kb, ke, [&](uint32_t k, int l) {
+                lanes(kb, ke, [&](size_t k, int l) {
                     const float dx = xi - wx[k], dy = yi - wy[k];
                     const float q = std::sqrt(dx * dx + dy * dy) * invH;
                     const float t = std::max(1.0f - q, 0.0f);
@@ -123,7 +125,7 @@ void computeNormals(WorldState& s) {
             const float xi = px[i], yi = py[i], hi = hs[i];
             float accX[kLanes] = {}, accY[kLanes] = {};
             s.grid.forEachRange(xi, yi, [&](uint32_t jb, uint32_t je) {
-                lanes(jb, je, [&](uint32_t j, int l) {
+                lanes(jb, je, [&](size_t j, int l) {
                     const float dx = xi - px[j], dy = yi - py[j];
                     const float r = std::sqrt(dx * dx + dy * dy);
                     const float invH = 2.0f / (hi + hs[j]);
@@ -169,7 +171,7 @@ void forces(WorldState& s, float sampleVolume) {
             const float nxi = kSurface ? nx[i] : 0.0f, nyi = kSurface ? ny[i] : 0.0f;
             float accX[kLanes] = {}, accY[kLanes] = {};
             s.grid.forEachRange(xi, yi, [&](uint32_t jb, uint32_t je) {
-                lanes(jb, je, [&](uint32_t j, int l) {
+                lanes(jb, je, [&](size_t j, int l) {
                     const float dx = xi - px[j], dy = yi - py[j];
                     const float r = std::sqrt(dx * dx + dy * dy);
                     const float invH = 2.0f / (hi + hs[j]);
@@ -213,7 +215,7 @@ void forces(WorldState& s, float sampleVolume) {
             const float invRho2 = invRhoi * invRhoi;
             float wX[kLanes] = {}, wY[kLanes] = {};
             w.grid.forEachRange(xi, yi, [&](uint32_t kb, uint32_t ke) {
-                lanes(kb, ke, [&](uint32_t k, int l) {
+                lanes(kb, ke, [&](size_t k, int l) {
                     const float dx = xi - w.px[k], dy = yi - w.py[k];
                     const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
                     const float fp = wallP * (pi + w.pressure[k] * invRho2) * (t * t * t);
@@ -245,7 +247,7 @@ void computeSamplePressure(WorldState& s) {
             const float xw = w.px[k], yw = w.py[k];
             float accP[kLanes] = {}, accW[kLanes] = {};
             s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
-                lanes(jb, je, [&](uint32_t j, int l) {
+                lanes(jb, je, [&](size_t j, int l) {
                     const float dx = xw - px[j], dy = yw - py[j];
                     const float invH = 1.0f / hs[j];
                     const float q = std::sqrt(dx * dx + dy * dy) * invH;
@@ -281,7 +283,7 @@ void computeSampleForces(WorldState& s, float sampleVolume, float weight) {
             const float vxw = w.vx[k], vyw = w.vy[k], friction = w.friction[k];
             float accX[kLanes] = {}, accY[kLanes] = {};
             s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
-                lanes(jb, je, [&](uint32_t j, int l) {
+                lanes(jb, je, [&](size_t j, int l) {
                     const float dx = px[j] - xw, dy = py[j] - yw;
                     const float invH = 1.0f / hs[j];
                     const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
