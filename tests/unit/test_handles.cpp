@@ -7,7 +7,7 @@
 using namespace fluid;
 using namespace fluid::test;
 
-TEST_CASE("add and remove particles; handles go stale", "[unit][handles]") {
+TEST_CASE("add and remove particles, handles go stale", "[unit][handles]") {
     World world;
     const MaterialId w = world.addMaterial(water());
     const ParticleHandle a = world.addParticle({0.0f, 0.0f}, {0.0f, 0.0f}, w);
