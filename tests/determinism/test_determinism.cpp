@@ -90,8 +90,8 @@ TEST_CASE("bit-identical state for 1, 2 and 4 workers and a host task hook",
     hooked.tasks = reverse.hook();
     const uint64_t host = runDam(hooked);
 
-    INFO("hashes: serial " << std::hex << serial << ", 2 workers " << two << ", 4 workers "
-                           << four << ", reverse hook " << host);
+    INFO("hashes: serial " << std::hex << serial << ", 2 workers " << two << ", 4 workers " << four
+                           << ", reverse hook " << host);
     std::printf("[measure] determinism: %u sub-steps; hashes %016" PRIx64 " %016" PRIx64
                 " %016" PRIx64 " %016" PRIx64 "\n",
                 substeps, serial, two, four, host);

@@ -99,8 +99,8 @@ TEST_CASE("a yoghurt blob dropped into water: both materials interact",
     const MaterialStats ye = stats(world, y.index);
     const MaterialStats we = stats(world, w.index);
     const double freeFallVy = -kG * frames * kFrame;
-    CAPTURE(n, ny, y0.comY, ye.comY, ye.minY, ye.maxY, ye.vy, we.maxY, depth, closest,
-            spacing, std::sqrt(peakWaterSpeed2), yoghurtVyAtImpact, freeFallVy);
+    CAPTURE(n, ny, y0.comY, ye.comY, ye.minY, ye.maxY, ye.vy, we.maxY, depth, closest, spacing,
+            std::sqrt(peakWaterSpeed2), yoghurtVyAtImpact, freeFallVy);
     std::printf("[measure] mixing: %u water + %u yoghurt, closest pair %.5f m (%.3f spacing), "
                 "yoghurt com y %.4f -> %.4f (water surface %.4f), yoghurt min y %.4f, end vy "
                 "%.4f, peak water rms speed %.3f m/s\n",

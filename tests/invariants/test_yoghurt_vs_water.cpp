@@ -18,8 +18,8 @@ using namespace fluid::test;
 namespace {
 
 struct DamRun {
-    float frontAt03 = 0.0f;   // max x at t = 0.3 s (m)
-    int wallFrame = -1;        // first frame with max x >= far wall - one spacing (-1: never)
+    float frontAt03 = 0.0f; // max x at t = 0.3 s (m)
+    int wallFrame = -1;     // first frame with max x >= far wall - one spacing (-1: never)
     uint32_t particles = 0;
     float spacing = 0.0f;
 };

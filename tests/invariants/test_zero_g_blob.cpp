@@ -13,8 +13,8 @@ TEST_CASE("zero-g square blob of 2,000 particles pulls round in 3 s",
     const MaterialId w = world.addMaterial(water());
     const float s = world.spacing(w);
     const uint32_t side = 45; // 2,025 particles
-    REQUIRE(world.spawnBlob(latticeBlock(world, w, -0.5f * side * s, -0.5f * side * s, side, side)) ==
-            side * side);
+    REQUIRE(world.spawnBlob(latticeBlock(world, w, -0.5f * side * s, -0.5f * side * s, side,
+                                         side)) == side * side);
     const double area0 = double(side * s) * double(side * s);
     const double radius = std::sqrt(area0 / 3.14159265358979);
 

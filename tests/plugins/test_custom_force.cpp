@@ -45,13 +45,15 @@ TEST_CASE("the whirlpool example registers next to the built-ins", "[unit][plugi
     CHECK_THROWS_AS(registerWhirlpool(registry), Error);
 }
 
-TEST_CASE("the whirlpool makes angular momentum about its centre grow", "[unit][plugins][example]") {
+TEST_CASE("the whirlpool makes angular momentum about its centre grow",
+          "[unit][plugins][example]") {
     Stopwatch sw("whirlpool 1 s");
     Registry registry;
     registerBuiltinPlugins(registry);
     registerWhirlpool(registry);
     const double cx = 0.3, cy = -0.2;
-    const std::vector<ParamValue> params{{"cx", cx}, {"cy", cy}, {"strength", 1.0}, {"radius", 0.15}};
+    const std::vector<ParamValue> params{
+        {"cx", cx}, {"cy", cy}, {"strength", 1.0}, {"radius", 0.15}};
     World world; // zero gravity, no walls
     const MaterialId w = world.addMaterial(water());
     world.addForce(registry.createForce("force.whirlpool", params));

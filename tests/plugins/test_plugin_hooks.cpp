@@ -26,7 +26,7 @@ struct Log {
 };
 
 class LoggingForce final : public ForcePlugin {
-public:
+  public:
     static constexpr std::array<ParamDecl, 0> kParams{};
     explicit LoggingForce(Log& log) : ForcePlugin("force.test-log", kParams), m_log(log) {}
     void prepare(const StepContext& c) override {
@@ -39,12 +39,12 @@ public:
         }
     }
 
-private:
+  private:
     Log& m_log;
 };
 
 class LoggingBoundary final : public BoundaryPlugin {
-public:
+  public:
     static constexpr std::array<ParamDecl, 0> kParams{};
     explicit LoggingBoundary(Log& log) : BoundaryPlugin("boundary.test-log", kParams), m_log(log) {}
     void prepare(const StepContext& c) override {
@@ -67,7 +67,7 @@ public:
         }
     }
 
-private:
+  private:
     Log& m_log;
 };
 
@@ -169,8 +169,8 @@ TEST_CASE("registry creates built-ins with parameters", "[unit][plugins]") {
     CHECK(g->param("gx") == 1.5);
     CHECK(g->param("gy") == -3.0);
 
-    const std::vector<ParamValue> box{{"minX", -0.5}, {"maxX", 0.25}, {"maxY", 0.75},
-                                      {"friction", 0.5}};
+    const std::vector<ParamValue> box{
+        {"minX", -0.5}, {"maxX", 0.25}, {"maxY", 0.75}, {"friction", 0.5}};
     std::unique_ptr<BoundaryPlugin> b = registry.createBoundary("boundary.box", box);
     REQUIRE(b != nullptr);
     CHECK(b->type() == "boundary.box");

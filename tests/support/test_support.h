@@ -227,7 +227,7 @@ inline BlobDef latticeBlock(const World& world, MaterialId material, float x0, f
 /// destruction, so each test's cost shows in its log (CPU time counts every worker thread, and
 /// is the better measure when the machine is shared).
 class Stopwatch {
-public:
+  public:
     explicit Stopwatch(const char* label)
         : m_label(label), m_t0(std::chrono::steady_clock::now()), m_c0(std::clock()) {}
     ~Stopwatch() {
@@ -241,7 +241,7 @@ public:
     }
     double cpuSeconds() const { return double(std::clock() - m_c0) / CLOCKS_PER_SEC; }
 
-private:
+  private:
     const char* m_label;
     std::chrono::steady_clock::time_point m_t0;
     std::clock_t m_c0;

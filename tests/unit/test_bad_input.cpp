@@ -22,15 +22,14 @@ struct Snapshot {
           py(w.positionY().begin(), w.positionY().end()),
           vx(w.velocityX().begin(), w.velocityX().end()),
           vy(w.velocityY().begin(), w.velocityY().end()),
-          rho(w.density().begin(), w.density().end()), time(w.time()),
-          substeps(w.lastSubsteps()) {}
+          rho(w.density().begin(), w.density().end()), time(w.time()), substeps(w.lastSubsteps()) {}
     bool operator==(const Snapshot&) const = default;
 };
 
 // A force plugin that writes a non-finite value into some particles' acceleration (a broken
 // user plugin).
 class BrokenForce final : public ForcePlugin {
-public:
+  public:
     static constexpr std::array<ParamDecl, 0> kParams{};
     explicit BrokenForce(float bad) : ForcePlugin("force.test-broken", kParams), m_bad(bad) {}
     void apply(const ForceContext& ctx, uint32_t begin, uint32_t end) override {
@@ -44,7 +43,7 @@ public:
         }
     }
 
-private:
+  private:
     float m_bad;
 };
 
@@ -60,13 +59,20 @@ TEST_CASE("World::step rejects a bad frameDt and leaves the world unchanged", "[
     const Snapshot before(world);
     REQUIRE(before.time > 0.0);
 
-    const std::string tail = " s is out of range; expected a finite value in (0, 1] (typically 1/60)";
-    CHECK_THROWS_MATCHES(world.step(0.0f), Error, Catch::Message("World::step: frameDt = 0" + tail));
-    CHECK_THROWS_MATCHES(world.step(-1.0f), Error, Catch::Message("World::step: frameDt = -1" + tail));
-    CHECK_THROWS_MATCHES(world.step(kNaN), Error, Catch::Message("World::step: frameDt = nan" + tail));
-    CHECK_THROWS_MATCHES(world.step(kInf), Error, Catch::Message("World::step: frameDt = inf" + tail));
-    CHECK_THROWS_MATCHES(world.step(-kInf), Error, Catch::Message("World::step: frameDt = -inf" + tail));
-    CHECK_THROWS_MATCHES(world.step(2.0f), Error, Catch::Message("World::step: frameDt = 2" + tail));
+    const std::string tail =
+        " s is out of range; expected a finite value in (0, 1] (typically 1/60)";
+    CHECK_THROWS_MATCHES(world.step(0.0f), Error,
+                         Catch::Message("World::step: frameDt = 0" + tail));
+    CHECK_THROWS_MATCHES(world.step(-1.0f), Error,
+                         Catch::Message("World::step: frameDt = -1" + tail));
+    CHECK_THROWS_MATCHES(world.step(kNaN), Error,
+                         Catch::Message("World::step: frameDt = nan" + tail));
+    CHECK_THROWS_MATCHES(world.step(kInf), Error,
+                         Catch::Message("World::step: frameDt = inf" + tail));
+    CHECK_THROWS_MATCHES(world.step(-kInf), Error,
+                         Catch::Message("World::step: frameDt = -inf" + tail));
+    CHECK_THROWS_MATCHES(world.step(2.0f), Error,
+                         Catch::Message("World::step: frameDt = 2" + tail));
     CHECK(Snapshot(world) == before);
     // The world still steps normally afterwards.
     world.step(kFrame);
@@ -131,8 +137,9 @@ TEST_CASE("WorldDef with NaN or out-of-range fields throws", "[unit][bad-input]"
         def.tasks.enqueue = [](TaskCallback*, uint32_t, uint32_t, void*, void*) -> void* {
             return nullptr;
         };
-        CHECK_THROWS_MATCHES(World(def), Error,
-                             Catch::Message("WorldDef: tasks.enqueue is set but tasks.finish is null"));
+        CHECK_THROWS_MATCHES(
+            World(def), Error,
+            Catch::Message("WorldDef: tasks.enqueue is set but tasks.finish is null"));
     }
 }
 
@@ -230,8 +237,12 @@ TEST_CASE("an empty box container is reported when the world steps", "[unit][bad
 
 TEST_CASE("a force plugin writing NaN or infinity does not spread it", "[unit][bad-input]") {
     float bad = kNaN;
-    SECTION("NaN") { bad = kNaN; }
-    SECTION("infinity") { bad = kInf; }
+    SECTION("NaN") {
+        bad = kNaN;
+    }
+    SECTION("infinity") {
+        bad = kInf;
+    }
     CAPTURE(bad);
     World world;
     const MaterialId w = world.addMaterial(water());

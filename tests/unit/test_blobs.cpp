@@ -127,7 +127,7 @@ TEST_CASE("polygon blobs: convex and concave", "[unit][blob]") {
         }
     }
     SECTION("concave L shape") {
-        const std::vector<glm::vec2> l{{-0.2f, -0.2f}, {0.3f, -0.2f}, {0.3f, -0.05f},
+        const std::vector<glm::vec2> l{{-0.2f, -0.2f},   {0.3f, -0.2f},  {0.3f, -0.05f},
                                        {-0.05f, -0.05f}, {-0.05f, 0.3f}, {-0.2f, 0.3f}};
         BlobDef b;
         b.shape = BlobShape::Polygon;
@@ -157,8 +157,9 @@ TEST_CASE("blob geometry errors", "[unit][blob][bad-input]") {
 
     SECTION("two vertices") {
         b.vertices = {{0.0f, 0.0f}, {1.0f, 0.0f}};
-        CHECK_THROWS_MATCHES(world.spawnBlob(b), Error,
-                             Catch::Message("spawnBlob: polygon has 2 vertices; expected 3 or more"));
+        CHECK_THROWS_MATCHES(
+            world.spawnBlob(b), Error,
+            Catch::Message("spawnBlob: polygon has 2 vertices; expected 3 or more"));
     }
     SECTION("self-intersecting bow tie") {
         b.vertices = {{0.0f, 0.0f}, {0.1f, 0.1f}, {0.1f, 0.0f}, {0.0f, 0.2f}};
@@ -187,8 +188,9 @@ TEST_CASE("blob geometry errors", "[unit][blob][bad-input]") {
     SECTION("NaN circle radius") {
         b.shape = BlobShape::Circle;
         b.radius = std::numeric_limits<float>::quiet_NaN();
-        CHECK_THROWS_MATCHES(world.spawnBlob(b), Error,
-                             Catch::Message("spawnBlob: radius = nan must be finite and > 0 (unit: m)"));
+        CHECK_THROWS_MATCHES(
+            world.spawnBlob(b), Error,
+            Catch::Message("spawnBlob: radius = nan must be finite and > 0 (unit: m)"));
     }
     SECTION("infinite velocity") {
         b.shape = BlobShape::Circle;

@@ -35,8 +35,8 @@ Points makePoints(float cell, uint32_t seed) {
         p.add(u(rng), u(rng));
     }
     for (int i = 0; i < 200; ++i) {
-        p.add(float(k(rng)) * cell, u(rng)); // on a vertical border
-        p.add(u(rng), float(k(rng)) * cell); // on a horizontal border
+        p.add(float(k(rng)) * cell, u(rng));               // on a vertical border
+        p.add(u(rng), float(k(rng)) * cell);               // on a horizontal border
         p.add(float(k(rng)) * cell, float(k(rng)) * cell); // on a corner
     }
     for (int i = 0; i < 100; ++i) {

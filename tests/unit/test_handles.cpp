@@ -52,7 +52,7 @@ TEST_CASE("add and remove particles, handles go stale", "[unit][handles]") {
 
     SECTION("slot reuse bumps the generation") {
         const ParticleHandle d = world.addParticle({3.0f, 0.0f}, {0.0f, 0.0f}, w);
-        CHECK(d.slot == a.slot); // the freed slot is reused...
+        CHECK(d.slot == a.slot);             // the freed slot is reused...
         CHECK(d.generation != a.generation); // ...under a new generation
         CHECK(world.isValid(d));
         CHECK_FALSE(world.isValid(a)); // the old handle does not name the new particle

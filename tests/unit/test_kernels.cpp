@@ -12,8 +12,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // int_0^h 2 pi r f(r) dr by composite Simpson in double (f evaluated in float, as the solver does).
-template <class F>
-double discIntegral(F&& f, double h, int intervals = 20000) {
+template <class F> double discIntegral(F&& f, double h, int intervals = 20000) {
     const double dr = h / intervals;
     double sum = 0.0;
     for (int k = 0; k <= intervals; ++k) {
@@ -29,7 +28,8 @@ double discIntegral(F&& f, double h, int intervals = 20000) {
 TEST_CASE("wendland integrates to 1 over the disc", "[unit][kernels]") {
     for (const float h : {0.032f, 0.04f, 0.036f, 1.0f}) {
         CAPTURE(h);
-        const double integral = discIntegral([h](float r) { return fluid::kernel::wendland(r, h); }, h);
+        const double integral =
+            discIntegral([h](float r) { return fluid::kernel::wendland(r, h); }, h);
         CHECK(integral == Approx(1.0).epsilon(0.005));
         // It is exactly normalised, so the quadrature should be far tighter than 0.5%.
         CHECK(integral == Approx(1.0).epsilon(1e-4));
@@ -58,7 +58,8 @@ TEST_CASE("wendland read on a square lattice sums to about 1", "[unit][kernels]"
 TEST_CASE("cohesion kernel integrates to 1 over the disc", "[unit][kernels]") {
     for (const float h : {0.032f, 0.04f}) {
         CAPTURE(h);
-        const double integral = discIntegral([h](float r) { return fluid::kernel::cohesion(r, h); }, h);
+        const double integral =
+            discIntegral([h](float r) { return fluid::kernel::cohesion(r, h); }, h);
         CHECK(integral == Approx(1.0).epsilon(0.005));
         CHECK(fluid::kernel::cohesion(h, h) == 0.0f);
         // Continuous at r = h/2, where Akinci's spline switches branch.

@@ -61,7 +61,8 @@ TEST_CASE("a fresh resting block of each preset reads its rest density", "[unit]
 TEST_CASE("a block resting 1 s in zero gravity still reads its rest density", "[unit][density]") {
     for (const Material& preset : {water(), yoghurt()}) {
         CAPTURE(preset.name);
-        Stopwatch sw(preset.name == "water" ? "rest density 1 s water" : "rest density 1 s yoghurt");
+        Stopwatch sw(preset.name == "water" ? "rest density 1 s water"
+                                            : "rest density 1 s yoghurt");
         World world;
         const MaterialId id = world.addMaterial(preset);
         world.spawnBlob(latticeBlock(world, id, -0.12f, -0.12f, 24, 24));
