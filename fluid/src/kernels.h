@@ -2,11 +2,12 @@
 //
 // Why Wendland C2 for density and pressure (see docs/kernels.md for the numbers): its Fourier
 // transform is non-negative, so it has no pairing instability at any neighbour count [Dehnen &
-// Aly 2012] — the seed's materials run at 32-50 neighbours, where the poly6/cubic family start to
-// clump particles into pairs; its gradient does not vanish at r -> 0 (poly6's does, which is why
-// Mueller 2003 needs a second "spiky" kernel), so one kernel serves density and pressure and
-// the pair force stays the gradient of the same density estimate; and it reads a square
-// lattice at the presets' spacings within 0.42% (water) and 0.13% (yoghurt).
+// Aly 2012] — the seed's materials run at 32-50 neighbours, where poly6 and the cubic spline,
+// whose transforms dip below zero, let particles clump into pairs; one kernel then serves
+// density and pressure, so the pair force is the gradient of the density it came from (Mueller
+// 2003 takes density from poly6 and pressure from "spiky"); and it reads a square lattice at
+// the presets' spacings within 0.42% (water) and 0.13% (yoghurt). Like every smooth kernel its
+// gradient vanishes at r = 0: what keeps two particles apart is pressure, not the kernel.
 #pragma once
 
 #include <cmath>

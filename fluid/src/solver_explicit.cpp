@@ -157,21 +157,17 @@ void externalForces(WorldState& s, float dt, double time) {
     });
 }
 
-// The scene's Tait sound speed: c = max(sqrt(k_max), 10 sqrt(g H)) with g the largest external
-// acceleration and H the fluid's extent along the mean acceleration (or the diagonal of its
-// bounding box when accelerations point many ways, as around a planetoid). 10 sqrt(g H) is ten
-// times the fastest free-surface speed of a column of height H, so density varies by ~1%.
-float sceneSoundSpeed(WorldState& s, float frameDt) {
-    Particles& p = s.particles;
-    float kMax = 0.0f;
-    for (const Material& m : s.materials) {
-        kMax = std::max(kMax, m.stiffness);
-    }
+// The external field the fluid sits in, measured from a sub-step's plugin accelerations: the
+// largest acceleration g times the fluid's extent H along the mean acceleration (or the
+// diagonal of its bounding box when the accelerations point many ways, as around a planetoid).
+// Called after the external stage of each step's last sub-step; the next step's sound speed
+// uses it, so plugins' apply runs exactly once per sub-step.
+void measureField(WorldState& s) {
+    const Particles& p = s.particles;
     if (p.size() == 0) {
-        s.soundSpeed = std::max(s.soundSpeed, std::sqrt(kMax));
-        return s.soundSpeed;
+        s.fieldGH = 0.0f;
+        return;
     }
-    externalForces(s, frameDt, s.time);
     struct Acc {
         double sx = 0, sy = 0, sabs = 0;
         float gmax = 0;
@@ -228,8 +224,26 @@ float sceneSoundSpeed(WorldState& s, float frameDt) {
             [](Range a, const Range& b) { return Range{std::min(a.lo, b.lo), std::max(a.hi, b.hi)}; });
         height = double(r.hi) - r.lo;
     }
-    const float scene = std::max(std::sqrt(kMax), 10.0f * float(std::sqrt(acc.gmax * height)));
-    s.soundSpeed = std::max(s.soundSpeed, scene);
+    s.fieldGH = float(acc.gmax * height);
+}
+
+// The scene's Tait sound speed, the largest of
+//   sqrt(k_max)            the seed's stiffness (all there is in zero gravity without cohesion),
+//   10 sqrt(g H)           ten times the fastest free-surface wave of a column of height H in
+//                          the field measured last step: density then varies by about 1%,
+//   10 sqrt(a_gamma h)     the same for the surface layer that cohesion squeezes, with
+//                          a_gamma = gamma m / A the cohesion acceleration scale of a material
+//                          [Akinci 2013] and h its support: a resting zero-g blob then reads its
+//                          rest density within 1% instead of about 2% at sqrt(k),
+// never decreasing over the world's life (a dam-break column collapses, its speed does not).
+float sceneSoundSpeed(WorldState& s) {
+    float c = 10.0f * std::sqrt(s.fieldGH);
+    for (const Material& m : s.materials) {
+        c = std::max(c, std::sqrt(m.stiffness));
+        const float cohesion = m.surfaceTension * m.mass / particleArea(m, s.def.depth);
+        c = std::max(c, 10.0f * std::sqrt(cohesion * m.smoothingDistance));
+    }
+    s.soundSpeed = std::max(s.soundSpeed, c);
     return s.soundSpeed;
 }
 
@@ -390,9 +404,10 @@ void stepExplicit(WorldState& s, float frameDt) {
         maxFriction = std::max(maxFriction, plugin->friction());
     }
     const bool tait = s.def.equationOfState == EquationOfState::Tait;
+    const bool derived = tait && s.def.soundSpeed <= 0.0f;
     float soundSpeed = 0.0f;
     if (tait) {
-        soundSpeed = s.def.soundSpeed > 0.0f ? s.def.soundSpeed : sceneSoundSpeed(s, frameDt);
+        soundSpeed = derived ? sceneSoundSpeed(s) : s.def.soundSpeed;
     }
     refreshConstants(s, soundSpeed);
 
@@ -409,20 +424,36 @@ void stepExplicit(WorldState& s, float frameDt) {
     // CFL: sound and flow speed [Monaghan 1992], acceleration, and explicit viscous diffusion
     // (the 2D viscosity Laplacian's largest eigenvalue is about 27/h^2, so 0.06 h^2/nu keeps
     // forward Euler stable with margin); wall friction adds to the viscosity.
-    const float cfl = tait ? soundSpeed : std::sqrt(maxK);
-    float dt = s.def.courant * minSpacing / (cfl + maxSpeed);
-    if (s.lastMaxAccel > 0.0f) {
-        dt = std::min(dt, 0.25f * std::sqrt(minSupport / s.lastMaxAccel));
+    auto cflDt = [&] {
+        const float speed = tait ? soundSpeed : std::sqrt(maxK);
+        float dt = s.def.courant * minSpacing / (speed + maxSpeed);
+        if (s.lastMaxAccel > 0.0f) {
+            dt = std::min(dt, 0.25f * std::sqrt(minSupport / s.lastMaxAccel));
+        }
+        if (maxNu > 0.0f) {
+            dt = std::min(dt, 0.06f * minSupport * minSupport / (maxNu * std::max(1.0f, maxFriction)));
+        }
+        return dt;
+    };
+    // Equal sub-steps over `span` seconds, at most `cap` of them.
+    auto plan = [](float span, float dt, uint32_t cap) {
+        const auto wanted = static_cast<uint32_t>(std::min(1e6, std::ceil(double(span) / dt)));
+        return std::clamp(wanted, 1u, cap);
+    };
+
+    // A world whose sound speed is derived but whose external field was never measured (its
+    // first step with particles) starts with one short probe sub-step at the CFL limit of the
+    // largest sound speed the sub-step cap allows; its external stage measures the field, and
+    // the rest of the frame is planned with the sound speed that field asks for. So the first
+    // frame is as stiff as the others, and plugins still see one apply per sub-step.
+    const bool probe = derived && !s.fieldMeasured && n > 0 && s.def.maxSubsteps >= 2;
+    float dt = cflDt();
+    uint32_t total = plan(frameDt, dt, s.def.maxSubsteps);
+    float h = frameDt / float(total);
+    if (probe) {
+        h = std::min(h, frameDt / float(s.def.maxSubsteps));
+        total = s.def.maxSubsteps; // provisional, replanned after the probe
     }
-    if (maxNu > 0.0f) {
-        dt = std::min(dt, 0.06f * minSupport * minSupport / (maxNu * std::max(1.0f, maxFriction)));
-    }
-    const auto wanted = static_cast<uint32_t>(std::min(1e6, std::ceil(double(frameDt) / dt)));
-    const uint32_t substeps = std::clamp(wanted, 1u, s.def.maxSubsteps);
-    const float h = frameDt / float(substeps);
-    prof.cflDt = dt;
-    prof.substeps = substeps;
-    prof.soundSpeed = soundSpeed;
 
     SubstepConstants c;
     c.materialCount = static_cast<uint32_t>(s.materials.size());
@@ -436,17 +467,33 @@ void stepExplicit(WorldState& s, float frameDt) {
     for (const auto& plugin : s.boundaries) {
         wantsForces = wantsForces || plugin->wantsForces();
     }
-    const float speedCap = 0.5f * minSupport / h;
 
-    for (uint32_t sub = 0; sub < substeps; ++sub) {
-        const double t = s.time + double(sub) * h;
-        const float inStep = float(sub) * h;
+    float inStep = 0.0f;
+    for (uint32_t sub = 0; sub < total; ++sub) {
+        const bool last = sub + 1 == total;
+        if (last) {
+            h = frameDt - inStep; // absorbs rounding: the frame ends exactly at frameDt
+        }
+        const double t = s.time + double(inStep);
         timed(prof.sort, [&] {
             sortParticles(s, maxSupport);
             fillMaterialChannels(s);
             placeSamples(s, inStep, maxSupport, moving || sub == 0);
         });
-        timed(prof.external, [&] { externalForces(s, h, t); });
+        timed(prof.external, [&] {
+            externalForces(s, h, t);
+            if (last || (probe && sub == 0)) {
+                measureField(s);
+                s.fieldMeasured = true;
+            }
+        });
+        if (probe && sub == 0) {
+            soundSpeed = sceneSoundSpeed(s);
+            refreshConstants(s, soundSpeed);
+            dt = cflDt();
+            const uint32_t rest = plan(frameDt - h, dt, s.def.maxSubsteps - 1);
+            total = 1 + rest;
+        }
         timed(prof.density, [&] { computeDensity(s, c.sampleVolume); });
         timed(prof.pressure, [&] {
             computePressure(s, c);
@@ -457,19 +504,27 @@ void stepExplicit(WorldState& s, float frameDt) {
         timed(prof.forces, [&] {
             computeForces(s, c.sampleVolume, surfaceTension);
             if (wantsForces) {
-                computeSampleForces(s, c.sampleVolume, 1.0f / float(substeps));
+                computeSampleForces(s, c.sampleVolume, h / frameDt);
             }
         });
-        if (sub + 1 == substeps) {
+        if (last) {
             densityError(s);
         }
         IntegrateStats st;
-        timed(prof.integrate, [&] { st = integrate(s, h, speedCap); });
+        // The speed cap: half a support radius per sub-step.
+        timed(prof.integrate, [&] { st = integrate(s, h, 0.5f * minSupport / h); });
         prof.speedClamped += st.clamped;
         prof.nonFiniteRepaired += st.repaired;
         s.lastMaxAccel = std::sqrt(st.maxAccel2);
         timed(prof.boundaries, [&] { projectBoundaries(s, h, inStep + h, sampleSpacing); });
+        inStep += h;
+        if (probe && sub == 0) {
+            h = (frameDt - inStep) / float(total - 1);
+        }
     }
+    prof.cflDt = dt;
+    prof.substeps = total;
+    prof.soundSpeed = soundSpeed;
 
     if (wantsForces) {
         for (size_t k = 0; k < s.boundaries.size(); ++k) {

@@ -78,6 +78,8 @@ struct WorldState {
     Profile profile;
     double time = 0.0;
     float soundSpeed = 0.0f; // derived Tait sound speed, never decreasing
+    float fieldGH = 0.0f;    // g H of the external field, measured in the last step (m^2/s^2)
+    bool fieldMeasured = false;
     float lastMaxAccel = 0.0f;
 
     uint32_t checkedIndex(ParticleHandle handle, const char* function) const;

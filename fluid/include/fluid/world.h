@@ -40,9 +40,12 @@ struct WorldDef {
     /// Equation of state of the explicit solver. Default Tait (stiff water under gravity).
     EquationOfState equationOfState = EquationOfState::Tait;
     /// Tait sound speed c (unit: m/s; range 0 or [0.1, 1e4]). 0 derives it from the scene at
-    /// every step: c = max(sqrt(k_max), 10 sqrt(g H)), g the largest external acceleration and H
-    /// the fluid's extent along it, never decreasing over the world's life (the dam-break column
-    /// collapses, its speed does not). 10 sqrt(g H) keeps density errors near 1%.
+    /// every step: c = max(sqrt(k), 10 sqrt(g H), 10 sqrt(gamma m h / A)) over the materials,
+    /// g the largest external acceleration and H the fluid's extent along it (measured during
+    /// the previous step; the first step has neither), the last term for the squeeze of surface
+    /// tension; never decreasing over the world's life (the dam-break column collapses, its
+    /// speed does not). Ten times the wave speeds keeps density errors near 1%
+    /// (docs/solver.md).
     float soundSpeed = 0.0f;
     /// Slab depth that reads the materials' 3D mass and density in 2D (unit: m; range
     /// [1e-4, 1e3]). See `Material`. Default `kDefaultDepth` = 0.1293 m.

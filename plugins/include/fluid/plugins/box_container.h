@@ -23,13 +23,14 @@ public:
         {"minY", "m", 0.0, -1e5, 1e5, "Inner floor."},
         {"maxX", "m", 1.0, -1e5, 1e5, "Inner right wall."},
         {"maxY", "m", 2.0, -1e5, 1e5, "Inner ceiling."},
-        {"friction", "1", 0.0, 0.0, 10.0,
-         "Wall viscosity scale: 0 free slip, 1 the fluid's own viscosity."},
+        {"friction", "1", 1.0, 0.0, 10.0,
+         "Wall viscosity scale: 0 free slip, 1 the fluid's own viscosity (no slip)."},
         {"openTop", "1", 0.0, 0.0, 1.0, "1 leaves the ceiling out (an open tank)."},
     }};
-    /// The default box: [-1, 1] x [0, 2] m, closed, free slip.
+    /// The default box: [-1, 1] x [0, 2] m, closed, wall friction 1 (the fluid's viscosity).
     BoxContainer() : BoundaryPlugin(kType, kParams) {}
-    /// A closed box with inner corners `min` and `max` (unit: m; min < max on both axes).
+    /// A closed box with inner corners `min` and `max` (unit: m; min < max on both axes), wall
+    /// friction 1.
     BoxContainer(float minX, float minY, float maxX, float maxY);
 
     /// Lays the wall samples (only when the box or the spacing changed).
