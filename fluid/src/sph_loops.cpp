@@ -6,7 +6,11 @@
 // kernels), so the compiler turns it into SIMD code; the lanes are summed in a fixed order at
 // the end, so the result depends only on the (deterministic) grid order, never on threads.
 // Pair supports are h_ij = (h_i + h_j)/2, so every pair term is symmetric and, multiplied by
-// m_i, antisymmetric in (i, j): momentum is conserved.
+// m_i, antisymmetric in (i, j): momentum is conserved. Densities are number densities times the
+// particle's own mass, rho_i = m_i sum_j W_ij [Solenthaler & Pajarola 2008]: at an interface
+// between materials of different rest density each side reads its own rest density, so
+// yoghurt in water neither reads water's lower density (and loses its pressure) nor the
+// reverse.
 #include "sph_loops.h"
 
 #include "kernels.h"
@@ -92,7 +96,7 @@ void computeDensity(WorldState& s, float sampleVolume) {
                     const float q = r * invH;
                     const float t = std::max(1.0f - q, 0.0f);
                     const float t2 = t * t;
-                    acc[l] += mt[j] * (invH * invH) * (t2 * t2) * (1.0f + 4.0f * q);
+                    acc[l] += (invH * invH) * (t2 * t2) * (1.0f + 4.0f * q);
                 });
             });
             // Boundary samples, with the particle's own support.
@@ -107,7 +111,7 @@ void computeDensity(WorldState& s, float sampleVolume) {
                     wall[l] += (t2 * t2) * (1.0f + 4.0f * q);
                 });
             });
-            p.density[i] = kW * laneSum(acc) +
+            p.density[i] = mt[i] * kW * laneSum(acc) +
                            p.restDensity[i] * sampleVolume * kW * invH * invH * laneSum(wall);
         }
     });
@@ -166,7 +170,8 @@ void forces(WorldState& s, float sampleVolume) {
     parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
             const float xi = px[i], yi = py[i], vxi = vx[i], vyi = vy[i], hi = hs[i];
-            const float pi = p2[i], invRhoi = invRho[i], mui = mu[i], rhoi = rho[i];
+            const float invRhoi = invRho[i], mui = mu[i], rhoi = rho[i];
+            const float piMt = p2[i] * mt[i], invMti = 1.0f / mt[i];
             const float massi = mass[i], rho0i = rho0[i], gammai = gamma[i];
             const float nxi = kSurface ? nx[i] : 0.0f, nyi = kSurface ? ny[i] : 0.0f;
             float accX[kLanes] = {}, accY[kLanes] = {};
@@ -179,8 +184,11 @@ void forces(WorldState& s, float sampleVolume) {
                     const float t = std::max(1.0f - q, 0.0f);
                     const float invH2 = invH * invH;
                     const float invH4 = invH2 * invH2;
-                    // Pressure, seed eq. 2.5: -m_j (p_i/rho_i^2 + p_j/rho_j^2) grad W.
-                    const float fp = -mt[j] * (pi + p2[j]) * kG * invH4 * (t * t * t);
+                    // Pressure, seed eq. 2.5 in the volume form of [Solenthaler 2008]:
+                    // -(1/m_i) (p_i V_i^2 + p_j V_j^2) grad W with V = m/rho; for one
+                    // material it is the seed's -m (p_i/rho_i^2 + p_j/rho_j^2) grad W.
+                    const float fp = -(piMt + p2[j] * mt[j] * mt[j] * invMti) * kG * invH4 *
+                                     (t * t * t);
                     // Viscosity, seed eq. 2.6, with the pair's mean mu.
                     const float fv = 0.5f * (mui + mu[j]) * invRhoi * mt[j] * invRho[j] * kL *
                                      invH4 * t;
@@ -213,12 +221,13 @@ void forces(WorldState& s, float sampleVolume) {
             const float wallP = -rho0i * sampleVolume * kG * invH4;
             const float wallV = mui * invRhoi * sampleVolume * kL * invH4;
             const float invRho2 = invRhoi * invRhoi;
+            const float piWall = p.pressure[i] * invRho2; // no background pressure at walls
             float wX[kLanes] = {}, wY[kLanes] = {};
             w.grid.forEachRange(xi, yi, [&](uint32_t kb, uint32_t ke) {
                 lanes(kb, ke, [&](size_t k, int l) {
                     const float dx = xi - w.px[k], dy = yi - w.py[k];
                     const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
-                    const float fp = wallP * (pi + w.pressure[k] * invRho2) * (t * t * t);
+                    const float fp = wallP * (piWall + w.pressure[k] * invRho2) * (t * t * t);
                     const float fv = wallV * w.friction[k] * t;
                     wX[l] += fp * dx + fv * (w.vx[k] - vxi);
                     wY[l] += fp * dy + fv * (w.vy[k] - vyi);
@@ -276,7 +285,7 @@ void computeSampleForces(WorldState& s, float sampleVolume, float weight) {
     const float* __restrict rho0 = p.restDensity.data();
     const float* __restrict mu = p.viscosity.data();
     const float* __restrict invRho = p.invRho.data();
-    const float* __restrict p2 = p.pOverRho2.data();
+    const float* __restrict pressure = p.pressure.data();
     parallelFor(s.tasks, w.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t k = b; k < e; ++k) {
             const float xw = w.px[k], yw = w.py[k], pw = w.pressure[k];
@@ -288,8 +297,8 @@ void computeSampleForces(WorldState& s, float sampleVolume, float weight) {
                     const float invH = 1.0f / hs[j];
                     const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
                     const float invH4 = (invH * invH) * (invH * invH);
-                    const float fp = mass[j] * rho0[j] * (p2[j] + pw * invRho[j] * invRho[j]) * kG *
-                                     invH4 * (t * t * t);
+                    const float fp = mass[j] * rho0[j] * (pressure[j] + pw) * invRho[j] * invRho[j] *
+                                     kG * invH4 * (t * t * t);
                     const float fv = mass[j] * friction * mu[j] * invRho[j] * kL * invH4 * t;
                     accX[l] += fp * dx - fv * (vxw - vx[j]);
                     accY[l] += fp * dy - fv * (vyw - vy[j]);

@@ -8,8 +8,10 @@ namespace fluid::detail {
 /// Copies each particle's material properties into the per-particle channels (after a sort).
 void fillMaterialChannels(WorldState& s);
 
-/// Seed eq. 2.3: rho_i = sum_j (m_j/depth) W(r_ij, h_ij) over fluid neighbours, plus
-/// rho0_i V_w W(r_iw, h_i) over boundary samples (they stand in for fluid at rest density).
+/// Seed eq. 2.3 in the multi-material form of [Solenthaler & Pajarola 2008]:
+/// rho_i = (m_i/depth) sum_j W(r_ij, h_ij) over fluid neighbours (identical to the seed's sum
+/// for one material), plus rho0_i V_w W(r_iw, h_i) over boundary samples (they stand in for
+/// fluid at rest density).
 void computeDensity(WorldState& s, float sampleVolume);
 
 /// Surface normals n_i = h_i sum_j (m_j/depth)/rho_j grad W_ij, pointing into the fluid

@@ -39,6 +39,7 @@ struct MaterialConstants {
     float viscosity = 0;   // mu (Pa s)
     float stiffness = 0;   // k (m^2/s^2)
     float taitB = 0;       // rho0 c^2 / 7 (Pa)
+    float backgroundPressure = 0; // added to Tait's pressure (Pa)
     float support = 0;     // h (m)
     float gamma = 0;       // surface tension (Akinci 2013)
 };
