@@ -41,7 +41,7 @@ constexpr uint32_t kGrain = 256; // smallest range handed to a worker (particles
 // they pair up, a few hundredths of a spacing apart. A uniform background pressure has no
 // gradient inside the fluid (the bulk is unchanged), keeps such pairs apart (at least 0.3
 // spacing in the yoghurt-drop test), and pushes the free surface outward by about
-// 2 p_b / (rho0 h), 1.7 m/s^2 for a 0.3 m tank: small against gravity and cohesion. Walls do
+// 2 p_b / (rho0 h), about 3.4 m/s^2 for a 0.3 m tank, which gravity and cohesion hold. Walls do
 // not feel it: a lone droplet still rests on the floor.
 constexpr float kBackgroundPressure = 2e-4f;
 
