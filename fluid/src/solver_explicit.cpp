@@ -11,7 +11,6 @@
 //     forces      symmetric pressure force (2.5), viscosity (2.6), surface tension [Akinci 2013]
 //     integrate   v += dt a, x += dt v: symplectic Euler                        (seed eq. 2.8, 2.9)
 //     boundaries  boundary plugins keep particles out of solids (safety net)
-#include "kernels.h"
 #include "parallel.h"
 #include "sph_loops.h"
 #include "world_state.h"
@@ -47,10 +46,8 @@ constexpr float kBackgroundPressure = 2e-4f;
 
 // Everything one sub-step reads that does not change inside it.
 struct SubstepConstants {
-    uint32_t materialCount = 0;
     const MaterialConstants* mat = nullptr;
     float sampleVolume = 0; // V_w = spacing^2 (m^2)
-    float minSupport = 0;
     bool tait = true;
     bool surfaceTension = false;
 };
@@ -267,13 +264,13 @@ void sortParticles(WorldState& s, float cellSize) {
     for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy}) {
         permute(*channel, order, s.sortScratch);
     }
-    std::vector<uint16_t> material(p.size());
+    s.sortScratchMaterial.resize(p.size());
+    s.sortScratchU.resize(p.size());
     for (size_t k = 0; k < order.size(); ++k) {
-        material[k] = p.material[order[k]];
-        s.sortScratchU.resize(p.size());
+        s.sortScratchMaterial[k] = p.material[order[k]];
         s.sortScratchU[k] = p.slot[order[k]];
     }
-    p.material.swap(material);
+    p.material.swap(s.sortScratchMaterial);
     p.slot.swap(s.sortScratchU);
     for (uint32_t k = 0; k < p.size(); ++k) {
         s.slotIndex[p.slot[k]] = k;
@@ -470,10 +467,8 @@ void stepExplicit(WorldState& s, float frameDt) {
     }
 
     SubstepConstants c;
-    c.materialCount = static_cast<uint32_t>(s.materials.size());
     c.mat = s.constants.data();
     c.sampleVolume = sampleSpacing * sampleSpacing;
-    c.minSupport = minSupport;
     c.tait = tait;
     c.surfaceTension = surfaceTension;
     const bool moving = samplesMove(s);

@@ -75,6 +75,7 @@ struct WorldState {
     Samples samples;
     std::vector<float> sortScratch;
     std::vector<uint32_t> sortScratchU;
+    std::vector<uint16_t> sortScratchMaterial;
 
     Profile profile;
     double time = 0.0;
