@@ -34,15 +34,21 @@ void timed(float& total, F&& f) {
 
 constexpr uint32_t kGrain = 256; // smallest range handed to a worker (particles)
 
-// Background pressure of the Tait equation of state in fluid-fluid pairs, as a fraction of
-// rho0 c^2. Where the fluid thins out (splashes, free surfaces) the clamped Tait pressure is 0
-// and nothing but the weak repulsive core of the cohesion kernel keeps two particles apart:
-// they pair up, a few hundredths of a spacing apart. A uniform background pressure has no
-// gradient inside the fluid (the bulk is unchanged), keeps such pairs apart (at least 0.3
-// spacing in the yoghurt-drop test), and pushes the free surface outward by about
-// 2 p_b / (rho0 h), about 3.4 m/s^2 for a 0.3 m tank, which gravity and cohesion hold. Walls do
-// not feel it: a lone droplet still rests on the floor.
-constexpr float kBackgroundPressure = 2e-4f;
+// Background pressure of the Tait equation of state in fluid-fluid pairs. Where the fluid thins
+// out (splashes, free surfaces) the clamped Tait pressure is 0 and nothing but the weak
+// repulsive core of the cohesion kernel keeps two particles apart: they pair up, a few
+// hundredths of a spacing apart. A uniform background pressure has no gradient inside the
+// fluid (the bulk is unchanged) and keeps such pairs apart (at least 0.3 spacing in the
+// yoghurt-drop test), but it pushes the free surface outward by about 2 p_b / (rho0 h). So it
+// is bounded twice: by kBackground rho0 a_gamma h, a_gamma = gamma m/A the cohesion's
+// acceleration scale [Akinci 2013], so the surface push stays at most 2 kBackground a_gamma
+// (2.6 m/s^2 for water, a fifth of its cohesion scale) however stiff the scene, and 0 without
+// surface tension; and by kBackgroundStiff rho0 c^2, so a soft fluid (a zero-g blob, c =
+// 6.4 m/s) is not inflated: with the first bound alone a zero-g water square threw particles
+// beyond 2 R and stalled at circularity 0.90. Walls do not feel it: a lone droplet still rests
+// on the floor.
+constexpr float kBackground = 0.1f;
+constexpr float kBackgroundStiff = 2e-4f;
 
 // Everything one sub-step reads that does not change inside it.
 struct SubstepConstants {
@@ -74,7 +80,10 @@ void refreshConstants(WorldState& s, float soundSpeed) {
         c.viscosity = mat.viscosity;
         c.stiffness = mat.stiffness;
         c.taitB = mat.restDensity * soundSpeed * soundSpeed / 7.0f;
-        c.backgroundPressure = kBackgroundPressure * mat.restDensity * soundSpeed * soundSpeed;
+        const float cohesion = mat.surfaceTension * mat.mass / particleArea(mat, s.def.depth);
+        c.backgroundPressure =
+            std::min(kBackground * mat.restDensity * cohesion * mat.smoothingDistance,
+                     kBackgroundStiff * mat.restDensity * soundSpeed * soundSpeed);
         c.support = mat.smoothingDistance;
         c.gamma = mat.surfaceTension;
     }
