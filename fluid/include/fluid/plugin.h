@@ -58,8 +58,11 @@ public:
     /// `type` is the registry's string ("force.gravity"); `params` must outlive the plugin
     /// (a static array); values start at their defaults.
     Plugin(std::string_view type, PluginKind kind, std::span<const ParamDecl> params);
+    /// Destroyed by its owner (the world or the caller); not while a step runs.
     virtual ~Plugin() = default;
+    /// Plugins are not copyable: a world owns each one.
     Plugin(const Plugin&) = delete;
+    /// Not assignable either.
     Plugin& operator=(const Plugin&) = delete;
 
     /// Registry type string, e.g. "boundary.box".

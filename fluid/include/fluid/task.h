@@ -41,7 +41,9 @@ public:
     explicit ThreadPool(uint32_t workerCount);
     /// Joins the threads. Must not be called while a task runs.
     ~ThreadPool();
+    /// Not copyable: the threads belong to one pool.
     ThreadPool(const ThreadPool&) = delete;
+    /// Not assignable.
     ThreadPool& operator=(const ThreadPool&) = delete;
 
     /// The hook to put in `WorldDef::tasks`.

@@ -146,8 +146,11 @@ class World {
 public:
     /// Creates an empty world; throws `fluid::Error` naming the first out-of-range field.
     explicit World(const WorldDef& def = {});
+    /// Destroys the world, its plugins and its own thread pool (stepping thread, between steps).
     ~World();
+    /// Moves the whole world; the moved-from world may only be destroyed or assigned.
     World(World&&) noexcept;
+    /// Move assignment, as the move constructor.
     World& operator=(World&&) noexcept;
 
     /// Adds a material (validated, see `validate(Material)`); at most 65535.
