@@ -117,16 +117,24 @@ void validatePolygon(const std::vector<glm::vec2>& v) {
 
 namespace detail {
 
+std::optional<uint32_t> WorldState::findIndex(ParticleHandle handle) const {
+    if (handle.isNull() || handle.slot >= slotGeneration.size() ||
+        slotGeneration[handle.slot] != handle.generation || slotIndex[handle.slot] == UINT32_MAX) {
+        return std::nullopt;
+    }
+    return slotIndex[handle.slot];
+}
+
 uint32_t WorldState::checkedIndex(ParticleHandle handle, const char* function) const {
     if (handle.isNull()) {
         throw Error(std::string(function) + ": null particle handle");
     }
-    if (handle.slot >= slotGeneration.size() || slotGeneration[handle.slot] != handle.generation ||
-        slotIndex[handle.slot] == UINT32_MAX) {
+    const std::optional<uint32_t> index = findIndex(handle);
+    if (!index) {
         throw Error(std::string(function) + ": stale particle handle " + describe(handle) +
                     ": that particle was removed");
     }
-    return slotIndex[handle.slot];
+    return *index;
 }
 
 void WorldState::removeAt(uint32_t index) {
@@ -310,12 +318,7 @@ void World::removeParticle(ParticleHandle handle) {
 bool World::isValid(ParticleHandle handle) const { return indexOf(handle).has_value(); }
 
 std::optional<uint32_t> World::indexOf(ParticleHandle handle) const {
-    const detail::WorldState& s = *m_state;
-    if (handle.isNull() || handle.slot >= s.slotGeneration.size() ||
-        s.slotGeneration[handle.slot] != handle.generation || s.slotIndex[handle.slot] == UINT32_MAX) {
-        return std::nullopt;
-    }
-    return s.slotIndex[handle.slot];
+    return m_state->findIndex(handle);
 }
 
 ParticleHandle World::handleAt(uint32_t index) const {

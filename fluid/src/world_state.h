@@ -6,6 +6,7 @@
 #include <fluid/world.h>
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace fluid::detail {
@@ -84,6 +85,7 @@ struct WorldState {
     bool fieldMeasured = false;
     float lastMaxAccel = 0.0f;
 
+    std::optional<uint32_t> findIndex(ParticleHandle handle) const; // nullopt: null or stale
     uint32_t checkedIndex(ParticleHandle handle, const char* function) const;
     void removeAt(uint32_t index);
 };
