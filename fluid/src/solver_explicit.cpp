@@ -13,26 +13,14 @@
 //     boundaries  boundary plugins keep particles out of solids (safety net)
 #include "parallel.h"
 #include "sph_loops.h"
-#include "world_state.h"
+#include "step_common.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
 namespace fluid::detail {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-template <class F>
-void timed(float& total, F&& f) {
-    const Clock::time_point t0 = Clock::now();
-    f();
-    total += std::chrono::duration<float, std::milli>(Clock::now() - t0).count();
-}
-
-constexpr uint32_t kGrain = 256; // smallest range handed to a worker (particles)
 
 // Background pressure of the Tait equation of state in fluid-fluid pairs. Where the fluid thins
 // out (splashes, free surfaces) the clamped Tait pressure is 0 and nothing but the weak
@@ -58,120 +46,19 @@ struct SubstepConstants {
     bool surfaceTension = false;
 };
 
-void permute(std::vector<float>& channel, std::span<const uint32_t> order, std::vector<float>& tmp) {
-    tmp.resize(channel.size());
-    for (size_t k = 0; k < order.size(); ++k) {
-        tmp[k] = channel[order[k]];
-    }
-    channel.swap(tmp);
-}
-
 // ---- prepare -------------------------------------------------------------------------------
 
-void refreshConstants(WorldState& s, float soundSpeed) {
-    const size_t m = s.materials.size();
-    s.constants.resize(m);
-    for (size_t i = 0; i < m; ++i) {
+// The equation of state's per-material constants for sound speed c.
+void setEquationOfState(WorldState& s, float soundSpeed) {
+    for (size_t i = 0; i < s.materials.size(); ++i) {
         const Material& mat = s.materials[i];
         MaterialConstants& c = s.constants[i];
-        c.mass = mat.mass;
-        c.massPerDepth = mat.mass / s.def.depth;
-        c.restDensity = mat.restDensity;
-        c.viscosity = mat.viscosity;
-        c.stiffness = mat.stiffness;
         c.taitB = mat.restDensity * soundSpeed * soundSpeed / 7.0f;
         const float cohesion = mat.surfaceTension * mat.mass / particleArea(mat, s.def.depth);
         c.backgroundPressure =
             std::min(kBackground * mat.restDensity * cohesion * mat.smoothingDistance,
                      kBackgroundStiff * mat.restDensity * soundSpeed * soundSpeed);
-        c.support = mat.smoothingDistance;
-        c.gamma = mat.surfaceTension;
     }
-}
-
-void gatherSamples(WorldState& s, const StepContext& context) {
-    Samples& out = s.samples;
-    out.pluginBegin.clear();
-    size_t total = 0;
-    for (const auto& plugin : s.boundaries) {
-        plugin->prepare(context);
-        out.pluginBegin.push_back(static_cast<uint32_t>(total));
-        total += plugin->samples().size();
-    }
-    out.pluginBegin.push_back(static_cast<uint32_t>(total));
-    out.fx.assign(total, 0.0f);
-    out.fy.assign(total, 0.0f);
-}
-
-// Positions of all samples at `t` seconds into the step, sorted by cell (rebuilt each sub-step
-// only when some sample moves).
-void placeSamples(WorldState& s, float t, float cellSize, bool rebuild) {
-    Samples& out = s.samples;
-    const uint32_t total = out.pluginBegin.empty() ? 0 : out.pluginBegin.back();
-    if (!rebuild && out.size() == total) {
-        return;
-    }
-    // Unsorted positions at time t, in concatenation order.
-    std::vector<float> x(total), y(total), vx(total), vy(total), friction(total);
-    for (size_t p = 0; p < s.boundaries.size(); ++p) {
-        const BoundarySamples& bs = s.boundaries[p]->samples();
-        const float f = s.boundaries[p]->friction();
-        for (size_t k = 0; k < bs.size(); ++k) {
-            const size_t i = out.pluginBegin[p] + k;
-            x[i] = bs.px[k] + bs.vx[k] * t;
-            y[i] = bs.py[k] + bs.vy[k] * t;
-            vx[i] = bs.vx[k];
-            vy[i] = bs.vy[k];
-            friction[i] = f;
-        }
-    }
-    out.grid.build(x, y, cellSize, s.tasks);
-    const std::span<const uint32_t> order = out.grid.order();
-    out.px.resize(total);
-    out.py.resize(total);
-    out.vx.resize(total);
-    out.vy.resize(total);
-    out.friction.resize(total);
-    out.pressure.assign(total, 0.0f);
-    out.source.assign(order.begin(), order.end());
-    for (uint32_t k = 0; k < total; ++k) {
-        const uint32_t i = order[k];
-        out.px[k] = x[i];
-        out.py[k] = y[i];
-        out.vx[k] = vx[i];
-        out.vy[k] = vy[i];
-        out.friction[k] = friction[i];
-    }
-}
-
-bool samplesMove(const WorldState& s) {
-    for (const auto& plugin : s.boundaries) {
-        const BoundarySamples& bs = plugin->samples();
-        for (size_t k = 0; k < bs.size(); ++k) {
-            if (bs.vx[k] != 0.0f || bs.vy[k] != 0.0f) {
-                return true;
-            }
-        }
-    }
-    return false;
-}
-
-ParticleView view(const WorldState& s) {
-    const Particles& p = s.particles;
-    return ParticleView{p.px, p.py, p.vx, p.vy, p.material, s.materials, p.size()};
-}
-
-// Force plugins' accelerations into ex, ey (zeroed first).
-void externalForces(WorldState& s, float dt, double time) {
-    Particles& p = s.particles;
-    const ForceContext context{view(s), p.ex, p.ey, dt, time};
-    parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
-        std::fill(p.ex.begin() + b, p.ex.begin() + e, 0.0f);
-        std::fill(p.ey.begin() + b, p.ey.begin() + e, 0.0f);
-        for (const auto& plugin : s.forces) {
-            plugin->apply(context, b, e);
-        }
-    });
 }
 
 // The external field the fluid sits in, measured from a sub-step's plugin accelerations: the
@@ -266,26 +153,6 @@ float sceneSoundSpeed(WorldState& s) {
 
 // ---- sub-step stages ---------------------------------------------------------------------
 
-void sortParticles(WorldState& s, float cellSize) {
-    Particles& p = s.particles;
-    s.grid.build(p.px, p.py, cellSize, s.tasks);
-    const std::span<const uint32_t> order = s.grid.order();
-    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy}) {
-        permute(*channel, order, s.sortScratch);
-    }
-    s.sortScratchMaterial.resize(p.size());
-    s.sortScratchU.resize(p.size());
-    for (size_t k = 0; k < order.size(); ++k) {
-        s.sortScratchMaterial[k] = p.material[order[k]];
-        s.sortScratchU[k] = p.slot[order[k]];
-    }
-    p.material.swap(s.sortScratchMaterial);
-    p.slot.swap(s.sortScratchU);
-    for (uint32_t k = 0; k < p.size(); ++k) {
-        s.slotIndex[p.slot[k]] = k;
-    }
-}
-
 // Seed eq. 2.4 (or Tait), then each boundary sample's pressure extrapolated from the fluid
 // around it, hydrostatic term included [Adami 2012, eq. 27]: walls push back as hard as the
 // fluid presses, with no pressure mirroring (which pumps energy into a resting tank).
@@ -356,38 +223,6 @@ IntegrateStats integrate(WorldState& s, float dt, float speedCap) {
         });
 }
 
-void projectBoundaries(WorldState& s, float dt, float timeInStep, float spacing) {
-    Particles& p = s.particles;
-    const ProjectContext context{p.px, p.py, p.vx, p.vy, p.material, dt, timeInStep, spacing};
-    for (const auto& plugin : s.boundaries) {
-        parallelFor(s.tasks, p.size(), 1024, [&](uint32_t b, uint32_t e, uint32_t) {
-            plugin->project(context, b, e);
-        });
-    }
-}
-
-void densityError(WorldState& s) {
-    const Particles& p = s.particles;
-    struct Err {
-        double sum = 0;
-        float max = 0;
-    };
-    const Err err = blockReduce<Err>(
-        s.tasks, p.size(), Err{},
-        [&](uint32_t b, uint32_t e) {
-            Err r;
-            for (uint32_t i = b; i < e; ++i) {
-                const float c = std::max(0.0f, p.density[i] / s.constants[p.material[i]].restDensity - 1.0f);
-                r.sum += c;
-                r.max = std::max(r.max, c);
-            }
-            return r;
-        },
-        [](Err a, const Err& b) { return Err{a.sum + b.sum, std::max(a.max, b.max)}; });
-    s.profile.densityErrorMax = err.max;
-    s.profile.densityErrorAvg = p.size() > 0 ? float(err.sum / p.size()) : 0.0f;
-}
-
 } // namespace
 
 void stepExplicit(WorldState& s, float frameDt) {
@@ -400,18 +235,11 @@ void stepExplicit(WorldState& s, float frameDt) {
         channel->resize(n);
     }
 
-    float minSupport = std::numeric_limits<float>::max(), maxSupport = 0.0f;
-    float minSpacing = std::numeric_limits<float>::max(), maxNu = 0.0f, maxK = 0.0f;
-    bool surfaceTension = false;
-    for (const Material& m : s.materials) {
-        minSupport = std::min(minSupport, m.smoothingDistance);
-        maxSupport = std::max(maxSupport, m.smoothingDistance);
-        minSpacing = std::min(minSpacing, particleSpacing(m, s.def.depth));
-        maxNu = std::max(maxNu, m.viscosity / m.restDensity);
-        maxK = std::max(maxK, m.stiffness);
-        surfaceTension = surfaceTension || m.surfaceTension > 0.0f;
-    }
-    const float sampleSpacing = particleSpacing(s.materials[0], s.def.depth);
+    const SceneFacts facts = sceneFacts(s);
+    const float minSupport = facts.minSupport, maxSupport = facts.maxSupport;
+    const float minSpacing = facts.minSpacing, maxNu = facts.maxNu, maxK = facts.maxK;
+    const float maxFriction = facts.maxFriction, sampleSpacing = facts.sampleSpacing;
+    const bool surfaceTension = facts.surfaceTension;
 
     // Prepare: plugins, boundary samples, sound speed, sub-step count.
     const StepContext context{frameDt, s.time, sampleSpacing, maxSupport};
@@ -419,17 +247,14 @@ void stepExplicit(WorldState& s, float frameDt) {
         plugin->prepare(context);
     }
     gatherSamples(s, context);
-    float maxFriction = 0.0f;
-    for (const auto& plugin : s.boundaries) {
-        maxFriction = std::max(maxFriction, plugin->friction());
-    }
     const bool tait = s.def.equationOfState == EquationOfState::Tait;
     const bool derived = tait && s.def.soundSpeed <= 0.0f;
     float soundSpeed = 0.0f;
     if (tait) {
         soundSpeed = derived ? sceneSoundSpeed(s) : s.def.soundSpeed;
     }
-    refreshConstants(s, soundSpeed);
+    refreshConstants(s);
+    setEquationOfState(s, soundSpeed);
 
     const float maxSpeed = std::sqrt(blockReduce<float>(
         s.tasks, n, 0.0f,
@@ -481,10 +306,7 @@ void stepExplicit(WorldState& s, float frameDt) {
     c.tait = tait;
     c.surfaceTension = surfaceTension;
     const bool moving = samplesMove(s);
-    bool wantsForces = false;
-    for (const auto& plugin : s.boundaries) {
-        wantsForces = wantsForces || plugin->wantsForces();
-    }
+    const bool wantsForces = facts.wantsForces;
 
     double elapsed = 0.0; // time into the step (s); double so that the last sub-step's
                           // rounding correction stays at float precision
@@ -509,7 +331,7 @@ void stepExplicit(WorldState& s, float frameDt) {
         });
         if (probe && sub == 0) {
             soundSpeed = sceneSoundSpeed(s);
-            refreshConstants(s, soundSpeed);
+            setEquationOfState(s, soundSpeed);
             dt = cflDt();
             const uint32_t rest = plan(frameDt - h, dt, s.def.maxSubsteps - 1);
             total = 1 + rest;
@@ -547,13 +369,7 @@ void stepExplicit(WorldState& s, float frameDt) {
     prof.soundSpeed = soundSpeed;
 
     if (wantsForces) {
-        for (size_t k = 0; k < s.boundaries.size(); ++k) {
-            const size_t b = s.samples.pluginBegin[k], e = s.samples.pluginBegin[k + 1];
-            if (s.boundaries[k]->wantsForces()) {
-                s.boundaries[k]->receiveForces(std::span<const float>(s.samples.fx).subspan(b, e - b),
-                                               std::span<const float>(s.samples.fy).subspan(b, e - b));
-            }
-        }
+        deliverSampleForces(s);
     }
     s.time += frameDt;
     prof.iterations = 0;

@@ -13,48 +13,13 @@
 // reverse.
 #include "sph_loops.h"
 
-#include "kernels.h"
+#include "lanes.h"
 #include "parallel.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace fluid::detail {
-namespace {
-
-constexpr int kLanes = 8;
-constexpr uint32_t kGrain = 256;
-constexpr float kW = 7.0f / kernel::kPi;       // Wendland C2: W = kW / h^2 (1-q)^4 (1+4q)
-constexpr float kG = -140.0f / kernel::kPi;    // dW/dr / r = kG / h^4 (1-q)^3
-constexpr float kL = 40.0f / kernel::kPi;      // viscosity Laplacian = kL / h^4 (1-q)
-constexpr float kC = kernel::kCohesionNorm;    // cohesion = kC / h^2 spline(q)
-
-template <class T>
-T laneSum(const T (&acc)[kLanes]) {
-    T sum = acc[0];
-    for (int l = 1; l < kLanes; ++l) {
-        sum += acc[l];
-    }
-    return sum;
-}
-
-// Runs body(j, lane) over [b, e) in blocks of kLanes (the tail uses the first lanes). The index
-// is a size_t: with a 32-bit index g++ cannot prove that j + l are consecutive addresses (the
-// sum could wrap) and assembles every vector from scalar loads.
-template <class Body>
-inline void lanes(uint32_t b, uint32_t e, Body&& body) {
-    size_t j = b;
-    for (; j + kLanes <= e; j += kLanes) {
-        for (int l = 0; l < kLanes; ++l) {
-            body(j + size_t(l), l);
-        }
-    }
-    for (int l = 0; j < e; ++j, ++l) {
-        body(j, l);
-    }
-}
-
-} // namespace
 
 void fillMaterialChannels(WorldState& s) {
     Particles& p = s.particles;
@@ -84,7 +49,7 @@ void computeDensity(WorldState& s, float sampleVolume) {
     const float* __restrict mt = p.massPerDepth.data();
     const float* __restrict wx = w.px.data();
     const float* __restrict wy = w.py.data();
-    parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+    parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
             const float xi = px[i], yi = py[i], hi = hs[i];
             float acc[kLanes] = {};
@@ -124,7 +89,7 @@ void computeNormals(WorldState& s) {
     const float* __restrict hs = p.h.data();
     const float* __restrict mt = p.massPerDepth.data();
     const float* __restrict invRho = p.invRho.data();
-    parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+    parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
             const float xi = px[i], yi = py[i], hi = hs[i];
             float accX[kLanes] = {}, accY[kLanes] = {};
@@ -167,7 +132,7 @@ void forces(WorldState& s, float sampleVolume) {
     const float* __restrict p2 = p.pOverRho2.data();
     const float* __restrict nx = p.nx.data();
     const float* __restrict ny = p.ny.data();
-    parallelFor(s.tasks, p.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+    parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
             const float xi = px[i], yi = py[i], vxi = vx[i], vyi = vy[i], hi = hs[i];
             const float invRhoi = invRho[i], mui = mu[i], rhoi = rho[i];
@@ -251,7 +216,7 @@ void computeSamplePressure(WorldState& s) {
     const float* __restrict pressure = p.pressure.data();
     const float* __restrict ex = p.ex.data();
     const float* __restrict ey = p.ey.data();
-    parallelFor(s.tasks, w.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+    parallelFor(s.tasks, w.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t k = b; k < e; ++k) {
             const float xw = w.px[k], yw = w.py[k];
             float accP[kLanes] = {}, accW[kLanes] = {};
@@ -286,7 +251,7 @@ void computeSampleForces(WorldState& s, float sampleVolume, float weight) {
     const float* __restrict mu = p.viscosity.data();
     const float* __restrict invRho = p.invRho.data();
     const float* __restrict pressure = p.pressure.data();
-    parallelFor(s.tasks, w.size(), kGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+    parallelFor(s.tasks, w.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t k = b; k < e; ++k) {
             const float xw = w.px[k], yw = w.py[k], pw = w.pressure[k];
             const float vxw = w.vx[k], vyw = w.vy[k], friction = w.friction[k];

@@ -1,0 +1,210 @@
+// fluid — the parts of a step both solvers share: plugins, boundary samples, the grid sort,
+// material constants, the safety-net projection and the density error.
+#include "step_common.h"
+
+#include "lanes.h"
+#include "parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fluid::detail {
+
+void permute(std::vector<float>& channel, std::span<const uint32_t> order, std::vector<float>& tmp) {
+    tmp.resize(channel.size());
+    for (size_t k = 0; k < order.size(); ++k) {
+        tmp[k] = channel[order[k]];
+    }
+    channel.swap(tmp);
+}
+
+void refreshConstants(WorldState& s) {
+    const size_t m = s.materials.size();
+    s.constants.resize(m);
+    for (size_t i = 0; i < m; ++i) {
+        const Material& mat = s.materials[i];
+        MaterialConstants& c = s.constants[i];
+        c.mass = mat.mass;
+        c.massPerDepth = mat.mass / s.def.depth;
+        c.restDensity = mat.restDensity;
+        c.viscosity = mat.viscosity;
+        c.stiffness = mat.stiffness;
+        c.taitB = 0.0f;
+        c.backgroundPressure = 0.0f;
+        c.support = mat.smoothingDistance;
+        c.gamma = mat.surfaceTension;
+    }
+}
+
+void gatherSamples(WorldState& s, const StepContext& context) {
+    Samples& out = s.samples;
+    out.pluginBegin.clear();
+    size_t total = 0;
+    for (const auto& plugin : s.boundaries) {
+        plugin->prepare(context);
+        out.pluginBegin.push_back(static_cast<uint32_t>(total));
+        total += plugin->samples().size();
+    }
+    out.pluginBegin.push_back(static_cast<uint32_t>(total));
+    out.fx.assign(total, 0.0f);
+    out.fy.assign(total, 0.0f);
+}
+
+// Positions of all samples at `t` seconds into the step, sorted by cell (rebuilt each sub-step
+// only when some sample moves).
+void placeSamples(WorldState& s, float t, float cellSize, bool rebuild) {
+    Samples& out = s.samples;
+    const uint32_t total = out.pluginBegin.empty() ? 0 : out.pluginBegin.back();
+    if (!rebuild && out.size() == total) {
+        return;
+    }
+    // Unsorted positions at time t, in concatenation order.
+    std::vector<float> x(total), y(total), vx(total), vy(total), friction(total);
+    for (size_t p = 0; p < s.boundaries.size(); ++p) {
+        const BoundarySamples& bs = s.boundaries[p]->samples();
+        const float f = s.boundaries[p]->friction();
+        for (size_t k = 0; k < bs.size(); ++k) {
+            const size_t i = out.pluginBegin[p] + k;
+            x[i] = bs.px[k] + bs.vx[k] * t;
+            y[i] = bs.py[k] + bs.vy[k] * t;
+            vx[i] = bs.vx[k];
+            vy[i] = bs.vy[k];
+            friction[i] = f;
+        }
+    }
+    out.grid.build(x, y, cellSize, s.tasks);
+    const std::span<const uint32_t> order = out.grid.order();
+    out.px.resize(total);
+    out.py.resize(total);
+    out.vx.resize(total);
+    out.vy.resize(total);
+    out.friction.resize(total);
+    out.pressure.assign(total, 0.0f);
+    out.source.assign(order.begin(), order.end());
+    for (uint32_t k = 0; k < total; ++k) {
+        const uint32_t i = order[k];
+        out.px[k] = x[i];
+        out.py[k] = y[i];
+        out.vx[k] = vx[i];
+        out.vy[k] = vy[i];
+        out.friction[k] = friction[i];
+    }
+}
+
+bool samplesMove(const WorldState& s) {
+    for (const auto& plugin : s.boundaries) {
+        const BoundarySamples& bs = plugin->samples();
+        for (size_t k = 0; k < bs.size(); ++k) {
+            if (bs.vx[k] != 0.0f || bs.vy[k] != 0.0f) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+ParticleView particleView(const WorldState& s) {
+    const Particles& p = s.particles;
+    return ParticleView{p.px, p.py, p.vx, p.vy, p.material, s.materials, p.size()};
+}
+
+// Force plugins' accelerations into ex, ey (zeroed first).
+void externalForces(WorldState& s, float dt, double time) {
+    Particles& p = s.particles;
+    const ForceContext context{particleView(s), p.ex, p.ey, dt, time};
+    parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        std::fill(p.ex.begin() + b, p.ex.begin() + e, 0.0f);
+        std::fill(p.ey.begin() + b, p.ey.begin() + e, 0.0f);
+        for (const auto& plugin : s.forces) {
+            plugin->apply(context, b, e);
+        }
+    });
+}
+
+void sortParticles(WorldState& s, float cellSize, std::initializer_list<std::vector<float>*> extra) {
+    Particles& p = s.particles;
+    s.grid.build(p.px, p.py, cellSize, s.tasks);
+    const std::span<const uint32_t> order = s.grid.order();
+    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy}) {
+        permute(*channel, order, s.sortScratch);
+    }
+    for (auto* channel : extra) {
+        permute(*channel, order, s.sortScratch);
+    }
+    s.sortScratchMaterial.resize(p.size());
+    s.sortScratchU.resize(p.size());
+    for (size_t k = 0; k < order.size(); ++k) {
+        s.sortScratchMaterial[k] = p.material[order[k]];
+        s.sortScratchU[k] = p.slot[order[k]];
+    }
+    p.material.swap(s.sortScratchMaterial);
+    p.slot.swap(s.sortScratchU);
+    for (uint32_t k = 0; k < p.size(); ++k) {
+        s.slotIndex[p.slot[k]] = k;
+    }
+}
+
+void projectBoundaries(WorldState& s, float dt, float timeInStep, float spacing) {
+    Particles& p = s.particles;
+    const ProjectContext context{p.px, p.py, p.vx, p.vy, p.material, dt, timeInStep, spacing};
+    for (const auto& plugin : s.boundaries) {
+        parallelFor(s.tasks, p.size(), 1024, [&](uint32_t b, uint32_t e, uint32_t) {
+            plugin->project(context, b, e);
+        });
+    }
+}
+
+void densityError(WorldState& s) {
+    const Particles& p = s.particles;
+    struct Err {
+        double sum = 0;
+        float max = 0;
+    };
+    const Err err = blockReduce<Err>(
+        s.tasks, p.size(), Err{},
+        [&](uint32_t b, uint32_t e) {
+            Err r;
+            for (uint32_t i = b; i < e; ++i) {
+                const float c = std::max(0.0f, p.density[i] / s.constants[p.material[i]].restDensity - 1.0f);
+                r.sum += c;
+                r.max = std::max(r.max, c);
+            }
+            return r;
+        },
+        [](Err a, const Err& b) { return Err{a.sum + b.sum, std::max(a.max, b.max)}; });
+    s.profile.densityErrorMax = err.max;
+    s.profile.densityErrorAvg = p.size() > 0 ? float(err.sum / p.size()) : 0.0f;
+}
+
+SceneFacts sceneFacts(const WorldState& s) {
+    SceneFacts f;
+    f.minSupport = std::numeric_limits<float>::max();
+    f.minSpacing = std::numeric_limits<float>::max();
+    for (const Material& m : s.materials) {
+        f.minSupport = std::min(f.minSupport, m.smoothingDistance);
+        f.maxSupport = std::max(f.maxSupport, m.smoothingDistance);
+        f.minSpacing = std::min(f.minSpacing, particleSpacing(m, s.def.depth));
+        f.maxNu = std::max(f.maxNu, m.viscosity / m.restDensity);
+        f.maxK = std::max(f.maxK, m.stiffness);
+        f.surfaceTension = f.surfaceTension || m.surfaceTension > 0.0f;
+    }
+    f.sampleSpacing = particleSpacing(s.materials[0], s.def.depth);
+    for (const auto& plugin : s.boundaries) {
+        f.maxFriction = std::max(f.maxFriction, plugin->friction());
+        f.wantsForces = f.wantsForces || plugin->wantsForces();
+    }
+    return f;
+}
+
+void deliverSampleForces(WorldState& s) {
+    for (size_t k = 0; k < s.boundaries.size(); ++k) {
+        const size_t b = s.samples.pluginBegin[k], e = s.samples.pluginBegin[k + 1];
+        if (s.boundaries[k]->wantsForces()) {
+            s.boundaries[k]->receiveForces(std::span<const float>(s.samples.fx).subspan(b, e - b),
+                                           std::span<const float>(s.samples.fy).subspan(b, e - b));
+        }
+    }
+}
+
+} // namespace fluid::detail

@@ -1,0 +1,71 @@
+// fluid — the parts of a step both solvers share (step_common.cpp).
+#pragma once
+
+#include "world_state.h"
+
+#include <chrono>
+#include <initializer_list>
+#include <span>
+#include <vector>
+
+namespace fluid::detail {
+
+using Clock = std::chrono::steady_clock;
+
+/// Runs f and adds its wall-clock time to `total` (unit: ms).
+template <class F>
+void timed(float& total, F&& f) {
+    const Clock::time_point t0 = Clock::now();
+    f();
+    total += std::chrono::duration<float, std::milli>(Clock::now() - t0).count();
+}
+
+/// What a step needs to know about the materials and boundaries, gathered once per step.
+struct SceneFacts {
+    float minSupport = 0, maxSupport = 0; // smallest and largest h (m)
+    float minSpacing = 0;                 // smallest lattice spacing (m)
+    float sampleSpacing = 0;              // spacing of boundary samples: material 0's (m)
+    float maxNu = 0;                      // largest kinematic viscosity mu/rho0 (m^2/s)
+    float maxK = 0;                       // largest stiffness (m^2/s^2)
+    float maxFriction = 0;                // largest boundary friction (1)
+    bool surfaceTension = false;          // some material has gamma > 0
+    bool wantsForces = false;             // some boundary asks for the fluid's forces
+};
+SceneFacts sceneFacts(const WorldState& s);
+
+/// channel[k] = channel[order[k]], through `tmp`.
+void permute(std::vector<float>& channel, std::span<const uint32_t> order, std::vector<float>& tmp);
+
+/// Per-material constants from the material table (equation-of-state fields left 0).
+void refreshConstants(WorldState& s);
+
+/// Boundary plugins' prepare hooks; sizes the per-sample force sums.
+void gatherSamples(WorldState& s, const StepContext& context);
+
+/// Positions of all samples at `t` seconds into the step, sorted by cell (rebuilt only when
+/// `rebuild` or the sample count changed).
+void placeSamples(WorldState& s, float t, float cellSize, bool rebuild);
+
+/// True when some boundary sample has a non-zero velocity.
+bool samplesMove(const WorldState& s);
+
+/// The particles as plugins see them.
+ParticleView particleView(const WorldState& s);
+
+/// Force plugins' accelerations into ex, ey (zeroed first), one apply per plugin.
+void externalForces(WorldState& s, float dt, double time);
+
+/// Counting sort by grid cell (cell size `cellSize`); positions, velocities, material, slot and
+/// the `extra` channels follow; handles are remapped.
+void sortParticles(WorldState& s, float cellSize, std::initializer_list<std::vector<float>*> extra = {});
+
+/// Boundary plugins' projection over all particles (px, py, vx, vy as they are now).
+void projectBoundaries(WorldState& s, float dt, float timeInStep, float spacing);
+
+/// Profile's densityErrorMax and densityErrorAvg from p.density.
+void densityError(WorldState& s);
+
+/// Hands each boundary that wants them the summed forces on its samples.
+void deliverSampleForces(WorldState& s);
+
+} // namespace fluid::detail
