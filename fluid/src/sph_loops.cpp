@@ -24,7 +24,8 @@ namespace fluid::detail {
 void fillMaterialChannels(WorldState& s) {
     Particles& p = s.particles;
     const uint32_t n = p.size();
-    for (auto* channel : {&p.h, &p.massPerDepth, &p.viscosity, &p.mass, &p.restDensity, &p.gamma}) {
+    for (auto* channel : {&p.h, &p.massPerDepth, &p.viscosity, &p.mass, &p.restDensity, &p.gamma,
+                          &p.invMass, &p.volume, &p.pairPressure}) {
         channel->resize(n);
     }
     parallelFor(s.tasks, n, 1024, [&](uint32_t b, uint32_t e, uint32_t) {
@@ -36,6 +37,9 @@ void fillMaterialChannels(WorldState& s) {
             p.mass[i] = c.mass;
             p.restDensity[i] = c.restDensity;
             p.gamma[i] = c.gamma;
+            p.invMass[i] = 1.0f / c.mass;
+            p.volume[i] = c.massPerDepth / c.restDensity;
+            p.pairPressure[i] = c.backgroundPressure;
         }
     });
 }

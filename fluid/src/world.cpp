@@ -30,13 +30,20 @@ void checkVec(const char* function, const char* what, glm::vec2 v) {
 }
 
 template <class T>
-void checkRange(const char* field, T value, T lo, T hi, const char* unit) {
+void checkRange(const char* field, T value, T lo, T hi, const char* unit, const char* prefix = "WorldDef: ") {
     if (!(value >= lo && value <= hi)) { // NaN fails too
         std::ostringstream s;
-        s << "WorldDef: " << field << " = " << value << " is out of range [" << lo << ", " << hi
+        s << prefix << field << " = " << value << " is out of range [" << lo << ", " << hi
           << "] (unit: " << unit << ")";
         throw Error(s.str());
     }
+}
+
+void validatePositionBased(const PositionBasedDef& pb, const char* prefix) {
+    const std::string field = prefix;
+    checkRange<uint32_t>((field + "substeps").c_str(), pb.substeps, 1, 64, "count", "");
+    checkRange<uint32_t>((field + "iterations").c_str(), pb.iterations, 1, 100, "count", "");
+    checkRange((field + "vorticity").c_str(), pb.vorticity, 0.0f, 10.0f, "1", "");
 }
 
 void validate(const WorldDef& def) {
@@ -50,6 +57,7 @@ void validate(const WorldDef& def) {
     checkRange("courant", def.courant, 0.01f, 1.0f, "1");
     checkRange<uint32_t>("maxSubsteps", def.maxSubsteps, 1, 10000, "count");
     checkRange<uint32_t>("maxParticles", def.maxParticles, 1, 1u << 26, "count");
+    validatePositionBased(def.positionBased, "WorldDef: positionBased.");
     if (def.tasks.enqueue == nullptr) {
         checkRange<uint32_t>("workerCount", def.workerCount, 1, 256, "count");
     } else {
@@ -154,9 +162,10 @@ void WorldState::removeAt(uint32_t index) {
         p.slot[index] = p.slot[last];
         p.density[index] = p.density[last];
         p.pressure[index] = p.pressure[last];
+        p.lambda[index] = p.lambda[last];
         slotIndex[p.slot[index]] = index;
     }
-    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy, &p.density, &p.pressure}) {
+    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy, &p.density, &p.pressure, &p.lambda}) {
         channel->pop_back();
     }
     p.material.pop_back();
@@ -233,6 +242,7 @@ ParticleHandle World::addParticle(glm::vec2 position, glm::vec2 velocity, Materi
     p.slot.push_back(slot);
     p.density.push_back(0.0f);
     p.pressure.push_back(0.0f);
+    p.lambda.push_back(0.0f);
     return ParticleHandle{slot, s.slotGeneration[slot]};
 }
 
@@ -379,10 +389,18 @@ void World::step(float frameDt) {
         throw Error("World::step: the world has no material; call addMaterial first");
     }
     switch (m_state->def.solver) {
+    case Solver::PositionBased:
+        detail::stepPositionBased(*m_state, frameDt);
+        break;
     case Solver::Explicit:
         detail::stepExplicit(*m_state, frameDt);
         break;
     }
+}
+
+void World::setPositionBased(const PositionBasedDef& settings) {
+    validatePositionBased(settings, "World::setPositionBased: ");
+    m_state->def.positionBased = settings;
 }
 
 uint32_t World::particleCount() const { return m_state->particles.size(); }

@@ -19,15 +19,24 @@ struct Particles {
     std::vector<uint16_t> material;
     std::vector<uint32_t> slot;
     std::vector<float> density, pressure;
+    // Accumulated density-constraint multiplier of the position-based solver (kg m^2, <= 0),
+    // kept between sub-steps to warm-start the next one; follows the particle.
+    std::vector<float> lambda;
     // Per sub-step scratch, in sorted order.
     std::vector<float> ax, ay; // total acceleration
     std::vector<float> ex, ey; // external (plugin) acceleration
     std::vector<float> nx, ny; // surface normals [Akinci 2013]
     std::vector<float> pOverRho2, invRho; // p/rho^2 and 1/rho, so pair loops do not divide
+    std::vector<float> ox, oy;       // position-based: positions at the start of the sub-step
+    // Position-based: constraint values, the diagonal of J W J^T, and the conjugate-gradient
+    // vectors (residual, search direction, A times direction, scratch).
+    std::vector<float> constraint, diagonal, cgResidual, cgDirection, cgProduct, cgScratch;
+    std::vector<float> vorticity;    // position-based: curl of the velocity (1/s)
     // Material properties per particle (sorted order), so pair loops read contiguous arrays
     // instead of indexing the material table: support h, mass/depth, viscosity, mass, rest
-    // density, surface tension.
+    // density, surface tension, 1/mass, rest area V = m/(depth rho0), pair pressure.
     std::vector<float> h, massPerDepth, viscosity, mass, restDensity, gamma;
+    std::vector<float> invMass, volume, pairPressure;
 
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }
 };
@@ -40,7 +49,8 @@ struct MaterialConstants {
     float viscosity = 0;   // mu (Pa s)
     float stiffness = 0;   // k (m^2/s^2)
     float taitB = 0;       // rho0 c^2 / 7 (Pa)
-    float backgroundPressure = 0; // added to Tait's pressure (Pa)
+    float backgroundPressure = 0; // fluid-fluid pairs only: explicit, added to Tait's pressure;
+                                  // position-based, the artificial pressure of s_corr (Pa)
     float support = 0;     // h (m)
     float gamma = 0;       // surface tension (Akinci 2013)
 };
@@ -92,5 +102,8 @@ struct WorldState {
 
 /// The explicit solver's step (solver_explicit.cpp).
 void stepExplicit(WorldState& state, float frameDt);
+
+/// The position-based solver's step (solver_position_based.cpp).
+void stepPositionBased(WorldState& state, float frameDt);
 
 } // namespace fluid::detail

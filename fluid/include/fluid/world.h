@@ -18,8 +18,13 @@ namespace fluid {
 
 /// The pressure solver a world runs every sub-step.
 enum class Solver : uint8_t {
+    /// Position-based fluids [Macklin & Mueller 2013]: predict positions, iterate the density
+    /// constraint, velocity from positions, viscosity, vorticity confinement, surface tension.
+    /// Incompressible at a few sub-steps per 60 Hz frame; the default (docs/solver.md).
+    PositionBased,
     /// The seed's explicit loop: density (eq. 2.3), equation of state (2.4), symmetric pressure
-    /// force (2.5), viscosity (2.6), external forces, symplectic Euler (2.8, 2.9).
+    /// force (2.5), viscosity (2.6), external forces, symplectic Euler (2.8, 2.9). Needs about
+    /// 100 CFL sub-steps per frame to hold water incompressible.
     Explicit,
 };
 
@@ -33,11 +38,27 @@ enum class EquationOfState : uint8_t {
     Tait,
 };
 
+/// Settings of `Solver::PositionBased`. Read them with `World::def().positionBased`; change them
+/// between steps with `World::setPositionBased` (stepping thread).
+struct PositionBasedDef {
+    /// Sub-steps per `World::step` (unit: count; range [1, 64]). Default 2: with 4 iterations it
+    /// holds a resting 0.5 m tank within 1% (docs/solver.md has the measurements).
+    uint32_t substeps = 2;
+    /// Density-constraint iterations per sub-step (unit: count; range [1, 100]). Default 4.
+    uint32_t iterations = 4;
+    /// Vorticity confinement strength epsilon (unit: 1; range [0, 10]): the share of a vortex's
+    /// rotation speed at one support radius given back per radian turned. 0 turns it off.
+    float vorticity = 0.0f;
+};
+
 /// Everything a world is created from. Every field has a usable default.
 struct WorldDef {
-    /// Pressure solver. Default: `Solver::Explicit` (the only one yet).
-    Solver solver = Solver::Explicit;
-    /// Equation of state of the explicit solver. Default Tait (stiff water under gravity).
+    /// Pressure solver. Default: `Solver::PositionBased`.
+    Solver solver = Solver::PositionBased;
+    /// Settings of the position-based solver (ignored by the explicit one).
+    PositionBasedDef positionBased{};
+    /// Equation of state of the explicit solver (ignored by the position-based one). Default
+    /// Tait (stiff water under gravity).
     EquationOfState equationOfState = EquationOfState::Tait;
     /// Tait sound speed c (unit: m/s; range 0 or [0.1, 1e4]). 0 derives it from the scene at
     /// every step: c = max(sqrt(k), 10 sqrt(g H), 10 sqrt(gamma m h / A)) over the materials,
@@ -115,15 +136,16 @@ struct Profile {
     float boundaries = 0.0f;
     /// Sub-steps taken (unit: count).
     uint32_t substeps = 0;
-    /// Solver iterations per sub-step (unit: count; 0 for the explicit solver).
+    /// Density-constraint iterations per sub-step (unit: count; 0 for the explicit solver).
     uint32_t iterations = 0;
-    /// Sub-step chosen by the CFL condition before the cap (unit: s).
+    /// Sub-step chosen by the CFL condition before the cap (unit: s; the explicit solver only).
     float cflDt = 0.0f;
-    /// Tait sound speed used (unit: m/s; 0 with the linear equation of state).
+    /// Tait sound speed used (unit: m/s; 0 with the linear equation of state or the
+    /// position-based solver).
     float soundSpeed = 0.0f;
-    /// Largest compression max(rho/rho0 - 1, 0) over particles after the last sub-step (unit: 1).
+    /// Largest compression max(rho/rho0 - 1, 0) over particles at the end of the step (unit: 1).
     float densityErrorMax = 0.0f;
-    /// Mean compression over particles after the last sub-step (unit: 1).
+    /// Mean compression over particles at the end of the step (unit: 1).
     float densityErrorAvg = 0.0f;
     /// Particles whose speed hit the safety cap during the step (unit: count, summed over
     /// sub-steps).
@@ -192,8 +214,13 @@ public:
     /// The boundary plugins, in the order added.
     std::span<const std::unique_ptr<BoundaryPlugin>> boundaries() const;
 
+    /// Replaces the position-based solver's settings (validated like `WorldDef`; throws
+    /// `fluid::Error` naming the field and leaves them unchanged). Takes effect at the next step.
+    void setPositionBased(const PositionBasedDef& settings);
+
     /// Advances the world by one game frame (unit: s; finite, range (0, 1]; typically 1/60),
-    /// split into sub-steps by a CFL condition (see `Profile::substeps`). Throws `fluid::Error`
+    /// split into sub-steps: `PositionBasedDef::substeps` of them, or as many as the explicit
+    /// solver's CFL condition asks (see `Profile::substeps`). Throws `fluid::Error`
     /// for a bad frameDt, leaving the world unchanged.
     void step(float frameDt);
 

@@ -1,0 +1,51 @@
+// fluid — the neighbour passes of the position-based solver (pbf_loops.cpp).
+#pragma once
+
+#include "world_state.h"
+
+#include <span>
+
+namespace fluid::detail {
+
+/// Constants of one position-based sub-step.
+struct PbfConstants {
+    float dt = 0;            // sub-step (s)
+    float sampleVolume = 0;  // V_w, area of a boundary sample (m^2)
+    float epsilon = 0;       // regulariser of the multiplier's denominator (1/(kg m^2))
+    float artificial = 0;    // s_corr scale: 2 depth dt^2 (unit: m s^2, times Pa m^4 per pair)
+    float invWdq = 0;        // 1 / ((1-dq)^4 (1+4 dq)): s_corr's kernel ratio at r = dq h
+    float wallMirror = 1;    // times a particle's multiplier acts through the boundary samples
+};
+
+/// The density constraint C_i = V_i sum_j W_ij + V_w sum_w W_iw - 1 at the current positions
+/// (rest area V = m/(depth rho0), boundary samples of area V_w) into `constraint`, the diagonal
+/// of A = J W J^T, w_i |grad_i C_i|^2 + sum_j w_j |grad_j C_i|^2 + eps (w = 1/m), into
+/// `diagonal`, the density rho_i = rho0_i (C_i + 1) and 1/rho_i [Macklin & Mueller 2013].
+void pbfConstraint(WorldState& s, const PbfConstants& c);
+
+/// The displacement W J^T lambda of multipliers `multiplier` into ax, ay (m):
+///   dx_i = w_i [sum_j (l_i V_i + l_j V_j + s_ij) grad W_ij + l_i V_w sum_w grad W_iw],
+/// s_ij the artificial pressure term [Macklin & Mueller 2013, eq. 13] when `sCorr`. Every fluid
+/// pair term is antisymmetric times m_i, so displacements conserve momentum.
+void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> multiplier, bool sCorr);
+
+/// (J u)_i = sum_k grad_k C_i . u_k for the displacement u in ax, ay, into `out`:
+///   V_i sum_j grad W_ij . (u_i - u_j) + V_w sum_w grad W_iw . u_i.
+void pbfJacobianTimes(WorldState& s, const PbfConstants& c, std::span<float> out);
+
+/// Viscosity, seed eq. 2.6 with rest volumes, as an explicit velocity update over dt * `scale`
+/// into ax, ay (wall friction from the boundary samples). When `first`, also each particle's
+/// vorticity, Akinci surface normals (from invRho of the last constraint sweep) and density at
+/// the current positions.
+void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first);
+
+/// Vorticity confinement (strength `vorticity`) and, when `surfaceTension`, cohesion and
+/// curvature [Akinci 2013], added to vx, vy over dt. Needs vorticity, normals and density.
+void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surfaceTension);
+
+/// The fluid's force on each boundary sample over the sub-step (N): the reaction to the
+/// constraint's wall term (lambda / dt^2) and to wall friction, times `weight`, added in
+/// concatenation order.
+void pbfSampleForces(WorldState& s, const PbfConstants& c, float weight);
+
+} // namespace fluid::detail
