@@ -56,19 +56,22 @@ void pbfConstraint(WorldState& s, const PbfConstants& c) {
                     wgy[l] += (t2 * t) * dy;
                 });
             });
-            const float vi = p.volume[i];
+            // Volumes over the lattice sum: a particle inside its material's lattice reads C = 0.
+            const float li = p.invLattice[i];
+            const float vi = p.volume[i] * li, vw = c.sampleVolume * li;
             const float invH4 = (invH * invH) * (invH * invH);
-            const float number = vi * kW * laneSum(sw) + c.sampleVolume * kW * invH * invH * laneSum(ww);
+            // At least the particle's own term: one that strayed out of the cells it was sorted
+            // into finds no neighbour, not even itself.
+            const float number = std::max(vi * kW * laneSum(sw), vi * kW * invH * invH) +
+                                 vw * kW * invH * invH * laneSum(ww);
             const float constraint = number - 1.0f;
             const float fluidX = vi * kG * laneSum(gx), fluidY = vi * kG * laneSum(gy);
-            const float wallX = c.sampleVolume * kG * invH4 * laneSum(wgx);
-            const float wallY = c.sampleVolume * kG * invH4 * laneSum(wgy);
-            // grad_i C_i . (its own displacement direction, walls counted wallMirror times)
-            const float own = (fluidX + wallX) * (fluidX + c.wallMirror * wallX) +
-                              (fluidY + wallY) * (fluidY + c.wallMirror * wallY);
+            const float wallX = vw * kG * invH4 * laneSum(wgx);
+            const float wallY = vw * kG * invH4 * laneSum(wgy);
+            const float gradX = fluidX + wallX, gradY = fluidY + wallY;
             const float others = vi * vi * kG * kG * laneSum(sq);
             p.constraint[i] = constraint;
-            p.diagonal[i] = wm[i] * std::max(own, 0.0f) + others + c.epsilon;
+            p.diagonal[i] = wm[i] * (gradX * gradX + gradY * gradY) + others + c.epsilon;
             p.density[i] = p.restDensity[i] * number;
             p.invRho[i] = 1.0f / p.density[i];
         }
@@ -82,6 +85,7 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
     const float* __restrict py = p.py.data();
     const float* __restrict hs = p.h.data();
     const float* __restrict vol = p.volume.data();
+    const float* __restrict il = p.invLattice.data();
     const float* __restrict dl = multiplier.data();
     const float* __restrict pa = p.pairPressure.data();
     const float* __restrict wx = w.px.data();
@@ -90,7 +94,7 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
     parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
             const float xi = px[i], yi = py[i], hi = hs[i], vi = vol[i];
-            const float dli = dl[i] * vi, pai = pa[i];
+            const float dli = dl[i] * vi * il[i], pai = pa[i];
             float ax[kLanes] = {}, ay[kLanes] = {};
             s.grid.forEachRange(xi, yi, [&](uint32_t jb, uint32_t je) {
                 lanes(jb, je, [&](size_t j, int l) {
@@ -105,7 +109,7 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
                     const float ratio = (t2 * t2) * (1.0f + 4.0f * q) * c.invWdq;
                     const float r2 = ratio * ratio;
                     const float corr = -artificial * 0.5f * (pai + pa[j]) * vi * vol[j] * (r2 * r2);
-                    const float f = (dli + dl[j] * vol[j] + corr) * (invH2 * invH2) * (t2 * t);
+                    const float f = (dli + dl[j] * vol[j] * il[j] + corr) * (invH2 * invH2) * (t2 * t);
                     ax[l] += f * dx;
                     ay[l] += f * dy;
                 });
@@ -120,49 +124,10 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
                     wY[l] += (t * t * t) * dy;
                 });
             });
-            const float wall = c.wallMirror * dl[i] * c.sampleVolume * (invH * invH) * (invH * invH);
+            const float wall = dl[i] * c.sampleVolume * il[i] * (invH * invH) * (invH * invH);
             const float scale = p.invMass[i] * kG;
             p.ax[i] = scale * (laneSum(ax) + wall * laneSum(wX));
             p.ay[i] = scale * (laneSum(ay) + wall * laneSum(wY));
-        }
-    });
-}
-
-void pbfJacobianTimes(WorldState& s, const PbfConstants& c, std::span<float> out) {
-    Particles& p = s.particles;
-    const Samples& w = s.samples;
-    const float* __restrict px = p.px.data();
-    const float* __restrict py = p.py.data();
-    const float* __restrict hs = p.h.data();
-    const float* __restrict ux = p.ax.data();
-    const float* __restrict uy = p.ay.data();
-    const float* __restrict wx = w.px.data();
-    const float* __restrict wy = w.py.data();
-    parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
-        for (uint32_t i = b; i < e; ++i) {
-            const float xi = px[i], yi = py[i], hi = hs[i], uxi = ux[i], uyi = uy[i];
-            float acc[kLanes] = {};
-            s.grid.forEachRange(xi, yi, [&](uint32_t jb, uint32_t je) {
-                lanes(jb, je, [&](size_t j, int l) {
-                    const float dx = xi - px[j], dy = yi - py[j];
-                    const float invH = 2.0f / (hi + hs[j]);
-                    const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
-                    const float invH2 = invH * invH;
-                    acc[l] += (invH2 * invH2) * (t * t * t) * (dx * (uxi - ux[j]) + dy * (uyi - uy[j]));
-                });
-            });
-            const float invH = 1.0f / hi;
-            float wX[kLanes] = {}, wY[kLanes] = {};
-            w.grid.forEachRange(xi, yi, [&](uint32_t kb, uint32_t ke) {
-                lanes(kb, ke, [&](size_t k, int l) {
-                    const float dx = xi - wx[k], dy = yi - wy[k];
-                    const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
-                    wX[l] += (t * t * t) * dx;
-                    wY[l] += (t * t * t) * dy;
-                });
-            });
-            const float wall = c.sampleVolume * (invH * invH) * (invH * invH);
-            out[i] = kG * (p.volume[i] * laneSum(acc) + wall * (laneSum(wX) * uxi + laneSum(wY) * uyi));
         }
     });
 }
@@ -233,8 +198,9 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first)
                 p.vorticity[i] = kG * laneSum(curl);
                 p.nx[i] = hi * kG * laneSum(nx);
                 p.ny[i] = hi * kG * laneSum(ny);
-                p.density[i] = mt[i] * kW * laneSum(sw) +
-                               p.restDensity[i] * c.sampleVolume * kW * invH * invH * laneSum(ww);
+                p.density[i] = (mt[i] * kW * std::max(laneSum(sw), invH * invH) +
+                                p.restDensity[i] * c.sampleVolume * kW * invH * invH * laneSum(ww)) *
+                               p.invLattice[i];
             }
         }
     });
@@ -356,3 +322,4 @@ void pbfSampleForces(WorldState& s, const PbfConstants& c, float weight) {
 }
 
 } // namespace fluid::detail
+

@@ -14,7 +14,6 @@ struct PbfConstants {
     float epsilon = 0;       // regulariser of the multiplier's denominator (1/(kg m^2))
     float artificial = 0;    // s_corr scale: 2 depth dt^2 (unit: m s^2, times Pa m^4 per pair)
     float invWdq = 0;        // 1 / ((1-dq)^4 (1+4 dq)): s_corr's kernel ratio at r = dq h
-    float wallMirror = 1;    // times a particle's multiplier acts through the boundary samples
 };
 
 /// The density constraint C_i = V_i sum_j W_ij + V_w sum_w W_iw - 1 at the current positions
@@ -28,10 +27,6 @@ void pbfConstraint(WorldState& s, const PbfConstants& c);
 /// s_ij the artificial pressure term [Macklin & Mueller 2013, eq. 13] when `sCorr`. Every fluid
 /// pair term is antisymmetric times m_i, so displacements conserve momentum.
 void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> multiplier, bool sCorr);
-
-/// (J u)_i = sum_k grad_k C_i . u_k for the displacement u in ax, ay, into `out`:
-///   V_i sum_j grad W_ij . (u_i - u_j) + V_w sum_w grad W_iw . u_i.
-void pbfJacobianTimes(WorldState& s, const PbfConstants& c, std::span<float> out);
 
 /// Viscosity, seed eq. 2.6 with rest volumes, as an explicit velocity update over dt * `scale`
 /// into ax, ay (wall friction from the boundary samples). When `first`, also each particle's

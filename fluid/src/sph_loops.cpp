@@ -25,7 +25,7 @@ void fillMaterialChannels(WorldState& s) {
     Particles& p = s.particles;
     const uint32_t n = p.size();
     for (auto* channel : {&p.h, &p.massPerDepth, &p.viscosity, &p.mass, &p.restDensity, &p.gamma,
-                          &p.invMass, &p.volume, &p.pairPressure}) {
+                          &p.invMass, &p.volume, &p.pairPressure, &p.invLattice}) {
         channel->resize(n);
     }
     parallelFor(s.tasks, n, 1024, [&](uint32_t b, uint32_t e, uint32_t) {
@@ -40,6 +40,7 @@ void fillMaterialChannels(WorldState& s) {
             p.invMass[i] = 1.0f / c.mass;
             p.volume[i] = c.massPerDepth / c.restDensity;
             p.pairPressure[i] = c.backgroundPressure;
+            p.invLattice[i] = 1.0f / c.lattice;
         }
     });
 }

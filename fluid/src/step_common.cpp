@@ -2,6 +2,7 @@
 // material constants, the safety-net projection and the density error.
 #include "step_common.h"
 
+#include "kernels.h"
 #include "lanes.h"
 #include "parallel.h"
 
@@ -34,6 +35,17 @@ void refreshConstants(WorldState& s) {
         c.backgroundPressure = 0.0f;
         c.support = mat.smoothingDistance;
         c.gamma = mat.surfaceTension;
+        // The kernel sum V sum_j W_ij of a particle inside the material's square lattice.
+        const double spacing = particleSpacing(mat, s.def.depth);
+        const double h = mat.smoothingDistance;
+        const int reach = static_cast<int>(std::ceil(h / spacing));
+        double sum = 0.0;
+        for (int a = -reach; a <= reach; ++a) {
+            for (int b = -reach; b <= reach; ++b) {
+                sum += double(kernel::wendland(float(spacing * std::sqrt(double(a * a + b * b))), float(h)));
+            }
+        }
+        c.lattice = float(sum * spacing * spacing);
     }
 }
 

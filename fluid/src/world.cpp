@@ -162,10 +162,9 @@ void WorldState::removeAt(uint32_t index) {
         p.slot[index] = p.slot[last];
         p.density[index] = p.density[last];
         p.pressure[index] = p.pressure[last];
-        p.lambda[index] = p.lambda[last];
         slotIndex[p.slot[index]] = index;
     }
-    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy, &p.density, &p.pressure, &p.lambda}) {
+    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy, &p.density, &p.pressure}) {
         channel->pop_back();
     }
     p.material.pop_back();
@@ -242,7 +241,6 @@ ParticleHandle World::addParticle(glm::vec2 position, glm::vec2 velocity, Materi
     p.slot.push_back(slot);
     p.density.push_back(0.0f);
     p.pressure.push_back(0.0f);
-    p.lambda.push_back(0.0f);
     return ParticleHandle{slot, s.slotGeneration[slot]};
 }
 

@@ -19,24 +19,21 @@ struct Particles {
     std::vector<uint16_t> material;
     std::vector<uint32_t> slot;
     std::vector<float> density, pressure;
-    // Accumulated density-constraint multiplier of the position-based solver (kg m^2, <= 0),
-    // kept between sub-steps to warm-start the next one; follows the particle.
-    std::vector<float> lambda;
     // Per sub-step scratch, in sorted order.
     std::vector<float> ax, ay; // total acceleration
     std::vector<float> ex, ey; // external (plugin) acceleration
     std::vector<float> nx, ny; // surface normals [Akinci 2013]
     std::vector<float> pOverRho2, invRho; // p/rho^2 and 1/rho, so pair loops do not divide
     std::vector<float> ox, oy;       // position-based: positions at the start of the sub-step
-    // Position-based: constraint values, the diagonal of J W J^T, and the conjugate-gradient
-    // vectors (residual, search direction, A times direction, scratch).
-    std::vector<float> constraint, diagonal, cgResidual, cgDirection, cgProduct, cgScratch;
+    // Position-based: density constraint C and the diagonal D of its system, the accumulated
+    // multiplier (kg m^2, <= 0) and its change in the last sweep, positions one sweep back.
+    std::vector<float> constraint, diagonal, lambda, dLambda, prevX, prevY;
     std::vector<float> vorticity;    // position-based: curl of the velocity (1/s)
     // Material properties per particle (sorted order), so pair loops read contiguous arrays
     // instead of indexing the material table: support h, mass/depth, viscosity, mass, rest
     // density, surface tension, 1/mass, rest area V = m/(depth rho0), pair pressure.
     std::vector<float> h, massPerDepth, viscosity, mass, restDensity, gamma;
-    std::vector<float> invMass, volume, pairPressure;
+    std::vector<float> invMass, volume, pairPressure, invLattice;
 
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }
 };
@@ -53,6 +50,7 @@ struct MaterialConstants {
                                   // position-based, the artificial pressure of s_corr (Pa)
     float support = 0;     // h (m)
     float gamma = 0;       // surface tension (Akinci 2013)
+    float lattice = 0;     // V sum W over the material's square lattice (1; 1.0042 for water)
 };
 
 /// Boundary samples of all boundary plugins, sorted by cell for the sub-step.

@@ -41,11 +41,13 @@ enum class EquationOfState : uint8_t {
 /// Settings of `Solver::PositionBased`. Read them with `World::def().positionBased`; change them
 /// between steps with `World::setPositionBased` (stepping thread).
 struct PositionBasedDef {
-    /// Sub-steps per `World::step` (unit: count; range [1, 64]). Default 2: with 4 iterations it
-    /// holds a resting 0.5 m tank within 1% (docs/solver.md has the measurements).
-    uint32_t substeps = 2;
-    /// Density-constraint iterations per sub-step (unit: count; range [1, 100]). Default 4.
-    uint32_t iterations = 4;
+    /// Sub-steps per `World::step` (unit: count; range [1, 64]). Default 4: with 6 iterations
+    /// a resting 0.5 m water tank reads 2.2% maximum and 0.8% mean compression (docs/solver.md
+    /// has the measurements). Fewer are faster and more compressible.
+    uint32_t substeps = 4;
+    /// Density-constraint iterations (Jacobi sweeps) per sub-step (unit: count; range
+    /// [1, 100]). Default 6.
+    uint32_t iterations = 6;
     /// Vorticity confinement strength epsilon (unit: 1; range [0, 10]): the share of a vortex's
     /// rotation speed at one support radius given back per radian turned. 0 turns it off.
     float vorticity = 0.0f;
