@@ -1,6 +1,7 @@
 // fluid-bench: times World::step on a standard scene and prints one summary line.
 //
 //   fluid-bench --scene dam --particles 16000 --frames 600 --threads 2 [--warmup N]
+//               [--solver position-based|explicit] [--substeps S] [--iterations I]
 //               [--eos tait|linear]
 //
 // Scenes (see bench/README.md):
@@ -8,7 +9,8 @@
 //         widths wide and 1.5 block heights tall, floor at y = 0, gravity (0, -9.81) m/s^2.
 //   blob  a round water blob in zero gravity, no boundary, no force plugin.
 // Every frame is 1/60 s. The last stdout line is machine-readable:
-//   particles=N frames=F threads=T substeps_per_frame=S ms_per_frame=M ns_per_particle_substep=P
+//   solver=NAME particles=N frames=F threads=T substeps_per_frame=S iterations=I
+//   density_error_max=E ms_per_frame=M ns_per_particle_substep=P
 #include <fluid/fluid.h>
 
 #include <CLI/CLI.hpp>
@@ -37,7 +39,13 @@ struct Options {
     uint32_t warmup = 2;
     /// WorldDef::workerCount (unit: count).
     uint32_t threads = 1;
-    /// "tait" or "linear".
+    /// "position-based" or "explicit".
+    std::string solver = "position-based";
+    /// PositionBasedDef::substeps (unit: count; 0 keeps the default).
+    uint32_t substeps = 0;
+    /// PositionBasedDef::iterations (unit: count; 0 keeps the default).
+    uint32_t iterations = 0;
+    /// "tait" or "linear" (explicit solver).
     std::string eos = "tait";
 };
 
@@ -88,15 +96,24 @@ double median(std::vector<double> v) {
 int run(const Options& opt) {
     fluid::WorldDef def;
     def.workerCount = opt.threads;
+    def.solver = opt.solver == "explicit" ? fluid::Solver::Explicit : fluid::Solver::PositionBased;
+    if (opt.substeps > 0) {
+        def.positionBased.substeps = opt.substeps;
+    }
+    if (opt.iterations > 0) {
+        def.positionBased.iterations = opt.iterations;
+    }
     def.equationOfState =
         opt.eos == "linear" ? fluid::EquationOfState::Linear : fluid::EquationOfState::Tait;
     fluid::World world(def);
     const std::string what =
         opt.scene == "dam" ? buildDam(world, opt.particles) : buildBlob(world, opt.particles);
     const uint32_t n = world.particleCount();
-    std::fprintf(
-        stderr, "fluid-bench: %s; %u particles, threads=%u, eos=%s, %u warm-up + %u timed frames\n",
-        what.c_str(), n, opt.threads, opt.eos.c_str(), opt.warmup, opt.frames);
+    std::fprintf(stderr,
+                 "fluid-bench: %s; %u particles, threads=%u, solver=%s, eos=%s, %u warm-up + %u "
+                 "timed frames\n",
+                 what.c_str(), n, opt.threads, opt.solver.c_str(), opt.eos.c_str(), opt.warmup,
+                 opt.frames);
 
     const float frameDt = 1.0f / 60.0f;
     for (uint32_t f = 0; f < opt.warmup; ++f) {
@@ -108,6 +125,7 @@ int run(const Options& opt) {
     // integrate, boundaries, whole step.
     double stage[8] = {};
     uint64_t substeps = 0;
+    float worstError = 0.0f;
     const uint32_t report = std::max<uint32_t>(1, opt.frames / 5);
     for (uint32_t f = 0; f < opt.frames; ++f) {
         const auto t0 = std::chrono::steady_clock::now();
@@ -121,6 +139,7 @@ int run(const Options& opt) {
             stage[k] += parts[k];
         }
         substeps += p.substeps;
+        worstError = std::max(worstError, p.densityErrorMax);
         if ((f + 1) % report == 0 || f + 1 == opt.frames) {
             std::fprintf(stderr, "  frame %u/%u: %.1f ms, %u sub-steps, max compression %.2f%%\n",
                          f + 1, opt.frames, frameMs.back(), p.substeps, 100.0 * p.densityErrorMax);
@@ -131,8 +150,8 @@ int run(const Options& opt) {
     const double s = double(substeps) / frames;
     const double m = median(frameMs);
     const double p = m * 1e6 / (double(n) * s);
-    std::printf("scene=%s eos=%s sound_speed=%.2f m/s\n", opt.scene.c_str(), opt.eos.c_str(),
-                double(world.profile().soundSpeed));
+    std::printf("scene=%s solver=%s eos=%s sound_speed=%.2f m/s\n", opt.scene.c_str(),
+                opt.solver.c_str(), opt.eos.c_str(), double(world.profile().soundSpeed));
     std::printf("stages (ms per frame, mean over timed frames):\n");
     const char* names[8] = {"sort",   "external",  "density",    "pressure",
                             "forces", "integrate", "boundaries", "step (total)"};
@@ -142,9 +161,10 @@ int run(const Options& opt) {
     std::printf("frame wall time (ms): median %.3f, min %.3f, max %.3f\n", m,
                 *std::min_element(frameMs.begin(), frameMs.end()),
                 *std::max_element(frameMs.begin(), frameMs.end()));
-    std::printf("particles=%u frames=%u threads=%u substeps_per_frame=%.2f ms_per_frame=%.3f "
-                "ns_per_particle_substep=%.1f\n",
-                n, opt.frames, opt.threads, s, m, p);
+    std::printf("solver=%s particles=%u frames=%u threads=%u substeps_per_frame=%.2f iterations=%u "
+                "density_error_max=%.4f ms_per_frame=%.3f ns_per_particle_substep=%.1f\n",
+                opt.solver.c_str(), n, opt.frames, opt.threads, s, world.profile().iterations,
+                double(worstError), m, p);
     return 0;
 }
 
@@ -162,7 +182,13 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0u, 1u << 30));
     app.add_option("--threads", opt.threads, "Worker threads (WorldDef::workerCount)")
         ->check(CLI::Range(1u, 256u));
-    app.add_option("--eos", opt.eos, "Equation of state: tait or linear");
+    app.add_option("--solver", opt.solver, "Solver: position-based (the default) or explicit");
+    app.add_option("--substeps", opt.substeps, "Position-based sub-steps per frame (0: default)")
+        ->check(CLI::Range(0u, 64u));
+    app.add_option("--iterations", opt.iterations,
+                   "Position-based constraint iterations per sub-step (0: default)")
+        ->check(CLI::Range(0u, 100u));
+    app.add_option("--eos", opt.eos, "Equation of state of the explicit solver: tait or linear");
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -174,6 +200,11 @@ int main(int argc, char** argv) {
     if (opt.scene != "dam" && opt.scene != "blob") {
         std::fprintf(stderr, "fluid-bench: unknown scene '%s' (expected dam or blob)\n",
                      opt.scene.c_str());
+        return 2;
+    }
+    if (opt.solver != "position-based" && opt.solver != "explicit") {
+        std::fprintf(stderr, "fluid-bench: unknown solver '%s' (expected position-based or explicit)\n",
+                     opt.solver.c_str());
         return 2;
     }
     if (opt.eos != "tait" && opt.eos != "linear") {

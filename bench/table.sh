@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the benchmark rows of bench/README.md one after the other and prints them as markdown
-# table rows (scene, particles, threads, solver / EOS, ms per frame, sub-steps, ns per particle
-# per sub-step, peak memory, command). Usage: bench/table.sh [path/to/fluid-bench]
+# table rows (scene, particles, threads, solver, ms per frame, sub-steps, iterations, largest
+# compression, ns per particle per sub-step, peak memory, command). Usage: bench/table.sh [path/to/fluid-bench]
 # Run it on an otherwise idle machine: it takes about ten minutes on 2 cores.
 set -euo pipefail
 bench=${1:-build/release/bench/fluid-bench}
@@ -20,24 +20,31 @@ row() {
     else
         "$bench" "$@" > "$tmp/out" 2> /dev/null
     fi
-    local scene eos
+    local scene solver eos iterations
     scene=$(grep -o -- '--scene [a-z]*' <<<"$args" | cut -d' ' -f2)
+    solver=$(grep -o 'solver=[a-z-]*' "$tmp/out" | tail -1 | cut -d= -f2)
     eos=$(grep -o -- '--eos [a-z]*' <<<"$args" | cut -d' ' -f2 || true)
-    printf '| %s | %s | %s | explicit / %s | %s | %s | %s | %s | `fluid-bench %s` |\n' \
-        "$scene" "$(field particles)" "$(field threads)" "${eos:-tait}" "$(field ms_per_frame)" \
-        "$(field substeps_per_frame)" "$(field ns_per_particle_substep)" "$rss" "$args"
+    iterations=$(field iterations)
+    if [[ "$solver" == explicit ]]; then solver="explicit / ${eos:-tait}"; iterations="-"; fi
+    printf '| %s | %s | %s | %s | %s | %s | %s | %s%% | %s | %s | `fluid-bench %s` |\n' \
+        "$scene" "$(field particles)" "$(field threads)" "$solver" "$(field ms_per_frame)" \
+        "$(field substeps_per_frame)" "$iterations" \
+        "$(awk -v e="$(field density_error_max)" 'BEGIN { printf "%.2f", 100 * e }')" \
+        "$(field ns_per_particle_substep)" "$rss" "$args"
 }
 
-row --scene dam --particles 1000 --frames 60 --warmup 5 --threads 1
-row --scene dam --particles 1000 --frames 60 --warmup 5 --threads 2
-row --scene dam --particles 4000 --frames 20 --warmup 2 --threads 1
-row --scene dam --particles 4000 --frames 20 --warmup 2 --threads 2
-row --scene dam --particles 16000 --frames 5 --warmup 1 --threads 1
-row --scene dam --particles 16000 --frames 5 --warmup 1 --threads 2
-row --scene dam --particles 64000 --frames 2 --warmup 1 --threads 1
-row --scene dam --particles 64000 --frames 2 --warmup 1 --threads 2
-row --scene blob --particles 1000 --frames 120 --warmup 10 --threads 1
-row --scene blob --particles 1000 --frames 120 --warmup 10 --threads 2
-row --scene blob --particles 4000 --frames 60 --warmup 10 --threads 1
+for particles in 4000 16000; do
+    for threads in 1 2; do
+        row --scene dam --particles $particles --frames 60 --warmup 2 --threads $threads
+    done
+done
+for particles in 4000 16000; do
+    for threads in 1 2; do
+        row --scene dam --particles $particles --frames 5 --warmup 1 --threads $threads --solver explicit
+    done
+done
+row --scene dam --particles 1000 --frames 120 --warmup 2 --threads 2
+row --scene dam --particles 64000 --frames 20 --warmup 2 --threads 2
+row --scene dam --particles 16000 --frames 60 --warmup 2 --threads 2 --substeps 2 --iterations 4
 row --scene blob --particles 4000 --frames 60 --warmup 10 --threads 2
-row --scene blob --particles 16000 --frames 20 --warmup 2 --threads 2
+row --scene blob --particles 4000 --frames 60 --warmup 10 --threads 2 --solver explicit

@@ -291,7 +291,7 @@ void pbfSampleForces(WorldState& s, const PbfConstants& c, float weight) {
     const float* __restrict vx = p.vx.data();
     const float* __restrict vy = p.vy.data();
     const float* __restrict hs = p.h.data();
-    const float* __restrict lambda = p.lambda.data();
+    const float* __restrict lambda = p.lambdaTotal.data();
     const float* __restrict mu = p.viscosity.data();
     const float* __restrict vol = p.volume.data();
     const float depth = s.def.depth;

@@ -109,7 +109,10 @@ PredictStats predict(WorldState& s, float dt, float speedCap) {
         });
 }
 
-// x* += (ax, ay), each correction at most kMaxCorrection h long.
+// The corrections of the last pass (ax, ay), each at most kMaxCorrection h long, added to the
+// sub-step's total correction (cx, cy); x* = predicted + total. The total is kept apart from the
+// position: far from the origin (16 m) a float position rounds a 1e-6 m correction away, and
+// the velocity update would turn that rounding into momentum.
 void applyCorrections(WorldState& s) {
     Particles& p = s.particles;
     each(s, [&](uint32_t i) {
@@ -121,8 +124,10 @@ void applyCorrections(WorldState& s) {
             dx = std::isfinite(len2) ? dx * scale : 0.0f;
             dy = std::isfinite(len2) ? dy * scale : 0.0f;
         }
-        p.px[i] += dx;
-        p.py[i] += dy;
+        p.cx[i] += dx;
+        p.cy[i] += dy;
+        p.px[i] = p.ox[i] + p.cx[i];
+        p.py[i] = p.oy[i] + p.cy[i];
     });
 }
 
@@ -132,58 +137,77 @@ void applyCorrections(WorldState& s) {
 // may take back a push, never pull), and moves the particles by the displacement of the
 // change. Positions are Chebyshev-accelerated between sweeps [Wang 2015]:
 // x_k+1 = omega_k+1 (x^_k+1 - x_k-1) + x_k-1.
-void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations) {
+void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations, Profile& prof) {
     Particles& p = s.particles;
     std::vector<float>& change = p.dLambda;
     std::vector<float>& prevX = p.prevX;
     std::vector<float>& prevY = p.prevY;
-    each(s, [&](uint32_t i) { p.lambda[i] = 0.0f; });
+    // The multiplier the accelerated positions stand for follows the same recurrence (the
+    // displacement is linear in the multipliers): it gives the pressure and the wall forces.
+    std::vector<float>& total = p.lambdaTotal;
+    std::vector<float>& prevTotal = p.lambdaPrev;
+    each(s, [&](uint32_t i) {
+        p.lambda[i] = 0.0f;
+        total[i] = 0.0f;
+        prevTotal[i] = 0.0f;
+        p.cx[i] = 0.0f;
+        p.cy[i] = 0.0f;
+    });
     float omega = 1.0f;
     for (uint32_t it = 0; it < iterations; ++it) {
         if (it > 0) {
-            pbfConstraint(s, c); // the sub-step's first evaluation is done by the caller
+            timed(prof.density, [&] { pbfConstraint(s, c); }); // the first is the caller's
         }
-        each(s, [&](uint32_t i) {
-            const float updated = std::min(p.lambda[i] - kRelax * p.constraint[i] / p.diagonal[i], 0.0f);
-            change[i] = updated - p.lambda[i];
-            p.lambda[i] = updated;
-        });
-        pbfDisplace(s, c, change, it == 0);
-        const float rho2 = kChebyshev * kChebyshev;
-        omega = it == 0 ? 1.0f : (it == 1 ? 2.0f / (2.0f - rho2) : 4.0f / (4.0f - rho2 * omega));
-        if (it == 0) {
+        timed(prof.pressure, [&] {
             each(s, [&](uint32_t i) {
-                prevX[i] = p.px[i];
-                prevY[i] = p.py[i];
+                const float updated =
+                    std::min(p.lambda[i] - kRelax * p.constraint[i] / p.diagonal[i], 0.0f);
+                change[i] = updated - p.lambda[i];
+                p.lambda[i] = updated;
+            });
+            pbfDisplace(s, c, change, it == 0);
+            const float rho2 = kChebyshev * kChebyshev;
+            omega = it == 0 ? 1.0f : (it == 1 ? 2.0f / (2.0f - rho2) : 4.0f / (4.0f - rho2 * omega));
+            if (it == 0) {
+                each(s, [&](uint32_t i) {
+                    prevX[i] = 0.0f;
+                    prevY[i] = 0.0f;
+                    total[i] = change[i];
+                });
+                applyCorrections(s);
+                return;
+            }
+            each(s, [&](uint32_t i) {
+                p.nx[i] = p.cx[i]; // x_k's correction, kept while x^ is formed (normals come later)
+                p.ny[i] = p.cy[i];
             });
             applyCorrections(s);
-        } else {
             each(s, [&](uint32_t i) {
-                p.nx[i] = p.px[i]; // x_k, kept while x^ is formed (normals come later)
-                p.ny[i] = p.py[i];
-            });
-            applyCorrections(s);
-            each(s, [&](uint32_t i) {
-                const float x = omega * (p.px[i] - prevX[i]) + prevX[i];
-                const float y = omega * (p.py[i] - prevY[i]) + prevY[i];
+                const float x = omega * (p.cx[i] - prevX[i]) + prevX[i];
+                const float y = omega * (p.cy[i] - prevY[i]) + prevY[i];
                 prevX[i] = p.nx[i];
                 prevY[i] = p.ny[i];
-                p.px[i] = x;
-                p.py[i] = y;
+                p.cx[i] = x;
+                p.cy[i] = y;
+                p.px[i] = p.ox[i] + x;
+                p.py[i] = p.oy[i] + y;
+                const float l = omega * (total[i] + change[i] - prevTotal[i]) + prevTotal[i];
+                prevTotal[i] = total[i];
+                total[i] = l;
             });
-        }
+        });
     }
 }
 
-// v = (x* - x) / dt, computed as v + (x* - x*_predicted) / dt: a particle no constraint moved
-// keeps its velocity exactly. Also the pressure the multipliers stand for.
+// v = (x* - x) / dt, computed as v + (total correction) / dt: a particle no constraint moved
+// keeps its velocity exactly, and no position rounding enters the velocity. Also the pressure the multipliers stand for.
 void updateVelocity(WorldState& s, float dt) {
     Particles& p = s.particles;
     const float invDt = 1.0f / dt;
     each(s, [&](uint32_t i) {
-        p.vx[i] += (p.px[i] - p.ox[i]) * invDt;
-        p.vy[i] += (p.py[i] - p.oy[i]) * invDt;
-        p.pressure[i] = -p.lambda[i] * p.restDensity[i] * p.invMass[i] * invDt * invDt;
+        p.vx[i] += p.cx[i] * invDt;
+        p.vy[i] += p.cy[i] * invDt;
+        p.pressure[i] = -p.lambdaTotal[i] * p.restDensity[i] * p.invMass[i] * invDt * invDt;
     });
 }
 
@@ -197,7 +221,7 @@ void stepPositionBased(WorldState& s, float frameDt) {
     const uint32_t n = p.size();
     for (auto* channel : {&p.ax, &p.ay, &p.ex, &p.ey, &p.nx, &p.ny, &p.invRho, &p.ox, &p.oy,
                           &p.vorticity, &p.constraint, &p.diagonal, &p.lambda, &p.dLambda,
-                          &p.prevX, &p.prevY}) {
+                          &p.prevX, &p.prevY, &p.lambdaTotal, &p.lambdaPrev, &p.cx, &p.cy}) {
         channel->resize(n);
     }
     const PositionBasedDef& settings = s.def.positionBased;
@@ -257,7 +281,7 @@ void stepPositionBased(WorldState& s, float frameDt) {
             placeSamples(s, endInStep, facts.maxSupport, moving || sub == 0);
         });
         timed(prof.density, [&] { pbfConstraint(s, c); });
-        timed(prof.pressure, [&] { solveDensity(s, c, settings.iterations); });
+        solveDensity(s, c, settings.iterations, prof);
         timed(prof.integrate, [&] { updateVelocity(s, dt); });
         timed(prof.forces, [&] {
             for (uint32_t pass = 0; pass < viscosityPasses; ++pass) {

@@ -26,8 +26,11 @@ struct Particles {
     std::vector<float> pOverRho2, invRho; // p/rho^2 and 1/rho, so pair loops do not divide
     std::vector<float> ox, oy;       // position-based: positions at the start of the sub-step
     // Position-based: density constraint C and the diagonal D of its system, the accumulated
-    // multiplier (kg m^2, <= 0) and its change in the last sweep, positions one sweep back.
-    std::vector<float> constraint, diagonal, lambda, dLambda, prevX, prevY;
+    // multiplier (kg m^2, <= 0) and its change in the last sweep, the sub-step's total position
+    // correction and its value one sweep back, the multiplier the accelerated corrections stand
+    // for and its value one sweep back.
+    std::vector<float> constraint, diagonal, lambda, dLambda, cx, cy, prevX, prevY, lambdaTotal,
+        lambdaPrev;
     std::vector<float> vorticity;    // position-based: curl of the velocity (1/s)
     // Material properties per particle (sorted order), so pair loops read contiguous arrays
     // instead of indexing the material table: support h, mass/depth, viscosity, mass, rest

@@ -46,8 +46,10 @@ struct ReverseHook {
 };
 
 // A small dam break: 50 x 42 = 2,100 particles (more than one 2,048-particle reduction block,
-// nine 256-particle force ranges), 300 steps of 1 ms (about 6 sub-steps each; 0.3 s: the column
-// is collapsing and its front running, particles change cells, the walls project), gravity, a box.
+// nine 256-particle force ranges), gravity, a box. Explicit: 300 steps of 1 ms (about 6
+// sub-steps each; 0.3 s: the column is collapsing and its front running, particles change
+// cells, the walls project). Position-based: 90 frames of 1/60 s (4 sub-steps each; 1.5 s: the
+// front hits the far wall and climbs it).
 uint64_t runDam(const WorldDef& def, uint32_t* substeps = nullptr) {
     World world(def);
     const MaterialId w = world.addMaterial(water());
@@ -57,8 +59,9 @@ uint64_t runDam(const WorldDef& def, uint32_t* substeps = nullptr) {
     world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 4.0f * cols * s, 2.0f * rows * s));
     world.spawnBlob(latticeBlock(world, w, 0.0f, 0.0f, cols, rows));
     uint32_t total = 0;
-    for (int step = 0; step < 300; ++step) {
-        world.step(0.001f);
+    const bool explicitSolver = def.solver == Solver::Explicit;
+    for (int step = 0; step < (explicitSolver ? 300 : 90); ++step) {
+        world.step(explicitSolver ? 0.001f : kFrame);
         total += world.lastSubsteps();
     }
     REQUIRE(allFinite(world));
@@ -72,13 +75,16 @@ uint64_t runDam(const WorldDef& def, uint32_t* substeps = nullptr) {
 
 TEST_CASE("bit-identical state for 1, 2 and 4 workers and a host task hook",
           "[slow][determinism]") {
-    Stopwatch sw("determinism, 4 runs");
+    const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
+    CAPTURE(solverName(solver));
+    Stopwatch sw(std::string("determinism, 4 runs, ") + solverName(solver));
     WorldDef def;
+    def.solver = solver;
     def.workerCount = 1;
     uint32_t substeps = 0;
     const uint64_t serial = runDam(def, &substeps);
     CAPTURE(substeps);
-    CHECK(substeps >= 1200); // several sub-steps per step
+    CHECK(substeps >= (solver == Solver::Explicit ? 1200u : 360u)); // several sub-steps per step
 
     def.workerCount = 2;
     const uint64_t two = runDam(def);
@@ -87,14 +93,15 @@ TEST_CASE("bit-identical state for 1, 2 and 4 workers and a host task hook",
 
     ReverseHook reverse;
     WorldDef hooked;
+    hooked.solver = solver;
     hooked.tasks = reverse.hook();
     const uint64_t host = runDam(hooked);
 
     INFO("hashes: serial " << std::hex << serial << ", 2 workers " << two << ", 4 workers " << four
                            << ", reverse hook " << host);
-    std::printf("[measure] determinism: %u sub-steps; hashes %016" PRIx64 " %016" PRIx64
+    std::printf("[measure] %s determinism: %u sub-steps; hashes %016" PRIx64 " %016" PRIx64
                 " %016" PRIx64 " %016" PRIx64 "\n",
-                substeps, serial, two, four, host);
+                solverName(solver), substeps, serial, two, four, host);
     CHECK(two == serial);
     CHECK(four == serial);
     CHECK(host == serial);

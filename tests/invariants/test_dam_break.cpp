@@ -9,8 +9,10 @@ using namespace fluid::test;
 
 TEST_CASE("dam break: 2,000 particles, 3 s, no NaN, no leak, no explosion",
           "[slow][invariants][dam]") {
-    Stopwatch sw("dam break 3 s");
-    World world(physicsDef());
+    const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
+    CAPTURE(solverName(solver));
+    Stopwatch sw(std::string("dam break 3 s, ") + solverName(solver));
+    World world(physicsDef(solver));
     const MaterialId w = world.addMaterial(water());
     const float s = world.spacing(w);
     const uint32_t cols = 32, rows = 63; // 2,016 particles, width:height 1:2 (to a row)
@@ -47,9 +49,9 @@ TEST_CASE("dam break: 2,000 particles, 3 s, no NaN, no leak, no explosion",
         }
     }
     CAPTURE(n, h0, speedLimit, worstSpeed, maxSubsteps, clamped, reach, boxW);
-    std::printf("[measure] dam break: n %u, H0 %.3f m, max speed %.3f m/s (limit %.3f), "
+    std::printf("[measure] %s dam break: n %u, H0 %.3f m, max speed %.3f m/s (limit %.3f), "
                 "substeps/frame max %u, speed-capped %u, NaN frames %u, leak frames %u, reach "
-                "%.3f of %.3f m\n",
+                "%.3f of %.3f m\n", solverName(solver),
                 n, h0, worstSpeed, speedLimit, maxSubsteps, clamped, nanFrames, leakFrames, reach,
                 boxW);
     CHECK(nanFrames == 0);
@@ -58,4 +60,71 @@ TEST_CASE("dam break: 2,000 particles, 3 s, no NaN, no leak, no explosion",
     CHECK(world.particleCount() == n);
     // The dam did break: the front reached the far wall.
     CHECK(reach >= boxW - s);
+}
+
+namespace {
+
+// The dam break: a 0.5 x 1 m water block (50 x 100 particles) in the left of a 2 x 2 m
+// box. Returns the first frame at which the front (the largest x) reaches the far wall (within
+// a spacing), or -1; runs `frames` frames, or stops at the arrival when `untilArrival`.
+struct BigDam {
+    int arrival = -1;
+    uint32_t nanFrames = 0, leakFrames = 0, fastFrames = 0, frames = 0;
+    float worstSpeed = 0.0f, limit = 0.0f;
+    uint32_t maxSubsteps = 0;
+};
+
+BigDam runBigDam(Solver solver, int frames, bool untilArrival) {
+    World world(physicsDef(solver));
+    const MaterialId w = world.addMaterial(water());
+    const float s = world.spacing(w);
+    const uint32_t cols = 50, rows = 100;
+    const float h0 = float(rows) * s;
+    const float boxW = 2.0f, boxH = 2.0f;
+    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
+    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, boxW, boxH));
+    REQUIRE(world.spawnBlob(latticeBlock(world, w, 0.0f, 0.0f, cols, rows)) == cols * rows);
+    BigDam r;
+    r.limit = 2.5f * std::sqrt(2.0f * kG * h0);
+    for (int frame = 1; frame <= frames; ++frame) {
+        world.step(kFrame);
+        ++r.frames;
+        r.maxSubsteps = std::max(r.maxSubsteps, world.lastSubsteps());
+        const float v = maxSpeed(world);
+        r.worstSpeed = std::max(r.worstSpeed, v);
+        r.nanFrames += allFinite(world) ? 0 : 1;
+        r.leakFrames += countOutside(world, 0.0f, 0.0f, boxW, boxH) > 0 ? 1 : 0;
+        r.fastFrames += v > r.limit ? 1 : 0;
+        if (r.arrival < 0 && bounds(world).x1 >= boxW - s) {
+            r.arrival = frame;
+            if (untilArrival) {
+                break;
+            }
+        }
+    }
+    return r;
+}
+
+} // namespace
+
+TEST_CASE("dam break 0.5 x 1 m, 10 s with the default solver; its front keeps pace with the "
+          "explicit solver's",
+          "[slow][invariants][dam]") {
+    Stopwatch sw("dam break 0.5 x 1 m: explicit to arrival, default 10 s");
+    REQUIRE(WorldDef{}.solver == Solver::PositionBased);
+    const BigDam reference = runBigDam(Solver::Explicit, 120, true);
+    const BigDam pbf = runBigDam(Solver::PositionBased, 600, false);
+    CAPTURE(reference.arrival, pbf.arrival, pbf.worstSpeed, pbf.limit, pbf.maxSubsteps);
+    std::printf("[measure] dam 0.5 x 1 m: front at the far wall at frame %d (explicit, %u "
+                "sub-steps/frame max) and %d (position-based, %u); position-based over 10 s: max "
+                "speed %.3f m/s (limit %.3f), NaN frames %u, leak frames %u\n",
+                reference.arrival, reference.maxSubsteps, pbf.arrival, pbf.maxSubsteps,
+                pbf.worstSpeed, pbf.limit, pbf.nanFrames, pbf.leakFrames);
+    REQUIRE(reference.arrival > 0);
+    REQUIRE(pbf.frames == 600);
+    CHECK(pbf.nanFrames == 0);
+    CHECK(pbf.leakFrames == 0);
+    CHECK(pbf.fastFrames == 0);
+    REQUIRE(pbf.arrival > 0);
+    CHECK(double(pbf.arrival) <= 1.2 * double(reference.arrival));
 }

@@ -53,8 +53,10 @@ MaterialStats stats(const World& world, uint16_t material) {
 
 TEST_CASE("a yoghurt blob dropped into water: both materials interact",
           "[slow][invariants][materials]") {
-    Stopwatch sw("yoghurt into water 1.2 s");
-    World world(physicsDef());
+    const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
+    CAPTURE(solverName(solver));
+    Stopwatch sw(std::string("yoghurt into water 1.2 s, ") + solverName(solver));
+    World world(physicsDef(solver));
     const MaterialId w = world.addMaterial(water()); // first: the walls are sampled at its spacing
     const MaterialId y = world.addMaterial(yoghurt());
     const float s = world.spacing(w);
@@ -101,9 +103,9 @@ TEST_CASE("a yoghurt blob dropped into water: both materials interact",
     const double freeFallVy = -kG * frames * kFrame;
     CAPTURE(n, ny, y0.comY, ye.comY, ye.minY, ye.maxY, ye.vy, we.maxY, depth, closest, spacing,
             std::sqrt(peakWaterSpeed2), yoghurtVyAtImpact, freeFallVy);
-    std::printf("[measure] mixing: %u water + %u yoghurt, closest pair %.5f m (%.3f spacing), "
+    std::printf("[measure] %s mixing: %u water + %u yoghurt, closest pair %.5f m (%.3f spacing), "
                 "yoghurt com y %.4f -> %.4f (water surface %.4f), yoghurt min y %.4f, end vy "
-                "%.4f, peak water rms speed %.3f m/s\n",
+                "%.4f, peak water rms speed %.3f m/s\n", solverName(solver),
                 n - ny, ny, closest, closest / spacing, y0.comY, ye.comY, we.maxY, ye.minY, ye.vy,
                 std::sqrt(peakWaterSpeed2));
 

@@ -53,8 +53,10 @@ Drift runSteps(World& world, int steps, double scale) {
 
 TEST_CASE("zero-g blob launched at 1 m/s keeps its momentum over 1,000 steps",
           "[slow][invariants][momentum]") {
-    Stopwatch sw("momentum, one material");
-    World world(physicsDef());
+    const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
+    CAPTURE(solverName(solver));
+    Stopwatch sw(std::string("momentum, one material, ") + solverName(solver));
+    World world(physicsDef(solver));
     const MaterialId w = world.addMaterial(water());
     BlobDef blob;
     blob.shape = BlobShape::Circle;
@@ -73,7 +75,7 @@ TEST_CASE("zero-g blob launched at 1 m/s keeps its momentum over 1,000 steps",
     const Drift d = runSteps(world, 1000, scale);
     const glm::dvec2 p = momentum(world);
     CAPTURE(n, p0.x, p0.y, p.x, p.y, d.worst, d.atEnd, world.lastSubsteps());
-    std::printf("[measure] momentum one material: n %u, relative drift max %.3g, end %.3g\n", n,
+    std::printf("[measure] %s momentum one material: n %u, relative drift max %.3g, end %.3g\n", solverName(solver), n,
                 d.worst, d.atEnd);
     CHECK(d.worst <= 1e-5);
     CHECK(world.particleCount() == n);
@@ -86,8 +88,10 @@ TEST_CASE("zero-g blob launched at 1 m/s keeps its momentum over 1,000 steps",
 
 TEST_CASE("zero-g water and yoghurt blobs collide and keep their momentum over 1,000 steps",
           "[slow][invariants][momentum]") {
-    Stopwatch sw("momentum, two materials");
-    World world(physicsDef());
+    const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
+    CAPTURE(solverName(solver));
+    Stopwatch sw(std::string("momentum, two materials, ") + solverName(solver));
+    World world(physicsDef(solver));
     const MaterialId w = world.addMaterial(water());
     const MaterialId y = world.addMaterial(yoghurt());
     BlobDef a;
@@ -123,7 +127,7 @@ TEST_CASE("zero-g water and yoghurt blobs collide and keep their momentum over 1
     const Drift d = runSteps(world, 1000, scale);
     const glm::dvec2 p = momentum(world);
     CAPTURE(n, p0.x, p0.y, p.x, p.y, scale, d.worst, d.atEnd);
-    std::printf("[measure] momentum two materials: n %u, relative drift max %.3g, end %.3g\n", n,
+    std::printf("[measure] %s momentum two materials: n %u, relative drift max %.3g, end %.3g\n", solverName(solver), n,
                 d.worst, d.atEnd);
     CHECK(d.worst <= 1e-5);
     CHECK(world.particleCount() == n);

@@ -72,11 +72,12 @@ class LoggingBoundary final : public BoundaryPlugin {
 };
 
 // Checks one step's events: both prepares first (once each), then per sub-step one apply over
-// all particles followed by one project, with the sub-step's time and length. Sub-steps tile
-// the frame exactly and are equal, except that a world deriving its sound speed opens its first
-// step with one shorter probe sub-step (`probeFirst`).
+// all particles followed by `projects` projects (the explicit solver projects once, after its
+// move; the position-based one after predicting and at the end), with the sub-step's time and
+// length. Sub-steps tile the frame exactly and are equal, except that a world deriving its
+// sound speed opens its first step with one shorter probe sub-step (`probeFirst`).
 void checkStep(const std::vector<Event>& ev, double t0, float frameDt, uint32_t substeps,
-               uint32_t particles, bool probeFirst) {
+               uint32_t particles, bool probeFirst, uint32_t projects) {
     REQUIRE(substeps >= 1);
     CAPTURE(t0, substeps, ev.size(), probeFirst);
     size_t count[4] = {0, 0, 0, 0};
@@ -86,8 +87,9 @@ void checkStep(const std::vector<Event>& ev, double t0, float frameDt, uint32_t 
     CHECK(count[Event::ForcePrepare] == 1);
     CHECK(count[Event::BoundaryPrepare] == 1);
     CHECK(count[Event::Apply] == substeps);
-    CHECK(count[Event::Project] == substeps);
-    REQUIRE(ev.size() == 2 + 2 * size_t(substeps));
+    CHECK(count[Event::Project] == projects * substeps);
+    const size_t perSubstep = 1 + projects;
+    REQUIRE(ev.size() == 2 + perSubstep * size_t(substeps));
     CHECK(ev[0].kind == Event::ForcePrepare);
     CHECK(ev[1].kind == Event::BoundaryPrepare);
     for (int k = 0; k < 2; ++k) {
@@ -103,22 +105,24 @@ void checkStep(const std::vector<Event>& ev, double t0, float frameDt, uint32_t 
     const float h = float((double(frameDt) - first) / double(substeps - equalFrom));
     double elapsed = 0.0;
     for (uint32_t s = 0; s < substeps; ++s) {
-        const Event& a = ev[2 + 2 * s];
-        const Event& p = ev[3 + 2 * s];
+        const Event& a = ev[2 + perSubstep * s];
         CAPTURE(s);
         REQUIRE(a.kind == Event::Apply);
-        REQUIRE(p.kind == Event::Project);
         if (s >= equalFrom) {
             CHECK(a.dt == Approx(h));
         }
         CHECK(a.time == Approx(t0 + elapsed).margin(1e-9));
         CHECK(a.begin == 0);
         CHECK(a.end == particles);
-        CHECK(p.dt == a.dt);
         elapsed += double(a.dt);
-        CHECK(p.inStep == Approx(elapsed).margin(1e-7));
-        CHECK(p.begin == 0);
-        CHECK(p.end == particles);
+        for (uint32_t k = 0; k < projects; ++k) {
+            const Event& p = ev[3 + perSubstep * s + k];
+            REQUIRE(p.kind == Event::Project);
+            CHECK(p.dt == a.dt);
+            CHECK(p.inStep == Approx(elapsed).margin(1e-7));
+            CHECK(p.begin == 0);
+            CHECK(p.end == particles);
+        }
     }
     CHECK(elapsed == Approx(frameDt).margin(1e-7));
 }
@@ -135,7 +139,8 @@ void runHookOrder(const WorldDef& def, bool probeFirst) {
         log.events.clear();
         const double t0 = world.time();
         world.step(kFrame);
-        checkStep(log.events, t0, kFrame, world.lastSubsteps(), n, probeFirst && step == 0);
+        checkStep(log.events, t0, kFrame, world.lastSubsteps(), n, probeFirst && step == 0,
+                  def.solver == Solver::PositionBased ? 2 : 1);
     }
     CHECK(allFinite(world));
 }
@@ -144,16 +149,21 @@ void runHookOrder(const WorldDef& def, bool probeFirst) {
 
 TEST_CASE("hook order: prepare once per step, then apply and project per sub-step",
           "[unit][plugins]") {
-    SECTION("fixed sound speed") {
+    SECTION("position-based (the default): the set number of sub-steps") {
         WorldDef def;
+        def.positionBased.substeps = 3;
+        runHookOrder(def, false);
+    }
+    WorldDef def;
+    def.solver = Solver::Explicit;
+    SECTION("explicit, fixed sound speed") {
         def.soundSpeed = 15.0f;
         runHookOrder(def, false);
     }
-    SECTION("sound speed derived from the scene (the default)") {
-        runHookOrder(WorldDef{}, true);
+    SECTION("explicit, sound speed derived from the scene") {
+        runHookOrder(def, true);
     }
-    SECTION("linear equation of state") {
-        WorldDef def;
+    SECTION("explicit, linear equation of state") {
         def.equationOfState = EquationOfState::Linear;
         runHookOrder(def, false);
     }

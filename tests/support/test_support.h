@@ -14,6 +14,8 @@
 #include <cstring>
 #include <ctime>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace fluid::test {
@@ -228,10 +230,10 @@ inline BlobDef latticeBlock(const World& world, MaterialId material, float x0, f
 /// is the better measure when the machine is shared).
 class Stopwatch {
   public:
-    explicit Stopwatch(const char* label)
-        : m_label(label), m_t0(std::chrono::steady_clock::now()), m_c0(std::clock()) {}
+    explicit Stopwatch(std::string label)
+        : m_label(std::move(label)), m_t0(std::chrono::steady_clock::now()), m_c0(std::clock()) {}
     ~Stopwatch() {
-        std::printf("[time] %s: wall %.2f s, cpu %.2f s\n", m_label, seconds(), cpuSeconds());
+        std::printf("[time] %s: wall %.2f s, cpu %.2f s\n", m_label.c_str(), seconds(), cpuSeconds());
         std::fflush(stdout);
     }
     Stopwatch(const Stopwatch&) = delete;
@@ -242,7 +244,7 @@ class Stopwatch {
     double cpuSeconds() const { return double(std::clock() - m_c0) / CLOCKS_PER_SEC; }
 
   private:
-    const char* m_label;
+    std::string m_label;
     std::chrono::steady_clock::time_point m_t0;
     std::clock_t m_c0;
 };
@@ -264,11 +266,17 @@ inline uint32_t physicsWorkers() {
     return 2;
 }
 
-/// A WorldDef for the slow scenes (see physicsWorkers).
-inline WorldDef physicsDef() {
+/// A WorldDef for the slow scenes (see physicsWorkers) with the given solver.
+inline WorldDef physicsDef(Solver solver = Solver::PositionBased) {
     WorldDef def;
     def.workerCount = physicsWorkers();
+    def.solver = solver;
     return def;
+}
+
+/// The solver's name in test output.
+inline const char* solverName(Solver solver) {
+    return solver == Solver::PositionBased ? "position-based" : "explicit";
 }
 
 } // namespace fluid::test

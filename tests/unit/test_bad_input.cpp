@@ -133,6 +133,24 @@ TEST_CASE("WorldDef with NaN or out-of-range fields throws", "[unit][bad-input]"
         def.maxSubsteps = 0;
         CHECK_THROWS_AS(World(def), Error);
     }
+    SECTION("zero position-based sub-steps") {
+        def.positionBased.substeps = 0;
+        CHECK_THROWS_MATCHES(World(def), Error,
+                             Catch::Message("WorldDef: positionBased.substeps = 0 is out of range "
+                                            "[1, 64] (unit: count)"));
+    }
+    SECTION("too many position-based iterations") {
+        def.positionBased.iterations = 101;
+        CHECK_THROWS_MATCHES(World(def), Error,
+                             Catch::Message("WorldDef: positionBased.iterations = 101 is out of "
+                                            "range [1, 100] (unit: count)"));
+    }
+    SECTION("NaN vorticity confinement") {
+        def.positionBased.vorticity = kNaN;
+        CHECK_THROWS_MATCHES(World(def), Error,
+                             Catch::Message("WorldDef: positionBased.vorticity = nan is out of "
+                                            "range [0, 10] (unit: 1)"));
+    }
     SECTION("enqueue without finish") {
         def.tasks.enqueue = [](TaskCallback*, uint32_t, uint32_t, void*, void*) -> void* {
             return nullptr;
@@ -236,6 +254,8 @@ TEST_CASE("an empty box container is reported when the world steps", "[unit][bad
 }
 
 TEST_CASE("a force plugin writing NaN or infinity does not spread it", "[unit][bad-input]") {
+    const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
+    CAPTURE(solverName(solver));
     float bad = kNaN;
     SECTION("NaN") {
         bad = kNaN;
@@ -244,7 +264,9 @@ TEST_CASE("a force plugin writing NaN or infinity does not spread it", "[unit][b
         bad = kInf;
     }
     CAPTURE(bad);
-    World world;
+    WorldDef def;
+    def.solver = solver;
+    World world(def);
     const MaterialId w = world.addMaterial(water());
     world.addForce(std::make_unique<GravityForce>());
     world.addForce(std::make_unique<BrokenForce>(bad));

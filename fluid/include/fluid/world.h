@@ -41,13 +41,15 @@ enum class EquationOfState : uint8_t {
 /// Settings of `Solver::PositionBased`. Read them with `World::def().positionBased`; change them
 /// between steps with `World::setPositionBased` (stepping thread).
 struct PositionBasedDef {
-    /// Sub-steps per `World::step` (unit: count; range [1, 64]). Default 4: with 6 iterations
-    /// a resting 0.5 m water tank reads 2.2% maximum and 0.8% mean compression (docs/solver.md
-    /// has the measurements). Fewer are faster and more compressible.
+    /// Sub-steps per `World::step` (unit: count; range [1, 64]). Default 4: with 8 iterations
+    /// a resting 0.5 m water tank reads 1.6% maximum and 0.6% mean compression (docs/solver.md
+    /// has the measurements). Fewer are faster and more compressible; a particle moves at most
+    /// two support radii per sub-step (faster ones are slowed and counted in
+    /// `Profile::speedClamped`).
     uint32_t substeps = 4;
     /// Density-constraint iterations (Jacobi sweeps) per sub-step (unit: count; range
-    /// [1, 100]). Default 6.
-    uint32_t iterations = 6;
+    /// [1, 100]). Default 8.
+    uint32_t iterations = 8;
     /// Vorticity confinement strength epsilon (unit: 1; range [0, 10]): the share of a vortex's
     /// rotation speed at one support radius given back per radian turned. 0 turns it off.
     float vorticity = 0.0f;

@@ -1,0 +1,138 @@
+// The position-based solver's settings, its pressure reading and its vorticity confinement.
+#include "test_support.h"
+
+#include <catch2/catch.hpp>
+
+#include <limits>
+
+using namespace fluid;
+using namespace fluid::test;
+
+namespace {
+
+// A resting water block in a box under gravity: 20 columns, `rows` rows.
+World tank(uint32_t rows, WorldDef def = {}) {
+    World world(def);
+    const MaterialId w = world.addMaterial(water());
+    const float s = world.spacing(w);
+    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
+    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 20.0f * s, 1.0f));
+    world.spawnBlob(latticeBlock(world, w, 0.0f, 0.0f, 20, rows));
+    return world;
+}
+
+// Kinetic energy per unit mass (unit: J/kg).
+double kinetic(const World& world) {
+    const auto vx = world.velocityX(), vy = world.velocityY();
+    double e = 0.0;
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        e += 0.5 * (double(vx[i]) * vx[i] + double(vy[i]) * vy[i]);
+    }
+    return e / world.particleCount();
+}
+
+} // namespace
+
+TEST_CASE("position-based settings change between steps and show in the profile",
+          "[unit][position-based]") {
+    World world = tank(10);
+    REQUIRE(world.def().solver == Solver::PositionBased);
+    world.step(kFrame);
+    CHECK(world.lastSubsteps() == world.def().positionBased.substeps);
+    CHECK(world.profile().iterations == world.def().positionBased.iterations);
+    CHECK(world.profile().densityErrorMax >= world.profile().densityErrorAvg);
+
+    PositionBasedDef settings;
+    settings.substeps = 2;
+    settings.iterations = 3;
+    world.setPositionBased(settings);
+    CHECK(world.def().positionBased.substeps == 2);
+    world.step(kFrame);
+    CHECK(world.lastSubsteps() == 2);
+    CHECK(world.profile().iterations == 3);
+
+    PositionBasedDef bad = settings;
+    bad.iterations = 0;
+    CHECK_THROWS_MATCHES(world.setPositionBased(bad), Error,
+                         Catch::Message("World::setPositionBased: iterations = 0 is out of range "
+                                        "[1, 100] (unit: count)"));
+    bad = settings;
+    bad.vorticity = -1.0f;
+    CHECK_THROWS_MATCHES(world.setPositionBased(bad), Error,
+                         Catch::Message("World::setPositionBased: vorticity = -1 is out of range "
+                                        "[0, 10] (unit: 1)"));
+    bad.vorticity = std::numeric_limits<float>::infinity();
+    CHECK_THROWS_AS(world.setPositionBased(bad), Error);
+    // Unchanged by the rejected calls.
+    CHECK(world.def().positionBased.iterations == 3);
+    CHECK(world.def().positionBased.vorticity == 0.0f);
+    world.step(kFrame);
+    CHECK(world.lastSubsteps() == 2);
+    CHECK(allFinite(world));
+}
+
+TEST_CASE("a resting tank's pressure grows with depth as rho0 g d", "[unit][position-based]") {
+    const uint32_t rows = 20;
+    World world = tank(rows);
+    for (int frame = 0; frame < 90; ++frame) {
+        world.step(kFrame);
+    }
+    REQUIRE(allFinite(world));
+    const Material& m = world.material(MaterialId{0});
+    const float s = world.spacing(MaterialId{0});
+    const float surface = float(rows) * s; // the block's top edge
+    // Mean pressure of the particles in horizontal bands, away from the side walls' corners.
+    const auto px = world.positionX(), py = world.positionY(), p = world.pressure();
+    double bandSum[4] = {}, bandDepth[4] = {};
+    uint32_t bandCount[4] = {};
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        const float depth = surface - py[i];
+        const auto band = static_cast<int>(depth / (0.25f * surface));
+        if (band < 0 || band > 3 || px[i] < 3.0f * s || px[i] > 17.0f * s) {
+            continue;
+        }
+        bandSum[band] += p[i];
+        bandDepth[band] += depth;
+        ++bandCount[band];
+    }
+    // The top band is the free surface's (pressure near 0); the three below read hydrostatics.
+    for (int band = 1; band < 4; ++band) {
+        REQUIRE(bandCount[band] > 20);
+        const double mean = bandSum[band] / bandCount[band];
+        const double expected = m.restDensity * kG * bandDepth[band] / bandCount[band];
+        CAPTURE(band, mean, expected);
+        CHECK(mean == Approx(expected).epsilon(0.25));
+    }
+}
+
+TEST_CASE("vorticity confinement keeps a spinning zero-g blob spinning longer",
+          "[unit][position-based]") {
+    auto spin = [](float vorticity) {
+        WorldDef def;
+        def.positionBased.vorticity = vorticity;
+        World world(def);
+        const MaterialId w = world.addMaterial(water());
+        BlobDef blob;
+        blob.shape = BlobShape::Circle;
+        blob.radius = 0.1f;
+        blob.material = w;
+        world.spawnBlob(blob);
+        // Rigid rotation at 10 rad/s about the centre.
+        for (uint32_t i = 0; i < world.particleCount(); ++i) {
+            const ParticleHandle h = world.handleAt(i);
+            const glm::vec2 x = world.position(h);
+            world.setVelocity(h, {-10.0f * x.y, 10.0f * x.x});
+        }
+        const double e0 = kinetic(world);
+        for (int frame = 0; frame < 30; ++frame) {
+            world.step(kFrame);
+        }
+        REQUIRE(allFinite(world));
+        return kinetic(world) / e0;
+    };
+    const double plain = spin(0.0f);
+    const double confined = spin(0.5f);
+    CAPTURE(plain, confined);
+    CHECK(plain < 1.0);        // viscosity spins it down
+    CHECK(confined > plain);   // confinement gives some rotation back
+}
