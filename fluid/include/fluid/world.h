@@ -42,8 +42,8 @@ enum class EquationOfState : uint8_t {
 /// between steps with `World::setPositionBased` (stepping thread).
 struct PositionBasedDef {
     /// Sub-steps per `World::step` (unit: count; range [1, 64]). Default 4: with 8 iterations
-    /// a resting 0.5 m water tank reads 1.6% maximum and 0.6% mean compression (docs/solver.md
-    /// has the measurements). Fewer are faster and more compressible; a particle moves at most
+    /// a resting 0.5 m water tank reads 2.3% maximum and 0.85% mean compression
+    /// (docs/position_based.md has the measurements). Fewer are faster and more compressible; a particle moves at most
     /// two support radii per sub-step (faster ones are slowed and counted in
     /// `Profile::speedClamped`).
     uint32_t substeps = 4;
@@ -64,8 +64,9 @@ struct WorldDef {
     /// Equation of state of the explicit solver (ignored by the position-based one). Default
     /// Tait (stiff water under gravity).
     EquationOfState equationOfState = EquationOfState::Tait;
-    /// Tait sound speed c (unit: m/s; range 0 or [0.1, 1e4]). 0 derives it from the scene at
-    /// every step: c = max(sqrt(k), 10 sqrt(g H), 10 sqrt(gamma m h / A)) over the materials,
+    /// Tait sound speed c of the explicit solver (unit: m/s; range 0 or [0.1, 1e4]). 0 derives
+    /// it from the scene at every step: c = max(sqrt(k), 10 sqrt(g H), 10 sqrt(gamma m h / A))
+    /// over the materials,
     /// g the largest external acceleration and H the fluid's extent along it (measured during
     /// the previous step; the first step has neither), the last term for the squeeze of surface
     /// tension; never decreasing over the world's life (the dam-break column collapses, its
@@ -75,11 +76,12 @@ struct WorldDef {
     /// Slab depth that reads the materials' 3D mass and density in 2D (unit: m; range
     /// [1e-4, 1e3]). See `Material`. Default `kDefaultDepth` = 0.1293 m.
     float depth = kDefaultDepth;
-    /// Courant number lambda of the sub-step dt <= lambda * spacing / (c + v_max) (unit: 1;
-    /// range [0.01, 1]). Default 0.4.
+    /// Courant number lambda of the explicit solver's sub-step dt <= lambda * spacing /
+    /// (c + v_max) (unit: 1; range [0.01, 1]). Default 0.4.
     float courant = 0.4f;
-    /// Most sub-steps one `step` may take (unit: count; range [1, 10000]). When the CFL limit
-    /// asks for more, the step uses this many, longer sub-steps and the speed cap holds it.
+    /// Most sub-steps one explicit `step` may take (unit: count; range [1, 10000]). When the
+    /// CFL limit asks for more, the step uses this many, longer sub-steps and the speed cap
+    /// holds it.
     uint32_t maxSubsteps = 512;
     /// Most particles the world holds (unit: count; range [1, 2^26]); adding more throws.
     uint32_t maxParticles = 1u << 20;
@@ -141,7 +143,7 @@ struct Profile {
     /// Sub-steps taken (unit: count).
     uint32_t substeps = 0;
     /// Density-constraint iterations per sub-step (unit: count; 0 for the explicit solver).
-    uint32_t iterations = 0;
+    uint32_t iterations = 8;
     /// Sub-step chosen by the CFL condition before the cap (unit: s; the explicit solver only).
     float cflDt = 0.0f;
     /// Tait sound speed used (unit: m/s; 0 with the linear equation of state or the
