@@ -78,7 +78,10 @@ void pbfConstraint(WorldState& s, const PbfConstants& c) {
     });
 }
 
-void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> multiplier, bool sCorr) {
+namespace {
+
+template <bool kSCorr>
+void displace(WorldState& s, const PbfConstants& c, std::span<const float> multiplier) {
     Particles& p = s.particles;
     const Samples& w = s.samples;
     const float* __restrict px = p.px.data();
@@ -90,7 +93,6 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
     const float* __restrict pa = p.pairPressure.data();
     const float* __restrict wx = w.px.data();
     const float* __restrict wy = w.py.data();
-    const float artificial = sCorr ? c.artificial : 0.0f;
     parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
             const float xi = px[i], yi = py[i], hi = hs[i], vi = vol[i];
@@ -104,12 +106,15 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
                     const float t = std::max(1.0f - q, 0.0f);
                     const float t2 = t * t;
                     const float invH2 = invH * invH;
-                    // s_corr = -k (W_ij / W(dq))^4 [Macklin & Mueller 2013, eq. 13], k from the
-                    // pair's artificial pressure (Pa) so that it means the same at any dt.
-                    const float ratio = (t2 * t2) * (1.0f + 4.0f * q) * c.invWdq;
-                    const float r2 = ratio * ratio;
-                    const float corr = -artificial * 0.5f * (pai + pa[j]) * vi * vol[j] * (r2 * r2);
-                    const float f = (dli + dl[j] * vol[j] * il[j] + corr) * (invH2 * invH2) * (t2 * t);
+                    float m = dli + dl[j] * vol[j] * il[j];
+                    if constexpr (kSCorr) {
+                        // s_corr = -k (W_ij / W(dq))^4 [Macklin & Mueller 2013, eq. 13], k from
+                        // the pair's artificial pressure (Pa) so that it means the same at any dt.
+                        const float ratio = (t2 * t2) * (1.0f + 4.0f * q) * c.invWdq;
+                        const float r2 = ratio * ratio;
+                        m -= c.artificial * 0.5f * (pai + pa[j]) * vi * vol[j] * (r2 * r2);
+                    }
+                    const float f = m * (invH2 * invH2) * (t2 * t);
                     ax[l] += f * dx;
                     ay[l] += f * dy;
                 });
@@ -132,7 +137,20 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
     });
 }
 
-void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first) {
+} // namespace
+
+void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> multiplier, bool sCorr) {
+    if (sCorr) {
+        displace<true>(s, c, multiplier);
+    } else {
+        displace<false>(s, c, multiplier);
+    }
+}
+
+namespace {
+
+template <bool kFirst>
+void viscosity(WorldState& s, const PbfConstants& c, float scale) {
     Particles& p = s.particles;
     const Samples& w = s.samples;
     const float* __restrict px = p.px.data();
@@ -163,7 +181,7 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first)
                     const float fv = 0.5f * (mui + mu[j]) * vol[j] * invH4 * t;
                     ax[l] += fv * dvx;
                     ay[l] += fv * dvy;
-                    if (first) {
+                    if constexpr (kFirst) {
                         const float t2 = t * t;
                         const float g = invH4 * (t2 * t); // grad W / (kG r)
                         curl[l] += vol[j] * g * (dx * dvy - dy * dvx);
@@ -183,7 +201,7 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first)
                     const float t = std::max(1.0f - q, 0.0f);
                     wX[l] += w.friction[k] * t * (w.vx[k] - vxi);
                     wY[l] += w.friction[k] * t * (w.vy[k] - vyi);
-                    if (first) {
+                    if constexpr (kFirst) {
                         const float t2 = t * t;
                         ww[l] += (t2 * t2) * (1.0f + 4.0f * q);
                     }
@@ -194,7 +212,7 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first)
             const float wall = mui * c.sampleVolume * invH4;
             p.ax[i] = vxi + dt * invRho0 * kL * (laneSum(ax) + wall * laneSum(wX));
             p.ay[i] = vyi + dt * invRho0 * kL * (laneSum(ay) + wall * laneSum(wY));
-            if (first) {
+            if constexpr (kFirst) {
                 p.vorticity[i] = kG * laneSum(curl);
                 p.nx[i] = hi * kG * laneSum(nx);
                 p.ny[i] = hi * kG * laneSum(ny);
@@ -206,9 +224,19 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first)
     });
 }
 
+} // namespace
+
+void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first) {
+    if (first) {
+        viscosity<true>(s, c, scale);
+    } else {
+        viscosity<false>(s, c, scale);
+    }
+}
+
 namespace {
 
-template <bool kSurface>
+template <bool kSurface, bool kVorticity>
 void surface(WorldState& s, const PbfConstants& c, float vorticity) {
     Particles& p = s.particles;
     const float* __restrict px = p.px.data();
@@ -237,10 +265,13 @@ void surface(WorldState& s, const PbfConstants& c, float vorticity) {
                     const float q = r * invH;
                     const float t = std::max(1.0f - q, 0.0f);
                     const float invH2 = invH * invH;
-                    // eta = grad |omega| [Macklin & Mueller 2013, eq. 16], difference form.
-                    const float g = kG * vol[j] * (std::fabs(omega[j]) - absOmega) * (invH2 * invH2) * (t * t * t);
-                    etaX[l] += g * dx;
-                    etaY[l] += g * dy;
+                    if constexpr (kVorticity) {
+                        // eta = grad |omega| [Macklin & Mueller 2013, eq. 16], difference form.
+                        const float g = kG * vol[j] * (std::fabs(omega[j]) - absOmega) *
+                                        (invH2 * invH2) * (t * t * t);
+                        etaX[l] += g * dx;
+                        etaY[l] += g * dy;
+                    }
                     if constexpr (kSurface) {
                         // Cohesion and curvature [Akinci 2013, eqs. 1-6], as in sph_loops.cpp.
                         const float k = 0.5f * (gammai + gamma[j]) * (rho0i + rho0[j]) / (rhoi + rho[j]);
@@ -256,7 +287,7 @@ void surface(WorldState& s, const PbfConstants& c, float vorticity) {
                 });
             });
             float fx = laneSum(ax), fy = laneSum(ay);
-            if (vorticity > 0.0f) {
+            if constexpr (kVorticity) {
                 // f = eps h |omega| (N x omega), N = eta / |eta|: a vortex's rotation speed at
                 // radius h, given back at rate eps per radian [Macklin & Mueller 2013, eq. 15].
                 const float ex = laneSum(etaX), ey = laneSum(etaY);
@@ -276,10 +307,13 @@ void surface(WorldState& s, const PbfConstants& c, float vorticity) {
 } // namespace
 
 void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surfaceTension) {
-    if (surfaceTension) {
-        surface<true>(s, c, vorticity);
-    } else if (vorticity > 0.0f) {
-        surface<false>(s, c, vorticity);
+    const bool spin = vorticity > 0.0f;
+    if (surfaceTension && spin) {
+        surface<true, true>(s, c, vorticity);
+    } else if (surfaceTension) {
+        surface<true, false>(s, c, vorticity);
+    } else if (spin) {
+        surface<false, true>(s, c, vorticity);
     }
 }
 

@@ -16,13 +16,15 @@ struct PbfConstants {
     float invWdq = 0;        // 1 / ((1-dq)^4 (1+4 dq)): s_corr's kernel ratio at r = dq h
 };
 
-/// The density constraint C_i = V_i sum_j W_ij + V_w sum_w W_iw - 1 at the current positions
-/// (rest area V = m/(depth rho0), boundary samples of area V_w) into `constraint`, the diagonal
-/// of A = J W J^T, w_i |grad_i C_i|^2 + sum_j w_j |grad_j C_i|^2 + eps (w = 1/m), into
-/// `diagonal`, the density rho_i = rho0_i (C_i + 1) and 1/rho_i [Macklin & Mueller 2013].
+/// The density constraint C_i = (V_i sum_j W_ij + V_w sum_w W_iw) / L_i - 1 at the current
+/// positions (rest area V = m/(depth rho0), boundary samples of area V_w, L_i the kernel sum of
+/// the material's own lattice, so the spawn lattice reads 0) into `constraint`, the diagonal of
+/// A = J W J^T, w_i |grad_i C_i|^2 + sum_j w_j |grad_j C_i|^2 + eps (w = 1/m), into `diagonal`,
+/// the density rho_i = rho0_i (C_i + 1) and 1/rho_i [Macklin & Mueller 2013].
 void pbfConstraint(WorldState& s, const PbfConstants& c);
 
-/// The displacement W J^T lambda of multipliers `multiplier` into ax, ay (m):
+/// The displacement W J^T lambda of multipliers `multiplier` into ax, ay (m), with V and V_w
+/// over the lattice sums L as in `pbfConstraint`:
 ///   dx_i = w_i [sum_j (l_i V_i + l_j V_j + s_ij) grad W_ij + l_i V_w sum_w grad W_iw],
 /// s_ij the artificial pressure term [Macklin & Mueller 2013, eq. 13] when `sCorr`. Every fluid
 /// pair term is antisymmetric times m_i, so displacements conserve momentum.
@@ -31,7 +33,7 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
 /// Viscosity, seed eq. 2.6 with rest volumes, as an explicit velocity update over dt * `scale`
 /// into ax, ay (wall friction from the boundary samples). When `first`, also each particle's
 /// vorticity, Akinci surface normals (from invRho of the last constraint sweep) and density at
-/// the current positions.
+/// the current positions (over the lattice sum, as the constraint reads it).
 void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first);
 
 /// Vorticity confinement (strength `vorticity`) and, when `surfaceTension`, cohesion and

@@ -176,6 +176,39 @@ inline double insideDistance(const std::vector<glm::dvec2>& hull, glm::dvec2 p) 
     return d;
 }
 
+/// Density reading of a body's interior (see readInterior).
+struct Reading {
+    uint32_t interior = 0;
+    double worst = 0.0; // max |rho/rho0 - 1| over interior particles
+    double mean = 0.0;  // mean rho/rho0 - 1 over interior particles
+    double compression = 0.0; // max rho/rho0 - 1 over interior particles
+};
+
+// Interior: particles farther than one smoothing distance (plus half a spacing: where the body's
+// edge lies beyond its outermost particles) inside the convex hull of the body.
+inline Reading readInterior(const World& world, MaterialId id) {
+    const Material& m = world.material(id);
+    const float s = world.spacing(id);
+    std::vector<glm::dvec2> pts;
+    for (const glm::vec2 p : positions(world)) {
+        pts.emplace_back(p.x, p.y);
+    }
+    const std::vector<glm::dvec2> hull = convexHull(pts);
+    const auto rho = world.density();
+    Reading r;
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        if (insideDistance(hull, pts[i]) + 0.5 * s > m.smoothingDistance) {
+            const double e = rho[i] / m.restDensity - 1.0;
+            r.worst = std::max(r.worst, std::fabs(e));
+            r.compression = std::max(r.compression, e);
+            r.mean += e;
+            ++r.interior;
+        }
+    }
+    r.mean /= std::max(1u, r.interior);
+    return r;
+}
+
 /// FNV-1a (64 bit) over raw bytes.
 inline uint64_t fnv1a(const void* data, size_t size, uint64_t hash = 1469598103934665603ull) {
     const auto* bytes = static_cast<const unsigned char*>(data);
