@@ -10,15 +10,14 @@
 namespace fluid::detail {
 
 inline constexpr int kLanes = 8;
-inline constexpr uint32_t kPairGrain = 256;          // smallest particle range per worker task
-inline constexpr float kW = 7.0f / kernel::kPi;       // Wendland C2: W = kW / h^2 (1-q)^4 (1+4q)
-inline constexpr float kG = -140.0f / kernel::kPi;    // dW/dr / r = kG / h^4 (1-q)^3
-inline constexpr float kL = 40.0f / kernel::kPi;      // viscosity Laplacian = kL / h^4 (1-q)
-inline constexpr float kC = kernel::kCohesionNorm;    // cohesion = kC / h^2 spline(q)
+inline constexpr uint32_t kPairGrain = 256;        // smallest particle range per worker task
+inline constexpr float kW = 7.0f / kernel::kPi;    // Wendland C2: W = kW / h^2 (1-q)^4 (1+4q)
+inline constexpr float kG = -140.0f / kernel::kPi; // dW/dr / r = kG / h^4 (1-q)^3
+inline constexpr float kL = 40.0f / kernel::kPi;   // viscosity Laplacian = kL / h^4 (1-q)
+inline constexpr float kC = kernel::kCohesionNorm; // cohesion = kC / h^2 spline(q)
 
 /// Sum of the lane accumulators in a fixed order.
-template <class T>
-T laneSum(const T (&acc)[kLanes]) {
+template <class T> T laneSum(const T (&acc)[kLanes]) {
     T sum = acc[0];
     for (int l = 1; l < kLanes; ++l) {
         sum += acc[l];
@@ -29,8 +28,7 @@ T laneSum(const T (&acc)[kLanes]) {
 /// Runs body(j, lane) over [b, e) in blocks of kLanes (the tail uses the first lanes). The index
 /// is a size_t: with a 32-bit index g++ cannot prove that j + l are consecutive addresses (the
 /// sum could wrap) and assembles every vector from scalar loads.
-template <class Body>
-inline void lanes(uint32_t b, uint32_t e, Body&& body) {
+template <class Body> inline void lanes(uint32_t b, uint32_t e, Body&& body) {
     size_t j = b;
     for (; j + kLanes <= e; j += kLanes) {
         for (int l = 0; l < kLanes; ++l) {

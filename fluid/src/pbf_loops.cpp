@@ -139,7 +139,8 @@ void displace(WorldState& s, const PbfConstants& c, std::span<const float> multi
 
 } // namespace
 
-void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> multiplier, bool sCorr) {
+void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> multiplier,
+                 bool sCorr) {
     if (sCorr) {
         displace<true>(s, c, multiplier);
     } else {
@@ -149,8 +150,7 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
 
 namespace {
 
-template <bool kFirst>
-void viscosity(WorldState& s, const PbfConstants& c, float scale) {
+template <bool kFirst> void viscosity(WorldState& s, const PbfConstants& c, float scale) {
     Particles& p = s.particles;
     const Samples& w = s.samples;
     const float* __restrict px = p.px.data();
@@ -216,9 +216,10 @@ void viscosity(WorldState& s, const PbfConstants& c, float scale) {
                 p.vorticity[i] = kG * laneSum(curl);
                 p.nx[i] = hi * kG * laneSum(nx);
                 p.ny[i] = hi * kG * laneSum(ny);
-                p.density[i] = (mt[i] * kW * std::max(laneSum(sw), invH * invH) +
-                                p.restDensity[i] * c.sampleVolume * kW * invH * invH * laneSum(ww)) *
-                               p.invLattice[i];
+                p.density[i] =
+                    (mt[i] * kW * std::max(laneSum(sw), invH * invH) +
+                     p.restDensity[i] * c.sampleVolume * kW * invH * invH * laneSum(ww)) *
+                    p.invLattice[i];
             }
         }
     });
@@ -274,7 +275,8 @@ void surface(WorldState& s, const PbfConstants& c, float vorticity) {
                     }
                     if constexpr (kSurface) {
                         // Cohesion and curvature [Akinci 2013, eqs. 1-6], as in sph_loops.cpp.
-                        const float k = 0.5f * (gammai + gamma[j]) * (rho0i + rho0[j]) / (rhoi + rho[j]);
+                        const float k =
+                            0.5f * (gammai + gamma[j]) * (rho0i + rho0[j]) / (rhoi + rho[j]);
                         const float a = t * q;
                         const float a3 = a * a * a;
                         const float spline = 2.0f * q > 1.0f ? a3 : 2.0f * a3 - 1.0f / 64.0f;
@@ -356,4 +358,3 @@ void pbfSampleForces(WorldState& s, const PbfConstants& c, float weight) {
 }
 
 } // namespace fluid::detail
-

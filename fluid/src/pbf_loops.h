@@ -9,11 +9,11 @@ namespace fluid::detail {
 
 /// Constants of one position-based sub-step.
 struct PbfConstants {
-    float dt = 0;            // sub-step (s)
-    float sampleVolume = 0;  // V_w, area of a boundary sample (m^2)
-    float epsilon = 0;       // regulariser of the multiplier's denominator (1/(kg m^2))
-    float artificial = 0;    // s_corr scale: 2 depth dt^2 (unit: m s^2, times Pa m^4 per pair)
-    float invWdq = 0;        // 1 / ((1-dq)^4 (1+4 dq)): s_corr's kernel ratio at r = dq h
+    float dt = 0;           // sub-step (s)
+    float sampleVolume = 0; // V_w, area of a boundary sample (m^2)
+    float epsilon = 0;      // regulariser of the multiplier's denominator (1/(kg m^2))
+    float artificial = 0;   // s_corr scale: 2 depth dt^2 (unit: m s^2, times Pa m^4 per pair)
+    float invWdq = 0;       // 1 / ((1-dq)^4 (1+4 dq)): s_corr's kernel ratio at r = dq h
 };
 
 /// The density constraint C_i = (V_i sum_j W_ij + V_w sum_w W_iw) / L_i - 1 at the current
@@ -28,7 +28,8 @@ void pbfConstraint(WorldState& s, const PbfConstants& c);
 ///   dx_i = w_i [sum_j (l_i V_i + l_j V_j + s_ij) grad W_ij + l_i V_w sum_w grad W_iw],
 /// s_ij the artificial pressure term [Macklin & Mueller 2013, eq. 13] when `sCorr`. Every fluid
 /// pair term is antisymmetric times m_i, so displacements conserve momentum.
-void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> multiplier, bool sCorr);
+void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> multiplier,
+                 bool sCorr);
 
 /// Viscosity, seed eq. 2.6 with rest volumes, as an explicit velocity update over dt * `scale`
 /// into ax, ay (wall friction from the boundary samples). When `first`, also each particle's

@@ -54,8 +54,7 @@ constexpr float kMaxMove = 2.0f;
 // explicit update only smooths, never overshoots.
 constexpr float kViscosityFactor = 0.5f;
 
-template <class F>
-void each(WorldState& s, F&& f) {
+template <class F> void each(WorldState& s, F&& f) {
     parallelFor(s.tasks, s.particles.size(), 1024, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
             f(i);
@@ -67,7 +66,8 @@ void setArtificialPressure(WorldState& s) {
     for (size_t i = 0; i < s.materials.size(); ++i) {
         const Material& m = s.materials[i];
         const float cohesion = m.surfaceTension * m.mass / particleArea(m, s.def.depth);
-        s.constants[i].backgroundPressure = kArtificial * m.restDensity * cohesion * m.smoothingDistance;
+        s.constants[i].backgroundPressure =
+            kArtificial * m.restDensity * cohesion * m.smoothingDistance;
     }
 }
 
@@ -168,7 +168,8 @@ void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations, Pro
             });
             pbfDisplace(s, c, change, it == 0);
             const float rho2 = kChebyshev * kChebyshev;
-            omega = it == 0 ? 1.0f : (it == 1 ? 2.0f / (2.0f - rho2) : 4.0f / (4.0f - rho2 * omega));
+            omega =
+                it == 0 ? 1.0f : (it == 1 ? 2.0f / (2.0f - rho2) : 4.0f / (4.0f - rho2 * omega));
             if (it == 0) {
                 each(s, [&](uint32_t i) {
                     prevX[i] = 0.0f;
@@ -201,7 +202,8 @@ void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations, Pro
 }
 
 // v = (x* - x) / dt, computed as v + (total correction) / dt: a particle no constraint moved
-// keeps its velocity exactly, and no position rounding enters the velocity. Also the pressure the multipliers stand for.
+// keeps its velocity exactly, and no position rounding enters the velocity. Also the pressure the
+// multipliers stand for.
 void updateVelocity(WorldState& s, float dt) {
     Particles& p = s.particles;
     const float invDt = 1.0f / dt;
@@ -220,9 +222,10 @@ void stepPositionBased(WorldState& s, float frameDt) {
     prof = Profile{};
     Particles& p = s.particles;
     const uint32_t n = p.size();
-    for (auto* channel : {&p.ax, &p.ay, &p.ex, &p.ey, &p.nx, &p.ny, &p.invRho, &p.ox, &p.oy,
-                          &p.vorticity, &p.constraint, &p.diagonal, &p.lambda, &p.dLambda,
-                          &p.prevX, &p.prevY, &p.lambdaTotal, &p.lambdaPrev, &p.cx, &p.cy}) {
+    for (auto* channel :
+         {&p.ax,    &p.ay,    &p.ex,          &p.ey,         &p.nx,       &p.ny,     &p.invRho,
+          &p.ox,    &p.oy,    &p.vorticity,   &p.constraint, &p.diagonal, &p.lambda, &p.dLambda,
+          &p.prevX, &p.prevY, &p.lambdaTotal, &p.lambdaPrev, &p.cx,       &p.cy}) {
         channel->resize(n);
     }
     const PositionBasedDef& settings = s.def.positionBased;
@@ -254,10 +257,10 @@ void stepPositionBased(WorldState& s, float frameDt) {
         heaviest = std::max(heaviest, m.mass);
     }
     c.epsilon = 1e-6f * 40.0f / (heaviest * facts.maxSupport * facts.maxSupport);
-    const float viscosityFactor = dt * facts.maxNu * std::max(1.0f, facts.maxFriction) * (40.0f / 3.0f) /
-                                  (facts.minSupport * facts.minSupport);
-    const auto viscosityPasses =
-        static_cast<uint32_t>(std::clamp(std::ceil(viscosityFactor / kViscosityFactor), 1.0f, 64.0f));
+    const float viscosityFactor = dt * facts.maxNu * std::max(1.0f, facts.maxFriction) *
+                                  (40.0f / 3.0f) / (facts.minSupport * facts.minSupport);
+    const auto viscosityPasses = static_cast<uint32_t>(
+        std::clamp(std::ceil(viscosityFactor / kViscosityFactor), 1.0f, 64.0f));
     const float speedCap = kMaxMove * facts.minSupport / dt;
 
     for (uint32_t sub = 0; sub < substeps; ++sub) {

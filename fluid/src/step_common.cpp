@@ -12,7 +12,8 @@
 
 namespace fluid::detail {
 
-void permute(std::vector<float>& channel, std::span<const uint32_t> order, std::vector<float>& tmp) {
+void permute(std::vector<float>& channel, std::span<const uint32_t> order,
+             std::vector<float>& tmp) {
     tmp.resize(channel.size());
     for (size_t k = 0; k < order.size(); ++k) {
         tmp[k] = channel[order[k]];
@@ -42,7 +43,8 @@ void refreshConstants(WorldState& s) {
         double sum = 0.0;
         for (int a = -reach; a <= reach; ++a) {
             for (int b = -reach; b <= reach; ++b) {
-                sum += double(kernel::wendland(float(spacing * std::sqrt(double(a * a + b * b))), float(h)));
+                sum += double(
+                    kernel::wendland(float(spacing * std::sqrt(double(a * a + b * b))), float(h)));
             }
         }
         c.lattice = float(sum * spacing * spacing);
@@ -134,7 +136,8 @@ void externalForces(WorldState& s, float dt, double time) {
     });
 }
 
-void sortParticles(WorldState& s, float cellSize, std::initializer_list<std::vector<float>*> extra) {
+void sortParticles(WorldState& s, float cellSize,
+                   std::initializer_list<std::vector<float>*> extra) {
     Particles& p = s.particles;
     s.grid.build(p.px, p.py, cellSize, s.tasks);
     const std::span<const uint32_t> order = s.grid.order();
@@ -161,9 +164,8 @@ void projectBoundaries(WorldState& s, float dt, float timeInStep, float spacing)
     Particles& p = s.particles;
     const ProjectContext context{p.px, p.py, p.vx, p.vy, p.material, dt, timeInStep, spacing};
     for (const auto& plugin : s.boundaries) {
-        parallelFor(s.tasks, p.size(), 1024, [&](uint32_t b, uint32_t e, uint32_t) {
-            plugin->project(context, b, e);
-        });
+        parallelFor(s.tasks, p.size(), 1024,
+                    [&](uint32_t b, uint32_t e, uint32_t) { plugin->project(context, b, e); });
     }
 }
 
@@ -178,13 +180,16 @@ void densityError(WorldState& s) {
         [&](uint32_t b, uint32_t e) {
             Err r;
             for (uint32_t i = b; i < e; ++i) {
-                const float c = std::max(0.0f, p.density[i] / s.constants[p.material[i]].restDensity - 1.0f);
+                const float c =
+                    std::max(0.0f, p.density[i] / s.constants[p.material[i]].restDensity - 1.0f);
                 r.sum += c;
                 r.max = std::max(r.max, c);
             }
             return r;
         },
-        [](Err a, const Err& b) { return Err{a.sum + b.sum, std::max(a.max, b.max)}; });
+        [](Err a, const Err& b) {
+            return Err{a.sum + b.sum, std::max(a.max, b.max)};
+        });
     s.profile.densityErrorMax = err.max;
     s.profile.densityErrorAvg = p.size() > 0 ? float(err.sum / p.size()) : 0.0f;
 }

@@ -13,8 +13,7 @@ namespace fluid::detail {
 using Clock = std::chrono::steady_clock;
 
 /// Runs f and adds its wall-clock time to `total` (unit: ms).
-template <class F>
-void timed(float& total, F&& f) {
+template <class F> void timed(float& total, F&& f) {
     const Clock::time_point t0 = Clock::now();
     f();
     total += std::chrono::duration<float, std::milli>(Clock::now() - t0).count();
@@ -57,7 +56,8 @@ void externalForces(WorldState& s, float dt, double time);
 
 /// Counting sort by grid cell (cell size `cellSize`); positions, velocities, material, slot and
 /// the `extra` channels follow; handles are remapped.
-void sortParticles(WorldState& s, float cellSize, std::initializer_list<std::vector<float>*> extra = {});
+void sortParticles(WorldState& s, float cellSize,
+                   std::initializer_list<std::vector<float>*> extra = {});
 
 /// Boundary plugins' projection over all particles (px, py, vx, vy as they are now).
 void projectBoundaries(WorldState& s, float dt, float timeInStep, float spacing);

@@ -9,7 +9,8 @@
 using namespace fluid;
 using namespace fluid::test;
 
-TEST_CASE("a block resting 1 s in zero gravity still reads its rest density", "[slow][invariants][density]") {
+TEST_CASE("a block resting 1 s in zero gravity still reads its rest density",
+          "[slow][invariants][density]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
     CAPTURE(solverName(solver));
     for (const Material& preset : {water(), yoghurt()}) {

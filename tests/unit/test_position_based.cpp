@@ -133,6 +133,6 @@ TEST_CASE("vorticity confinement keeps a spinning zero-g blob spinning longer",
     const double plain = spin(0.0f);
     const double confined = spin(0.5f);
     CAPTURE(plain, confined);
-    CHECK(plain < 1.0);        // viscosity spins it down
-    CHECK(confined > plain);   // confinement gives some rotation back
+    CHECK(plain < 1.0);      // viscosity spins it down
+    CHECK(confined > plain); // confinement gives some rotation back
 }

@@ -20,7 +20,8 @@ namespace fluid {
 enum class Solver : uint8_t {
     /// Position-based fluids [Macklin & Mueller 2013]: predict positions, iterate the density
     /// constraint, velocity from positions, viscosity, vorticity confinement, surface tension.
-    /// Incompressible at a few sub-steps per 60 Hz frame; the default (docs/solver.md).
+    /// Holds water within a few percent of its rest density at 4 sub-steps per 60 Hz frame;
+    /// the default (docs/position_based.md).
     PositionBased,
     /// The seed's explicit loop: density (eq. 2.3), equation of state (2.4), symmetric pressure
     /// force (2.5), viscosity (2.6), external forces, symplectic Euler (2.8, 2.9). Needs about
@@ -43,9 +44,9 @@ enum class EquationOfState : uint8_t {
 struct PositionBasedDef {
     /// Sub-steps per `World::step` (unit: count; range [1, 64]). Default 4: with 8 iterations
     /// a resting 0.5 m water tank reads 2.3% maximum and 0.85% mean compression
-    /// (docs/position_based.md has the measurements). Fewer are faster and more compressible; a particle moves at most
-    /// two support radii per sub-step (faster ones are slowed and counted in
-    /// `Profile::speedClamped`).
+    /// (docs/position_based.md has the measurements). Fewer are faster and more compressible;
+    /// a particle moves at most two support radii per sub-step (faster ones are slowed and
+    /// counted in `Profile::speedClamped`).
     uint32_t substeps = 4;
     /// Density-constraint iterations (Jacobi sweeps) per sub-step (unit: count; range
     /// [1, 100]). Default 8.
@@ -66,12 +67,11 @@ struct WorldDef {
     EquationOfState equationOfState = EquationOfState::Tait;
     /// Tait sound speed c of the explicit solver (unit: m/s; range 0 or [0.1, 1e4]). 0 derives
     /// it from the scene at every step: c = max(sqrt(k), 10 sqrt(g H), 10 sqrt(gamma m h / A))
-    /// over the materials,
-    /// g the largest external acceleration and H the fluid's extent along it (measured during
-    /// the previous step; the first step has neither), the last term for the squeeze of surface
-    /// tension; never decreasing over the world's life (the dam-break column collapses, its
-    /// speed does not). Ten times the wave speeds keeps density errors near 1%
-    /// (docs/solver.md).
+    /// over the materials, g the largest external acceleration and H the fluid's extent along
+    /// it (measured during the previous step; the first step has neither), the last term for
+    /// the squeeze of surface tension; never decreasing over the world's life (the dam-break
+    /// column collapses, its speed does not). Ten times the wave speeds keeps density errors
+    /// near 1% (docs/solver.md).
     float soundSpeed = 0.0f;
     /// Slab depth that reads the materials' 3D mass and density in 2D (unit: m; range
     /// [1e-4, 1e3]). See `Material`. Default `kDefaultDepth` = 0.1293 m.
@@ -143,7 +143,7 @@ struct Profile {
     /// Sub-steps taken (unit: count).
     uint32_t substeps = 0;
     /// Density-constraint iterations per sub-step (unit: count; 0 for the explicit solver).
-    uint32_t iterations = 8;
+    uint32_t iterations = 0;
     /// Sub-step chosen by the CFL condition before the cap (unit: s; the explicit solver only).
     float cflDt = 0.0f;
     /// Tait sound speed used (unit: m/s; 0 with the linear equation of state or the
