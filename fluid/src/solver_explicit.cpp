@@ -179,50 +179,6 @@ void computePressure(WorldState& s, const SubstepConstants& c) {
     computeSamplePressure(s);
 }
 
-struct IntegrateStats {
-    uint32_t clamped = 0;
-    uint32_t repaired = 0;
-    float maxAccel2 = 0.0f;
-};
-
-// Symplectic Euler, seed eqs. 2.8 and 2.9, with two safety nets: a non-finite acceleration
-// (a broken plugin) is zeroed instead of spreading NaN, and the speed is capped at half a
-// support radius per sub-step so that no particle can jump through a wall's sample layers.
-IntegrateStats integrate(WorldState& s, float dt, float speedCap) {
-    Particles& p = s.particles;
-    return blockReduce<IntegrateStats>(
-        s.tasks, p.size(), IntegrateStats{},
-        [&](uint32_t b, uint32_t e) {
-            IntegrateStats st;
-            for (uint32_t i = b; i < e; ++i) {
-                float ax = p.ax[i], ay = p.ay[i];
-                if (!std::isfinite(ax) || !std::isfinite(ay)) {
-                    ax = ay = 0.0f;
-                    ++st.repaired;
-                }
-                st.maxAccel2 = std::max(st.maxAccel2, ax * ax + ay * ay);
-                float vx = p.vx[i] + dt * ax;
-                float vy = p.vy[i] + dt * ay;
-                const float v2 = vx * vx + vy * vy;
-                if (v2 > speedCap * speedCap) {
-                    const float scale = speedCap / std::sqrt(v2);
-                    vx *= scale;
-                    vy *= scale;
-                    ++st.clamped;
-                }
-                p.vx[i] = vx;
-                p.vy[i] = vy;
-                p.px[i] += dt * vx;
-                p.py[i] += dt * vy;
-            }
-            return st;
-        },
-        [](IntegrateStats a, const IntegrateStats& b) {
-            return IntegrateStats{a.clamped + b.clamped, a.repaired + b.repaired,
-                                  std::max(a.maxAccel2, b.maxAccel2)};
-        });
-}
-
 } // namespace
 
 void stepExplicit(WorldState& s, float frameDt) {
@@ -354,7 +310,7 @@ void stepExplicit(WorldState& s, float frameDt) {
         }
         IntegrateStats st;
         // The speed cap: half a support radius per sub-step.
-        timed(prof.integrate, [&] { st = integrate(s, h, 0.5f * minSupport / h); });
+        timed(prof.integrate, [&] { st = integrate(s, p.ax, p.ay, h, 0.5f * minSupport / h); });
         prof.speedClamped += st.clamped;
         prof.nonFiniteRepaired += st.repaired;
         s.lastMaxAccel = std::sqrt(st.maxAccel2);

@@ -4,9 +4,10 @@
 //   prepare       plugins' prepare hooks, boundary samples, material constants
 //   per sub-step:
 //     external    force plugins' accelerations at the current positions
-//     predict     v += dt a_ext, x* = x + dt v (non-finite accelerations zeroed, at most
-//                 kMaxMove supports per sub-step); boundary plugins project x* out of solids, so
-//                 the constraint starts from admissible positions
+//     predict     v += dt a_ext, x* = x + dt v (step_common's integrate: non-finite
+//                 accelerations zeroed, at most kMaxMove supports per sub-step); boundary
+//                 plugins project x* out of solids, so the constraint starts from admissible
+//                 positions
 //     sort        counting sort by grid cell of x*; the grid serves every pass below
 //     density     `iterations` Jacobi sweeps of the one-sided density constraint: multipliers
 //                 (density pass), then the position corrections (pressure pass; s_corr in the
@@ -69,45 +70,6 @@ void setArtificialPressure(WorldState& s) {
         s.constants[i].backgroundPressure =
             kArtificial * m.restDensity * cohesion * m.smoothingDistance;
     }
-}
-
-struct PredictStats {
-    uint32_t repaired = 0;
-    uint32_t clamped = 0;
-};
-
-// v += dt a_ext (non-finite accelerations zeroed), |v| <= speedCap, x* = x + dt v.
-PredictStats predict(WorldState& s, float dt, float speedCap) {
-    Particles& p = s.particles;
-    return blockReduce<PredictStats>(
-        s.tasks, p.size(), PredictStats{},
-        [&](uint32_t b, uint32_t e) {
-            PredictStats st;
-            for (uint32_t i = b; i < e; ++i) {
-                float ax = p.ex[i], ay = p.ey[i];
-                if (!std::isfinite(ax) || !std::isfinite(ay)) {
-                    ax = ay = 0.0f;
-                    ++st.repaired;
-                }
-                float vx = p.vx[i] + dt * ax;
-                float vy = p.vy[i] + dt * ay;
-                const float v2 = vx * vx + vy * vy;
-                if (v2 > speedCap * speedCap) {
-                    const float scale = speedCap / std::sqrt(v2);
-                    vx *= scale;
-                    vy *= scale;
-                    ++st.clamped;
-                }
-                p.vx[i] = vx;
-                p.vy[i] = vy;
-                p.px[i] += dt * vx;
-                p.py[i] += dt * vy;
-            }
-            return st;
-        },
-        [](PredictStats a, const PredictStats& b) {
-            return PredictStats{a.repaired + b.repaired, a.clamped + b.clamped};
-        });
 }
 
 // The corrections of the last pass (ax, ay), each at most kMaxCorrection h long, added to the
@@ -268,7 +230,7 @@ void stepPositionBased(WorldState& s, float frameDt) {
         const float endInStep = sub + 1 == substeps ? frameDt : float(sub + 1) * dt;
         timed(prof.external, [&] { externalForces(s, dt, s.time + double(inStep)); });
         timed(prof.integrate, [&] {
-            const PredictStats st = predict(s, dt, speedCap);
+            const IntegrateStats st = integrate(s, p.ex, p.ey, dt, speedCap);
             prof.nonFiniteRepaired += st.repaired;
             prof.speedClamped += st.clamped;
             projectBoundaries(s, dt, endInStep, facts.sampleSpacing);

@@ -194,6 +194,42 @@ void densityError(WorldState& s) {
     s.profile.densityErrorAvg = p.size() > 0 ? float(err.sum / p.size()) : 0.0f;
 }
 
+IntegrateStats integrate(WorldState& s, const std::vector<float>& ax, const std::vector<float>& ay,
+                         float dt, float speedCap) {
+    Particles& p = s.particles;
+    return blockReduce<IntegrateStats>(
+        s.tasks, p.size(), IntegrateStats{},
+        [&](uint32_t b, uint32_t e) {
+            IntegrateStats st;
+            for (uint32_t i = b; i < e; ++i) {
+                float axi = ax[i], ayi = ay[i];
+                if (!std::isfinite(axi) || !std::isfinite(ayi)) {
+                    axi = ayi = 0.0f;
+                    ++st.repaired;
+                }
+                st.maxAccel2 = std::max(st.maxAccel2, axi * axi + ayi * ayi);
+                float vx = p.vx[i] + dt * axi;
+                float vy = p.vy[i] + dt * ayi;
+                const float v2 = vx * vx + vy * vy;
+                if (v2 > speedCap * speedCap) {
+                    const float scale = speedCap / std::sqrt(v2);
+                    vx *= scale;
+                    vy *= scale;
+                    ++st.clamped;
+                }
+                p.vx[i] = vx;
+                p.vy[i] = vy;
+                p.px[i] += dt * vx;
+                p.py[i] += dt * vy;
+            }
+            return st;
+        },
+        [](IntegrateStats a, const IntegrateStats& b) {
+            return IntegrateStats{a.clamped + b.clamped, a.repaired + b.repaired,
+                                  std::max(a.maxAccel2, b.maxAccel2)};
+        });
+}
+
 SceneFacts sceneFacts(const WorldState& s) {
     SceneFacts f;
     f.minSupport = std::numeric_limits<float>::max();

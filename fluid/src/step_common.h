@@ -59,6 +59,21 @@ void externalForces(WorldState& s, float dt, double time);
 void sortParticles(WorldState& s, float cellSize,
                    std::initializer_list<std::vector<float>*> extra = {});
 
+/// Counters of one `integrate` call.
+struct IntegrateStats {
+    uint32_t clamped = 0;   // particles whose speed hit the cap
+    uint32_t repaired = 0;  // particles whose acceleration was non-finite and zeroed
+    float maxAccel2 = 0.0f; // largest squared (finite) acceleration (m^2/s^4)
+};
+
+/// Symplectic Euler, seed eqs. 2.8 and 2.9: v += dt a, x += dt v, with two safety nets: a
+/// non-finite acceleration (a broken plugin) is zeroed instead of spreading NaN, and the speed
+/// is capped at `speedCap` (m/s) so that no particle can jump through a wall's sample layers.
+/// The explicit solver passes its total acceleration; the position-based one predicts with the
+/// plugins' (ex, ey).
+IntegrateStats integrate(WorldState& s, const std::vector<float>& ax, const std::vector<float>& ay,
+                         float dt, float speedCap);
+
 /// Boundary plugins' projection over all particles (px, py, vx, vy as they are now).
 void projectBoundaries(WorldState& s, float dt, float timeInStep, float spacing);
 
