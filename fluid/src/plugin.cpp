@@ -12,8 +12,9 @@ Plugin::Plugin(std::string_view type, PluginKind kind, std::span<const ParamDecl
     : m_type(type), m_kind(kind), m_decls(params) {
     m_values.reserve(params.size());
     for (const ParamDecl& decl : params) {
-        m_values.push_back(decl.defaultValue);
+        m_values.push_back(decl.type == ParamType::Number ? decl.defaultValue : 0.0);
     }
+    m_points.resize(params.size());
 }
 
 namespace {
@@ -35,7 +36,18 @@ std::size_t findParam(std::string_view type, std::span<const ParamDecl> decls,
     throw Error(s.str());
 }
 
+void checkType(std::string_view type, const ParamDecl& decl, ParamType expected) {
+    if (decl.type != expected) {
+        throw Error("plugin '" + std::string(type) + "': parameter '" + std::string(decl.name) +
+                    "' is " + (decl.type == ParamType::Points ? "a point list" : "a number") +
+                    ", not " + (expected == ParamType::Points ? "a point list" : "a number"));
+    }
+}
+
 void checkValue(std::string_view type, const ParamDecl& decl, double value) {
+    if (decl.type == ParamType::Points) {
+        return; // points: checked by setPoints
+    }
     if (std::isfinite(value) && value >= decl.minValue && value <= decl.maxValue) {
         return;
     }
@@ -48,13 +60,45 @@ void checkValue(std::string_view type, const ParamDecl& decl, double value) {
 } // namespace
 
 double Plugin::param(std::string_view name) const {
-    return m_values[findParam(m_type, m_decls, name)];
+    const std::size_t index = findParam(m_type, m_decls, name);
+    checkType(m_type, m_decls[index], ParamType::Number);
+    return m_values[index];
 }
 
 void Plugin::setParam(std::string_view name, double value) {
     const std::size_t index = findParam(m_type, m_decls, name);
+    checkType(m_type, m_decls[index], ParamType::Number);
     checkValue(m_type, m_decls[index], value);
     m_values[index] = value;
+    onParamChanged(index);
+}
+
+std::span<const glm::vec2> Plugin::points(std::string_view name) const {
+    const std::size_t index = findParam(m_type, m_decls, name);
+    checkType(m_type, m_decls[index], ParamType::Points);
+    return m_points[index];
+}
+
+void Plugin::setPoints(std::string_view name, std::span<const glm::vec2> points) {
+    const std::size_t index = findParam(m_type, m_decls, name);
+    const ParamDecl& decl = m_decls[index];
+    checkType(m_type, decl, ParamType::Points);
+    const auto count = double(points.size());
+    if (!(count >= decl.minValue && count <= decl.maxValue)) {
+        std::ostringstream s;
+        s << "plugin '" << m_type << "': parameter '" << decl.name << "' has " << points.size()
+          << " points; expected " << decl.minValue << " to " << decl.maxValue;
+        throw Error(s.str());
+    }
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        if (!std::isfinite(points[k].x) || !std::isfinite(points[k].y)) {
+            std::ostringstream s;
+            s << "plugin '" << m_type << "': parameter '" << decl.name << "' point " << k << " = ("
+              << points[k].x << ", " << points[k].y << ") is not finite";
+            throw Error(s.str());
+        }
+    }
+    m_points[index].assign(points.begin(), points.end());
     onParamChanged(index);
 }
 

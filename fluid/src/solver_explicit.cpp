@@ -315,7 +315,9 @@ void stepExplicit(WorldState& s, float frameDt) {
         prof.nonFiniteRepaired += st.repaired;
         s.lastMaxAccel = std::sqrt(st.maxAccel2);
         elapsed += double(h);
-        timed(prof.boundaries, [&] { projectBoundaries(s, h, float(elapsed), sampleSpacing); });
+        timed(prof.boundaries, [&] {
+            projectBoundaries(s, h, inStep, float(elapsed), sampleSpacing, p.qx, p.qy);
+        });
         if (probe && sub == 0) {
             h = float((double(frameDt) - elapsed) / double(total - 1));
         }
@@ -327,6 +329,7 @@ void stepExplicit(WorldState& s, float frameDt) {
     if (wantsForces) {
         deliverSampleForces(s);
     }
+    finishPlugins(s, context);
     s.time += frameDt;
     prof.iterations = 0;
     prof.particles = n;

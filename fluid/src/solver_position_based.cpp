@@ -233,7 +233,7 @@ void stepPositionBased(WorldState& s, float frameDt) {
             const IntegrateStats st = integrate(s, p.ex, p.ey, dt, speedCap);
             prof.nonFiniteRepaired += st.repaired;
             prof.speedClamped += st.clamped;
-            projectBoundaries(s, dt, endInStep, facts.sampleSpacing);
+            projectBoundaries(s, dt, inStep, endInStep, facts.sampleSpacing, p.qx, p.qy);
             // The admissible prediction: the velocity update adds only what the constraint
             // moves from here.
             each(s, [&](uint32_t i) {
@@ -260,12 +260,15 @@ void stepPositionBased(WorldState& s, float frameDt) {
                 pbfSampleForces(s, c, dt / frameDt);
             }
         });
-        timed(prof.boundaries, [&] { projectBoundaries(s, dt, endInStep, facts.sampleSpacing); });
+        timed(prof.boundaries, [&] {
+            projectBoundaries(s, dt, endInStep, endInStep, facts.sampleSpacing, p.ox, p.oy);
+        });
     }
     densityError(s);
     if (facts.wantsForces) {
         deliverSampleForces(s);
     }
+    finishPlugins(s, context);
     s.time += frameDt;
     prof.substeps = substeps;
     prof.iterations = settings.iterations;

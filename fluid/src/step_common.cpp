@@ -141,7 +141,7 @@ void sortParticles(WorldState& s, float cellSize,
     Particles& p = s.particles;
     s.grid.build(p.px, p.py, cellSize, s.tasks);
     const std::span<const uint32_t> order = s.grid.order();
-    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy}) {
+    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy, &p.life}) {
         permute(*channel, order, s.sortScratch);
     }
     for (auto* channel : extra) {
@@ -160,12 +160,25 @@ void sortParticles(WorldState& s, float cellSize,
     }
 }
 
-void projectBoundaries(WorldState& s, float dt, float timeInStep, float spacing) {
+void projectBoundaries(WorldState& s, float dt, float prevTimeInStep, float timeInStep,
+                       float spacing, const std::vector<float>& prevX,
+                       const std::vector<float>& prevY) {
     Particles& p = s.particles;
-    const ProjectContext context{p.px, p.py, p.vx, p.vy, p.material, dt, timeInStep, spacing};
+    const ProjectContext context{p.px,       p.py,       prevX, prevY, p.vx,
+                                 p.vy,       p.material, dt,    timeInStep,
+                                 prevTimeInStep, spacing};
     for (const auto& plugin : s.boundaries) {
         parallelFor(s.tasks, p.size(), 1024,
                     [&](uint32_t b, uint32_t e, uint32_t) { plugin->project(context, b, e); });
+    }
+}
+
+void finishPlugins(WorldState& s, const StepContext& context) {
+    for (const auto& plugin : s.forces) {
+        plugin->finish(context);
+    }
+    for (const auto& plugin : s.boundaries) {
+        plugin->finish(context);
     }
 }
 
@@ -197,6 +210,8 @@ void densityError(WorldState& s) {
 IntegrateStats integrate(WorldState& s, const std::vector<float>& ax, const std::vector<float>& ay,
                          float dt, float speedCap) {
     Particles& p = s.particles;
+    p.qx.resize(p.size());
+    p.qy.resize(p.size());
     return blockReduce<IntegrateStats>(
         s.tasks, p.size(), IntegrateStats{},
         [&](uint32_t b, uint32_t e) {
@@ -219,6 +234,8 @@ IntegrateStats integrate(WorldState& s, const std::vector<float>& ax, const std:
                 }
                 p.vx[i] = vx;
                 p.vy[i] = vy;
+                p.qx[i] = p.px[i];
+                p.qy[i] = p.py[i];
                 p.px[i] += dt * vx;
                 p.py[i] += dt * vy;
             }

@@ -70,12 +70,18 @@ struct IntegrateStats {
 /// non-finite acceleration (a broken plugin) is zeroed instead of spreading NaN, and the speed
 /// is capped at `speedCap` (m/s) so that no particle can jump through a wall's sample layers.
 /// The explicit solver passes its total acceleration; the position-based one predicts with the
-/// plugins' (ex, ey).
+/// plugins' (ex, ey). The positions before the move are kept in (qx, qy) for the boundaries.
 IntegrateStats integrate(WorldState& s, const std::vector<float>& ax, const std::vector<float>& ay,
                          float dt, float speedCap);
 
-/// Boundary plugins' projection over all particles (px, py, vx, vy as they are now).
-void projectBoundaries(WorldState& s, float dt, float timeInStep, float spacing);
+/// Boundary plugins' projection over all particles (px, py, vx, vy as they are now); `prevX`,
+/// `prevY` are where the particles stood at `prevTimeInStep` (see `ProjectContext`).
+void projectBoundaries(WorldState& s, float dt, float prevTimeInStep, float timeInStep,
+                       float spacing, const std::vector<float>& prevX,
+                       const std::vector<float>& prevY);
+
+/// Every plugin's `finish` hook, in the order added (forces, then boundaries).
+void finishPlugins(WorldState& s, const StepContext& context);
 
 /// Profile's densityErrorMax and densityErrorAvg from p.density.
 void densityError(WorldState& s);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace fluid {
@@ -68,57 +69,19 @@ void validate(const WorldDef& def) {
     }
 }
 
-// Even-odd rule; points exactly on an edge count as whichever side the rule puts them.
-bool insidePolygon(const std::vector<glm::vec2>& poly, glm::vec2 p) {
-    bool inside = false;
-    for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-        const glm::vec2 a = poly[i];
-        const glm::vec2 b = poly[j];
-        if ((a.y > p.y) != (b.y > p.y)) {
-            const float x = (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x;
-            if (p.x < x) {
-                inside = !inside;
-            }
-        }
-    }
-    return inside;
+// A blob's region as a Shape.
+Shape blobShape(const BlobDef& blob) {
+    Shape shape;
+    shape.type = blob.shape;
+    shape.center = blob.center;
+    shape.halfExtents = blob.halfExtents;
+    shape.radius = blob.radius;
+    shape.vertices = blob.vertices;
+    return shape;
 }
 
-float cross(glm::vec2 a, glm::vec2 b) { return a.x * b.y - a.y * b.x; }
-
-bool segmentsCross(glm::vec2 a, glm::vec2 b, glm::vec2 c, glm::vec2 d) {
-    const float d1 = cross(b - a, c - a);
-    const float d2 = cross(b - a, d - a);
-    const float d3 = cross(d - c, a - c);
-    const float d4 = cross(d - c, b - c);
-    return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
-}
-
-void validatePolygon(const std::vector<glm::vec2>& v) {
-    if (v.size() < 3) {
-        throw Error("spawnBlob: polygon has " + std::to_string(v.size()) +
-                    " vertices; expected 3 or more");
-    }
-    float area2 = 0.0f;
-    for (size_t i = 0; i < v.size(); ++i) {
-        checkVec("spawnBlob", ("polygon vertex " + std::to_string(i)).c_str(), v[i]);
-        area2 += cross(v[i], v[(i + 1) % v.size()]);
-    }
-    if (!(std::fabs(area2) > 0.0f)) {
-        throw Error("spawnBlob: polygon has zero area");
-    }
-    const size_t n = v.size();
-    for (size_t i = 0; i < n; ++i) {
-        for (size_t j = i + 2; j < n; ++j) {
-            if (i == 0 && j == n - 1) {
-                continue; // adjacent through the closing edge
-            }
-            if (segmentsCross(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n])) {
-                throw Error("spawnBlob: polygon edges " + std::to_string(i) + " and " +
-                            std::to_string(j) + " cross; expected a simple polygon");
-            }
-        }
-    }
+void checkLifetime(const char* function, float seconds) {
+    checkRange("lifetime", seconds, 0.0f, 1e6f, "s", function);
 }
 
 } // namespace
@@ -162,9 +125,10 @@ void WorldState::removeAt(uint32_t index) {
         p.slot[index] = p.slot[last];
         p.density[index] = p.density[last];
         p.pressure[index] = p.pressure[last];
+        p.life[index] = p.life[last];
         slotIndex[p.slot[index]] = index;
     }
-    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy, &p.density, &p.pressure}) {
+    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy, &p.density, &p.pressure, &p.life}) {
         channel->pop_back();
     }
     p.material.pop_back();
@@ -194,6 +158,7 @@ MaterialId World::addMaterial(const Material& material) {
         throw Error("World::addMaterial: the world already has 65535 materials");
     }
     m_state->materials.push_back(material);
+    m_state->sensorReadings.assign(m_state->sensors.size() * m_state->materials.size(), {});
     return MaterialId{static_cast<uint16_t>(m_state->materials.size() - 1)};
 }
 
@@ -241,37 +206,27 @@ ParticleHandle World::addParticle(glm::vec2 position, glm::vec2 velocity, Materi
     p.slot.push_back(slot);
     p.density.push_back(0.0f);
     p.pressure.push_back(0.0f);
+    p.life.push_back(std::numeric_limits<float>::infinity());
     return ParticleHandle{slot, s.slotGeneration[slot]};
 }
 
 uint32_t World::spawnBlob(const BlobDef& blob) {
     const Material& mat = material(blob.material);
     checkVec("spawnBlob", "velocity", blob.velocity);
+    checkLifetime("spawnBlob: ", blob.lifetime);
+    const Shape shape = blobShape(blob);
+    validate(shape, "spawnBlob");
     glm::vec2 lo{}, hi{};
     switch (blob.shape) {
     case BlobShape::Rectangle:
-        checkVec("spawnBlob", "center", blob.center);
-        if (!(blob.halfExtents.x > 0.0f && blob.halfExtents.y > 0.0f) || !finite(blob.halfExtents)) {
-            std::ostringstream s;
-            s << "spawnBlob: halfExtents = (" << blob.halfExtents.x << ", " << blob.halfExtents.y
-              << ") must be finite and > 0 (unit: m)";
-            throw Error(s.str());
-        }
         lo = blob.center - blob.halfExtents;
         hi = blob.center + blob.halfExtents;
         break;
     case BlobShape::Circle:
-        checkVec("spawnBlob", "center", blob.center);
-        if (!(blob.radius > 0.0f) || !std::isfinite(blob.radius)) {
-            std::ostringstream s;
-            s << "spawnBlob: radius = " << blob.radius << " must be finite and > 0 (unit: m)";
-            throw Error(s.str());
-        }
         lo = blob.center - glm::vec2(blob.radius);
         hi = blob.center + glm::vec2(blob.radius);
         break;
     case BlobShape::Polygon:
-        validatePolygon(blob.vertices);
         lo = hi = blob.vertices[0];
         for (glm::vec2 v : blob.vertices) {
             lo = glm::min(lo, v);
@@ -296,14 +251,8 @@ uint32_t World::spawnBlob(const BlobDef& blob) {
     for (uint32_t j = 0; j < ny; ++j) {
         for (uint32_t i = 0; i < nx; ++i) {
             const glm::vec2 p = origin + spacing * glm::vec2(float(i), float(j));
-            bool inside = true;
-            if (blob.shape == BlobShape::Circle) {
-                const glm::vec2 d = p - blob.center;
-                inside = d.x * d.x + d.y * d.y <= blob.radius * blob.radius;
-            } else if (blob.shape == BlobShape::Polygon) {
-                inside = insidePolygon(blob.vertices, p);
-            }
-            if (inside) {
+            // Every lattice point of a rectangle's bounding box is inside it.
+            if (blob.shape == BlobShape::Rectangle || contains(shape, p)) {
                 points.push_back(p);
             }
         }
@@ -313,8 +262,11 @@ uint32_t World::spawnBlob(const BlobDef& blob) {
                     " more particles would pass maxParticles = " +
                     std::to_string(m_state->def.maxParticles));
     }
+    const float life =
+        blob.lifetime > 0.0f ? blob.lifetime : std::numeric_limits<float>::infinity();
     for (glm::vec2 p : points) {
         addParticle(p, blob.velocity, blob.material);
+        m_state->particles.life.back() = life;
     }
     return static_cast<uint32_t>(points.size());
 }
@@ -386,15 +338,145 @@ void World::step(float frameDt) {
     if (m_state->materials.empty()) {
         throw Error("World::step: the world has no material; call addMaterial first");
     }
-    switch (m_state->def.solver) {
+    detail::WorldState& s = *m_state;
+    // Emitters add this frame's particles, the solver moves everything, then drains, lifetimes
+    // and sensors see where the particles ended (events for the host to read).
+    s.removed.clear();
+    uint32_t blocked = 0;
+    const uint32_t emitted = detail::emitParticles(s, frameDt, blocked);
+    switch (s.def.solver) {
     case Solver::PositionBased:
-        detail::stepPositionBased(*m_state, frameDt);
+        detail::stepPositionBased(s, frameDt);
         break;
     case Solver::Explicit:
-        detail::stepExplicit(*m_state, frameDt);
+        detail::stepExplicit(s, frameDt);
         break;
     }
+    s.profile.removed = detail::finishGameplay(s, frameDt);
+    s.profile.emitted = emitted;
+    s.profile.emitBlocked = blocked;
+    s.profile.particles = s.particles.size();
 }
+
+void World::setLifetime(ParticleHandle handle, float seconds) {
+    const uint32_t i = m_state->checkedIndex(handle, "World::setLifetime");
+    checkLifetime("World::setLifetime: ", seconds);
+    m_state->particles.life[i] = seconds > 0.0f ? seconds : std::numeric_limits<float>::infinity();
+}
+
+float World::lifetime(ParticleHandle handle) const {
+    return m_state->particles.life[m_state->checkedIndex(handle, "World::lifetime")];
+}
+
+namespace {
+
+template <class Id> uint32_t checkedId(Id id, size_t count, const char* function, const char* what) {
+    if (id.index >= count) {
+        throw Error(std::string(function) + ": unknown " + what + " id " +
+                    std::to_string(id.index) + "; the world has " + std::to_string(count) + " " +
+                    what + "s");
+    }
+    return id.index;
+}
+
+} // namespace
+
+void World::validateEmitter(const EmitterDef& def, const char* function) const {
+    const std::string prefix = std::string(function) + ": ";
+    checkVec(function, "position", def.position);
+    checkVec(function, "direction", def.direction);
+    if (!(def.direction.x != 0.0f || def.direction.y != 0.0f)) {
+        throw Error(prefix + "direction = (0, 0); expected a non-zero vector");
+    }
+    checkRange("speed", def.speed, 0.01f, 100.0f, "m/s", prefix.c_str());
+    checkRange("width", def.width, 0.0f, 100.0f, "m", prefix.c_str());
+    checkRange("rate", def.rate, 0.0f, 1e6f, "1/s", prefix.c_str());
+    checkRange("lifetime", def.lifetime, 0.0f, 1e6f, "s", prefix.c_str());
+    checkRange("jitter", def.jitter, 0.0f, 0.5f, "1", prefix.c_str());
+    const Material& mat = material(def.material);
+    const float spacing = particleSpacing(mat, m_state->def.depth);
+    const float lanes = 1.0f + std::round(def.width / spacing);
+    // Rows closer than one spacing would overlap: the jet would start compressed.
+    const float limit = lanes * def.speed / spacing;
+    if (def.rate > limit * 1.0001f) {
+        std::ostringstream s;
+        s << prefix << "rate = " << def.rate << " particles/s overlaps: a nozzle " << def.width
+          << " m wide (" << lanes << " lanes at " << spacing << " m spacing) at speed "
+          << def.speed << " m/s emits at most " << limit
+          << " particles/s; lower the rate, or widen or speed up the jet";
+        throw Error(s.str());
+    }
+}
+
+EmitterId World::addEmitter(const EmitterDef& def) {
+    validateEmitter(def, "World::addEmitter");
+    detail::EmitterState e;
+    e.def = def;
+    e.random = def.seed;
+    m_state->emitters.push_back(e);
+    return EmitterId{static_cast<uint32_t>(m_state->emitters.size() - 1)};
+}
+
+void World::setEmitter(EmitterId id, const EmitterDef& def) {
+    const uint32_t i = checkedId(id, m_state->emitters.size(), "World::setEmitter", "emitter");
+    validateEmitter(def, "World::setEmitter");
+    detail::EmitterState& e = m_state->emitters[i];
+    if (def.seed != e.def.seed) {
+        e.random = def.seed; // a new seed restarts the generator
+    }
+    e.def = def;
+}
+
+const EmitterDef& World::emitter(EmitterId id) const {
+    return m_state->emitters[checkedId(id, m_state->emitters.size(), "World::emitter", "emitter")]
+        .def;
+}
+
+uint32_t World::emittedCount(EmitterId id) const {
+    return m_state
+        ->emitters[checkedId(id, m_state->emitters.size(), "World::emittedCount", "emitter")]
+        .emitted;
+}
+
+uint32_t World::emitterCount() const { return static_cast<uint32_t>(m_state->emitters.size()); }
+
+DrainId World::addDrain(const DrainDef& def) {
+    validate(def.shape, "World::addDrain");
+    if (def.onlyMaterial) {
+        (void)material(def.material);
+    }
+    m_state->drains.push_back(def);
+    return DrainId{static_cast<uint32_t>(m_state->drains.size() - 1)};
+}
+
+const DrainDef& World::drain(DrainId id) const {
+    return m_state->drains[checkedId(id, m_state->drains.size(), "World::drain", "drain")];
+}
+
+uint32_t World::drainCount() const { return static_cast<uint32_t>(m_state->drains.size()); }
+
+SensorId World::addSensor(const SensorDef& def) {
+    validate(def.shape, "World::addSensor");
+    m_state->sensors.push_back(def);
+    // Zeros until the next step measures (the table is sensor-major, one entry per material).
+    m_state->sensorReadings.assign(m_state->sensors.size() * m_state->materials.size(), {});
+    return SensorId{static_cast<uint32_t>(m_state->sensors.size() - 1)};
+}
+
+const SensorDef& World::sensor(SensorId id) const {
+    return m_state->sensors[checkedId(id, m_state->sensors.size(), "World::sensor", "sensor")];
+}
+
+uint32_t World::sensorCount() const { return static_cast<uint32_t>(m_state->sensors.size()); }
+
+std::span<const SensorReading> World::sensorReading(SensorId id) const {
+    const uint32_t i =
+        checkedId(id, m_state->sensors.size(), "World::sensorReading", "sensor");
+    const size_t m = m_state->materials.size();
+    return std::span<const SensorReading>(m_state->sensorReadings).subspan(i * m, m);
+}
+
+std::span<const RemovedEvent> World::removedEvents() const { return m_state->removed; }
 
 void World::setPositionBased(const PositionBasedDef& settings) {
     validatePositionBased(settings, "World::setPositionBased: ");

@@ -19,12 +19,14 @@ struct Particles {
     std::vector<uint16_t> material;
     std::vector<uint32_t> slot;
     std::vector<float> density, pressure;
+    std::vector<float> life; // time left to live (s); +infinity for particles that live forever
     // Per sub-step scratch, in sorted order.
     std::vector<float> ax, ay; // total acceleration
     std::vector<float> ex, ey; // external (plugin) acceleration
     std::vector<float> nx, ny; // surface normals [Akinci 2013]
     std::vector<float> pOverRho2, invRho; // p/rho^2 and 1/rho, so pair loops do not divide
     std::vector<float> ox, oy;       // position-based: positions at the start of the sub-step
+    std::vector<float> qx, qy;       // positions before the last integrate (boundaries' prevX/Y)
     // Position-based: density constraint C and the diagonal D of its system, the accumulated
     // multiplier (kg m^2, <= 0) and its change in the last sweep, the sub-step's total position
     // correction and its value one sweep back, the multiplier the accelerated corrections stand
@@ -66,6 +68,14 @@ struct Samples {
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }
 };
 
+/// An emitter: its settings, and the state a snapshot carries.
+struct EmitterState {
+    EmitterDef def;
+    double carry = 0.0;   // rows owed but not emitted yet, in [0, 1)
+    uint32_t emitted = 0; // particles emitted so far
+    uint64_t random = 0;  // splitmix64 state, seeded from def.seed
+};
+
 struct WorldState {
     WorldDef def;
     std::unique_ptr<ThreadPool> pool; // own pool when the host gave no hook
@@ -89,6 +99,12 @@ struct WorldState {
     std::vector<uint32_t> sortScratchU;
     std::vector<uint16_t> sortScratchMaterial;
 
+    std::vector<EmitterState> emitters;
+    std::vector<DrainDef> drains;
+    std::vector<SensorDef> sensors;
+    std::vector<SensorReading> sensorReadings; // sensor-major: [sensor * materials + material]
+    std::vector<RemovedEvent> removed;         // the last step's removals
+
     Profile profile;
     double time = 0.0;
     float soundSpeed = 0.0f; // derived Tait sound speed, never decreasing
@@ -99,7 +115,16 @@ struct WorldState {
     std::optional<uint32_t> findIndex(ParticleHandle handle) const; // nullopt: null or stale
     uint32_t checkedIndex(ParticleHandle handle, const char* function) const;
     void removeAt(uint32_t index);
+    /// Removes every particle whose `kill` entry is non-zero, keeping the others in order.
+    void removeMarked(const std::vector<uint8_t>& kill);
 };
+
+/// Emitters' particles for a step of `frameDt` (start of `World::step`); returns the count.
+uint32_t emitParticles(WorldState& s, float frameDt, uint32_t& blocked);
+
+/// After a step: lifetimes run down by `frameDt`, drains and expired lifetimes remove particles
+/// (into `removed`), sensors measure. Returns the count removed.
+uint32_t finishGameplay(WorldState& s, float frameDt);
 
 /// The explicit solver's step (solver_explicit.cpp).
 void stepExplicit(WorldState& state, float frameDt);

@@ -2,13 +2,15 @@
 #pragma once
 
 #include <fluid/error.h>
+#include <fluid/gameplay.h>
 #include <fluid/handle.h>
 #include <fluid/material.h>
 #include <fluid/plugin.h>
 #include <fluid/registry.h>
+#include <fluid/shape.h>
 #include <fluid/task.h>
 #include <fluid/world.h>
 
-#include <fluid/plugins/box_container.h>
+#include <fluid/plugins/boundaries.h>
 #include <fluid/plugins/builtin.h>
-#include <fluid/plugins/gravity.h>
+#include <fluid/plugins/forces.h>

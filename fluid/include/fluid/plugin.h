@@ -1,15 +1,31 @@
 // fluid — 2D SPH liquid for games.
 #pragma once
 
+#include <fluid/error.h>
 #include <fluid/material.h>
 
+#include <glm/vec2.hpp>
+
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace fluid {
+
+/// What kind of value a declared parameter holds.
+enum class ParamType : uint8_t {
+    /// One number (a double), checked against [minValue, maxValue].
+    Number,
+    /// A list of points (x, y) in metres, e.g. a polygon's vertices; its length is checked
+    /// against [minValue, maxValue] (unit: count) and every coordinate must be finite. Set with
+    /// `Plugin::setPoints`; `defaultValue` is unused (a new plugin starts with no points).
+    Points,
+};
 
 /// One parameter a plugin declares: what level files, tuning panels and error messages show.
 /// Thread rule: plain data, usually a `static constexpr` array in the plugin class.
@@ -26,7 +42,54 @@ struct ParamDecl {
     double maxValue = 0.0;
     /// One line for humans.
     std::string_view description;
+    /// Number (the default) or a point list.
+    ParamType type = ParamType::Number;
 };
+
+/// Appends plain values to a plugin's snapshot state (see `Plugin::saveState`).
+/// Thread rule: stepping thread, inside `saveState` only.
+class StateWriter {
+public:
+    /// Appends the bytes of `value` (a trivially copyable type: numbers, flags, small structs).
+    template <class T> void write(const T& value) {
+        static_assert(std::is_trivially_copyable_v<T>, "StateWriter::write: plain data only");
+        const auto* bytes = reinterpret_cast<const std::byte*>(&value);
+        m_bytes.insert(m_bytes.end(), bytes, bytes + sizeof(T));
+    }
+    /// Everything written so far.
+    const std::vector<std::byte>& bytes() const { return m_bytes; }
+
+private:
+    std::vector<std::byte> m_bytes;
+};
+
+/// Reads back what a `StateWriter` wrote, in the same order (see `Plugin::restoreState`).
+/// Thread rule: stepping thread, inside `restoreState` only.
+class StateReader {
+public:
+    /// Reads from `bytes`, which must outlive the reader.
+    explicit StateReader(std::span<const std::byte> bytes) : m_bytes(bytes) {}
+    /// Reads the next value; throws `fluid::Error` when the state is shorter than asked.
+    template <class T> T read() {
+        static_assert(std::is_trivially_copyable_v<T>, "StateReader::read: plain data only");
+        if (m_bytes.size() - m_offset < sizeof(T)) {
+            throw Error("snapshot: plugin state is truncated (" + std::to_string(m_bytes.size()) +
+                        " bytes, read past the end at byte " + std::to_string(m_offset) + ")");
+        }
+        T value;
+        std::memcpy(&value, m_bytes.data() + m_offset, sizeof(T));
+        m_offset += sizeof(T);
+        return value;
+    }
+    /// Bytes not read yet (unit: count).
+    std::size_t remaining() const { return m_bytes.size() - m_offset; }
+
+private:
+    std::span<const std::byte> m_bytes;
+    std::size_t m_offset = 0;
+};
+
+struct StepContext;
 
 /// Which hook set a plugin implements.
 enum class PluginKind : uint8_t {
@@ -77,11 +140,33 @@ public:
     /// Sets parameter `name`; throws `fluid::Error` for an unknown name, a non-finite value or
     /// a value outside [minValue, maxValue], naming the plugin, key, value, range and unit.
     void setParam(std::string_view name, double value);
+    /// Current points of the `ParamType::Points` parameter `name` (unit: m); throws
+    /// `fluid::Error` for an unknown name or a number parameter.
+    std::span<const glm::vec2> points(std::string_view name) const;
+    /// Sets the point list `name` (unit: m); throws `fluid::Error` naming the plugin and key for
+    /// an unknown name, a number parameter, a non-finite coordinate or a count outside
+    /// [minValue, maxValue].
+    void setPoints(std::string_view name, std::span<const glm::vec2> points);
+
+    /// Once per `World::step`, after the sub-steps, on the stepping thread (advance a kinematic
+    /// pose, forget a one-shot trigger). Default: nothing.
+    virtual void finish(const StepContext& /*context*/) {}
+    /// Writes the plugin's own state beyond its parameters (which the world saves itself) into
+    /// a snapshot: anything a restored world needs to continue bit-identically. Default: nothing.
+    virtual void saveState(StateWriter& /*out*/) const {}
+    /// Reads what `saveState` wrote, after the parameters were restored; throws `fluid::Error`
+    /// for bad state. Default: nothing.
+    virtual void restoreState(StateReader& /*in*/) {}
 
 protected:
     /// Current value of the parameter at `index` in declaration order (for plugin code).
     double value(std::size_t index) const { return m_values[index]; }
-    /// Called after `setParam` changed a value (stepping thread). Default: nothing.
+    /// Points of the `ParamType::Points` parameter at `index` (for plugin code; unit: m).
+    std::span<const glm::vec2> pointsAt(std::size_t index) const { return m_points[index]; }
+    /// Stores a value the plugin computed itself (a pose advanced by its velocity, a trigger
+    /// reset), without range checks and without `onParamChanged`. Stepping thread only.
+    void storeValue(std::size_t index, double value) { m_values[index] = value; }
+    /// Called after `setParam` or `setPoints` changed a value (stepping thread). Default: nothing.
     virtual void onParamChanged(std::size_t /*index*/) {}
 
 private:
@@ -89,6 +174,7 @@ private:
     PluginKind m_kind;
     std::span<const ParamDecl> m_decls;
     std::vector<double> m_values;
+    std::vector<std::vector<glm::vec2>> m_points; // per declaration; empty for numbers
 };
 
 /// What a force plugin gets once per sub-step.
@@ -158,6 +244,11 @@ struct BoundarySamples {
 struct ProjectContext {
     /// Position x, y (unit: m), writable for slots in your range only.
     std::span<float> px, py;
+    /// Where each particle was before this move (unit: m), at `prevTimeInStep`: on the
+    /// admissible side of every solid when the previous projection held. A solid tests the
+    /// path prev -> current against its surface, so a fast particle cannot tunnel through a
+    /// thin wall.
+    std::span<const float> prevX, prevY;
     /// Velocity x, y (unit: m/s), writable for slots in your range only.
     std::span<float> vx, vy;
     /// Material index of each particle.
@@ -167,6 +258,10 @@ struct ProjectContext {
     /// Time since the start of the step at the end of this sub-step (unit: s; the same for
     /// both calls of a position-based sub-step).
     float timeInStep = 0.0f;
+    /// Time since the start of the step at which the particles stood at `prevX, prevY` (unit:
+    /// s): the start of the sub-step for the first call, `timeInStep` for a position-based
+    /// sub-step's second call.
+    float prevTimeInStep = 0.0f;
     /// Lattice spacing of the world's first material (unit: m).
     float spacing = 0.0f;
 };

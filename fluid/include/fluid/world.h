@@ -1,6 +1,7 @@
 // fluid — 2D SPH liquid for games.
 #pragma once
 
+#include <fluid/gameplay.h>
 #include <fluid/handle.h>
 #include <fluid/material.h>
 #include <fluid/plugin.h>
@@ -9,12 +10,16 @@
 #include <glm/vec2.hpp>
 
 #include <cstdint>
+#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace fluid {
+
+class Registry;
 
 /// The pressure solver a world runs every sub-step.
 enum class Solver : uint8_t {
@@ -92,15 +97,8 @@ struct WorldDef {
     TaskHook tasks{};
 };
 
-/// Shape of a spawned blob.
-enum class BlobShape : uint8_t {
-    /// Axis-aligned rectangle: `center`, `halfExtents`.
-    Rectangle,
-    /// Circle: `center`, `radius`.
-    Circle,
-    /// Simple polygon (convex or concave, either winding): `vertices`.
-    Polygon,
-};
+/// Shape of a spawned blob (the same kinds as `Shape`).
+using BlobShape = ShapeType;
 
 /// A block of liquid to spawn: the shape is filled on a square lattice at the material's spacing
 /// (lattice points whose position lies inside the shape).
@@ -119,6 +117,8 @@ struct BlobDef {
     glm::vec2 velocity{0.0f, 0.0f};
     /// Material of the particles (from `World::addMaterial`).
     MaterialId material{};
+    /// Lifetime of every particle (unit: s; range [0, 1e6]; 0 = lives forever).
+    float lifetime = 0.0f;
 };
 
 /// Timings and counters of the last `World::step`. Times are wall-clock milliseconds summed over
@@ -158,8 +158,14 @@ struct Profile {
     uint32_t speedClamped = 0;
     /// Particles whose acceleration was non-finite and was zeroed (unit: count; should be 0).
     uint32_t nonFiniteRepaired = 0;
-    /// Particles in the world (unit: count).
+    /// Particles in the world at the end of the step (unit: count).
     uint32_t particles = 0;
+    /// Particles emitters added at the start of the step (unit: count).
+    uint32_t emitted = 0;
+    /// Particles emitters could not add because the world was full (unit: count).
+    uint32_t emitBlocked = 0;
+    /// Particles drains and lifetimes removed at the end of the step (unit: count).
+    uint32_t removed = 0;
 };
 
 namespace detail {
@@ -210,6 +216,64 @@ public:
     glm::vec2 velocity(ParticleHandle handle) const;
     /// Sets a particle's velocity (unit: m/s, finite); throws for a stale handle.
     void setVelocity(ParticleHandle handle, glm::vec2 velocity);
+    /// Gives a particle `seconds` more to live (unit: s; range [0, 1e6]; 0 = forever); it is
+    /// removed at the end of the step in which it runs out (`RemovalCause::Lifetime`).
+    void setLifetime(ParticleHandle handle, float seconds);
+    /// Time the particle has left (unit: s; +infinity when it lives forever).
+    float lifetime(ParticleHandle handle) const;
+
+    /// Adds an emitter (see `EmitterDef`); throws `fluid::Error` naming the field for a bad
+    /// definition (an unknown material, a rate the nozzle cannot fit).
+    EmitterId addEmitter(const EmitterDef& def);
+    /// Replaces an emitter's settings (move or aim the faucet; a rate of 0 closes it), keeping
+    /// its clock, count and random state. Validated as `addEmitter`.
+    void setEmitter(EmitterId id, const EmitterDef& def);
+    /// An emitter's settings; throws for an unknown id.
+    const EmitterDef& emitter(EmitterId id) const;
+    /// Particles the emitter has emitted so far (unit: count); throws for an unknown id.
+    uint32_t emittedCount(EmitterId id) const;
+    /// Number of emitters (unit: count).
+    uint32_t emitterCount() const;
+
+    /// Adds a drain (see `DrainDef`); throws `fluid::Error` for a bad shape or material.
+    DrainId addDrain(const DrainDef& def);
+    /// A drain's settings; throws for an unknown id.
+    const DrainDef& drain(DrainId id) const;
+    /// Number of drains (unit: count).
+    uint32_t drainCount() const;
+
+    /// Adds a sensor (see `SensorDef`); throws `fluid::Error` for a bad shape.
+    SensorId addSensor(const SensorDef& def);
+    /// A sensor's settings; throws for an unknown id.
+    const SensorDef& sensor(SensorId id) const;
+    /// Number of sensors (unit: count).
+    uint32_t sensorCount() const;
+    /// What the sensor held at the end of the last step, one entry per material (indexed by
+    /// `MaterialId::index`; zeros before the first step). Throws for an unknown id.
+    std::span<const SensorReading> sensorReading(SensorId id) const;
+
+    /// Particles drains and lifetimes removed during the last step, ordered by drain (in the
+    /// order added, lifetimes last) and then by the particles' slots before removal: the same
+    /// for any number of workers.
+    std::span<const RemovedEvent> removedEvents() const;
+
+    /// Writes the whole world (settings, materials, particles and handles, plugins with their
+    /// parameters and state, emitters with their clocks and random state, drains, sensors,
+    /// solver state, the last step's sensor readings and profile) to `out` in fluid's binary
+    /// snapshot format. A world loaded from it continues bit-identically. Not saved: the task
+    /// hook and the last step's `removedEvents`. Throws `fluid::Error` if the stream fails.
+    void save(std::ostream& out) const;
+    /// `save` into the file `path` (replaced); throws `fluid::Error` naming the file.
+    void saveFile(const std::string& path) const;
+    /// Reads a snapshot written by `save`. Plugins are re-created by type from `registry`
+    /// (load your own plugin libraries into it first). `workerCount` 0 keeps the saved count;
+    /// a set `tasks.enqueue` lends the host's threads instead. Throws `fluid::Error` for a
+    /// truncated or corrupt snapshot (checksum), an unknown version or plugin type.
+    static World load(std::istream& in, const Registry& registry, uint32_t workerCount = 0,
+                      const TaskHook& tasks = {});
+    /// `load` from the file `path`; errors name the file.
+    static World loadFile(const std::string& path, const Registry& registry,
+                          uint32_t workerCount = 0, const TaskHook& tasks = {});
 
     /// Adds a force plugin; the world owns it. Returns a reference valid for the world's life.
     ForcePlugin& addForce(std::unique_ptr<ForcePlugin> plugin);
@@ -259,6 +323,7 @@ public:
     float spacing(MaterialId id) const;
 
 private:
+    void validateEmitter(const EmitterDef& def, const char* function) const;
     std::unique_ptr<detail::WorldState> m_state;
 };
 

@@ -1,0 +1,73 @@
+// fluid — 2D SPH liquid for games.
+#pragma once
+
+#include <glm/vec2.hpp>
+
+#include <cstdint>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace fluid {
+
+/// Kind of a `Shape`.
+enum class ShapeType : uint8_t {
+    /// Axis-aligned rectangle: `center`, `halfExtents`.
+    Rectangle,
+    /// Circle: `center`, `radius`.
+    Circle,
+    /// Simple polygon (convex or concave, either winding): `vertices`.
+    Polygon,
+};
+
+/// A region of the plane: what blobs fill, drains empty and sensors measure. Only the fields of
+/// `type` are read. Thread rule: a plain value.
+struct Shape {
+    /// Which fields are read.
+    ShapeType type = ShapeType::Rectangle;
+    /// Centre of a rectangle or circle (unit: m; finite).
+    glm::vec2 center{0.0f, 0.0f};
+    /// Half width and half height of a rectangle (unit: m; each finite and > 0). Typical: 0.25.
+    glm::vec2 halfExtents{0.25f, 0.25f};
+    /// Radius of a circle (unit: m; finite and > 0). Typical: 0.2.
+    float radius = 0.2f;
+    /// Polygon vertices in world space (unit: m; 3 or more, finite, no two edges crossing).
+    std::vector<glm::vec2> vertices;
+
+    /// An axis-aligned rectangle from its corners (unit: m).
+    static Shape box(glm::vec2 min, glm::vec2 max) {
+        Shape s;
+        s.center = 0.5f * (min + max);
+        s.halfExtents = 0.5f * (max - min);
+        return s;
+    }
+    /// A circle (unit: m).
+    static Shape circle(glm::vec2 center, float radius) {
+        Shape s;
+        s.type = ShapeType::Circle;
+        s.center = center;
+        s.radius = radius;
+        return s;
+    }
+    /// A polygon (unit: m).
+    static Shape polygon(std::vector<glm::vec2> vertices) {
+        Shape s;
+        s.type = ShapeType::Polygon;
+        s.vertices = std::move(vertices);
+        return s;
+    }
+};
+
+/// Throws `fluid::Error` if `shape` is not usable (non-finite or non-positive sizes, fewer than
+/// three vertices, zero area, crossing edges); the message starts with `who` (e.g.
+/// "World::addSensor") and names the field. Thread rule: any thread.
+void validate(const Shape& shape, std::string_view who);
+
+/// True when `point` (unit: m) lies inside `shape` (boundary points of a rectangle or circle
+/// count as inside; polygons use the even-odd rule). Thread rule: any thread.
+bool contains(const Shape& shape, glm::vec2 point);
+
+/// Area of `shape` (unit: m^2). Thread rule: any thread.
+float area(const Shape& shape);
+
+} // namespace fluid

@@ -1,0 +1,138 @@
+// fluid — shapes: validation, containment and area.
+#include <fluid/error.h>
+#include <fluid/shape.h>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace fluid {
+
+namespace {
+
+bool finite(glm::vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+float cross(glm::vec2 a, glm::vec2 b) { return a.x * b.y - a.y * b.x; }
+
+bool segmentsCross(glm::vec2 a, glm::vec2 b, glm::vec2 c, glm::vec2 d) {
+    const float d1 = cross(b - a, c - a);
+    const float d2 = cross(b - a, d - a);
+    const float d3 = cross(d - c, a - c);
+    const float d4 = cross(d - c, b - c);
+    return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
+}
+
+[[noreturn]] void fail(std::string_view who, const std::string& what) {
+    throw Error(std::string(who) + ": " + what);
+}
+
+void checkPoint(std::string_view who, const std::string& name, glm::vec2 v) {
+    if (!finite(v)) {
+        std::ostringstream s;
+        s << name << " = (" << v.x << ", " << v.y << ") is not finite";
+        fail(who, s.str());
+    }
+}
+
+float signedArea2(const std::vector<glm::vec2>& v) {
+    float area2 = 0.0f;
+    for (size_t i = 0; i < v.size(); ++i) {
+        area2 += cross(v[i], v[(i + 1) % v.size()]);
+    }
+    return area2;
+}
+
+} // namespace
+
+void validate(const Shape& shape, std::string_view who) {
+    switch (shape.type) {
+    case ShapeType::Rectangle:
+        checkPoint(who, "center", shape.center);
+        if (!(shape.halfExtents.x > 0.0f && shape.halfExtents.y > 0.0f) ||
+            !finite(shape.halfExtents)) {
+            std::ostringstream s;
+            s << "halfExtents = (" << shape.halfExtents.x << ", " << shape.halfExtents.y
+              << ") must be finite and > 0 (unit: m)";
+            fail(who, s.str());
+        }
+        return;
+    case ShapeType::Circle:
+        checkPoint(who, "center", shape.center);
+        if (!(shape.radius > 0.0f) || !std::isfinite(shape.radius)) {
+            std::ostringstream s;
+            s << "radius = " << shape.radius << " must be finite and > 0 (unit: m)";
+            fail(who, s.str());
+        }
+        return;
+    case ShapeType::Polygon: {
+        const std::vector<glm::vec2>& v = shape.vertices;
+        if (v.size() < 3) {
+            fail(who, "polygon has " + std::to_string(v.size()) + " vertices; expected 3 or more");
+        }
+        for (size_t i = 0; i < v.size(); ++i) {
+            checkPoint(who, "polygon vertex " + std::to_string(i), v[i]);
+        }
+        if (!(std::fabs(signedArea2(v)) > 0.0f)) {
+            fail(who, "polygon has zero area");
+        }
+        const size_t n = v.size();
+        for (size_t i = 0; i < n; ++i) {
+            for (size_t j = i + 2; j < n; ++j) {
+                if (i == 0 && j == n - 1) {
+                    continue; // adjacent through the closing edge
+                }
+                if (segmentsCross(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n])) {
+                    fail(who, "polygon edges " + std::to_string(i) + " and " + std::to_string(j) +
+                                  " cross; expected a simple polygon");
+                }
+            }
+        }
+        return;
+    }
+    }
+    fail(who, "unknown shape type " + std::to_string(int(shape.type)));
+}
+
+bool contains(const Shape& shape, glm::vec2 p) {
+    switch (shape.type) {
+    case ShapeType::Rectangle: {
+        const glm::vec2 d = p - shape.center;
+        return std::fabs(d.x) <= shape.halfExtents.x && std::fabs(d.y) <= shape.halfExtents.y;
+    }
+    case ShapeType::Circle: {
+        const glm::vec2 d = p - shape.center;
+        return d.x * d.x + d.y * d.y <= shape.radius * shape.radius;
+    }
+    case ShapeType::Polygon: {
+        // Even-odd rule; points exactly on an edge count as whichever side the rule puts them.
+        const std::vector<glm::vec2>& poly = shape.vertices;
+        bool inside = false;
+        for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+            const glm::vec2 a = poly[i];
+            const glm::vec2 b = poly[j];
+            if ((a.y > p.y) != (b.y > p.y)) {
+                const float x = (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x;
+                if (p.x < x) {
+                    inside = !inside;
+                }
+            }
+        }
+        return inside;
+    }
+    }
+    return false;
+}
+
+float area(const Shape& shape) {
+    switch (shape.type) {
+    case ShapeType::Rectangle:
+        return 4.0f * shape.halfExtents.x * shape.halfExtents.y;
+    case ShapeType::Circle:
+        return 3.14159265f * shape.radius * shape.radius;
+    case ShapeType::Polygon:
+        return 0.5f * std::fabs(signedArea2(shape.vertices));
+    }
+    return 0.0f;
+}
+
+} // namespace fluid

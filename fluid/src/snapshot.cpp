@@ -1,0 +1,464 @@
+// fluid — snapshots: the whole world in a binary file, restored bit-identically.
+//
+// Layout (little-endian, as the machine stores it; a snapshot is read back by the same build
+// family, not exchanged across architectures):
+//   "FLUIDSNP"            8 bytes magic
+//   u32 version           kVersion
+//   u64 payload size      bytes that follow, before the checksum
+//   payload               sections in the order of `writeWorld`
+//   u64 checksum          FNV-1a 64 of the payload
+// A truncated file fails the size check, a flipped byte the checksum; both before anything is
+// built from the payload.
+#include "world_state.h"
+
+#include <fluid/error.h>
+#include <fluid/registry.h>
+
+#include <cstring>
+#include <fstream>
+#include <istream>
+#include <iterator>
+#include <ostream>
+#include <sstream>
+
+namespace fluid {
+
+namespace {
+
+constexpr char kMagic[8] = {'F', 'L', 'U', 'I', 'D', 'S', 'N', 'P'};
+constexpr uint32_t kVersion = 1;
+
+uint64_t fnv1a(const std::byte* data, size_t size) {
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (size_t i = 0; i < size; ++i) {
+        h ^= uint64_t(data[i]);
+        h *= 0x100000001b3ull;
+    }
+    return h;
+}
+
+class Out {
+public:
+    template <class T> void put(const T& v) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        const auto* b = reinterpret_cast<const std::byte*>(&v);
+        bytes.insert(bytes.end(), b, b + sizeof(T));
+    }
+    template <class T> void array(const std::vector<T>& v) {
+        put<uint64_t>(v.size());
+        const auto* b = reinterpret_cast<const std::byte*>(v.data());
+        bytes.insert(bytes.end(), b, b + v.size() * sizeof(T));
+    }
+    void string(const std::string& s) {
+        put<uint64_t>(s.size());
+        const auto* b = reinterpret_cast<const std::byte*>(s.data());
+        bytes.insert(bytes.end(), b, b + s.size());
+    }
+    std::vector<std::byte> bytes;
+};
+
+class In {
+public:
+    explicit In(std::span<const std::byte> data) : m_data(data) {}
+    template <class T> T get() {
+        static_assert(std::is_trivially_copyable_v<T>);
+        need(sizeof(T), "a value");
+        T v;
+        std::memcpy(&v, m_data.data() + m_at, sizeof(T));
+        m_at += sizeof(T);
+        return v;
+    }
+    template <class T> void array(std::vector<T>& v, const char* what) {
+        const auto n = get<uint64_t>();
+        if (n > (m_data.size() - m_at) / sizeof(T)) {
+            fail(std::string(what) + " claims " + std::to_string(n) + " entries, more than the file holds");
+        }
+        v.resize(n);
+        std::memcpy(v.data(), m_data.data() + m_at, n * sizeof(T));
+        m_at += n * sizeof(T);
+    }
+    std::string string(const char* what) {
+        std::vector<char> chars;
+        array(chars, what);
+        return std::string(chars.begin(), chars.end());
+    }
+    [[noreturn]] static void fail(const std::string& what) {
+        throw Error("snapshot: corrupt: " + what);
+    }
+    bool done() const { return m_at == m_data.size(); }
+    /// An enum or bool stored as one byte, checked against its largest value (a byte that is
+    /// not a valid value must never be loaded into the type).
+    template <class E> E small(E largest, const char* what) {
+        const auto raw = get<uint8_t>();
+        if (raw > uint8_t(largest)) {
+            fail(std::string(what) + " = " + std::to_string(raw) + " is not a valid value");
+        }
+        return E(raw);
+    }
+
+private:
+    void need(size_t n, const char* what) {
+        if (m_data.size() - m_at < n) {
+            fail(std::string("ends inside ") + what);
+        }
+    }
+    std::span<const std::byte> m_data;
+    size_t m_at = 0;
+};
+
+void putShape(Out& o, const Shape& s) {
+    o.put(uint8_t(s.type));
+    o.put(s.center);
+    o.put(s.halfExtents);
+    o.put(s.radius);
+    o.array(s.vertices);
+}
+
+Shape getShape(In& in) {
+    Shape s;
+    s.type = in.small(ShapeType::Polygon, "a shape type");
+    s.center = in.get<glm::vec2>();
+    s.halfExtents = in.get<glm::vec2>();
+    s.radius = in.get<float>();
+    in.array(s.vertices, "a shape's vertex list");
+    validate(s, "snapshot: corrupt shape");
+    return s;
+}
+
+void putPlugin(Out& o, const Plugin& plugin) {
+    o.string(std::string(plugin.type()));
+    const std::span<const ParamDecl> decls = plugin.params();
+    o.put<uint64_t>(decls.size());
+    for (const ParamDecl& decl : decls) {
+        o.string(std::string(decl.name));
+        if (decl.type == ParamType::Number) {
+            o.put(plugin.param(decl.name));
+        } else {
+            const std::span<const glm::vec2> pts = plugin.points(decl.name);
+            o.array(std::vector<glm::vec2>(pts.begin(), pts.end()));
+        }
+    }
+    StateWriter state;
+    plugin.saveState(state);
+    o.array(state.bytes());
+}
+
+std::unique_ptr<Plugin> getPlugin(In& in, const Registry& registry, PluginKind kind) {
+    const std::string type = in.string("a plugin type");
+    if (registry.find(type) == nullptr) {
+        throw Error("snapshot: plugin type '" + type +
+                    "' is not in the registry; register it (or load its plugin library) "
+                    "before loading the snapshot");
+    }
+    std::unique_ptr<Plugin> plugin = registry.create(type);
+    if (plugin->kind() != kind) {
+        In::fail("plugin '" + type + "' is stored as the wrong kind");
+    }
+    const auto count = in.get<uint64_t>();
+    if (count != plugin->params().size()) {
+        throw Error("snapshot: plugin '" + type + "' was saved with " + std::to_string(count) +
+                    " parameters; this build declares " +
+                    std::to_string(plugin->params().size()));
+    }
+    for (const ParamDecl& decl : plugin->params()) {
+        const std::string name = in.string("a parameter name");
+        if (name != decl.name) {
+            throw Error("snapshot: plugin '" + type + "' parameter '" + name +
+                        "' does not match this build's '" + std::string(decl.name) + "'");
+        }
+        if (decl.type == ParamType::Number) {
+            plugin->setParam(name, in.get<double>());
+        } else {
+            std::vector<glm::vec2> pts;
+            in.array(pts, "a point list");
+            plugin->setPoints(name, pts);
+        }
+    }
+    std::vector<std::byte> state;
+    in.array(state, "a plugin state");
+    StateReader reader(state);
+    plugin->restoreState(reader);
+    if (reader.remaining() != 0) {
+        In::fail("plugin '" + type + "' left " + std::to_string(reader.remaining()) +
+                 " bytes of its state unread");
+    }
+    return plugin;
+}
+
+} // namespace
+
+void World::save(std::ostream& out) const {
+    const detail::WorldState& s = *m_state;
+    Out o;
+    // Settings (the task hook is the host's, not the world's).
+    const WorldDef& d = s.def;
+    o.put(uint8_t(d.solver));
+    o.put(d.positionBased);
+    o.put(uint8_t(d.equationOfState));
+    o.put(d.soundSpeed);
+    o.put(d.depth);
+    o.put(d.courant);
+    o.put(d.maxSubsteps);
+    o.put(d.maxParticles);
+    o.put(d.workerCount);
+    // Materials.
+    o.put<uint64_t>(s.materials.size());
+    for (const Material& m : s.materials) {
+        o.put(m.mass);
+        o.put(m.restDensity);
+        o.put(m.viscosity);
+        o.put(m.stiffness);
+        o.put(m.smoothingDistance);
+        o.put(m.kernelParticles);
+        o.put(m.surfaceTension);
+        o.string(m.name);
+    }
+    // Particles in their current order, and the handle table.
+    const detail::Particles& p = s.particles;
+    for (const auto* channel : {&p.px, &p.py, &p.vx, &p.vy, &p.density, &p.pressure, &p.life}) {
+        o.array(*channel);
+    }
+    o.array(p.material);
+    o.array(p.slot);
+    o.array(s.slotIndex);
+    o.array(s.slotGeneration);
+    o.array(s.freeSlots);
+    // Plugins.
+    o.put<uint64_t>(s.forces.size());
+    for (const auto& plugin : s.forces) {
+        putPlugin(o, *plugin);
+    }
+    o.put<uint64_t>(s.boundaries.size());
+    for (const auto& plugin : s.boundaries) {
+        putPlugin(o, *plugin);
+    }
+    // Emitters, drains, sensors and the last step's readings.
+    o.put<uint64_t>(s.emitters.size());
+    for (const detail::EmitterState& e : s.emitters) {
+        const EmitterDef& ed = e.def;
+        o.put(ed.position);
+        o.put(ed.direction);
+        o.put(ed.speed);
+        o.put(ed.width);
+        o.put(ed.rate);
+        o.put(ed.material);
+        o.put(ed.maxCount);
+        o.put(ed.lifetime);
+        o.put(ed.jitter);
+        o.put(ed.seed);
+        o.put(e.carry);
+        o.put(e.emitted);
+        o.put(e.random);
+    }
+    o.put<uint64_t>(s.drains.size());
+    for (const DrainDef& dr : s.drains) {
+        putShape(o, dr.shape);
+        o.put(uint8_t(dr.onlyMaterial));
+        o.put(dr.material);
+    }
+    o.put<uint64_t>(s.sensors.size());
+    for (const SensorDef& se : s.sensors) {
+        putShape(o, se.shape);
+    }
+    o.array(s.sensorReadings); // the last step's removal events are not kept: they describe it
+
+    // Solver state carried from step to step, and the last profile.
+    o.put(s.time);
+    o.put(s.soundSpeed);
+    o.put(s.fieldGH);
+    o.put(uint8_t(s.fieldMeasured));
+    o.put(s.lastMaxAccel);
+    o.put(s.profile);
+
+    out.write(kMagic, sizeof(kMagic));
+    const uint32_t version = kVersion;
+    const uint64_t size = o.bytes.size();
+    const uint64_t sum = fnv1a(o.bytes.data(), o.bytes.size());
+    out.write(reinterpret_cast<const char*>(&version), sizeof(version));
+    out.write(reinterpret_cast<const char*>(&size), sizeof(size));
+    out.write(reinterpret_cast<const char*>(o.bytes.data()), std::streamsize(o.bytes.size()));
+    out.write(reinterpret_cast<const char*>(&sum), sizeof(sum));
+    if (!out) {
+        throw Error("World::save: writing the snapshot failed");
+    }
+}
+
+void World::saveFile(const std::string& path) const {
+    std::ofstream file(path, std::ios::binary | std::ios::trunc);
+    if (!file) {
+        throw Error("World::saveFile: cannot open '" + path + "' for writing");
+    }
+    save(file);
+    file.close();
+    if (!file) {
+        throw Error("World::saveFile: writing '" + path + "' failed");
+    }
+}
+
+World World::load(std::istream& input, const Registry& registry, uint32_t workerCount,
+                  const TaskHook& tasks) {
+    const std::vector<char> raw{std::istreambuf_iterator<char>(input),
+                                std::istreambuf_iterator<char>()};
+    const size_t header = sizeof(kMagic) + sizeof(uint32_t) + sizeof(uint64_t);
+    if (raw.size() < header || std::memcmp(raw.data(), kMagic, sizeof(kMagic)) != 0) {
+        throw Error("snapshot: not a fluid snapshot (no FLUIDSNP header)");
+    }
+    uint32_t version = 0;
+    uint64_t size = 0;
+    std::memcpy(&version, raw.data() + sizeof(kMagic), sizeof(version));
+    std::memcpy(&size, raw.data() + sizeof(kMagic) + sizeof(version), sizeof(size));
+    if (version != kVersion) {
+        throw Error("snapshot: format version " + std::to_string(version) +
+                    " is not supported; this fluid reads version " + std::to_string(kVersion));
+    }
+    if (raw.size() - header < sizeof(uint64_t) || size != raw.size() - header - sizeof(uint64_t)) {
+        std::ostringstream s;
+        s << "snapshot: truncated or padded: the header promises " << size
+          << " bytes of data and a checksum, the file holds " << raw.size() - header
+          << " bytes after the header";
+        throw Error(s.str());
+    }
+    const auto* payload = reinterpret_cast<const std::byte*>(raw.data() + header);
+    uint64_t sum = 0;
+    std::memcpy(&sum, raw.data() + header + size, sizeof(sum));
+    if (fnv1a(payload, size) != sum) {
+        throw Error("snapshot: corrupt: checksum mismatch");
+    }
+    In in(std::span<const std::byte>(payload, size));
+
+    WorldDef def;
+    def.solver = in.small(Solver::Explicit, "the solver");
+    def.positionBased = in.get<PositionBasedDef>();
+    def.equationOfState = in.small(EquationOfState::Tait, "the equation of state");
+    def.soundSpeed = in.get<float>();
+    def.depth = in.get<float>();
+    def.courant = in.get<float>();
+    def.maxSubsteps = in.get<uint32_t>();
+    def.maxParticles = in.get<uint32_t>();
+    def.workerCount = in.get<uint32_t>();
+    if (workerCount > 0) {
+        def.workerCount = workerCount;
+    }
+    def.tasks = tasks;
+    World world(def); // validates the settings
+    detail::WorldState& s = *world.m_state;
+
+    const auto materials = in.get<uint64_t>();
+    for (uint64_t k = 0; k < materials; ++k) {
+        Material m;
+        m.mass = in.get<float>();
+        m.restDensity = in.get<float>();
+        m.viscosity = in.get<float>();
+        m.stiffness = in.get<float>();
+        m.smoothingDistance = in.get<float>();
+        m.kernelParticles = in.get<float>();
+        m.surfaceTension = in.get<float>();
+        m.name = in.string("a material name");
+        world.addMaterial(m);
+    }
+    detail::Particles& p = s.particles;
+    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy, &p.density, &p.pressure, &p.life}) {
+        in.array(*channel, "a particle channel");
+    }
+    in.array(p.material, "the material channel");
+    in.array(p.slot, "the slot channel");
+    in.array(s.slotIndex, "the handle table");
+    in.array(s.slotGeneration, "the handle generations");
+    in.array(s.freeSlots, "the free slots");
+    const size_t n = p.px.size();
+    for (const auto* channel : {&p.py, &p.vx, &p.vy, &p.density, &p.pressure, &p.life}) {
+        if (channel->size() != n) {
+            In::fail("particle channels of different lengths");
+        }
+    }
+    if (p.material.size() != n || p.slot.size() != n || s.slotGeneration.size() != s.slotIndex.size() ||
+        n > def.maxParticles) {
+        In::fail("particle channels or handle table of inconsistent sizes");
+    }
+    for (size_t i = 0; i < n; ++i) {
+        if (p.material[i] >= s.materials.size() || p.slot[i] >= s.slotIndex.size() ||
+            s.slotIndex[p.slot[i]] != i) {
+            In::fail("particle " + std::to_string(i) + " has a bad material or handle");
+        }
+    }
+    for (uint32_t slot : s.freeSlots) {
+        if (slot >= s.slotIndex.size() || s.slotIndex[slot] != UINT32_MAX) {
+            In::fail("a free slot is in use");
+        }
+    }
+
+    const auto forces = in.get<uint64_t>();
+    for (uint64_t k = 0; k < forces; ++k) {
+        std::unique_ptr<Plugin> plugin = getPlugin(in, registry, PluginKind::Force);
+        world.addForce(std::unique_ptr<ForcePlugin>(static_cast<ForcePlugin*>(plugin.release())));
+    }
+    const auto boundaries = in.get<uint64_t>();
+    for (uint64_t k = 0; k < boundaries; ++k) {
+        std::unique_ptr<Plugin> plugin = getPlugin(in, registry, PluginKind::Boundary);
+        world.addBoundary(
+            std::unique_ptr<BoundaryPlugin>(static_cast<BoundaryPlugin*>(plugin.release())));
+    }
+
+    const auto emitters = in.get<uint64_t>();
+    for (uint64_t k = 0; k < emitters; ++k) {
+        EmitterDef ed;
+        ed.position = in.get<glm::vec2>();
+        ed.direction = in.get<glm::vec2>();
+        ed.speed = in.get<float>();
+        ed.width = in.get<float>();
+        ed.rate = in.get<float>();
+        ed.material = in.get<MaterialId>();
+        ed.maxCount = in.get<uint32_t>();
+        ed.lifetime = in.get<float>();
+        ed.jitter = in.get<float>();
+        ed.seed = in.get<uint64_t>();
+        const EmitterId id = world.addEmitter(ed);
+        detail::EmitterState& e = s.emitters[id.index];
+        e.carry = in.get<double>();
+        e.emitted = in.get<uint32_t>();
+        e.random = in.get<uint64_t>();
+    }
+    const auto drains = in.get<uint64_t>();
+    for (uint64_t k = 0; k < drains; ++k) {
+        DrainDef dr;
+        dr.shape = getShape(in);
+        dr.onlyMaterial = in.small(true, "a drain's material flag");
+        dr.material = in.get<MaterialId>();
+        world.addDrain(dr);
+    }
+    const auto sensors = in.get<uint64_t>();
+    for (uint64_t k = 0; k < sensors; ++k) {
+        SensorDef se;
+        se.shape = getShape(in);
+        world.addSensor(se);
+    }
+    in.array(s.sensorReadings, "the sensor readings");
+    if (s.sensorReadings.size() != s.sensors.size() * s.materials.size()) {
+        In::fail("sensor readings of the wrong size");
+    }
+    s.time = in.get<double>();
+    s.soundSpeed = in.get<float>();
+    s.fieldGH = in.get<float>();
+    s.fieldMeasured = in.small(true, "the field flag");
+    s.lastMaxAccel = in.get<float>();
+    s.profile = in.get<Profile>();
+    if (!in.done()) {
+        In::fail("unexpected data after the last section");
+    }
+    return world;
+}
+
+World World::loadFile(const std::string& path, const Registry& registry, uint32_t workerCount,
+                      const TaskHook& tasks) {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) {
+        throw Error("World::loadFile: cannot open '" + path + "'");
+    }
+    try {
+        return load(file, registry, workerCount, tasks);
+    } catch (const Error& e) {
+        throw Error("'" + path + "': " + e.what());
+    }
+}
+
+} // namespace fluid
