@@ -10,9 +10,13 @@ namespace fluid {
 
 namespace {
 
-bool finite(glm::vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+bool finite(glm::vec2 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y);
+}
 
-float cross(glm::vec2 a, glm::vec2 b) { return a.x * b.y - a.y * b.x; }
+float cross(glm::vec2 a, glm::vec2 b) {
+    return a.x * b.y - a.y * b.x;
+}
 
 bool segmentsCross(glm::vec2 a, glm::vec2 b, glm::vec2 c, glm::vec2 d) {
     const float d1 = cross(b - a, c - a);

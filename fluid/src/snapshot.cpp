@@ -38,7 +38,7 @@ uint64_t fnv1a(const std::byte* data, size_t size) {
 }
 
 class Out {
-public:
+  public:
     template <class T> void put(const T& v) {
         static_assert(std::is_trivially_copyable_v<T>);
         const auto* b = reinterpret_cast<const std::byte*>(&v);
@@ -58,7 +58,7 @@ public:
 };
 
 class In {
-public:
+  public:
     explicit In(std::span<const std::byte> data) : m_data(data) {}
     template <class T> T get() {
         static_assert(std::is_trivially_copyable_v<T>);
@@ -71,7 +71,8 @@ public:
     template <class T> void array(std::vector<T>& v, const char* what) {
         const auto n = get<uint64_t>();
         if (n > (m_data.size() - m_at) / sizeof(T)) {
-            fail(std::string(what) + " claims " + std::to_string(n) + " entries, more than the file holds");
+            fail(std::string(what) + " claims " + std::to_string(n) +
+                 " entries, more than the file holds");
         }
         v.resize(n);
         std::memcpy(v.data(), m_data.data() + m_at, n * sizeof(T));
@@ -96,7 +97,7 @@ public:
         return E(raw);
     }
 
-private:
+  private:
     void need(size_t n, const char* what) {
         if (m_data.size() - m_at < n) {
             fail(std::string("ends inside ") + what);
@@ -157,8 +158,7 @@ std::unique_ptr<Plugin> getPlugin(In& in, const Registry& registry, PluginKind k
     const auto count = in.get<uint64_t>();
     if (count != plugin->params().size()) {
         throw Error("snapshot: plugin '" + type + "' was saved with " + std::to_string(count) +
-                    " parameters; this build declares " +
-                    std::to_string(plugin->params().size()));
+                    " parameters; this build declares " + std::to_string(plugin->params().size()));
     }
     for (const ParamDecl& decl : plugin->params()) {
         const std::string name = in.string("a parameter name");
@@ -371,8 +371,8 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
             In::fail("particle channels of different lengths");
         }
     }
-    if (p.material.size() != n || p.slot.size() != n || s.slotGeneration.size() != s.slotIndex.size() ||
-        n > def.maxParticles) {
+    if (p.material.size() != n || p.slot.size() != n ||
+        s.slotGeneration.size() != s.slotIndex.size() || n > def.maxParticles) {
         In::fail("particle channels or handle table of inconsistent sizes");
     }
     for (size_t i = 0; i < n; ++i) {

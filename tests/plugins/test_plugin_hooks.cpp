@@ -172,9 +172,15 @@ TEST_CASE("hook order: prepare once per step, then apply and project per sub-ste
 TEST_CASE("registry creates built-ins with parameters", "[unit][plugins]") {
     Registry registry;
     registerBuiltinPlugins(registry);
-    REQUIRE(registry.types().size() == 2);
-    CHECK(registry.types()[0].type == "force.gravity");
-    CHECK(registry.types()[1].type == "boundary.box");
+    // Forces first, then boundaries, each in the order documented in builtin.h.
+    std::vector<std::string> types;
+    for (const PluginInfo& info : registry.types()) {
+        types.push_back(info.type);
+    }
+    CHECK(types == std::vector<std::string>{"force.gravity", "force.point_gravity", "force.vortex",
+                                            "force.wind", "force.pointer", "force.explosion",
+                                            "force.damping", "boundary.box", "boundary.polygon",
+                                            "boundary.chain", "boundary.circle"});
     REQUIRE(registry.find("force.gravity") != nullptr);
     CHECK(registry.find("force.gravity")->kind == PluginKind::Force);
     CHECK(registry.find("boundary.box")->kind == PluginKind::Boundary);
@@ -238,6 +244,13 @@ TEST_CASE("parameter declarations describe themselves", "[unit][plugins]") {
             CHECK_FALSE(d.name.empty());
             CHECK_FALSE(d.unit.empty());
             CHECK_FALSE(d.description.empty());
+            if (d.type == ParamType::Points) {
+                // A point list: its range is the vertex count; a new plugin has no points.
+                CHECK(d.minValue >= 1.0);
+                CHECK(d.minValue <= d.maxValue);
+                CHECK(plugin->points(d.name).empty());
+                continue;
+            }
             CHECK(d.minValue <= d.defaultValue);
             CHECK(d.defaultValue <= d.maxValue);
             CHECK(d.minValue < d.maxValue);

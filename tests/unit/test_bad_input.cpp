@@ -211,7 +211,8 @@ TEST_CASE("registry and parameters reject unknown names and bad values", "[unit]
     CHECK_THROWS_MATCHES(registry.create("force.gravity"), Error,
                          Catch::Message("unknown plugin type 'force.gravity'; known: (none: call "
                                         "registerBuiltinPlugins first)"));
-    registerBuiltinPlugins(registry);
+    registry.add<GravityForce>("Uniform gravity.");
+    registry.add<BoxContainer>("A tank.");
     CHECK_THROWS_MATCHES(registry.create("force.nope"), Error,
                          Catch::Message("unknown plugin type 'force.nope'; known: force.gravity "
                                         "boundary.box"));

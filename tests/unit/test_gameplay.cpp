@@ -170,7 +170,8 @@ TEST_CASE("lifetimes: particles expire and are reported; the rest live on", "[ga
                       "World::setLifetime: lifetime = -1 is out of range [0, 1e+06] (unit: s)");
 }
 
-TEST_CASE("drains remove what falls in, report it in order, and keep mass accounted", "[gameplay]") {
+TEST_CASE("drains remove what falls in, report it in order, and keep mass accounted",
+          "[gameplay]") {
     World world = openWorld();
     world.addForce(std::make_unique<GravityForce>(0.0f, -9.81f));
     BlobDef blob = fluid::test::latticeBlock(world, MaterialId{0}, -0.05f, 0.2f, 10, 10);

@@ -25,7 +25,8 @@ World scene(Solver solver, uint32_t workers) {
     Registry registry;
     registerBuiltinPlugins(registry);
     world.addForce(registry.createForce("force.gravity"));
-    const std::array<ParamValue, 4> tank{{{"minX", 0.0}, {"minY", 0.0}, {"maxX", 0.4}, {"maxY", 0.6}}};
+    const std::array<ParamValue, 4> tank{
+        {{"minX", 0.0}, {"minY", 0.0}, {"maxX", 0.4}, {"maxY", 0.6}}};
     world.addBoundary(registry.createBoundary("boundary.box", tank));
     world.spawnBlob(fluid::test::latticeBlock(world, water, 0.0f, 0.0f, 12, 10));
     BlobDef ball;
@@ -147,9 +148,9 @@ TEST_CASE("snapshot: truncated, corrupt or foreign data is refused", "[snapshot]
     world.step(kFrame);
     const std::string bytes = saved(world);
 
-    CHECK_THROWS_WITH(restored(bytes.substr(0, bytes.size() - 9), registry),
-                      Catch::Matchers::StartsWith(
-                          "snapshot: truncated or padded: the header promises"));
+    CHECK_THROWS_WITH(
+        restored(bytes.substr(0, bytes.size() - 9), registry),
+        Catch::Matchers::StartsWith("snapshot: truncated or padded: the header promises"));
     CHECK_THROWS_WITH(restored(bytes.substr(0, 10), registry),
                       "snapshot: not a fluid snapshot (no FLUIDSNP header)");
     CHECK_THROWS_WITH(restored("not a snapshot at all, just text", registry),

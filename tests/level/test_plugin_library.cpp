@@ -1,0 +1,348 @@
+// Plugin libraries loaded at run time (fluid::loadPluginLibrary): the whirlpool example built as
+// libfluid_whirlpool.so registers and works in a World exactly like the same class compiled
+// into the host; broken libraries (tests/level/plugins) are refused with exact messages and
+// leave the registry unchanged.
+#include "test_support.h"
+
+#include "examples/custom_force.h"
+
+#include <fluid/level.h>
+#include <fluid/plugin_abi.h>
+#include <fluid/plugin_library.h>
+
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace fluid;
+using namespace fluid::test;
+
+namespace {
+
+// Names of the registered types, in order: what "the registry is unchanged" compares.
+std::vector<std::string> typeNames(const Registry& registry) {
+    std::vector<std::string> names;
+    for (const PluginInfo& info : registry.types()) {
+        names.push_back(info.type);
+    }
+    return names;
+}
+
+// The message of the fluid::Error that `load` throws ("" if it throws nothing).
+template <class F> std::string errorOf(F&& load) {
+    try {
+        load();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// Angular momentum about (cx, cy) (unit: kg m^2/s), z component.
+double angularMomentum(const World& world, double cx, double cy) {
+    const auto px = world.positionX(), py = world.positionY();
+    const auto vx = world.velocityX(), vy = world.velocityY();
+    const auto mat = world.materialIndex();
+    double l = 0.0;
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        const double m = world.material(MaterialId{mat[i]}).mass;
+        l += m * ((px[i] - cx) * vy[i] - (py[i] - cy) * vx[i]);
+    }
+    return l;
+}
+
+// A zero-g disc of water centred on a whirlpool made by `registry`; returns the angular
+// momentum every 6 frames over 30 frames and the final state hash.
+struct SpinResult {
+    std::vector<double> momentum;
+    uint64_t hash = 0;
+};
+SpinResult spin(const Registry& registry) {
+    World world;
+    const MaterialId w = world.addMaterial(water());
+    const std::vector<ParamValue> params{
+        {"cx", 0.1}, {"cy", -0.05}, {"strength", 1.5}, {"radius", 0.08}};
+    world.addForce(registry.createForce("force.whirlpool", params));
+    BlobDef disc;
+    disc.shape = BlobShape::Circle;
+    disc.center = {0.1f, -0.05f};
+    disc.radius = 0.08f;
+    disc.material = w;
+    REQUIRE(world.spawnBlob(disc) > 150);
+    SpinResult result;
+    for (int frame = 1; frame <= 30; ++frame) {
+        world.step(kFrame);
+        if (frame % 6 == 0) {
+            result.momentum.push_back(angularMomentum(world, 0.1, -0.05));
+        }
+    }
+    REQUIRE(allFinite(world));
+    result.hash = stateHash(world);
+    return result;
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    REQUIRE(in.good());
+    std::string text(std::size_t(in.tellg()), '\0');
+    in.seekg(0);
+    in.read(text.data(), std::streamsize(text.size()));
+    REQUIRE(in.good());
+    return text;
+}
+
+} // namespace
+
+#ifdef FLUID_WHIRLPOOL_PLUGIN
+
+TEST_CASE("the whirlpool plugin library registers force.whirlpool and spins a disc",
+          "[level][plugin-library]") {
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    const std::vector<std::string> before = typeNames(registry);
+    const PluginLibrary library = loadPluginLibrary(FLUID_WHIRLPOOL_PLUGIN, registry);
+    CHECK(library.path == FLUID_WHIRLPOOL_PLUGIN);
+    REQUIRE(library.types == std::vector<std::string>{"force.whirlpool"});
+    // Appended after the built-ins, which are untouched.
+    std::vector<std::string> expected = before;
+    expected.push_back("force.whirlpool");
+    CHECK(typeNames(registry) == expected);
+
+    const PluginInfo* info = registry.find("force.whirlpool");
+    REQUIRE(info != nullptr);
+    CHECK(info->kind == PluginKind::Force);
+    REQUIRE(info->params.size() == 5);
+    CHECK(info->params[2].name == "strength");
+    CHECK(info->params[2].unit == "m/s^2");
+    // Parameter checks run in the host's copy of Plugin::setParam on the module's declarations.
+    const ParamValue bad[] = {{"radius", -1.0}};
+    CHECK(errorOf([&] { (void)registry.createForce("force.whirlpool", bad); }) ==
+          "plugin 'force.whirlpool': parameter 'radius' = -1 is out of range [0.001, 1000] "
+          "(unit: m)");
+
+    const SpinResult loaded = spin(registry);
+    std::printf("[measure] loaded whirlpool: Lz every 0.1 s = %.3e %.3e %.3e %.3e %.3e kg m^2/s\n",
+                loaded.momentum[0], loaded.momentum[1], loaded.momentum[2], loaded.momentum[3],
+                loaded.momentum[4]);
+    CHECK(loaded.momentum.front() > 0.0); // counter-clockwise for a positive strength
+    for (std::size_t k = 1; k < loaded.momentum.size(); ++k) {
+        CAPTURE(k, loaded.momentum[k - 1], loaded.momentum[k]);
+        CHECK(loaded.momentum[k] > loaded.momentum[k - 1]);
+    }
+
+    // The same class compiled into this test binary gives bit-identical results: the module's
+    // code is the host's code, only loaded differently.
+    Registry inProcess;
+    registerWhirlpool(inProcess);
+    const SpinResult local = spin(inProcess);
+    CHECK(local.momentum == loaded.momentum);
+    CHECK(local.hash == loaded.hash);
+}
+
+TEST_CASE("plugins from a library outlive the registry that made them", "[level][plugin-library]") {
+    // The library stays loaded for the process: a plugin keeps working (vtable, apply, its
+    // parameter declarations) after every registry holding the library's factories is gone.
+    std::unique_ptr<ForcePlugin> force;
+    {
+        Registry registry;
+        (void)loadPluginLibrary(FLUID_WHIRLPOOL_PLUGIN, registry);
+        force = registry.createForce("force.whirlpool");
+    }
+    force->setParam("strength", 2.0);
+    CHECK(force->param("strength") == 2.0);
+    CHECK(force->type() == "force.whirlpool");
+    World world;
+    const MaterialId w = world.addMaterial(water());
+    world.addForce(std::move(force));
+    BlobDef disc;
+    disc.shape = BlobShape::Circle;
+    disc.radius = 0.05f;
+    disc.material = w;
+    world.spawnBlob(disc);
+    for (int frame = 0; frame < 6; ++frame) {
+        world.step(kFrame);
+    }
+    CHECK(allFinite(world));
+    CHECK(angularMomentum(world, 0.0, 0.0) > 0.0);
+}
+
+TEST_CASE("loading a plugin library twice reports the duplicate type with the path",
+          "[level][plugin-library]") {
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    (void)loadPluginLibrary(FLUID_WHIRLPOOL_PLUGIN, registry);
+    const std::vector<std::string> before = typeNames(registry);
+    CHECK(errorOf([&] { (void)loadPluginLibrary(FLUID_WHIRLPOOL_PLUGIN, registry); }) ==
+          std::string("plugin library '") + FLUID_WHIRLPOOL_PLUGIN +
+              "': Registry::add: plugin type 'force.whirlpool' is already registered");
+    CHECK(typeNames(registry) == before);
+    // Another registry can still take the same (already mapped) library.
+    Registry other;
+    CHECK(loadPluginLibrary(FLUID_WHIRLPOOL_PLUGIN, other).types ==
+          std::vector<std::string>{"force.whirlpool"});
+}
+
+TEST_CASE("a level file names a plugin type from a loaded library", "[level][plugin-library]") {
+    // A zero-g disc of water on a whirlpool, as a level would ship it next to its .so.
+    const std::string text = R"({
+  "version": 1,
+  "name": "Whirlpool",
+  "materials": [ { "name": "water", "preset": "water" } ],
+  "blobs": [ { "material": "water", "shape": "circle", "center": [0, 0], "radius": 0.08 } ],
+  "plugins": [
+    { "type": "force.whirlpool", "name": "swirl",
+      "params": { "strength": 1.5, "radius": 0.08 } }
+  ]
+})";
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    // Without the library the type is unknown, located at the plugin's "type".
+    try {
+        (void)parseLevel(text, "whirlpool.json", registry);
+        FAIL("the level loaded without the plugin library");
+    } catch (const LevelError& e) {
+        CHECK(e.path() == "/plugins/0/type");
+        CHECK(e.message().rfind("unknown plugin type 'force.whirlpool'", 0) == 0);
+    }
+
+    (void)loadPluginLibrary(FLUID_WHIRLPOOL_PLUGIN, registry);
+    Level level = parseLevel(text, "whirlpool.json", registry);
+    REQUIRE(level.plugins.size() == 1);
+    CHECK(level.plugins[0].name == "swirl");
+    CHECK(level.plugins[0].kind == PluginKind::Force);
+    REQUIRE(level.world.forces().size() == level.plugins[0].index + 1);
+    const ForcePlugin& swirl = *level.world.forces()[level.plugins[0].index];
+    CHECK(swirl.type() == "force.whirlpool");
+    CHECK(swirl.param("strength") == 1.5);
+    CHECK(swirl.param("radius") == 0.08);
+    double previous = angularMomentum(level.world, 0.0, 0.0);
+    CHECK(previous == 0.0);
+    for (int frame = 1; frame <= 24; ++frame) {
+        level.step();
+        if (frame % 6 == 0) {
+            const double l = angularMomentum(level.world, 0.0, 0.0);
+            CAPTURE(frame, l, previous);
+            CHECK(l > previous);
+            previous = l;
+        }
+    }
+    std::printf("[measure] level with the loaded whirlpool: Lz after 0.4 s = %.3e kg m^2/s\n",
+                previous);
+    CHECK(allFinite(level.world));
+}
+
+#else
+TEST_CASE("the whirlpool plugin library is not built (FLUID_BUILD_EXAMPLES is OFF)",
+          "[level][plugin-library]") {
+    WARN("examples are off: the whirlpool plugin library tests did not run");
+}
+#endif
+
+TEST_CASE("a library with another plugin ABI version is refused before registration",
+          "[level][plugin-library]") {
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    const std::vector<std::string> before = typeNames(registry);
+    // Its fluid_register_plugins aborts the process: reaching it fails the whole run.
+    CHECK(errorOf([&] { (void)loadPluginLibrary(FLUID_TEST_PLUGIN_WRONG_ABI, registry); }) ==
+          std::string("'") + FLUID_TEST_PLUGIN_WRONG_ABI +
+              "' was built for plugin ABI 999; this fluid has ABI " +
+              std::to_string(kPluginAbiVersion) + ": rebuild the plugin against this fluid");
+    CHECK(typeNames(registry) == before);
+}
+
+TEST_CASE("a library built against other plugin headers is refused, naming the difference",
+          "[level][plugin-library]") {
+    Registry registry;
+    const std::size_t plugin = sizeof(Plugin);
+    CHECK(errorOf([&] { (void)loadPluginLibrary(FLUID_TEST_PLUGIN_WRONG_DETAILS, registry); }) ==
+          std::string("'") + FLUID_TEST_PLUGIN_WRONG_DETAILS + "' was built for plugin ABI " +
+              std::to_string(kPluginAbiVersion) +
+              " but does not match this fluid: sizeof(fluid::Plugin) is " +
+              std::to_string(plugin + 8) + " in the plugin, " + std::to_string(plugin) +
+              " here: rebuild the plugin against this fluid's headers with the same compiler "
+              "and settings");
+    CHECK(registry.types().empty());
+}
+
+TEST_CASE("a shared library without the entry points is not a plugin library",
+          "[level][plugin-library]") {
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    const std::vector<std::string> before = typeNames(registry);
+    CHECK(errorOf([&] { (void)loadPluginLibrary(FLUID_TEST_PLUGIN_NO_ENTRY, registry); }) ==
+          std::string("'") + FLUID_TEST_PLUGIN_NO_ENTRY +
+              "' is not a fluid plugin library: it has no fluid_plugin_abi_version / "
+              "fluid_register_plugins entry point");
+    CHECK(typeNames(registry) == before);
+}
+
+TEST_CASE("a registration that throws fails the load and registers nothing",
+          "[level][plugin-library]") {
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    const std::vector<std::string> before = typeNames(registry);
+    // The library adds force.test_good, then a type whose default is out of range: the module's
+    // Registry::add throws, and force.test_good must not reach the host's registry either.
+    CHECK(errorOf([&] { (void)loadPluginLibrary(FLUID_TEST_PLUGIN_THROWS, registry); }) ==
+          std::string("plugin library '") + FLUID_TEST_PLUGIN_THROWS +
+              "': fluid_register_plugins failed: plugin 'force.test_bad_default': parameter "
+              "'k' = 5 is out of range [0, 1] (unit: 1)");
+    CHECK(typeNames(registry) == before);
+    CHECK(registry.find("force.test_good") == nullptr);
+}
+
+TEST_CASE("a missing file or a file that is not a shared library names the path",
+          "[level][plugin-library]") {
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    const std::vector<std::string> before = typeNames(registry);
+
+    const std::string missing = std::string(FLUID_BINARY_DIR) + "/no/such/libplugin.so";
+    const std::string missingError = errorOf([&] { (void)loadPluginLibrary(missing, registry); });
+    CAPTURE(missingError);
+    // The dlerror() text follows the prefix; glibc's names the file and the reason.
+    CHECK(missingError.rfind("cannot load plugin library '" + missing + "': ", 0) == 0);
+    CHECK(missingError.find("No such file or directory") != std::string::npos);
+
+    const std::string notLibrary = std::string(FLUID_SOURCE_DIR) + "/README.md";
+    const std::string notLibraryError =
+        errorOf([&] { (void)loadPluginLibrary(notLibrary, registry); });
+    CAPTURE(notLibraryError);
+    CHECK(notLibraryError.rfind("cannot load plugin library '" + notLibrary + "': ", 0) == 0);
+    CHECK(notLibraryError.size() > ("cannot load plugin library '" + notLibrary + "': ").size());
+
+    // A bare file name means the current directory, not the system library path.
+    const std::string bare = "libfluid_no_such_plugin.so";
+    const std::string bareError = errorOf([&] { (void)loadPluginLibrary(bare, registry); });
+    CAPTURE(bareError);
+    CHECK(bareError.rfind("cannot load plugin library 'libfluid_no_such_plugin.so': ./", 0) == 0);
+
+    CHECK(typeNames(registry) == before);
+}
+
+TEST_CASE("the plugin ABI declaration hash is current", "[level][plugin-library]") {
+    // kPluginAbiDeclHash enters every plugin library's ABI details, so a library compiled
+    // against other plugin.h / registry.h declarations is refused. When this fails, the
+    // declarations changed: bump kPluginAbiVersion if a layout, a virtual function or an entry
+    // point changed, and set kPluginAbiDeclHash to the value printed below.
+    const std::string root = FLUID_SOURCE_DIR;
+    const std::string text = readFile(root + "/fluid/include/fluid/plugin.h") +
+                             readFile(root + "/fluid/include/fluid/registry.h");
+    const uint32_t hash = pluginAbiDeclHash(text);
+    char printed[16];
+    std::snprintf(printed, sizeof printed, "0x%08xu", hash);
+    std::printf("[measure] plugin ABI %u, declaration hash of plugin.h + registry.h: %s\n",
+                kPluginAbiVersion, printed);
+    INFO("plugin.h/registry.h declarations changed: review kPluginAbiVersion and set "
+         "kPluginAbiDeclHash = "
+         << printed << " in fluid/include/fluid/plugin_abi.h");
+    CHECK(hash == kPluginAbiDeclHash);
+    // Comments and layout do not count; a token does.
+    CHECK(pluginAbiDeclHash("int  a; // note\n") == pluginAbiDeclHash("int a;"));
+    CHECK(pluginAbiDeclHash("int a;") != pluginAbiDeclHash("int b;"));
+}
