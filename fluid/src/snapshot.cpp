@@ -75,7 +75,9 @@ class In {
                  " entries, more than the file holds");
         }
         v.resize(n);
-        std::memcpy(v.data(), m_data.data() + m_at, n * sizeof(T));
+        if (n > 0) { // memcpy into an empty vector's null data() is undefined
+            std::memcpy(v.data(), m_data.data() + m_at, n * sizeof(T));
+        }
         m_at += n * sizeof(T);
     }
     std::string string(const char* what) {

@@ -1,0 +1,113 @@
+// fluid — base of the built-in shape boundaries: pose, velocities, samples, projection loop.
+#include <fluid/plugins/kinematic_shape.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace fluid {
+
+KinematicShape::Pose KinematicShape::pose(double t) const {
+    Pose p;
+    p.origin = {value(kX) + value(kVx) * t, value(kY) + value(kVy) * t};
+    const double angle = value(kAngle) + value(kOmega) * t;
+    p.cosA = std::cos(angle);
+    p.sinA = std::sin(angle);
+    p.velocity = {value(kVx), value(kVy)};
+    p.omega = value(kOmega);
+    return p;
+}
+
+void KinematicShape::setPose(glm::vec2 position, float angle) {
+    setParam("x", position.x);
+    setParam("y", position.y);
+    setParam("angle", angle);
+}
+
+void KinematicShape::setVelocity(glm::vec2 velocity, float omega) {
+    setParam("vx", velocity.x);
+    setParam("vy", velocity.y);
+    setParam("omega", omega);
+}
+
+void KinematicShape::onParamChanged(std::size_t index) {
+    if (index >= kPoseParamCount) {
+        m_built = false; // the shape itself changed: lay the samples again at the next prepare
+    }
+}
+
+void KinematicShape::prepare(const StepContext& context) {
+    if (!m_built || m_builtSpacing != context.sampleSpacing ||
+        m_builtSupport != context.supportRadius) {
+        m_local.clear();
+        build(context.sampleSpacing, context.supportRadius, m_local, m_bounds);
+        m_built = true;
+        m_builtSpacing = context.sampleSpacing;
+        m_builtSupport = context.supportRadius;
+    }
+    // Local -> world at the start of the step; the world moves each sample on with its velocity
+    // during the sub-steps.
+    const Pose p = pose(0.0);
+    m_samples.clear();
+    for (const glm::dvec2 local : m_local) {
+        const glm::dvec2 w = p.toWorld(local);
+        const glm::dvec2 v = p.velocityAt(w);
+        m_samples.add(static_cast<float>(w.x), static_cast<float>(w.y), static_cast<float>(v.x),
+                      static_cast<float>(v.y));
+    }
+}
+
+void KinematicShape::project(const ProjectContext& context, uint32_t begin, uint32_t end) {
+    if (!m_built) {
+        return; // no prepare yet: no geometry to test against
+    }
+    const Pose before = pose(double(context.prevTimeInStep));
+    const Pose now = pose(double(context.timeInStep));
+    const double spacing = context.spacing;
+    // How far outside a surface a particle is put: small against the spacing, large against the
+    // rounding of a float position (a few ulps at the shape's distance from the world origin),
+    // so that the stored position is still outside.
+    const double extent = std::max({std::fabs(m_bounds.lo.x), std::fabs(m_bounds.lo.y),
+                                    std::fabs(m_bounds.hi.x), std::fabs(m_bounds.hi.y)});
+    const double magnitude = std::fabs(now.origin.x) + std::fabs(now.origin.y) + extent;
+    const double eps = std::max(1e-3 * spacing, 4e-7 * magnitude);
+    const double margin = reach(spacing) + eps;
+    const glm::dvec2 lo = m_bounds.lo - margin, hi = m_bounds.hi + margin;
+    for (uint32_t i = begin; i < end; ++i) {
+        const glm::dvec2 p = before.toLocal({context.prevX[i], context.prevY[i]});
+        const glm::dvec2 c = now.toLocal({context.px[i], context.py[i]});
+        // Early out: the path's box misses the shape's.
+        if (std::max(p.x, c.x) < lo.x || std::min(p.x, c.x) > hi.x || std::max(p.y, c.y) < lo.y ||
+            std::min(p.y, c.y) > hi.y) {
+            continue;
+        }
+        Contact contact;
+        if (!collide(p, c, spacing, eps, contact)) {
+            continue;
+        }
+        const glm::dvec2 w = now.toWorld(contact.point);
+        context.px[i] = static_cast<float>(w.x);
+        context.py[i] = static_cast<float>(w.y);
+        // No velocity into the wall relative to the wall's own velocity there: v_n >= wall v_n.
+        const glm::dvec2 n = now.rotate(contact.normal);
+        const glm::dvec2 wall = now.velocityAt(w);
+        const double vn = context.vx[i] * n.x + context.vy[i] * n.y;
+        const double wallN = wall.x * n.x + wall.y * n.y;
+        if (vn < wallN) {
+            context.vx[i] = static_cast<float>(context.vx[i] + (wallN - vn) * n.x);
+            context.vy[i] = static_cast<float>(context.vy[i] + (wallN - vn) * n.y);
+        }
+    }
+}
+
+void KinematicShape::finish(const StepContext& context) {
+    const double dt = context.frameDt;
+    // The same expressions as pose(dt), so the pose stored is the one the last projection used.
+    storeValue(kX, value(kX) + value(kVx) * dt);
+    storeValue(kY, value(kY) + value(kVy) * dt);
+    const double angle = value(kAngle) + value(kOmega) * dt;
+    // Kept in [-pi, pi]: a long-spinning paddle keeps its angle's precision.
+    storeValue(kAngle, std::remainder(angle, 2.0 * std::numbers::pi));
+}
+
+} // namespace fluid

@@ -1,0 +1,171 @@
+// fluid — base of the built-in shape boundaries: a pose, its velocities, sampled walls.
+#pragma once
+
+#include <fluid/plugin.h>
+
+#include <glm/vec2.hpp>
+
+#include <array>
+#include <cstddef>
+#include <span>
+#include <string_view>
+#include <vector>
+
+namespace fluid {
+
+/// One straight piece of a shape's outline in its local frame: a -> b, its length and the unit
+/// normal on its left (cross(b - a, x - a) > 0 is the left side). Plain data.
+struct ShapeSegment {
+    /// End points (unit: m).
+    glm::dvec2 a{0.0, 0.0}, b{0.0, 0.0};
+    /// Unit normal on the left of a -> b.
+    glm::dvec2 normal{0.0, 1.0};
+    /// |b - a| (unit: m).
+    double length = 0.0;
+};
+
+/// Base of "boundary.polygon", "boundary.chain" and "boundary.circle": a rigid shape given in its
+/// own (local) frame, placed by a pose (x, y, angle) that moves with velocities (vx, vy, omega).
+///
+/// Kinematic motion: at time t into a step the pose is (x + vx t, y + vy t, angle + omega t);
+/// at the end of the step (`finish`) the pose parameters advance by the frame's dt, so a host
+/// that sets only the velocities sees the shape move, and a host that sets the pose before every
+/// step gets exactly that pose (set the velocities too, so that the walls push the fluid with
+/// the right speed and particles swept over are caught on the right side). The angle is kept in
+/// [-pi, pi] as it advances.
+///
+/// Samples are laid once in the local frame (when the shape or the spacing changes) and carried
+/// to the world at every `prepare` with the velocity v + omega x r of the solid at each sample.
+/// `project` follows each particle's path from where it stood (at `prevTimeInStep`, in the pose
+/// of that time) to where it is (at `timeInStep`) in the shape's frame, so that fast particles
+/// cannot tunnel through thin parts, and removes the velocity into the wall relative to the
+/// wall's own velocity there. Where solids touch or overlap (a splitter standing in a tank),
+/// the boundary added last has the last word in every projection: add containers first and the
+/// shapes inside them after. Thread rule: see `BoundaryPlugin`; parameters only between steps.
+class KinematicShape : public BoundaryPlugin {
+  public:
+    /// Indices of the parameters every shape declares first, in this order.
+    enum : std::size_t { kX, kY, kAngle, kVx, kVy, kOmega, kFriction, kPoseParamCount };
+    /// The pose, velocity and friction parameters; a shape's own parameters follow them.
+    static constexpr std::array<ParamDecl, kPoseParamCount> kPoseParams{{
+        {"x", "m", 0.0, -1e5, 1e5, "Position x of the shape's local origin."},
+        {"y", "m", 0.0, -1e5, 1e5, "Position y of the shape's local origin."},
+        {"angle", "rad", 0.0, -1e4, 1e4,
+         "Rotation of the shape about its origin (counter-clockwise)."},
+        {"vx", "m/s", 0.0, -1e3, 1e3, "Velocity x of the origin (the pose advances by it)."},
+        {"vy", "m/s", 0.0, -1e3, 1e3, "Velocity y of the origin (the pose advances by it)."},
+        {"omega", "rad/s", 0.0, -1e3, 1e3,
+         "Angular velocity (counter-clockwise; the angle advances by it)."},
+        {"friction", "1", 1.0, 0.0, 10.0,
+         "Wall viscosity scale: 0 free slip, 1 the fluid's own viscosity, 10 sticky."},
+    }};
+
+    /// The rigid motion at one instant: where the local origin is, how the frame is turned, and
+    /// how fast both change. Plain data; any thread.
+    struct Pose {
+        /// World position of the local origin (unit: m).
+        glm::dvec2 origin{0.0, 0.0};
+        /// cos and sin of the angle (unit: 1).
+        double cosA = 1.0, sinA = 0.0;
+        /// Linear velocity of the origin (unit: m/s).
+        glm::dvec2 velocity{0.0, 0.0};
+        /// Angular velocity (unit: rad/s; counter-clockwise positive).
+        double omega = 0.0;
+        /// Local point -> world point (unit: m).
+        glm::dvec2 toWorld(glm::dvec2 local) const {
+            return origin +
+                   glm::dvec2(cosA * local.x - sinA * local.y, sinA * local.x + cosA * local.y);
+        }
+        /// World point -> local point (unit: m).
+        glm::dvec2 toLocal(glm::dvec2 world) const {
+            const glm::dvec2 d = world - origin;
+            return {cosA * d.x + sinA * d.y, -sinA * d.x + cosA * d.y};
+        }
+        /// Local direction -> world direction (rotation only).
+        glm::dvec2 rotate(glm::dvec2 local) const {
+            return {cosA * local.x - sinA * local.y, sinA * local.x + cosA * local.y};
+        }
+        /// Velocity of the solid at the world point `world`: v + omega x r (unit: m/s).
+        glm::dvec2 velocityAt(glm::dvec2 world) const {
+            const glm::dvec2 r = world - origin;
+            return velocity + glm::dvec2(-omega * r.y, omega * r.x);
+        }
+    };
+
+    /// The pose `t` seconds into the current step (unit: s; 0 = the pose parameters now):
+    /// (x + vx t, y + vy t, angle + omega t).
+    Pose pose(double t = 0.0) const;
+    /// Sets x, y (unit: m) and angle (unit: rad); validated like `setParam`.
+    void setPose(glm::vec2 position, float angle);
+    /// Sets vx, vy (unit: m/s) and omega (unit: rad/s); validated like `setParam`.
+    void setVelocity(glm::vec2 velocity, float omega);
+
+    /// Lays the local samples if the shape or spacing changed (throws `fluid::Error` for a bad
+    /// shape), then places them in the world with their velocities.
+    void prepare(const StepContext& context) final;
+    /// Keeps particles [begin, end) out of the solid (see the class comment). Needs a `prepare`
+    /// first (it builds the geometry).
+    void project(const ProjectContext& context, uint32_t begin, uint32_t end) final;
+    /// Advances the pose by its velocities over the frame (stepping thread).
+    void finish(const StepContext& context) override;
+    /// The `friction` parameter.
+    float friction() const override { return static_cast<float>(value(kFriction)); }
+
+    /// The samples in the local frame, as last laid (unit: m). Empty before the first `prepare`.
+    std::span<const glm::dvec2> localSamples() const { return m_local; }
+
+  protected:
+    /// `params` must start with `kPoseParams` (see `withPoseParams`).
+    KinematicShape(std::string_view type, std::span<const ParamDecl> params)
+        : BoundaryPlugin(type, params) {}
+
+    /// Axis-aligned bounds of the shape in its local frame (unit: m).
+    struct LocalBounds {
+        glm::dvec2 lo{0.0, 0.0}, hi{0.0, 0.0};
+    };
+    /// Where `collide` puts a particle: a point on the admissible side (local frame, unit: m)
+    /// and the wall normal there pointing into that side (unit vector).
+    struct Contact {
+        glm::dvec2 point{0.0, 0.0};
+        glm::dvec2 normal{0.0, 1.0};
+    };
+
+    /// Checks the shape's parameters and rebuilds its geometry caches and local samples (at
+    /// `spacing` m, covering `support` m behind the surface) into `out`, and its local bounds.
+    /// Throws `fluid::Error` for a bad shape. Stepping thread.
+    virtual void build(double spacing, double support, std::vector<glm::dvec2>& out,
+                       LocalBounds& bounds) = 0;
+    /// The particle moved from `prev` to `cur` (local frame, unit: m). Returns false when it
+    /// stays where it is; else fills `out`. `spacing` is the fluid's lattice spacing (unit: m),
+    /// `eps` how far outside a surface a particle is put (unit: m). Called from worker threads:
+    /// reads only what `build` made.
+    virtual bool collide(glm::dvec2 prev, glm::dvec2 cur, double spacing, double eps,
+                         Contact& out) const = 0;
+    /// How far from the surface `collide` may act (unit: m): the bounds are enlarged by it.
+    virtual double reach(double /*spacing*/) const { return 0.0; }
+    /// Marks the local samples and geometry stale (a shape parameter changed).
+    void onParamChanged(std::size_t index) override;
+
+  private:
+    std::vector<glm::dvec2> m_local;
+    LocalBounds m_bounds;
+    bool m_built = false;
+    float m_builtSpacing = 0.0f;
+    float m_builtSupport = 0.0f;
+};
+
+/// `KinematicShape::kPoseParams` followed by a shape's own parameters, for its `kParams`.
+template <std::size_t N>
+constexpr std::array<ParamDecl, KinematicShape::kPoseParamCount + N>
+withPoseParams(const std::array<ParamDecl, N>& own) {
+    std::array<ParamDecl, KinematicShape::kPoseParamCount + N> out{};
+    for (std::size_t i = 0; i < KinematicShape::kPoseParamCount; ++i) {
+        out[i] = KinematicShape::kPoseParams[i];
+    }
+    for (std::size_t i = 0; i < N; ++i) {
+        out[KinematicShape::kPoseParamCount + i] = own[i];
+    }
+    return out;
+}
+
+} // namespace fluid
