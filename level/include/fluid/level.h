@@ -1,0 +1,172 @@
+// fluid::level — level files: a whole scene (world settings, materials, blobs, plugins,
+// emitters, drains, sensors, goal) described in JSON. Format reference: docs/levels.md.
+#pragma once
+
+#include <fluid/error.h>
+#include <fluid/gameplay.h>
+#include <fluid/registry.h>
+#include <fluid/task.h>
+#include <fluid/world.h>
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace fluid {
+
+/// A level file that cannot be used: bad JSON, an unknown key, a wrong type, an out-of-range or
+/// non-finite value, an unknown plugin type or preset, a bad shape, a repeated name, a name that
+/// refers to nothing. `what()` reads "FILE:LINE:COLUMN: at JSON_PATH: MESSAGE" (JSON_PATH as a
+/// JSON pointer, e.g. "/plugins/1/params/radius"); for the whole document (syntax errors, a
+/// missing top-level key) the path is empty and `what()` reads "FILE:LINE:COLUMN: MESSAGE".
+/// LINE:COLUMN point at the offending value, or at the key for an unknown or repeated key.
+/// Thread rule: as `fluid::Error`.
+class LevelError : public Error {
+  public:
+    /// Builds the message from its parts (line and column start at 1; 0 when unknown).
+    LevelError(std::string file, uint32_t line, uint32_t column, std::string path,
+               std::string message);
+    /// The file name given to the loader.
+    const std::string& file() const { return m_file; }
+    /// Line of the offending value (unit: 1-based line number; 0 when unknown).
+    uint32_t line() const { return m_line; }
+    /// Column of the offending value (unit: 1-based byte column; 0 when unknown).
+    uint32_t column() const { return m_column; }
+    /// JSON pointer of the offending value ("" for the whole document).
+    const std::string& path() const { return m_path; }
+    /// What was wrong and what was expected, without the location.
+    const std::string& message() const { return m_message; }
+
+  private:
+    std::string m_file;
+    uint32_t m_line = 0;
+    uint32_t m_column = 0;
+    std::string m_path;
+    std::string m_message;
+};
+
+/// How a level's goal measures the fluid in its sensor.
+enum class GoalMeasure : uint8_t {
+    /// Particles (unit: count).
+    Count,
+    /// Rest area of the material over the sensor's area (unit: 1; 0.8 = 80% full).
+    Fraction,
+    /// Rest volume in the slab (unit: m^3).
+    Volume,
+};
+
+/// Where a level's goal stands.
+enum class GoalState : uint8_t {
+    /// The level has no goal.
+    None,
+    /// Not reached yet, time left.
+    Pending,
+    /// The sensor holds the amount.
+    Won,
+    /// The time limit passed first.
+    Lost,
+};
+
+/// A level's goal: a sensor, a material and an amount, optionally before a time limit.
+struct LevelGoal {
+    /// False when the level has no goal (the other fields are then unused).
+    bool present = false;
+    /// The sensor's name in the level file.
+    std::string sensorName;
+    /// The sensor in `Level::world`.
+    SensorId sensor{};
+    /// The material's name in the level file.
+    std::string materialName;
+    /// The material counted.
+    MaterialId material{};
+    /// What `amount` measures.
+    GoalMeasure measure = GoalMeasure::Fraction;
+    /// Amount to reach (unit: per `measure`; > 0).
+    double amount = 0.0;
+    /// Simulated time allowed (unit: s; 0 = no limit).
+    double timeLimit = 0.0;
+    /// Text for players ("Fill the cup to 80%").
+    std::string description;
+};
+
+/// A loaded level: the world, ready to step, and the names the file gave things.
+/// Thread rule: as `World`.
+struct Level {
+    /// File name given to the loader.
+    std::string file;
+    /// The level's title and text for players.
+    std::string name, description;
+    /// Format version of the file (unit: 1; this loader reads 1).
+    uint32_t version = 1;
+    /// Frames per simulated second: `World::step(1 / frameRate)` (unit: Hz; range [1, 1000]).
+    float frameRate = 60.0f;
+    /// The world: materials, blobs, plugins, emitters, drains and sensors added.
+    World world;
+    /// Materials by name, in file order.
+    std::vector<std::pair<std::string, MaterialId>> materials;
+    /// Emitters by name, in file order.
+    std::vector<std::pair<std::string, EmitterId>> emitters;
+    /// Drains by name, in file order.
+    std::vector<std::pair<std::string, DrainId>> drains;
+    /// Sensors by name, in file order.
+    std::vector<std::pair<std::string, SensorId>> sensors;
+    /// Plugins by name, in file order, with their kind and index in `World::forces()` or
+    /// `World::boundaries()`.
+    struct PluginEntry {
+        /// Name in the file (the type when the file gives none).
+        std::string name;
+        /// Force or boundary.
+        PluginKind kind = PluginKind::Force;
+        /// Index in `World::forces()` or `World::boundaries()`.
+        uint32_t index = 0;
+    };
+    /// See `PluginEntry`.
+    std::vector<PluginEntry> plugins;
+    /// The goal, if any.
+    LevelGoal goal;
+
+    /// The goal's amount the sensor held at the end of the last step (unit: per
+    /// `goal.measure`: count, 1 or m^3; 0 without a goal or before the first step). Fraction =
+    /// the material's rest area in the sensor over the sensor's area.
+    double goalValue() const;
+    /// Where the goal stands after the last step: `Won` once `goalValue() >= goal.amount`,
+    /// `Lost` once `goal.timeLimit > 0` and `world.time() >= goal.timeLimit` without a win
+    /// first. Both are final: the first answer other than `Pending` is kept (call this after
+    /// every step, or use `step()`, so that a sensor filled for one frame is not missed).
+    GoalState goalState() const;
+    /// Steps the world by one frame, 1 / `frameRate` s, and updates the goal state.
+    /// Throws as `World::step`.
+    void step();
+
+  private:
+    // The goal state latched by goalState(): Won and Lost are final.
+    mutable GoalState m_goalState = GoalState::Pending;
+};
+
+/// Overrides applied while loading (command-line flags of fluid-run, the demo's settings).
+struct LevelOptions {
+    /// Worker threads (unit: count; 0 = the file's `world.workers`, default 1).
+    uint32_t workerCount = 0;
+    /// Most particles the world may hold (unit: count; 0 = the file's `world.maxParticles`;
+    /// otherwise the smaller of the two). A blob that needs more is a LevelError. Tools that
+    /// load untrusted files (the fuzz target) cap memory with it.
+    uint32_t maxParticles = 0;
+    /// The host's thread system; when `enqueue` is set it is used instead of a pool.
+    TaskHook tasks{};
+};
+
+/// Reads and builds the level in the file `path`; plugins are created from `registry`.
+/// Throws `LevelError` for anything the file gets wrong (errors of the world itself, such as an
+/// emitter whose rate the nozzle cannot fit, come located at the block that caused them) and
+/// `fluid::Error` naming the file if it cannot be read. Thread rule: any thread; the registry
+/// is only read.
+Level loadLevel(const std::string& path, const Registry& registry,
+                const LevelOptions& options = {});
+
+/// As `loadLevel`, from text in memory; `file` names it in error messages.
+Level parseLevel(std::string_view text, std::string_view file, const Registry& registry,
+                 const LevelOptions& options = {});
+
+} // namespace fluid

@@ -1,0 +1,734 @@
+// fluid::level — the level format (docs/levels.md): reads a JSON level strictly and builds its
+// world. Every problem is a LevelError located at the value (or key) that caused it.
+#include "json_positions.h"
+
+#include <fluid/level.h>
+#include <fluid/material.h>
+#include <fluid/shape.h>
+
+#include <glm/common.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <optional>
+#include <system_error>
+
+namespace fluid {
+
+namespace {
+std::string composeLevelMessage(const std::string& file, uint32_t line, uint32_t column,
+                                const std::string& path, const std::string& message) {
+    std::string out = file;
+    if (line > 0) {
+        out += ':' + std::to_string(line) + ':' + std::to_string(column);
+    }
+    out += ": ";
+    if (!path.empty()) {
+        out += "at " + path + ": ";
+    }
+    return out + message;
+}
+} // namespace
+
+LevelError::LevelError(std::string file, uint32_t line, uint32_t column, std::string path,
+                       std::string message)
+    : Error(composeLevelMessage(file, line, column, path, message)), m_file(std::move(file)),
+      m_line(line), m_column(column), m_path(std::move(path)), m_message(std::move(message)) {}
+
+namespace {
+
+using detail::childPointer;
+using detail::formatNumber;
+using detail::Json;
+using detail::JsonDocument;
+using detail::ObjectReader;
+using detail::Range;
+
+/// The format version this loader reads.
+constexpr uint64_t kVersion = 1;
+
+// Ranges of the format (docs/levels.md lists them). World-space coordinates are bounded so
+// that lattice sizes and float conversions stay meaningful.
+constexpr Range kCoordinate{-1e5, 1e5, "m"};
+constexpr Range kSize{0.0, 1e5, "m", true};
+constexpr Range kVelocity{-1e3, 1e3, "m/s"};
+constexpr Range kLifetime{0.0, 1e6, "s"};
+constexpr Range kFrameRate{1.0, 1000.0, "Hz"};
+// Most vertices of a blob, drain or sensor polygon: validation and containment are quadratic
+// and linear in it.
+constexpr std::size_t kMaxShapeVertices = 256;
+
+// A Material field the file may override, with its range (as `validate(Material)` checks it).
+struct MaterialField {
+    std::string_view key;
+    float Material::*member;
+    Range range;
+};
+constexpr MaterialField kMaterialFields[] = {
+    {"mass", &Material::mass, {0.0, 1e3, "kg", true}},
+    {"restDensity", &Material::restDensity, {0.0, 1e5, "kg/m^3", true}},
+    {"viscosity", &Material::viscosity, {0.0, 1e4, "Pa*s"}},
+    {"stiffness", &Material::stiffness, {0.0, 1e8, "J/kg", true}},
+    {"smoothingDistance", &Material::smoothingDistance, {1e-4, 10.0, "m"}},
+    {"kernelParticles", &Material::kernelParticles, {4.0, 400.0, "count"}},
+    {"surfaceTension", &Material::surfaceTension, {0.0, 1e3, "m^3/(kg s^2)"}},
+};
+
+// "a, b, c" for messages; long lists are cut ("... and 40 more").
+std::string joined(const std::vector<std::string>& names) {
+    constexpr std::size_t kShown = 20;
+    if (names.empty()) {
+        return "(none)";
+    }
+    std::string out;
+    for (std::size_t k = 0; k < names.size() && k < kShown; ++k) {
+        out += (k == 0 ? "" : ", ") + names[k];
+    }
+    if (names.size() > kShown) {
+        out += " and " + std::to_string(names.size() - kShown) + " more";
+    }
+    return out;
+}
+
+// Names of one list of the file (materials, sensors...): unique, looked up by references.
+template <class Id> class NameTable {
+  public:
+    explicit NameTable(std::string_view what) : m_what(what) {}
+
+    void add(const JsonDocument& doc, const std::string& name, const std::string& pointer, Id id) {
+        const auto [it, added] = m_index.emplace(name, m_entries.size());
+        if (!added) {
+            doc.fail(pointer, "duplicate " + std::string(m_what) + " name '" + name +
+                                  "' (first used at " + m_entries[it->second].pointer +
+                                  "); names must be unique");
+        }
+        m_entries.push_back({name, pointer, id});
+    }
+
+    Id find(const JsonDocument& doc, const std::string& name, const std::string& pointer) const {
+        if (const auto it = m_index.find(name); it != m_index.end()) {
+            return m_entries[it->second].id;
+        }
+        std::vector<std::string> known;
+        for (const Entry& e : m_entries) {
+            known.push_back(e.name);
+        }
+        doc.fail(pointer,
+                 "unknown " + std::string(m_what) + " '" + name + "'; known: " + joined(known));
+    }
+
+  private:
+    struct Entry {
+        std::string name;
+        std::string pointer;
+        Id id;
+    };
+    std::string_view m_what;
+    std::vector<Entry> m_entries;
+    std::map<std::string, std::size_t> m_index;
+};
+
+// A fluid::Error from the world, re-thrown at the block of the file that caused it.
+template <class F> auto located(const JsonDocument& doc, const std::string& pointer, F&& f) {
+    try {
+        return f();
+    } catch (const LevelError&) {
+        throw;
+    } catch (const Error& e) {
+        doc.fail(pointer, e.what());
+    }
+}
+
+class LevelReader {
+  public:
+    LevelReader(const JsonDocument& doc, const Registry& registry, const LevelOptions& options,
+                Level& level)
+        : m_doc(doc), m_registry(registry), m_options(options), m_level(level) {}
+
+    void read() {
+        const ObjectReader root(m_doc, m_doc.root(), "", "a level");
+        root.allowOnly({"version", "name", "description", "world", "materials", "blobs", "plugins",
+                        "emitters", "drains", "sensors", "goal"});
+        root.required("version", "the format version (1)");
+        const uint64_t v = root.integer("version", {1.0, 1e9, "1"}, kVersion);
+        if (v != kVersion) {
+            root.failAt("version", "unsupported version " + std::to_string(v) +
+                                       "; this loader reads version " + std::to_string(kVersion));
+        }
+        m_level.version = uint32_t(v);
+        m_level.name = root.string("name", "");
+        m_level.description = root.string("description", "");
+
+        readWorld(root);
+        readMaterials(root);
+        readPlugins(root);
+        readBlobs(root);
+        readEmitters(root);
+        readDrains(root);
+        readSensors(root);
+        readGoal(root);
+    }
+
+  private:
+    // ---- world ---------------------------------------------------------------------------
+    void readWorld(const ObjectReader& root) {
+        WorldDef def;
+        std::optional<glm::dvec2> gravity;
+        std::string gravityPointer;
+        if (const Json* value = root.find("world")) {
+            const ObjectReader w(m_doc, *value, root.pointer("world"), "the world settings");
+            w.allowOnly({"gravity", "frameRate", "solver", "substeps", "iterations", "vorticity",
+                         "equationOfState", "soundSpeed", "courant", "maxSubsteps", "maxParticles",
+                         "workers", "depth"});
+            if (w.has("gravity")) {
+                gravityPointer = w.pointer("gravity");
+                gravity = readGravity(w);
+            }
+            m_level.frameRate = float(w.number("frameRate", kFrameRate, 60.0));
+            const std::string solver = w.string("solver", "position_based");
+            if (solver == "explicit") {
+                def.solver = Solver::Explicit;
+            } else if (solver != "position_based") {
+                w.failAt("solver",
+                         "unknown solver '" + solver + "'; known: position_based, explicit");
+            }
+            def.positionBased.substeps =
+                uint32_t(w.integer("substeps", {1, 64, "count"}, def.positionBased.substeps));
+            def.positionBased.iterations =
+                uint32_t(w.integer("iterations", {1, 100, "count"}, def.positionBased.iterations));
+            def.positionBased.vorticity = float(w.number("vorticity", {0, 10, "1"}, 0.0));
+            const std::string eos = w.string("equationOfState", "tait");
+            if (eos == "linear") {
+                def.equationOfState = EquationOfState::Linear;
+            } else if (eos != "tait") {
+                w.failAt("equationOfState",
+                         "unknown equation of state '" + eos + "'; known: tait, linear");
+            }
+            const double c = w.number("soundSpeed", {0, 1e4, "m/s"}, 0.0);
+            if (c > 0.0 && c < 0.1) {
+                w.failAt("soundSpeed", formatNumber(c) +
+                                           " is out of range: 0 (derive from the scene) or "
+                                           "[0.1, 10000] (unit: m/s)");
+            }
+            def.soundSpeed = float(c);
+            def.courant = float(w.number("courant", {0.01, 1, "1"}, def.courant));
+            def.maxSubsteps =
+                uint32_t(w.integer("maxSubsteps", {1, 10000, "count"}, def.maxSubsteps));
+            def.maxParticles = uint32_t(
+                w.integer("maxParticles", {1, double(1u << 26), "count"}, def.maxParticles));
+            def.workerCount = uint32_t(w.integer("workers", {1, 256, "count"}, 1));
+            def.depth = float(w.number("depth", {1e-4, 1e3, "m"}, def.depth));
+        }
+        if (m_options.workerCount > 0) {
+            def.workerCount = m_options.workerCount;
+        }
+        def.tasks = m_options.tasks;
+        if (m_options.maxParticles > 0) {
+            def.maxParticles = std::min(def.maxParticles, m_options.maxParticles);
+        }
+        m_level.world = located(m_doc, root.has("world") ? root.pointer("world") : "",
+                                [&] { return World(def); });
+        if (gravity) {
+            // force.gravity is the world's first force, so plugins listed later act after it.
+            const std::array<ParamValue, 2> g{{{"gx", gravity->x}, {"gy", gravity->y}}};
+            located(m_doc, gravityPointer,
+                    [&] { m_level.world.addForce(m_registry.createForce("force.gravity", g)); });
+            addPluginName("gravity", gravityPointer, PluginKind::Force, 0);
+        }
+    }
+
+    glm::dvec2 readGravity(const ObjectReader& w) const {
+        const std::string at = w.pointer("gravity");
+        const PluginInfo* info = m_registry.find("force.gravity");
+        if (info == nullptr || info->kind != PluginKind::Force) {
+            m_doc.fail(at, "world gravity needs the plugin type 'force.gravity', which the "
+                           "registry does not have");
+        }
+        Range axis[2] = {{-1e3, 1e3, "m/s^2"}, {-1e3, 1e3, "m/s^2"}};
+        for (const ParamDecl& decl : info->params) {
+            if (decl.name == "gx" || decl.name == "gy") {
+                axis[decl.name == "gy"] = Range{decl.minValue, decl.maxValue, decl.unit};
+            }
+        }
+        const Json& value = *w.find("gravity");
+        if (!value.is_array() || value.size() != 2) {
+            m_doc.fail(at, "expected a vector [gx, gy] of two numbers (unit: m/s^2), got " +
+                               (value.is_array() ? "an array of " + std::to_string(value.size())
+                                                 : detail::describeType(value)));
+        }
+        return {detail::readNumber(m_doc, value[0], childPointer(at, std::size_t(0)), axis[0]),
+                detail::readNumber(m_doc, value[1], childPointer(at, std::size_t(1)), axis[1])};
+    }
+
+    // ---- materials -----------------------------------------------------------------------
+    void readMaterials(const ObjectReader& root) {
+        const Json* list = root.array("materials", "materials");
+        if (list == nullptr || list->empty()) {
+            if (list == nullptr) {
+                root.fail("missing key 'materials'; expected an array of at least one material");
+            }
+            root.failAt("materials", "expected at least one material, got an empty array");
+        }
+        for (std::size_t i = 0; i < list->size(); ++i) {
+            const std::string at = childPointer(root.pointer("materials"), i);
+            const ObjectReader m(m_doc, (*list)[i], at, "a material");
+            std::vector<std::string_view> allowed{"name", "preset"};
+            for (const MaterialField& f : kMaterialFields) {
+                allowed.push_back(f.key);
+            }
+            m.allowOnly(allowed);
+            const std::string name = readName(m, "material");
+            const std::string preset = m.string("preset", "water");
+            Material material;
+            if (preset == "water") {
+                material = water();
+            } else if (preset == "yoghurt") {
+                material = yoghurt();
+            } else {
+                m.failAt("preset", "unknown preset '" + preset + "'; known: water, yoghurt");
+            }
+            material.name = name;
+            for (const MaterialField& f : kMaterialFields) {
+                material.*f.member = float(m.number(f.key, f.range, material.*f.member));
+            }
+            const MaterialId id =
+                located(m_doc, at, [&] { return m_level.world.addMaterial(material); });
+            m_materials.add(m_doc, name, m.pointer("name"), id);
+            m_level.materials.emplace_back(name, id);
+        }
+    }
+
+    // ---- plugins -------------------------------------------------------------------------
+    void readPlugins(const ObjectReader& root) {
+        const Json* list = root.array("plugins", "plugins");
+        for (std::size_t i = 0; list != nullptr && i < list->size(); ++i) {
+            const std::string at = childPointer(root.pointer("plugins"), i);
+            const ObjectReader p(m_doc, (*list)[i], at, "a plugin");
+            p.allowOnly({"type", "name", "params"});
+            const std::string type = p.requiredString("type", "a plugin type (a string)");
+            const PluginInfo* info = m_registry.find(type);
+            if (info == nullptr) {
+                std::vector<std::string> known;
+                for (const PluginInfo& k : m_registry.types()) {
+                    known.push_back(k.type);
+                }
+                p.failAt("type", "unknown plugin type '" + type + "'; known: " + joined(known));
+            }
+            const bool named = p.has("name");
+            const std::string name = named ? readName(p, "plugin") : type;
+            std::unique_ptr<ForcePlugin> force;
+            std::unique_ptr<BoundaryPlugin> boundary;
+            located(m_doc, at, [&] {
+                if (info->kind == PluginKind::Force) {
+                    force = m_registry.createForce(type);
+                } else {
+                    boundary = m_registry.createBoundary(type);
+                }
+            });
+            Plugin& plugin = force ? static_cast<Plugin&>(*force) : *boundary;
+            if (const Json* params = p.find("params")) {
+                const ObjectReader reader(m_doc, *params, p.pointer("params"),
+                                          "the plugin's parameters");
+                readParams(*info, plugin, reader);
+                requirePoints(*info, p, &reader);
+            } else {
+                requirePoints(*info, p, nullptr);
+            }
+            uint32_t index = 0;
+            located(m_doc, at, [&] {
+                if (force) {
+                    index = uint32_t(m_level.world.forces().size());
+                    m_level.world.addForce(std::move(force));
+                } else {
+                    index = uint32_t(m_level.world.boundaries().size());
+                    m_level.world.addBoundary(std::move(boundary));
+                }
+            });
+            if (named) {
+                addPluginName(name, p.pointer("name"), info->kind, index);
+            } else {
+                m_level.plugins.push_back({name, info->kind, index});
+            }
+        }
+    }
+
+    // Parameters are checked against the registry's declarations (Number: a value in range;
+    // Points: a list of [x, y]), so every plugin type works without special cases. They are
+    // set in declaration order, whatever order the file lists them in.
+    void readParams(const PluginInfo& info, Plugin& plugin, const ObjectReader& params) const {
+        std::vector<std::string_view> known;
+        for (const ParamDecl& decl : info.params) {
+            known.push_back(decl.name);
+        }
+        if (const std::optional<std::string> unknown = params.firstUnknownKey(known)) {
+            std::string list;
+            for (const std::string_view k : known) {
+                list += (list.empty() ? "" : ", ") + std::string(k);
+            }
+            m_doc.failAtKey(params.pointer(*unknown),
+                            "unknown parameter '" + *unknown + "' of plugin '" + info.type +
+                                "'; known: " + (list.empty() ? "(none)" : list));
+        }
+        for (const ParamDecl& decl : info.params) {
+            const Json* value = params.find(decl.name);
+            if (value == nullptr) {
+                continue;
+            }
+            setParam(plugin, decl, *value, params.pointer(decl.name));
+        }
+    }
+
+    // A plugin starts with no points: a point list whose declaration needs some must be given.
+    void requirePoints(const PluginInfo& info, const ObjectReader& p,
+                       const ObjectReader* params) const {
+        for (const ParamDecl& decl : info.params) {
+            if (decl.type == ParamType::Points && decl.minValue > 0.0 &&
+                (params == nullptr || !params->has(decl.name))) {
+                const std::string what =
+                    "missing parameter '" + std::string(decl.name) + "' of plugin '" + info.type +
+                    "'; expected a list of " + formatNumber(decl.minValue) + " to " +
+                    formatNumber(decl.maxValue) +
+                    " points [[x, y], ...] (unit: " + std::string(decl.unit) + ")";
+                if (params == nullptr) {
+                    p.fail(what);
+                }
+                params->fail(what);
+            }
+        }
+    }
+
+    void setParam(Plugin& plugin, const ParamDecl& decl, const Json& value,
+                  const std::string& at) const {
+        if (decl.type == ParamType::Number) {
+            const double v =
+                detail::readNumber(m_doc, value, at, {decl.minValue, decl.maxValue, decl.unit});
+            located(m_doc, at, [&] { plugin.setParam(decl.name, v); });
+            return;
+        }
+        // Counts are declared as doubles (by plugin libraries too): clamp before converting.
+        const auto clampCount = [](double c) { return c >= 0.0 ? std::min(c, 1e15) : 0.0; };
+        const double lo = std::ceil(clampCount(decl.minValue));
+        const double hi = std::max(std::floor(clampCount(decl.maxValue)), lo);
+        const std::vector<glm::vec2> points =
+            detail::readPoints(m_doc, value, at, kCoordinate, std::size_t(lo), std::size_t(hi));
+        located(m_doc, at, [&] { plugin.setPoints(decl.name, points); });
+    }
+
+    void addPluginName(const std::string& name, const std::string& pointer, PluginKind kind,
+                       uint32_t index) {
+        m_pluginNames.add(m_doc, name, pointer, index);
+        m_level.plugins.push_back({name, kind, index});
+    }
+
+    // ---- shapes and blobs ----------------------------------------------------------------
+    // Reads "shape" and its fields; `common` are the other keys the object may have.
+    Shape readShape(const ObjectReader& o, std::vector<std::string_view> common) const {
+        const std::string type = o.requiredString("shape", "a shape: box, circle or polygon");
+        Shape shape;
+        common.push_back("shape");
+        if (type == "box") {
+            common.insert(common.end(), {"min", "max"});
+            o.allowOnly(common);
+            const glm::vec2 lo = o.requiredPoint("min", kCoordinate);
+            const glm::vec2 hi = o.requiredPoint("max", kCoordinate);
+            if (!(hi.x > lo.x && hi.y > lo.y)) {
+                o.failAt("max", "expected max > min on both axes, got min [" + formatNumber(lo.x) +
+                                    ", " + formatNumber(lo.y) + "], max [" + formatNumber(hi.x) +
+                                    ", " + formatNumber(hi.y) + "]");
+            }
+            shape = Shape::box(lo, hi);
+        } else if (type == "circle") {
+            common.insert(common.end(), {"center", "radius"});
+            o.allowOnly(common);
+            shape = Shape::circle(o.requiredPoint("center", kCoordinate),
+                                  float(o.requiredNumber("radius", kSize)));
+        } else if (type == "polygon") {
+            common.push_back("vertices");
+            o.allowOnly(common);
+            shape = Shape::polygon(o.requiredPoints("vertices", kCoordinate, 3, kMaxShapeVertices));
+        } else {
+            o.failAt("shape", "unknown shape '" + type + "'; known: box, circle, polygon");
+        }
+        // Crossing edges, zero area, sizes lost in the float conversion: the core's check,
+        // re-located at the field that holds the geometry.
+        const std::string_view field = shape.type == ShapeType::Polygon  ? "vertices"
+                                       : shape.type == ShapeType::Circle ? "radius"
+                                                                         : "max";
+        try {
+            validate(shape, "shape");
+        } catch (const Error& e) {
+            const std::string what = e.what();
+            o.failAt(field, what.rfind("shape: ", 0) == 0 ? what.substr(7) : what);
+        }
+        return shape;
+    }
+
+    void readBlobs(const ObjectReader& root) {
+        const Json* list = root.array("blobs", "blobs");
+        for (std::size_t i = 0; list != nullptr && i < list->size(); ++i) {
+            const std::string at = childPointer(root.pointer("blobs"), i);
+            const ObjectReader b(m_doc, (*list)[i], at, "a blob");
+            const Shape shape = readShape(b, {"material", "velocity", "lifetime"});
+            BlobDef blob;
+            blob.shape = shape.type;
+            blob.center = shape.center;
+            blob.halfExtents = shape.halfExtents;
+            blob.radius = shape.radius;
+            blob.vertices = shape.vertices;
+            blob.material =
+                m_materials.find(m_doc, b.requiredString("material", "the name of a material"),
+                                 b.pointer("material"));
+            blob.velocity = b.point("velocity", kVelocity, {0.0f, 0.0f});
+            blob.lifetime = float(b.number("lifetime", kLifetime, 0.0));
+            checkBlobSize(b, shape, blob.material);
+            const uint32_t added =
+                located(m_doc, at, [&] { return m_level.world.spawnBlob(blob); });
+            if (added == 0) {
+                b.fail("the blob holds no particle: it is smaller than the material's lattice "
+                       "spacing " +
+                       formatNumber(m_level.world.spacing(blob.material)) + " m");
+            }
+        }
+    }
+
+    // The world fills a blob's bounding box on the material's lattice; refuse boxes that would
+    // span more lattice cells than the world may hold before asking it to.
+    void checkBlobSize(const ObjectReader& b, const Shape& shape, MaterialId material) const {
+        glm::dvec2 lo{shape.center - shape.halfExtents}, hi{shape.center + shape.halfExtents};
+        if (shape.type == ShapeType::Circle) {
+            lo = glm::dvec2(shape.center) - double(shape.radius);
+            hi = glm::dvec2(shape.center) + double(shape.radius);
+        } else if (shape.type == ShapeType::Polygon) {
+            lo = hi = shape.vertices[0];
+            for (const glm::vec2 v : shape.vertices) {
+                lo = glm::min(lo, glm::dvec2(v));
+                hi = glm::max(hi, glm::dvec2(v));
+            }
+        }
+        const double spacing = m_level.world.spacing(material);
+        const double cols = std::floor((hi.x - lo.x) / spacing);
+        const double rows = std::floor((hi.y - lo.y) / spacing);
+        const double cap = m_level.world.def().maxParticles;
+        if (!(cols <= cap && rows <= cap && cols * rows <= cap)) {
+            b.fail("the blob spans about " +
+                   formatNumber(std::max(cols, 1.0) * std::max(rows, 1.0)) +
+                   " lattice points (spacing " + formatNumber(float(spacing)) +
+                   " m); the world holds at most " + formatNumber(cap) +
+                   " particles (world.maxParticles)");
+        }
+    }
+
+    // ---- emitters, drains, sensors ---------------------------------------------------------
+    void readEmitters(const ObjectReader& root) {
+        const Json* list = root.array("emitters", "emitters");
+        for (std::size_t i = 0; list != nullptr && i < list->size(); ++i) {
+            const std::string at = childPointer(root.pointer("emitters"), i);
+            const ObjectReader e(m_doc, (*list)[i], at, "an emitter");
+            e.allowOnly({"name", "material", "position", "direction", "speed", "width", "rate",
+                         "maxCount", "lifetime", "jitter", "seed"});
+            const std::string name = readName(e, "emitter");
+            EmitterDef def;
+            def.material =
+                m_materials.find(m_doc, e.requiredString("material", "the name of a material"),
+                                 e.pointer("material"));
+            def.position = e.requiredPoint("position", kCoordinate);
+            def.direction = e.point("direction", {-1e3, 1e3, "1"}, def.direction);
+            if (def.direction.x == 0.0f && def.direction.y == 0.0f) {
+                e.failAt("direction", "expected a direction other than [0, 0]");
+            }
+            def.speed = float(e.number("speed", {0.01, 100, "m/s"}, def.speed));
+            def.width = float(e.number("width", {0, 100, "m"}, def.width));
+            def.rate = float(e.number("rate", {0, 1e6, "1/s"}, def.rate));
+            def.maxCount = uint32_t(e.integer("maxCount", {0, 4294967295.0, "count"}, 0));
+            def.lifetime = float(e.number("lifetime", kLifetime, 0.0));
+            def.jitter = float(e.number("jitter", {0, 0.5, "1"}, 0.0));
+            def.seed = e.integer("seed", {0, 9007199254740992.0, "1"}, def.seed);
+            const EmitterId id = located(m_doc, at, [&] { return m_level.world.addEmitter(def); });
+            m_emitterNames.add(m_doc, name, e.pointer("name"), id);
+            m_level.emitters.emplace_back(name, id);
+        }
+    }
+
+    void readDrains(const ObjectReader& root) {
+        const Json* list = root.array("drains", "drains");
+        for (std::size_t i = 0; list != nullptr && i < list->size(); ++i) {
+            const std::string at = childPointer(root.pointer("drains"), i);
+            const ObjectReader d(m_doc, (*list)[i], at, "a drain");
+            DrainDef def;
+            def.shape = readShape(d, {"name", "material"});
+            const std::string name = readName(d, "drain");
+            if (d.has("material")) {
+                def.onlyMaterial = true;
+                def.material =
+                    m_materials.find(m_doc, d.requiredString("material", "the name of a material"),
+                                     d.pointer("material"));
+            }
+            const DrainId id = located(m_doc, at, [&] { return m_level.world.addDrain(def); });
+            m_drainNames.add(m_doc, name, d.pointer("name"), id);
+            m_level.drains.emplace_back(name, id);
+        }
+    }
+
+    void readSensors(const ObjectReader& root) {
+        const Json* list = root.array("sensors", "sensors");
+        for (std::size_t i = 0; list != nullptr && i < list->size(); ++i) {
+            const std::string at = childPointer(root.pointer("sensors"), i);
+            const ObjectReader s(m_doc, (*list)[i], at, "a sensor");
+            SensorDef def;
+            def.shape = readShape(s, {"name"});
+            const std::string name = readName(s, "sensor");
+            const SensorId id = located(m_doc, at, [&] { return m_level.world.addSensor(def); });
+            m_sensorNames.add(m_doc, name, s.pointer("name"), id);
+            m_level.sensors.emplace_back(name, id);
+        }
+    }
+
+    // ---- goal ----------------------------------------------------------------------------
+    void readGoal(const ObjectReader& root) {
+        const Json* value = root.find("goal");
+        if (value == nullptr) {
+            return;
+        }
+        const ObjectReader g(m_doc, *value, root.pointer("goal"), "a goal");
+        g.allowOnly(
+            {"sensor", "material", "fraction", "count", "volume", "timeLimit", "description"});
+        LevelGoal& goal = m_level.goal;
+        goal.sensorName = g.requiredString("sensor", "the name of a sensor");
+        goal.sensor = m_sensorNames.find(m_doc, goal.sensorName, g.pointer("sensor"));
+        goal.materialName = g.requiredString("material", "the name of a material");
+        goal.material = m_materials.find(m_doc, goal.materialName, g.pointer("material"));
+
+        // Exactly one amount; a second one is reported at its key.
+        std::vector<std::string_view> given;
+        for (const std::string_view key : {"fraction", "count", "volume"}) {
+            if (g.has(key)) {
+                given.push_back(key);
+            }
+        }
+        if (given.empty()) {
+            g.fail("missing the amount; expected one of 'fraction', 'count', 'volume'");
+        }
+        if (given.size() > 1) {
+            std::sort(given.begin(), given.end(), [&](std::string_view a, std::string_view b) {
+                return m_doc.keyOffset(g.pointer(a)) < m_doc.keyOffset(g.pointer(b));
+            });
+            m_doc.failAtKey(g.pointer(given[1]), "expected only one of 'fraction', 'count', "
+                                                 "'volume'; '" +
+                                                     std::string(given[0]) + "' is given too");
+        }
+        if (given[0] == "fraction") {
+            goal.measure = GoalMeasure::Fraction;
+            goal.amount = g.number("fraction", {0, 1, "1", true}, 0.0);
+        } else if (given[0] == "count") {
+            goal.measure = GoalMeasure::Count;
+            goal.amount = double(g.integer("count", {1, double(1u << 26), "count"}, 0));
+        } else {
+            goal.measure = GoalMeasure::Volume;
+            goal.amount = g.number("volume", {0, 1e6, "m^3", true}, 0.0);
+        }
+        goal.timeLimit = g.number("timeLimit", kLifetime, 0.0);
+        goal.description = g.string("description", "");
+        goal.present = true;
+    }
+
+    // ---- names ---------------------------------------------------------------------------
+    std::string readName(const ObjectReader& o, std::string_view what) const {
+        const std::string name =
+            o.requiredString("name", "the " + std::string(what) + "'s name (a string)");
+        if (name.empty()) {
+            o.failAt("name", "expected a non-empty name");
+        }
+        return name;
+    }
+
+    const JsonDocument& m_doc;
+    const Registry& m_registry;
+    const LevelOptions& m_options;
+    Level& m_level;
+    NameTable<MaterialId> m_materials{"material"};
+    NameTable<uint32_t> m_pluginNames{"plugin"};
+    NameTable<EmitterId> m_emitterNames{"emitter"};
+    NameTable<DrainId> m_drainNames{"drain"};
+    NameTable<SensorId> m_sensorNames{"sensor"};
+};
+
+} // namespace
+
+// ---- Level -------------------------------------------------------------------------------
+
+double Level::goalValue() const {
+    if (!goal.present) {
+        return 0.0;
+    }
+    const std::span<const SensorReading> readings = world.sensorReading(goal.sensor);
+    if (goal.material.index >= readings.size()) {
+        return 0.0;
+    }
+    const SensorReading& r = readings[goal.material.index];
+    switch (goal.measure) {
+    case GoalMeasure::Count:
+        return double(r.count);
+    case GoalMeasure::Volume:
+        return double(r.volume);
+    case GoalMeasure::Fraction:
+        return double(r.area) / double(area(world.sensor(goal.sensor).shape));
+    }
+    return 0.0;
+}
+
+GoalState Level::goalState() const {
+    if (!goal.present) {
+        return GoalState::None;
+    }
+    if (m_goalState == GoalState::Pending) {
+        if (goalValue() >= goal.amount) {
+            m_goalState = GoalState::Won;
+        } else if (goal.timeLimit > 0.0 && world.time() >= goal.timeLimit) {
+            m_goalState = GoalState::Lost;
+        }
+    }
+    return m_goalState;
+}
+
+void Level::step() {
+    world.step(1.0f / frameRate);
+    goalState();
+}
+
+Level parseLevel(std::string_view text, std::string_view file, const Registry& registry,
+                 const LevelOptions& options) {
+    const detail::JsonDocument doc(text, file);
+    Level level;
+    level.file = std::string(file);
+    LevelReader(doc, registry, options, level).read();
+    return level;
+}
+
+Level loadLevel(const std::string& path, const Registry& registry, const LevelOptions& options) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (f == nullptr) {
+        throw Error("loadLevel: cannot open '" + path +
+                    "': " + std::generic_category().message(errno));
+    }
+    std::string text;
+    char buffer[65536];
+    std::size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof(buffer), f)) > 0) {
+        text.append(buffer, n);
+    }
+    const bool failed = std::ferror(f) != 0;
+    const int error = errno;
+    std::fclose(f);
+    if (failed) {
+        throw Error("loadLevel: cannot read '" + path +
+                    "': " + std::generic_category().message(error));
+    }
+    return parseLevel(text, path, registry, options);
+}
+
+} // namespace fluid
