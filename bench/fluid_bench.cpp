@@ -203,7 +203,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     if (opt.solver != "position-based" && opt.solver != "explicit") {
-        std::fprintf(stderr, "fluid-bench: unknown solver '%s' (expected position-based or explicit)\n",
+        std::fprintf(stderr,
+                     "fluid-bench: unknown solver '%s' (expected position-based or explicit)\n",
                      opt.solver.c_str());
         return 2;
     }

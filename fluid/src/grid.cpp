@@ -67,8 +67,8 @@ void Grid::build(std::span<const float> px, std::span<const float> py, float cel
         for (uint32_t i = b; i < e; ++i) {
             const int64_t cx = cellCoord(px[i]);
             const int64_t cy = cellCoord(py[i]);
-            m_keys[i] = m_hashed ? hashKey(cx, cy)
-                                 : uint32_t((cy - m_oy) * int64_t(m_nx) + (cx - m_ox));
+            m_keys[i] =
+                m_hashed ? hashKey(cx, cy) : uint32_t((cy - m_oy) * int64_t(m_nx) + (cx - m_ox));
         }
     });
 

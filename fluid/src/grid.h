@@ -32,8 +32,7 @@ public:
 
     /// Calls `f(begin, end)` for each range of sorted positions in the cells around (x, y) that
     /// may hold points within one cell size. Ranges are visited in a fixed order.
-    template <class F>
-    void forEachRange(float x, float y, F&& f) const {
+    template <class F> void forEachRange(float x, float y, F&& f) const {
         if (m_order.empty()) {
             return;
         }

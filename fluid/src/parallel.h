@@ -25,8 +25,8 @@ void parallelFor(const TaskHook& hook, uint32_t count, uint32_t minRange, F&& f)
     TaskCallback* callback = [](uint32_t begin, uint32_t end, uint32_t worker, void* context) {
         (*static_cast<Fn*>(context))(begin, end, worker);
     };
-    void* task = hook.enqueue(callback, count, minRange, const_cast<void*>(static_cast<const void*>(&f)),
-                              hook.userContext);
+    void* task = hook.enqueue(callback, count, minRange,
+                              const_cast<void*>(static_cast<const void*>(&f)), hook.userContext);
     if (task != nullptr) {
         hook.finish(task, hook.userContext);
     }

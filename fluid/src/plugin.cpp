@@ -53,8 +53,8 @@ void checkValue(std::string_view type, const ParamDecl& decl, double value) {
     }
     std::ostringstream s;
     s << "plugin '" << type << "': parameter '" << decl.name << "' = " << value << " is "
-      << (std::isfinite(value) ? "out of range" : "not finite; expected") << " ["
-      << decl.minValue << ", " << decl.maxValue << "] (unit: " << decl.unit << ")";
+      << (std::isfinite(value) ? "out of range" : "not finite; expected") << " [" << decl.minValue
+      << ", " << decl.maxValue << "] (unit: " << decl.unit << ")";
     throw Error(s.str());
 }
 } // namespace

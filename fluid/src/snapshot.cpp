@@ -38,7 +38,7 @@ uint64_t fnv1a(const std::byte* data, size_t size) {
 }
 
 class Out {
-  public:
+public:
     template <class T> void put(const T& v) {
         static_assert(std::is_trivially_copyable_v<T>);
         const auto* b = reinterpret_cast<const std::byte*>(&v);
@@ -58,7 +58,7 @@ class Out {
 };
 
 class In {
-  public:
+public:
     explicit In(std::span<const std::byte> data) : m_data(data) {}
     template <class T> T get() {
         static_assert(std::is_trivially_copyable_v<T>);
@@ -99,7 +99,7 @@ class In {
         return E(raw);
     }
 
-  private:
+private:
     void need(size_t n, const char* what) {
         if (m_data.size() - m_at < n) {
             fail(std::string("ends inside ") + what);

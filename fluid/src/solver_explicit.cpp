@@ -125,7 +125,9 @@ void measureField(WorldState& s) {
                 }
                 return q;
             },
-            [](Range a, const Range& b) { return Range{std::min(a.lo, b.lo), std::max(a.hi, b.hi)}; });
+            [](Range a, const Range& b) {
+                return Range{std::min(a.lo, b.lo), std::max(a.hi, b.hi)};
+            });
         height = double(r.hi) - r.lo;
     }
     s.fieldGH = float(acc.gmax * height);
@@ -232,7 +234,8 @@ void stepExplicit(WorldState& s, float frameDt) {
             dt = std::min(dt, 0.25f * std::sqrt(minSupport / s.lastMaxAccel));
         }
         if (maxNu > 0.0f) {
-            dt = std::min(dt, 0.06f * minSupport * minSupport / (maxNu * std::max(1.0f, maxFriction)));
+            dt = std::min(dt,
+                          0.06f * minSupport * minSupport / (maxNu * std::max(1.0f, maxFriction)));
         }
         return dt;
     };
@@ -315,9 +318,8 @@ void stepExplicit(WorldState& s, float frameDt) {
         prof.nonFiniteRepaired += st.repaired;
         s.lastMaxAccel = std::sqrt(st.maxAccel2);
         elapsed += double(h);
-        timed(prof.boundaries, [&] {
-            projectBoundaries(s, h, inStep, float(elapsed), sampleSpacing, p.qx, p.qy);
-        });
+        timed(prof.boundaries,
+              [&] { projectBoundaries(s, h, inStep, float(elapsed), sampleSpacing, p.qx, p.qy); });
         if (probe && sub == 0) {
             h = float((double(frameDt) - elapsed) / double(total - 1));
         }

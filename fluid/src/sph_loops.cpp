@@ -118,8 +118,7 @@ void computeNormals(WorldState& s) {
 
 namespace {
 
-template <bool kSurface>
-void forces(WorldState& s, float sampleVolume) {
+template <bool kSurface> void forces(WorldState& s, float sampleVolume) {
     Particles& p = s.particles;
     const Samples& w = s.samples;
     const float* __restrict px = p.px.data();
@@ -157,17 +156,18 @@ void forces(WorldState& s, float sampleVolume) {
                     // Pressure, seed eq. 2.5 in the volume form of [Solenthaler 2008]:
                     // -(1/m_i) (p_i V_i^2 + p_j V_j^2) grad W with V = m/rho; for one
                     // material it is the seed's -m (p_i/rho_i^2 + p_j/rho_j^2) grad W.
-                    const float fp = -(piMt + p2[j] * mt[j] * mt[j] * invMti) * kG * invH4 *
-                                     (t * t * t);
+                    const float fp =
+                        -(piMt + p2[j] * mt[j] * mt[j] * invMti) * kG * invH4 * (t * t * t);
                     // Viscosity, seed eq. 2.6, with the pair's mean mu.
-                    const float fv = 0.5f * (mui + mu[j]) * invRhoi * mt[j] * invRho[j] * kL *
-                                     invH4 * t;
+                    const float fv =
+                        0.5f * (mui + mu[j]) * invRhoi * mt[j] * invRho[j] * kL * invH4 * t;
                     float fx = fp * dx + fv * (vx[j] - vxi);
                     float fy = fp * dy + fv * (vy[j] - vyi);
                     if constexpr (kSurface) {
                         // Cohesion and curvature [Akinci 2013, eqs. 1-6]; K_ij corrects the
                         // particle deficiency at the surface.
-                        const float k = 0.5f * (gammai + gamma[j]) * (rho0i + rho0[j]) / (rhoi + rho[j]);
+                        const float k =
+                            0.5f * (gammai + gamma[j]) * (rho0i + rho0[j]) / (rhoi + rho[j]);
                         const float a = t * q; // (1-u) u, and 0 beyond the support
                         const float a3 = a * a * a;
                         const float spline = 2.0f * q > 1.0f ? a3 : 2.0f * a3 - 1.0f / 64.0f;
@@ -267,8 +267,8 @@ void computeSampleForces(WorldState& s, float sampleVolume, float weight) {
                     const float invH = 1.0f / hs[j];
                     const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
                     const float invH4 = (invH * invH) * (invH * invH);
-                    const float fp = mass[j] * rho0[j] * (pressure[j] + pw) * invRho[j] * invRho[j] *
-                                     kG * invH4 * (t * t * t);
+                    const float fp = mass[j] * rho0[j] * (pressure[j] + pw) * invRho[j] *
+                                     invRho[j] * kG * invH4 * (t * t * t);
                     const float fv = mass[j] * friction * mu[j] * invRho[j] * kL * invH4 * t;
                     accX[l] += fp * dx - fv * (vxw - vx[j]);
                     accY[l] += fp * dy - fv * (vyw - vy[j]);

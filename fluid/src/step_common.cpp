@@ -164,9 +164,8 @@ void projectBoundaries(WorldState& s, float dt, float prevTimeInStep, float time
                        float spacing, const std::vector<float>& prevX,
                        const std::vector<float>& prevY) {
     Particles& p = s.particles;
-    const ProjectContext context{p.px,       p.py,       prevX, prevY, p.vx,
-                                 p.vy,       p.material, dt,    timeInStep,
-                                 prevTimeInStep, spacing};
+    const ProjectContext context{p.px,       p.py, prevX,      prevY,          p.vx,   p.vy,
+                                 p.material, dt,   timeInStep, prevTimeInStep, spacing};
     for (const auto& plugin : s.boundaries) {
         parallelFor(s.tasks, p.size(), 1024,
                     [&](uint32_t b, uint32_t e, uint32_t) { plugin->project(context, b, e); });

@@ -51,7 +51,8 @@ void* ThreadPool::enqueueTask(TaskCallback* callback, uint32_t itemCount, uint32
         pool->m_context = taskContext;
         pool->m_itemCount = itemCount;
         // About four ranges per worker balances load without much claiming overhead.
-        const uint32_t target = (itemCount + pool->m_workerCount * 4 - 1) / (pool->m_workerCount * 4);
+        const uint32_t target =
+            (itemCount + pool->m_workerCount * 4 - 1) / (pool->m_workerCount * 4);
         pool->m_rangeSize = std::max(std::max(minRange, target), 1u);
         pool->m_nextBegin.store(0, std::memory_order_relaxed);
         pool->m_busy = static_cast<uint32_t>(pool->m_threads.size());

@@ -21,19 +21,19 @@ struct Particles {
     std::vector<float> density, pressure;
     std::vector<float> life; // time left to live (s); +infinity for particles that live forever
     // Per sub-step scratch, in sorted order.
-    std::vector<float> ax, ay; // total acceleration
-    std::vector<float> ex, ey; // external (plugin) acceleration
-    std::vector<float> nx, ny; // surface normals [Akinci 2013]
+    std::vector<float> ax, ay;            // total acceleration
+    std::vector<float> ex, ey;            // external (plugin) acceleration
+    std::vector<float> nx, ny;            // surface normals [Akinci 2013]
     std::vector<float> pOverRho2, invRho; // p/rho^2 and 1/rho, so pair loops do not divide
-    std::vector<float> ox, oy;       // position-based: positions at the start of the sub-step
-    std::vector<float> qx, qy;       // positions before the last integrate (boundaries' prevX/Y)
+    std::vector<float> ox, oy;            // position-based: positions at the start of the sub-step
+    std::vector<float> qx, qy; // positions before the last integrate (boundaries' prevX/Y)
     // Position-based: density constraint C and the diagonal D of its system, the accumulated
     // multiplier (kg m^2, <= 0) and its change in the last sweep, the sub-step's total position
     // correction and its value one sweep back, the multiplier the accelerated corrections stand
     // for and its value one sweep back.
     std::vector<float> constraint, diagonal, lambda, dLambda, cx, cy, prevX, prevY, lambdaTotal,
         lambdaPrev;
-    std::vector<float> vorticity;    // position-based: curl of the velocity (1/s)
+    std::vector<float> vorticity; // position-based: curl of the velocity (1/s)
     // Material properties per particle (sorted order), so pair loops read contiguous arrays
     // instead of indexing the material table: support h, mass/depth, viscosity, mass, rest
     // density, surface tension, 1/mass, rest area V = m/(depth rho0), pair pressure.
@@ -45,24 +45,25 @@ struct Particles {
 
 /// Per-material constants the hot loops read, refreshed at the start of every step.
 struct MaterialConstants {
-    float mass = 0;        // 3D mass m (kg)
-    float massPerDepth = 0; // m / depth (kg/m): the mass a 2D kernel sum weighs with
-    float restDensity = 0; // rho0 (kg/m^3)
-    float viscosity = 0;   // mu (Pa s)
-    float stiffness = 0;   // k (m^2/s^2)
-    float taitB = 0;       // rho0 c^2 / 7 (Pa)
+    float mass = 0;               // 3D mass m (kg)
+    float massPerDepth = 0;       // m / depth (kg/m): the mass a 2D kernel sum weighs with
+    float restDensity = 0;        // rho0 (kg/m^3)
+    float viscosity = 0;          // mu (Pa s)
+    float stiffness = 0;          // k (m^2/s^2)
+    float taitB = 0;              // rho0 c^2 / 7 (Pa)
     float backgroundPressure = 0; // fluid-fluid pairs only: explicit, added to Tait's pressure;
                                   // position-based, the artificial pressure of s_corr (Pa)
-    float support = 0;     // h (m)
-    float gamma = 0;       // surface tension (Akinci 2013)
-    float lattice = 0;     // V sum W over the material's square lattice (1; 1.0042 for water)
+    float support = 0;            // h (m)
+    float gamma = 0;              // surface tension (Akinci 2013)
+    float lattice = 0; // V sum W over the material's square lattice (1; 1.0042 for water)
 };
 
 /// Boundary samples of all boundary plugins, sorted by cell for the sub-step.
 struct Samples {
     std::vector<float> px, py, vx, vy, friction, pressure;
     std::vector<uint32_t> source; // index in the concatenation of the plugins' sample arrays
-    std::vector<float> fx, fy;    // force on each sample (N), in concatenation order, summed over sub-steps
+    std::vector<float> fx,
+        fy; // force on each sample (N), in concatenation order, summed over sub-steps
     std::vector<uint32_t> pluginBegin; // first concatenated index of each plugin (+ total)
     Grid grid;
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }

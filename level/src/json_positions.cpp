@@ -20,7 +20,7 @@ bool isSpace(char c) {
 }
 
 class Scanner {
-  public:
+public:
     explicit Scanner(std::string_view text) : m_text(text) {}
 
     char at(std::size_t p) const { return p < m_text.size() ? m_text[p] : '\0'; }
@@ -119,7 +119,7 @@ class Scanner {
         return p;
     }
 
-  private:
+private:
     uint32_t readHex4(std::size_t& p) const {
         uint32_t v = 0;
         for (int k = 0; k < 4; ++k, ++p) {
@@ -160,7 +160,7 @@ class Scanner {
 // Visits every value (and member name) in text order, keeping the path to it, without
 // recursion. `onValue(offset)` and `onKey(offset, name)` return true to stop the walk.
 class Walker {
-  public:
+public:
     explicit Walker(std::string_view text) : m_scan(text) {}
 
     template <class OnValue, class OnKey> void run(OnValue&& onValue, OnKey&& onKey) {
@@ -226,7 +226,7 @@ class Walker {
         return out;
     }
 
-  private:
+private:
     struct Frame {
         bool object = false;
         std::size_t index = 0;
@@ -309,7 +309,7 @@ std::string stripNlohmannPrefix(const std::string& what) {
 // nlohmann's DOM builder, plus the position and message of the first parse error (nlohmann's
 // out_of_range for an overflowing number carries no position; the SAX callback does).
 class LocatingDomParser {
-  public:
+public:
     explicit LocatingDomParser(Json& result) : m_dom(result, false) {}
 
     bool null() { return m_dom.null(); }
@@ -340,7 +340,7 @@ class LocatingDomParser {
     std::string errorToken;
     std::string errorMessage;
 
-  private:
+private:
     nlohmann::detail::json_sax_dom_parser<Json> m_dom;
 };
 

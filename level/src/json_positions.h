@@ -93,7 +93,7 @@ struct Range {
 /// A parsed level text: the nlohmann document and what is needed to point at its parts.
 /// Thread rule: one thread.
 class JsonDocument {
-  public:
+public:
     /// Parses `text` strictly (no comments, no trailing data, no repeated member names).
     /// Throws LevelError naming `file`, line and column for a syntax error or a repeated name.
     JsonDocument(std::string_view text, std::string_view file);
@@ -114,7 +114,7 @@ class JsonDocument {
     /// The number token as written at `pointer` (for "1e999 is not finite").
     std::string tokenAt(std::string_view pointer) const;
 
-  private:
+private:
     std::string_view m_text;
     std::string m_file;
     Json m_root;
@@ -123,7 +123,7 @@ class JsonDocument {
 /// A JSON object of the level being read: typed, range-checked access to its members, every
 /// error located. Thread rule: one thread.
 class ObjectReader {
-  public:
+public:
     /// Reads `value` at `pointer`; throws LevelError unless it is an object (`what` names what
     /// the object describes, e.g. "a blob").
     ObjectReader(const JsonDocument& doc, const Json& value, std::string pointer,
@@ -178,7 +178,7 @@ class ObjectReader {
     /// The member as an array (empty when absent); throws unless it is an array.
     const Json* array(std::string_view key, std::string_view what) const;
 
-  private:
+private:
     const JsonDocument& m_doc;
     const Json& m_value;
     std::string m_pointer;

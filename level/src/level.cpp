@@ -97,7 +97,7 @@ std::string joined(const std::vector<std::string>& names) {
 
 // Names of one list of the file (materials, sensors...): unique, looked up by references.
 template <class Id> class NameTable {
-  public:
+public:
     explicit NameTable(std::string_view what) : m_what(what) {}
 
     void add(const JsonDocument& doc, const std::string& name, const std::string& pointer, Id id) {
@@ -122,7 +122,7 @@ template <class Id> class NameTable {
                  "unknown " + std::string(m_what) + " '" + name + "'; known: " + joined(known));
     }
 
-  private:
+private:
     struct Entry {
         std::string name;
         std::string pointer;
@@ -145,7 +145,7 @@ template <class F> auto located(const JsonDocument& doc, const std::string& poin
 }
 
 class LevelReader {
-  public:
+public:
     LevelReader(const JsonDocument& doc, const Registry& registry, const LevelOptions& options,
                 Level& level)
         : m_doc(doc), m_registry(registry), m_options(options), m_level(level) {}
@@ -174,7 +174,7 @@ class LevelReader {
         readGoal(root);
     }
 
-  private:
+private:
     // ---- world ---------------------------------------------------------------------------
     void readWorld(const ObjectReader& root) {
         WorldDef def;

@@ -31,7 +31,7 @@ template <class Fn> Fn findEntry(void* handle, const char* name) {
 // Closes a library refused before any of its plugin code ran; libraries whose registration
 // ran stay open (the lifetime rule in plugin_library.h).
 class OpenLibrary {
-  public:
+public:
     explicit OpenLibrary(void* handle) : m_handle(handle) {}
     ~OpenLibrary() {
         if (m_handle != nullptr) {
@@ -43,7 +43,7 @@ class OpenLibrary {
     void* get() const { return m_handle; }
     void keepLoaded() { m_handle = nullptr; }
 
-  private:
+private:
     void* m_handle;
 };
 

@@ -79,7 +79,7 @@ inline double crossing(glm::dvec2 p, glm::dvec2 q, const Segment& s, int from = 
 /// segments whose y-range meets each horizontal band, for the even-odd test). Built on the
 /// stepping thread; queries are const and allocate nothing.
 class SegmentGrid {
-  public:
+public:
     /// Indexes `segments` over their bounds [lo, hi] with square cells about `cell` wide (at
     /// most 128 a side).
     void build(std::span<const Segment> segments, glm::dvec2 lo, glm::dvec2 hi, double cell) {
@@ -133,7 +133,7 @@ class SegmentGrid {
         }
     }
 
-  private:
+private:
     int cellX(double x) const {
         return std::clamp(static_cast<int>(std::floor((x - m_lo.x) / m_cell)), 0, m_nx - 1);
     }
@@ -158,7 +158,7 @@ class SegmentGrid {
 /// A shape's segments with their grid: the queries a projection asks, each looking only at
 /// the segments near the point or path. Built on the stepping thread; queries are const.
 class SegmentSet {
-  public:
+public:
     /// Takes the segments; `cell` is the grid's cell size (unit: m; about a support radius).
     void build(std::vector<Segment> segments, double cell) {
         m_segments = std::move(segments);
@@ -233,7 +233,7 @@ class SegmentSet {
         return in;
     }
 
-  private:
+private:
     std::vector<Segment> m_segments;
     SegmentGrid m_grid;
 };
@@ -241,7 +241,7 @@ class SegmentSet {
 /// Keeps points at least `radius` apart, first come first kept (a hash of cells `radius` wide;
 /// deterministic: lookups only, no iteration over the hash).
 class SpacedPoints {
-  public:
+public:
     explicit SpacedPoints(double radius) : m_radius(radius) {}
     /// Adds p unless a kept point lies closer than the radius; true when kept.
     bool add(glm::dvec2 p) {
@@ -268,7 +268,7 @@ class SpacedPoints {
     /// The kept points, in the order added.
     const std::vector<glm::dvec2>& points() const { return m_points; }
 
-  private:
+private:
     static int64_t key(int64_t x, int64_t y) { return x * 73856093 ^ y * 19349663; }
     double m_radius;
     std::vector<glm::dvec2> m_points;

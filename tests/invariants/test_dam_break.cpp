@@ -51,9 +51,9 @@ TEST_CASE("dam break: 2,000 particles, 3 s, no NaN, no leak, no explosion",
     CAPTURE(n, h0, speedLimit, worstSpeed, maxSubsteps, clamped, reach, boxW);
     std::printf("[measure] %s dam break: n %u, H0 %.3f m, max speed %.3f m/s (limit %.3f), "
                 "substeps/frame max %u, speed-capped %u, NaN frames %u, leak frames %u, reach "
-                "%.3f of %.3f m\n", solverName(solver),
-                n, h0, worstSpeed, speedLimit, maxSubsteps, clamped, nanFrames, leakFrames, reach,
-                boxW);
+                "%.3f of %.3f m\n",
+                solverName(solver), n, h0, worstSpeed, speedLimit, maxSubsteps, clamped, nanFrames,
+                leakFrames, reach, boxW);
     CHECK(nanFrames == 0);
     CHECK(leakFrames == 0);
     CHECK(fastFrames == 0);

@@ -105,9 +105,9 @@ TEST_CASE("a yoghurt blob dropped into water: both materials interact",
             std::sqrt(peakWaterSpeed2), yoghurtVyAtImpact, freeFallVy);
     std::printf("[measure] %s mixing: %u water + %u yoghurt, closest pair %.5f m (%.3f spacing), "
                 "yoghurt com y %.4f -> %.4f (water surface %.4f), yoghurt min y %.4f, end vy "
-                "%.4f, peak water rms speed %.3f m/s\n", solverName(solver),
-                n - ny, ny, closest, closest / spacing, y0.comY, ye.comY, we.maxY, ye.minY, ye.vy,
-                std::sqrt(peakWaterSpeed2));
+                "%.4f, peak water rms speed %.3f m/s\n",
+                solverName(solver), n - ny, ny, closest, closest / spacing, y0.comY, ye.comY,
+                we.maxY, ye.minY, ye.vy, std::sqrt(peakWaterSpeed2));
 
     // No leaks, nothing created or lost.
     CHECK(world.particleCount() == n);

@@ -75,8 +75,8 @@ TEST_CASE("zero-g blob launched at 1 m/s keeps its momentum over 1,000 steps",
     const Drift d = runSteps(world, 1000, scale);
     const glm::dvec2 p = momentum(world);
     CAPTURE(n, p0.x, p0.y, p.x, p.y, d.worst, d.atEnd, world.lastSubsteps());
-    std::printf("[measure] %s momentum one material: n %u, relative drift max %.3g, end %.3g\n", solverName(solver), n,
-                d.worst, d.atEnd);
+    std::printf("[measure] %s momentum one material: n %u, relative drift max %.3g, end %.3g\n",
+                solverName(solver), n, d.worst, d.atEnd);
     CHECK(d.worst <= 1e-5);
     CHECK(world.particleCount() == n);
     CHECK(totalMass(world) == mass0);
@@ -127,8 +127,8 @@ TEST_CASE("zero-g water and yoghurt blobs collide and keep their momentum over 1
     const Drift d = runSteps(world, 1000, scale);
     const glm::dvec2 p = momentum(world);
     CAPTURE(n, p0.x, p0.y, p.x, p.y, scale, d.worst, d.atEnd);
-    std::printf("[measure] %s momentum two materials: n %u, relative drift max %.3g, end %.3g\n", solverName(solver), n,
-                d.worst, d.atEnd);
+    std::printf("[measure] %s momentum two materials: n %u, relative drift max %.3g, end %.3g\n",
+                solverName(solver), n, d.worst, d.atEnd);
     CHECK(d.worst <= 1e-5);
     CHECK(world.particleCount() == n);
     CHECK(totalMass(world) == mass0);

@@ -84,8 +84,8 @@ TEST_CASE("a resting water tank 0.5 m deep settles", "[slow][invariants][tank]")
                 "%.4f mean %.4f, max |interior error| %.4f, KE/m %.3g J/kg, wall/interior density "
                 "%+.4f, gaps floor %.4f left %.4f right %.4f m (spacing %.4f), surface %.4f m\n",
                 solverName(solver), n, maxSubsteps, world.profile().soundSpeed, maxCompression,
-                meanCompression, maxInteriorError,
-                kinetic, wallRatio, floorGap, leftGap, rightGap, s, surface);
+                meanCompression, maxInteriorError, kinetic, wallRatio, floorGap, leftGap, rightGap,
+                s, surface);
 
     CHECK(maxCompression <= 0.03);
     CHECK(meanCompression <= 0.01);

@@ -66,9 +66,11 @@ TEST_CASE("yoghurt's dam-break front lags water's and reaches the far wall later
     // Yoghurt gets up to 1.5 s; if it has not arrived by then it is later anyway.
     const DamRun y = runDam(solver, yoghurt(), boxW, 90);
     CAPTURE(w.particles, y.particles, w.frontAt03, y.frontAt03, w.wallFrame, y.wallFrame);
-    std::printf("[measure] %s dam break fronts at 0.3 s: water %.3f m (%u particles), yoghurt %.3f m "
-                "(%u); far wall reached at frame: water %d, yoghurt %d\n",
-                solverName(solver), w.frontAt03, w.particles, y.frontAt03, y.particles, w.wallFrame, y.wallFrame);
+    std::printf(
+        "[measure] %s dam break fronts at 0.3 s: water %.3f m (%u particles), yoghurt %.3f m "
+        "(%u); far wall reached at frame: water %d, yoghurt %d\n",
+        solverName(solver), w.frontAt03, w.particles, y.frontAt03, y.particles, w.wallFrame,
+        y.wallFrame);
     CHECK(y.frontAt03 < w.frontAt03);
     REQUIRE(w.wallFrame > 0); // water arrives within 1.5 s
     CHECK((y.wallFrame < 0 || y.wallFrame > w.wallFrame));

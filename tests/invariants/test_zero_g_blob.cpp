@@ -53,8 +53,8 @@ TEST_CASE("zero-g square blob of 2,000 particles pulls round in 3 s",
     measure(c3, f3);
     CAPTURE(c0, c1, c3, f3, radius, f3 / radius, world.lastSubsteps());
     std::printf("[measure] %s zero-g blob: circularity %.4f -> %.4f (1 s) -> %.4f (3 s), farthest "
-                "%.3f R, substeps/frame %u\n", solverName(solver),
-                c0, c1, c3, f3 / radius, world.lastSubsteps());
+                "%.3f R, substeps/frame %u\n",
+                solverName(solver), c0, c1, c3, f3 / radius, world.lastSubsteps());
     CHECK(c3 >= 0.95);
     CHECK(f3 <= 1.5 * radius);
     // Momentum of a blob at rest stays zero: it does not drift off.

@@ -26,7 +26,7 @@ struct Log {
 };
 
 class LoggingForce final : public ForcePlugin {
-  public:
+public:
     static constexpr std::array<ParamDecl, 0> kParams{};
     explicit LoggingForce(Log& log) : ForcePlugin("force.test-log", kParams), m_log(log) {}
     void prepare(const StepContext& c) override {
@@ -39,12 +39,12 @@ class LoggingForce final : public ForcePlugin {
         }
     }
 
-  private:
+private:
     Log& m_log;
 };
 
 class LoggingBoundary final : public BoundaryPlugin {
-  public:
+public:
     static constexpr std::array<ParamDecl, 0> kParams{};
     explicit LoggingBoundary(Log& log) : BoundaryPlugin("boundary.test-log", kParams), m_log(log) {}
     void prepare(const StepContext& c) override {
@@ -67,7 +67,7 @@ class LoggingBoundary final : public BoundaryPlugin {
         }
     }
 
-  private:
+private:
     Log& m_log;
 };
 

@@ -179,8 +179,8 @@ inline double insideDistance(const std::vector<glm::dvec2>& hull, glm::dvec2 p) 
 /// Density reading of a body's interior (see readInterior).
 struct Reading {
     uint32_t interior = 0;
-    double worst = 0.0; // max |rho/rho0 - 1| over interior particles
-    double mean = 0.0;  // mean rho/rho0 - 1 over interior particles
+    double worst = 0.0;       // max |rho/rho0 - 1| over interior particles
+    double mean = 0.0;        // mean rho/rho0 - 1 over interior particles
     double compression = 0.0; // max rho/rho0 - 1 over interior particles
 };
 
@@ -262,11 +262,12 @@ inline BlobDef latticeBlock(const World& world, MaterialId material, float x0, f
 /// destruction, so each test's cost shows in its log (CPU time counts every worker thread, and
 /// is the better measure when the machine is shared).
 class Stopwatch {
-  public:
+public:
     explicit Stopwatch(std::string label)
         : m_label(std::move(label)), m_t0(std::chrono::steady_clock::now()), m_c0(std::clock()) {}
     ~Stopwatch() {
-        std::printf("[time] %s: wall %.2f s, cpu %.2f s\n", m_label.c_str(), seconds(), cpuSeconds());
+        std::printf("[time] %s: wall %.2f s, cpu %.2f s\n", m_label.c_str(), seconds(),
+                    cpuSeconds());
         std::fflush(stdout);
     }
     Stopwatch(const Stopwatch&) = delete;
@@ -276,7 +277,7 @@ class Stopwatch {
     }
     double cpuSeconds() const { return double(std::clock() - m_c0) / CLOCKS_PER_SEC; }
 
-  private:
+private:
     std::string m_label;
     std::chrono::steady_clock::time_point m_t0;
     std::clock_t m_c0;

@@ -29,7 +29,7 @@ struct Snapshot {
 // A force plugin that writes a non-finite value into some particles' acceleration (a broken
 // user plugin).
 class BrokenForce final : public ForcePlugin {
-  public:
+public:
     static constexpr std::array<ParamDecl, 0> kParams{};
     explicit BrokenForce(float bad) : ForcePlugin("force.test-broken", kParams), m_bad(bad) {}
     void apply(const ForceContext& ctx, uint32_t begin, uint32_t end) override {
@@ -43,7 +43,7 @@ class BrokenForce final : public ForcePlugin {
         }
     }
 
-  private:
+private:
     float m_bad;
 };
 

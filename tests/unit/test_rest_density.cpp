@@ -9,7 +9,6 @@
 using namespace fluid;
 using namespace fluid::test;
 
-
 TEST_CASE("a fresh resting block of each preset reads its rest density", "[unit][density]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
     CAPTURE(solverName(solver));

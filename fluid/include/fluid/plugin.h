@@ -229,10 +229,18 @@ struct BoundarySamples {
     /// during the sub-steps of a step.
     std::vector<float> vx, vy;
     /// Drops every sample.
-    void clear() { px.clear(); py.clear(); vx.clear(); vy.clear(); }
+    void clear() {
+        px.clear();
+        py.clear();
+        vx.clear();
+        vy.clear();
+    }
     /// Appends one sample.
     void add(float x, float y, float velX = 0.0f, float velY = 0.0f) {
-        px.push_back(x); py.push_back(y); vx.push_back(velX); vy.push_back(velY);
+        px.push_back(x);
+        py.push_back(y);
+        vx.push_back(velX);
+        vy.push_back(velY);
     }
     /// Number of samples (unit: count).
     std::size_t size() const { return px.size(); }

@@ -40,8 +40,7 @@ public:
     /// factory, or a declared default lies outside its range.
     void add(PluginInfo info);
     /// Convenience: registers `P` using `P::kType`, `P::kParams` and its default constructor.
-    template <class P>
-    void add(std::string description) {
+    template <class P> void add(std::string description) {
         add(PluginInfo{std::string(P::kType),
                        std::is_base_of_v<ForcePlugin, P> ? PluginKind::Force : PluginKind::Boundary,
                        std::move(description), std::span<const ParamDecl>(P::kParams),
@@ -54,7 +53,8 @@ public:
 
     /// Makes a plugin and sets `values` (validated as in `Plugin::setParam`). Throws
     /// `fluid::Error` for an unknown type (listing the known ones) or a bad value.
-    std::unique_ptr<Plugin> create(std::string_view type, std::span<const ParamValue> values = {}) const;
+    std::unique_ptr<Plugin> create(std::string_view type,
+                                   std::span<const ParamValue> values = {}) const;
     /// As `create`, and throws `fluid::Error` unless the type is a force plugin.
     std::unique_ptr<ForcePlugin> createForce(std::string_view type,
                                              std::span<const ParamValue> values = {}) const;

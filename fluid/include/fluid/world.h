@@ -200,7 +200,8 @@ public:
     /// Throws when the world is full (`WorldDef::maxParticles`).
     ParticleHandle addParticle(glm::vec2 position, glm::vec2 velocity, MaterialId material);
     /// Fills the blob's shape on its material's lattice; all or nothing. Returns the particle
-    /// count added (0 if the shape holds no lattice point). Throws for bad geometry or a full world.
+    /// count added (0 if the shape holds no lattice point). Throws for bad geometry or a full
+    /// world.
     uint32_t spawnBlob(const BlobDef& blob);
     /// Removes the particle; throws `fluid::Error` for a stale or null handle.
     void removeParticle(ParticleHandle handle);

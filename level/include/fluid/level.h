@@ -24,7 +24,7 @@ namespace fluid {
 /// LINE:COLUMN point at the offending value, or at the key for an unknown or repeated key.
 /// Thread rule: as `fluid::Error`.
 class LevelError : public Error {
-  public:
+public:
     /// Builds the message from its parts (line and column start at 1; 0 when unknown).
     LevelError(std::string file, uint32_t line, uint32_t column, std::string path,
                std::string message);
@@ -39,7 +39,7 @@ class LevelError : public Error {
     /// What was wrong and what was expected, without the location.
     const std::string& message() const { return m_message; }
 
-  private:
+private:
     std::string m_file;
     uint32_t m_line = 0;
     uint32_t m_column = 0;
@@ -140,7 +140,7 @@ struct Level {
     /// Throws as `World::step`.
     void step();
 
-  private:
+private:
     // The goal state latched by goalState(): Won and Lost are final.
     mutable GoalState m_goalState = GoalState::Pending;
 };

@@ -9,7 +9,7 @@
 namespace {
 
 class GoodForce : public fluid::ForcePlugin {
-  public:
+public:
     static constexpr std::string_view kType = "force.test_good";
     static constexpr std::array<fluid::ParamDecl, 1> kParams{{
         {"k", "1", 0.5, 0.0, 1.0, "A parameter."},
@@ -19,7 +19,7 @@ class GoodForce : public fluid::ForcePlugin {
 };
 
 class BadDefaultForce : public fluid::ForcePlugin {
-  public:
+public:
     static constexpr std::string_view kType = "force.test_bad_default";
     static constexpr std::array<fluid::ParamDecl, 1> kParams{{
         {"k", "1", 5.0, 0.0, 1.0, "Its default is out of range."},

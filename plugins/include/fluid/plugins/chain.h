@@ -24,7 +24,7 @@ class SegmentSet;
 /// its motion along the wall), and particles keep a clearance of half a spacing from every
 /// segment (round the open ends too), never by crossing one. Thread rule: see `BoundaryPlugin`.
 class ChainBoundary final : public KinematicShape {
-  public:
+public:
     /// Registry type string.
     static constexpr std::string_view kType = "boundary.chain";
     /// Parameter indices (after the pose parameters).
@@ -48,7 +48,7 @@ class ChainBoundary final : public KinematicShape {
     /// The segments in the local frame, as last built (unit: m). Valid after the first `prepare`.
     std::span<const ShapeSegment> segments() const;
 
-  private:
+private:
     void build(double spacing, double support, std::vector<glm::dvec2>& out,
                LocalBounds& bounds) override;
     bool collide(glm::dvec2 prev, glm::dvec2 cur, double spacing, double eps,

@@ -17,7 +17,7 @@ namespace fluid {
 /// keeps its motion round it; at the entry point if it went past the centre), and one found
 /// inside (swept over) on the nearest rim point. Thread rule: see `BoundaryPlugin`.
 class CircleBoundary final : public KinematicShape {
-  public:
+public:
     /// Registry type string.
     static constexpr std::string_view kType = "boundary.circle";
     /// Parameter indices (after the pose parameters).
@@ -31,7 +31,7 @@ class CircleBoundary final : public KinematicShape {
     /// A static disc centred at `center` (unit: m) with `radius` (unit: m; range [1e-4, 1e4]).
     CircleBoundary(glm::vec2 center, float radius);
 
-  private:
+private:
     void build(double spacing, double support, std::vector<glm::dvec2>& out,
                LocalBounds& bounds) override;
     bool collide(glm::dvec2 prev, glm::dvec2 cur, double spacing, double eps,

@@ -18,7 +18,7 @@ namespace fluid {
 /// would reverse velocities once c dt > 1). Direction of motion is kept. Thread rule: see
 /// `ForcePlugin`.
 class DampingZoneForce final : public ForcePlugin {
-  public:
+public:
     /// Registry type string.
     static constexpr std::string_view kType = "force.damping";
     /// Parameter indices.

@@ -29,7 +29,7 @@ namespace fluid {
 /// from the second step on.
 /// Thread rule: see `ForcePlugin`; `trigger` is read in `prepare`, so set it between steps.
 class ExplosionForce final : public ForcePlugin {
-  public:
+public:
     /// Registry type string.
     static constexpr std::string_view kType = "force.explosion";
     /// Parameter indices.
@@ -64,7 +64,7 @@ class ExplosionForce final : public ForcePlugin {
     /// True between `prepare` and `finish` of a step that fires.
     bool armed() const { return m_armed; }
 
-  private:
+private:
     // Set by prepare when trigger was 1, cleared by finish: the kick belongs to one step.
     bool m_armed = false;
     // Simulated time at the start of the armed step (unit: s): apply fires only in the sub-step

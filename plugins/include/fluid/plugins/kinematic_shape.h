@@ -43,7 +43,7 @@ struct ShapeSegment {
 /// the boundary added last has the last word in every projection: add containers first and the
 /// shapes inside them after. Thread rule: see `BoundaryPlugin`; parameters only between steps.
 class KinematicShape : public BoundaryPlugin {
-  public:
+public:
     /// Indices of the parameters every shape declares first, in this order.
     enum : std::size_t { kX, kY, kAngle, kVx, kVy, kOmega, kFriction, kPoseParamCount };
     /// The pose, velocity and friction parameters; a shape's own parameters follow them.
@@ -114,7 +114,7 @@ class KinematicShape : public BoundaryPlugin {
     /// The samples in the local frame, as last laid (unit: m). Empty before the first `prepare`.
     std::span<const glm::dvec2> localSamples() const { return m_local; }
 
-  protected:
+protected:
     /// `params` must start with `kPoseParams` (see `withPoseParams`).
     KinematicShape(std::string_view type, std::span<const ParamDecl> params)
         : BoundaryPlugin(type, params) {}
@@ -146,7 +146,7 @@ class KinematicShape : public BoundaryPlugin {
     /// Marks the local samples and geometry stale (a shape parameter changed).
     void onParamChanged(std::size_t index) override;
 
-  private:
+private:
     std::vector<glm::dvec2> m_local;
     LocalBounds m_bounds;
     bool m_built = false;

@@ -20,7 +20,7 @@ namespace fluid {
 /// field is 0 (an island of gravity in an otherwise zero-g level). A particle exactly at an
 /// unsoftened centre gets 0, never NaN. Thread rule: see `ForcePlugin`.
 class PointGravityForce final : public ForcePlugin {
-  public:
+public:
     /// Registry type string.
     static constexpr std::string_view kType = "force.point_gravity";
     /// Parameter indices.

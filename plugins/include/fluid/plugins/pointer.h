@@ -20,7 +20,7 @@ namespace fluid {
 /// each frame, `active` 1 while the button is held (values in between scale the strength, for a
 /// pressure-sensitive input), 0 otherwise. Thread rule: see `ForcePlugin`.
 class PointerForce final : public ForcePlugin {
-  public:
+public:
     /// Registry type string.
     static constexpr std::string_view kType = "force.pointer";
     /// Parameter indices.

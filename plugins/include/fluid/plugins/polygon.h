@@ -27,7 +27,7 @@ class SegmentSet;
 /// (swept over by the moving polygon) on the nearest surface point. Thread rule: see
 /// `BoundaryPlugin`.
 class PolygonBoundary final : public KinematicShape {
-  public:
+public:
     /// Registry type string.
     static constexpr std::string_view kType = "boundary.polygon";
     /// Parameter indices (after the pose parameters).
@@ -50,7 +50,7 @@ class PolygonBoundary final : public KinematicShape {
     /// first `prepare`.
     bool containsLocal(glm::dvec2 local) const;
 
-  private:
+private:
     void build(double spacing, double support, std::vector<glm::dvec2>& out,
                LocalBounds& bounds) override;
     bool collide(glm::dvec2 prev, glm::dvec2 cur, double spacing, double eps,

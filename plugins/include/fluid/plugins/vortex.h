@@ -25,7 +25,7 @@ namespace fluid {
 /// liquid in (about V^2 / R at the core). Beyond `cutoff` (when > 0) nothing. A particle on the
 /// centre gets 0. Thread rule: see `ForcePlugin`.
 class VortexForce final : public ForcePlugin {
-  public:
+public:
     /// Registry type string.
     static constexpr std::string_view kType = "force.vortex";
     /// Parameter indices.

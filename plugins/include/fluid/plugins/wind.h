@@ -19,7 +19,7 @@ namespace fluid {
 /// w + g / k to within k dt / 2 (1% for k = 5/s at 240 sub-steps per second).
 /// Thread rule: see `ForcePlugin`.
 class WindForce final : public ForcePlugin {
-  public:
+public:
     /// Registry type string.
     static constexpr std::string_view kType = "force.wind";
     /// Parameter indices.
