@@ -9,6 +9,7 @@ PACKAGES=(
     libbox2d-dev libsfml-dev libglm-dev catch2 libglew-dev libimgui-dev
     nlohmann-json3-dev libbenchmark-dev libcli11-dev
     xvfb xauth x11-utils mesa-utils
+    clang-14 libclang-rt-14-dev
 )
 
 missing=()

@@ -20,7 +20,9 @@ std::string describe(ParticleHandle h) {
     return s.str();
 }
 
-bool finite(glm::vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+bool finite(glm::vec2 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y);
+}
 
 void checkVec(const char* function, const char* what, glm::vec2 v) {
     if (!finite(v)) {
@@ -31,7 +33,8 @@ void checkVec(const char* function, const char* what, glm::vec2 v) {
 }
 
 template <class T>
-void checkRange(const char* field, T value, T lo, T hi, const char* unit, const char* prefix = "WorldDef: ") {
+void checkRange(const char* field, T value, T lo, T hi, const char* unit,
+                const char* prefix = "WorldDef: ") {
     if (!(value >= lo && value <= hi)) { // NaN fails too
         std::ostringstream s;
         s << prefix << field << " = " << value << " is out of range [" << lo << ", " << hi
@@ -176,7 +179,9 @@ const Material& World::material(MaterialId id) const {
     return m_state->materials[id.index];
 }
 
-uint32_t World::materialCount() const { return static_cast<uint32_t>(m_state->materials.size()); }
+uint32_t World::materialCount() const {
+    return static_cast<uint32_t>(m_state->materials.size());
+}
 
 ParticleHandle World::addParticle(glm::vec2 position, glm::vec2 velocity, MaterialId materialId) {
     checkVec("World::addParticle", "position", position);
@@ -237,10 +242,14 @@ uint32_t World::spawnBlob(const BlobDef& blob) {
     const float spacing = particleSpacing(mat, m_state->def.depth);
     const double cols = std::floor(double(hi.x - lo.x) / spacing);
     const double rows = std::floor(double(hi.y - lo.y) / spacing);
+    if (cols < 1.0 || rows < 1.0) {
+        return 0; // thinner than one spacing: no lattice point fits
+    }
     if (cols * rows > double(m_state->def.maxParticles)) {
-        throw Error("spawnBlob: particle cap exceeded: the blob needs about " +
-                    std::to_string(uint64_t(cols * rows)) + " particles; maxParticles = " +
-                    std::to_string(m_state->def.maxParticles));
+        std::ostringstream s;
+        s << "spawnBlob: particle cap exceeded: the blob needs about " << cols * rows
+          << " particles; maxParticles = " << m_state->def.maxParticles;
+        throw Error(s.str());
     }
     // Lattice points at cell centres, spacing apart, centred in the shape's bounding box.
     const auto nx = static_cast<uint32_t>(cols);
@@ -275,7 +284,9 @@ void World::removeParticle(ParticleHandle handle) {
     m_state->removeAt(m_state->checkedIndex(handle, "World::removeParticle"));
 }
 
-bool World::isValid(ParticleHandle handle) const { return indexOf(handle).has_value(); }
+bool World::isValid(ParticleHandle handle) const {
+    return indexOf(handle).has_value();
+}
 
 std::optional<uint32_t> World::indexOf(ParticleHandle handle) const {
     return m_state->findIndex(handle);
@@ -283,8 +294,9 @@ std::optional<uint32_t> World::indexOf(ParticleHandle handle) const {
 
 ParticleHandle World::handleAt(uint32_t index) const {
     if (index >= particleCount()) {
-        throw Error("World::handleAt: index " + std::to_string(index) + " is out of range; the world has " +
-                    std::to_string(particleCount()) + " particles");
+        throw Error("World::handleAt: index " + std::to_string(index) +
+                    " is out of range; the world has " + std::to_string(particleCount()) +
+                    " particles");
     }
     const uint32_t slot = m_state->particles.slot[index];
     return ParticleHandle{slot, m_state->slotGeneration[slot]};
@@ -323,7 +335,9 @@ BoundaryPlugin& World::addBoundary(std::unique_ptr<BoundaryPlugin> plugin) {
     return *m_state->boundaries.back();
 }
 
-std::span<const std::unique_ptr<ForcePlugin>> World::forces() const { return m_state->forces; }
+std::span<const std::unique_ptr<ForcePlugin>> World::forces() const {
+    return m_state->forces;
+}
 std::span<const std::unique_ptr<BoundaryPlugin>> World::boundaries() const {
     return m_state->boundaries;
 }
@@ -370,7 +384,12 @@ float World::lifetime(ParticleHandle handle) const {
 
 namespace {
 
-template <class Id> uint32_t checkedId(Id id, size_t count, const char* function, const char* what) {
+// Particles across one emitter row: far beyond any nozzle a game draws, and small enough that
+// a row always fits the counters.
+constexpr uint32_t kMaxEmitterLanes = 10000;
+
+template <class Id>
+uint32_t checkedId(Id id, size_t count, const char* function, const char* what) {
     if (id.index >= count) {
         throw Error(std::string(function) + ": unknown " + what + " id " +
                     std::to_string(id.index) + "; the world has " + std::to_string(count) + " " +
@@ -396,13 +415,19 @@ void World::validateEmitter(const EmitterDef& def, const char* function) const {
     const Material& mat = material(def.material);
     const float spacing = particleSpacing(mat, m_state->def.depth);
     const float lanes = 1.0f + std::round(def.width / spacing);
+    if (!(lanes <= float(kMaxEmitterLanes))) {
+        std::ostringstream s;
+        s << prefix << "width = " << def.width << " m is " << lanes << " lanes at " << spacing
+          << " m spacing; at most " << kMaxEmitterLanes;
+        throw Error(s.str());
+    }
     // Rows closer than one spacing would overlap: the jet would start compressed.
     const float limit = lanes * def.speed / spacing;
     if (def.rate > limit * 1.0001f) {
         std::ostringstream s;
         s << prefix << "rate = " << def.rate << " particles/s overlaps: a nozzle " << def.width
-          << " m wide (" << lanes << " lanes at " << spacing << " m spacing) at speed "
-          << def.speed << " m/s emits at most " << limit
+          << " m wide (" << lanes << " lanes at " << spacing << " m spacing) at speed " << def.speed
+          << " m/s emits at most " << limit
           << " particles/s; lower the rate, or widen or speed up the jet";
         throw Error(s.str());
     }
@@ -438,7 +463,9 @@ uint32_t World::emittedCount(EmitterId id) const {
         .emitted;
 }
 
-uint32_t World::emitterCount() const { return static_cast<uint32_t>(m_state->emitters.size()); }
+uint32_t World::emitterCount() const {
+    return static_cast<uint32_t>(m_state->emitters.size());
+}
 
 DrainId World::addDrain(const DrainDef& def) {
     validate(def.shape, "World::addDrain");
@@ -453,7 +480,9 @@ const DrainDef& World::drain(DrainId id) const {
     return m_state->drains[checkedId(id, m_state->drains.size(), "World::drain", "drain")];
 }
 
-uint32_t World::drainCount() const { return static_cast<uint32_t>(m_state->drains.size()); }
+uint32_t World::drainCount() const {
+    return static_cast<uint32_t>(m_state->drains.size());
+}
 
 SensorId World::addSensor(const SensorDef& def) {
     validate(def.shape, "World::addSensor");
@@ -467,34 +496,63 @@ const SensorDef& World::sensor(SensorId id) const {
     return m_state->sensors[checkedId(id, m_state->sensors.size(), "World::sensor", "sensor")];
 }
 
-uint32_t World::sensorCount() const { return static_cast<uint32_t>(m_state->sensors.size()); }
+uint32_t World::sensorCount() const {
+    return static_cast<uint32_t>(m_state->sensors.size());
+}
 
 std::span<const SensorReading> World::sensorReading(SensorId id) const {
-    const uint32_t i =
-        checkedId(id, m_state->sensors.size(), "World::sensorReading", "sensor");
+    const uint32_t i = checkedId(id, m_state->sensors.size(), "World::sensorReading", "sensor");
     const size_t m = m_state->materials.size();
     return std::span<const SensorReading>(m_state->sensorReadings).subspan(i * m, m);
 }
 
-std::span<const RemovedEvent> World::removedEvents() const { return m_state->removed; }
+std::span<const RemovedEvent> World::removedEvents() const {
+    return m_state->removed;
+}
 
 void World::setPositionBased(const PositionBasedDef& settings) {
     validatePositionBased(settings, "World::setPositionBased: ");
     m_state->def.positionBased = settings;
 }
 
-uint32_t World::particleCount() const { return m_state->particles.size(); }
-std::span<const float> World::positionX() const { return m_state->particles.px; }
-std::span<const float> World::positionY() const { return m_state->particles.py; }
-std::span<const float> World::velocityX() const { return m_state->particles.vx; }
-std::span<const float> World::velocityY() const { return m_state->particles.vy; }
-std::span<const float> World::density() const { return m_state->particles.density; }
-std::span<const float> World::pressure() const { return m_state->particles.pressure; }
-std::span<const uint16_t> World::materialIndex() const { return m_state->particles.material; }
-const Profile& World::profile() const { return m_state->profile; }
-uint32_t World::lastSubsteps() const { return m_state->profile.substeps; }
-double World::time() const { return m_state->time; }
-const WorldDef& World::def() const { return m_state->def; }
-float World::spacing(MaterialId id) const { return particleSpacing(material(id), m_state->def.depth); }
+uint32_t World::particleCount() const {
+    return m_state->particles.size();
+}
+std::span<const float> World::positionX() const {
+    return m_state->particles.px;
+}
+std::span<const float> World::positionY() const {
+    return m_state->particles.py;
+}
+std::span<const float> World::velocityX() const {
+    return m_state->particles.vx;
+}
+std::span<const float> World::velocityY() const {
+    return m_state->particles.vy;
+}
+std::span<const float> World::density() const {
+    return m_state->particles.density;
+}
+std::span<const float> World::pressure() const {
+    return m_state->particles.pressure;
+}
+std::span<const uint16_t> World::materialIndex() const {
+    return m_state->particles.material;
+}
+const Profile& World::profile() const {
+    return m_state->profile;
+}
+uint32_t World::lastSubsteps() const {
+    return m_state->profile.substeps;
+}
+double World::time() const {
+    return m_state->time;
+}
+const WorldDef& World::def() const {
+    return m_state->def;
+}
+float World::spacing(MaterialId id) const {
+    return particleSpacing(material(id), m_state->def.depth);
+}
 
 } // namespace fluid

@@ -274,3 +274,26 @@ TEST_CASE("removal events are the same for 1, 2 and 4 workers", "[gameplay]") {
     CHECK(run(2) == one);
     CHECK(run(4) == one);
 }
+
+TEST_CASE("emitters and blobs refuse absurd sizes without undefined behaviour", "[gameplay]") {
+    World world = openWorld();
+    Material dust = water();
+    dust.name = "dust";
+    dust.mass = 1e-30f; // a valid material with a vanishing spacing
+    const MaterialId id = world.addMaterial(dust);
+    EmitterDef def = faucet({0.0f, 0.0f});
+    def.material = id;
+    def.width = 100.0f;
+    CHECK_THROWS_WITH(world.addEmitter(def),
+                      "World::addEmitter: width = 100 m is 1.13716e+18 lanes at 8.79383e-17 m "
+                      "spacing; at most 10000");
+    // A blob thinner than one spacing holds no lattice point, however long it is.
+    BlobDef sliver;
+    sliver.halfExtents = {1e30f, 0.001f};
+    CHECK(world.spawnBlob(sliver) == 0);
+    BlobDef huge;
+    huge.halfExtents = {1e20f, 1e20f};
+    CHECK_THROWS_WITH(world.spawnBlob(huge),
+                      "spawnBlob: particle cap exceeded: the blob needs about 3.97887e+44 "
+                      "particles; maxParticles = 1048576");
+}
