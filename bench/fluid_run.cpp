@@ -41,6 +41,22 @@ std::string columnName(const std::string& name) {
     return out;
 }
 
+// Column names for a list of level names: sanitised, and made unique ("a-b" and "a_b" would
+// both read "a_b": the second becomes "a_b_2").
+template <class Id>
+std::vector<std::string> columnNames(const std::vector<std::pair<std::string, Id>>& named) {
+    std::vector<std::string> out;
+    for (const auto& entry : named) {
+        const std::string base = columnName(entry.first);
+        std::string name = base;
+        for (int k = 2; std::find(out.begin(), out.end(), name) != out.end(); ++k) {
+            name = base + "_" + std::to_string(k);
+        }
+        out.push_back(name);
+    }
+    return out;
+}
+
 const char* goalText(fluid::GoalState state) {
     switch (state) {
     case fluid::GoalState::None:
@@ -67,14 +83,15 @@ struct MaterialStats {
 
 void writeHeader(std::ostream& csv, const fluid::Level& level) {
     csv << "frame,time,particles,substeps,kinetic_energy,density_error_mean,density_error_max";
-    for (const auto& [name, id] : level.materials) {
-        const std::string m = "m_" + columnName(name);
+    const std::vector<std::string> materials = columnNames(level.materials);
+    for (const std::string& name : materials) {
+        const std::string m = "m_" + name;
         csv << ',' << m << "_count," << m << "_xmin," << m << "_xmax," << m << "_ymin," << m
             << "_ymax," << m << "_cx," << m << "_cy";
     }
-    for (const auto& [sensor, sid] : level.sensors) {
-        for (const auto& [material, mid] : level.materials) {
-            const std::string s = "s_" + columnName(sensor) + "_" + columnName(material);
+    for (const std::string& sensor : columnNames(level.sensors)) {
+        for (const std::string& material : materials) {
+            const std::string s = "s_" + sensor + "_" + material;
             csv << ',' << s << "_count," << s << "_volume";
         }
     }

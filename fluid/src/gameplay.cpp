@@ -27,30 +27,6 @@ float symmetricUnit(uint64_t& state) {
     return float(nextRandom(state) >> 40) * (2.0f / 16777216.0f) - 1.0f;
 }
 
-// Adds one particle at the end of the arrays (the caller checked the capacity).
-void append(WorldState& s, glm::vec2 x, glm::vec2 v, uint16_t material, float life) {
-    Particles& p = s.particles;
-    uint32_t slot = 0;
-    if (!s.freeSlots.empty()) {
-        slot = s.freeSlots.back();
-        s.freeSlots.pop_back();
-    } else {
-        slot = static_cast<uint32_t>(s.slotIndex.size());
-        s.slotIndex.push_back(UINT32_MAX);
-        s.slotGeneration.push_back(1);
-    }
-    s.slotIndex[slot] = p.size();
-    p.px.push_back(x.x);
-    p.py.push_back(x.y);
-    p.vx.push_back(v.x);
-    p.vy.push_back(v.y);
-    p.material.push_back(material);
-    p.slot.push_back(slot);
-    p.density.push_back(0.0f);
-    p.pressure.push_back(0.0f);
-    p.life.push_back(life);
-}
-
 } // namespace
 
 uint32_t emitParticles(WorldState& s, float frameDt, uint32_t& blocked) {
@@ -62,14 +38,13 @@ uint32_t emitParticles(WorldState& s, float frameDt, uint32_t& blocked) {
         }
         const Material& mat = s.materials[d.material.index];
         const float spacing = particleSpacing(mat, s.def.depth);
-        const auto lanes = static_cast<uint32_t>(1.0f + std::round(d.width / spacing));
-        const double rowRate = double(d.rate) / double(lanes); // rows per second
+        const auto lanes = static_cast<uint32_t>(emitterLanes(d.width, spacing)); // <= 10,000
+        const double rowRate = double(d.rate) / double(lanes);                    // rows per second
         e.carry += rowRate * double(frameDt);
         const auto rows = static_cast<uint32_t>(std::floor(e.carry));
         e.carry -= double(rows);
-        const glm::vec2 dir = d.direction / std::sqrt(glm::dot(d.direction, d.direction));
+        const glm::vec2 dir = unitDirection(d.direction);
         const glm::vec2 across{-dir.y, dir.x};
-        const float life = d.lifetime > 0.0f ? d.lifetime : std::numeric_limits<float>::infinity();
         // Oldest row first: row r left the nozzle (carry + rows - 1 - r) row periods ago, so a
         // jet is evenly spaced whatever the frame rate.
         for (uint32_t r = 0; r < rows; ++r) {
@@ -87,13 +62,50 @@ uint32_t emitParticles(WorldState& s, float frameDt, uint32_t& blocked) {
                     ++blocked;
                     continue;
                 }
-                append(s, centre + across * lateral, dir * d.speed, d.material.index, life);
+                // It left the nozzle `age` ago: its lifetime started then.
+                s.append(centre + across * lateral, dir * d.speed, d.material.index,
+                         expiryTime(s.time - age, d.lifetime));
                 ++e.emitted;
                 ++total;
             }
         }
     }
     return total;
+}
+
+EmissionUndo::EmissionUndo(const WorldState& s)
+    : m_count(s.particles.size()), m_sorts(s.sorts), m_profile(s.profile) {
+    for (const EmitterState& e : s.emitters) {
+        m_active = m_active || e.def.rate > 0.0f;
+    }
+    if (m_active) {
+        m_emitters = s.emitters;
+        m_freeSlots = s.freeSlots;
+        m_slots = s.slotIndex.size();
+    }
+}
+
+void EmissionUndo::restore(WorldState& s) const {
+    s.profile = m_profile;
+    Particles& p = s.particles;
+    // Once the solver sorted, the emitted particles are no longer the last ones and the step
+    // cannot be taken back.
+    if (!m_active || p.size() < m_count || s.sorts != m_sorts) {
+        return;
+    }
+    for (uint32_t i = m_count; i < p.size(); ++i) {
+        s.slotIndex[p.slot[i]] = UINT32_MAX;
+    }
+    for (std::vector<float>* channel : p.keptFloats()) {
+        channel->resize(m_count);
+    }
+    p.material.resize(m_count);
+    p.slot.resize(m_count);
+    p.expiry.resize(m_count);
+    s.freeSlots = m_freeSlots;
+    s.slotIndex.resize(m_slots);
+    s.slotGeneration.resize(m_slots);
+    s.emitters = m_emitters;
 }
 
 void WorldState::removeMarked(const std::vector<uint8_t>& kill) {
@@ -103,34 +115,29 @@ void WorldState::removeMarked(const std::vector<uint8_t>& kill) {
     for (uint32_t i = 0; i < n; ++i) {
         const uint32_t slot = p.slot[i];
         if (kill[i] != 0) {
-            slotIndex[slot] = UINT32_MAX;
-            // Generation 0 is the null handle's: skip it when a slot's counter wraps.
-            slotGeneration[slot] = slotGeneration[slot] + 1 == 0 ? 1 : slotGeneration[slot] + 1;
-            freeSlots.push_back(slot);
+            releaseSlot(slot);
             continue;
         }
         if (w != i) {
-            p.px[w] = p.px[i];
-            p.py[w] = p.py[i];
-            p.vx[w] = p.vx[i];
-            p.vy[w] = p.vy[i];
+            for (std::vector<float>* channel : p.keptFloats()) {
+                (*channel)[w] = (*channel)[i];
+            }
             p.material[w] = p.material[i];
             p.slot[w] = slot;
-            p.density[w] = p.density[i];
-            p.pressure[w] = p.pressure[i];
-            p.life[w] = p.life[i];
+            p.expiry[w] = p.expiry[i];
         }
         slotIndex[slot] = w;
         ++w;
     }
-    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy, &p.density, &p.pressure, &p.life}) {
+    for (std::vector<float>* channel : p.keptFloats()) {
         channel->resize(w);
     }
     p.material.resize(w);
     p.slot.resize(w);
+    p.expiry.resize(w);
 }
 
-uint32_t finishGameplay(WorldState& s, float frameDt) {
+uint32_t finishGameplay(WorldState& s) {
     Particles& p = s.particles;
     const uint32_t n = p.size();
     const auto drains = static_cast<uint32_t>(s.drains.size());
@@ -138,7 +145,6 @@ uint32_t finishGameplay(WorldState& s, float frameDt) {
     std::vector<uint32_t> cause(n, 0);
     uint32_t removed = 0;
     for (uint32_t i = 0; i < n; ++i) {
-        p.life[i] -= frameDt; // infinity stays infinity
         const glm::vec2 x{p.px[i], p.py[i]};
         for (uint32_t d = 0; d < drains && cause[i] == 0; ++d) {
             const DrainDef& drain = s.drains[d];
@@ -147,7 +153,7 @@ uint32_t finishGameplay(WorldState& s, float frameDt) {
                 cause[i] = 1 + d;
             }
         }
-        if (cause[i] == 0 && p.life[i] <= 0.0f) {
+        if (cause[i] == 0 && p.expiry[i] <= s.time) {
             cause[i] = drains + 1;
         }
         removed += cause[i] != 0 ? 1 : 0;

@@ -112,7 +112,19 @@ void Registry::add(PluginInfo info) {
     if (!info.create) {
         throw Error("Registry::add: plugin type '" + info.type + "' has no factory");
     }
-    for (const ParamDecl& decl : info.params) {
+    for (size_t i = 0; i < info.params.size(); ++i) {
+        const ParamDecl& decl = info.params[i];
+        for (size_t j = 0; j < i; ++j) {
+            if (info.params[j].name == decl.name) {
+                throw Error("Registry::add: plugin type '" + info.type + "' declares parameter '" +
+                            std::string(decl.name) + "' twice");
+            }
+        }
+        if (decl.type == ParamType::Points &&
+            !(decl.minValue >= 0.0 && decl.minValue <= decl.maxValue)) {
+            throw Error("Registry::add: plugin type '" + info.type + "' point list '" +
+                        std::string(decl.name) + "' has no valid count range [minValue, maxValue]");
+        }
         checkValue(info.type, decl, decl.defaultValue);
     }
     m_infos.push_back(std::move(info));

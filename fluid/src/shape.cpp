@@ -2,6 +2,8 @@
 #include <fluid/error.h>
 #include <fluid/shape.h>
 
+#include <glm/vec2.hpp>
+
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -14,15 +16,17 @@ bool finite(glm::vec2 v) {
     return std::isfinite(v.x) && std::isfinite(v.y);
 }
 
-float cross(glm::vec2 a, glm::vec2 b) {
+// In double: differences of float coordinates are exact there, so the signs are right far
+// from the origin too.
+double cross(glm::dvec2 a, glm::dvec2 b) {
     return a.x * b.y - a.y * b.x;
 }
 
-bool segmentsCross(glm::vec2 a, glm::vec2 b, glm::vec2 c, glm::vec2 d) {
-    const float d1 = cross(b - a, c - a);
-    const float d2 = cross(b - a, d - a);
-    const float d3 = cross(d - c, a - c);
-    const float d4 = cross(d - c, b - c);
+bool segmentsCross(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 d) {
+    const double d1 = cross(b - a, c - a);
+    const double d2 = cross(b - a, d - a);
+    const double d3 = cross(d - c, a - c);
+    const double d4 = cross(d - c, b - c);
     return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
 }
 
@@ -38,10 +42,14 @@ void checkPoint(std::string_view who, const std::string& name, glm::vec2 v) {
     }
 }
 
-float signedArea2(const std::vector<glm::vec2>& v) {
-    float area2 = 0.0f;
-    for (size_t i = 0; i < v.size(); ++i) {
-        area2 += cross(v[i], v[(i + 1) % v.size()]);
+// Twice the signed area, in double and relative to the first vertex: a small polygon far from
+// the origin (a cup at x = 1000 m) keeps its area to float precision.
+double signedArea2(const std::vector<glm::vec2>& v) {
+    const glm::dvec2 o = v[0];
+    double area2 = 0.0;
+    for (size_t i = 1; i + 1 < v.size(); ++i) {
+        const glm::dvec2 a = glm::dvec2(v[i]) - o, b = glm::dvec2(v[i + 1]) - o;
+        area2 += a.x * b.y - a.y * b.x;
     }
     return area2;
 }
@@ -76,7 +84,7 @@ void validate(const Shape& shape, std::string_view who) {
         for (size_t i = 0; i < v.size(); ++i) {
             checkPoint(who, "polygon vertex " + std::to_string(i), v[i]);
         }
-        if (!(std::fabs(signedArea2(v)) > 0.0f)) {
+        if (!(std::fabs(signedArea2(v)) > 0.0)) {
             fail(who, "polygon has zero area");
         }
         const size_t n = v.size();
@@ -134,7 +142,7 @@ float area(const Shape& shape) {
     case ShapeType::Circle:
         return 3.14159265f * shape.radius * shape.radius;
     case ShapeType::Polygon:
-        return 0.5f * std::fabs(signedArea2(shape.vertices));
+        return float(0.5 * std::fabs(signedArea2(shape.vertices)));
     }
     return 0.0f;
 }

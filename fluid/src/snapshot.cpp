@@ -14,6 +14,7 @@
 #include <fluid/error.h>
 #include <fluid/registry.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <istream>
@@ -187,6 +188,46 @@ std::unique_ptr<Plugin> getPlugin(In& in, const Registry& registry, PluginKind k
     return plugin;
 }
 
+// Everything the step and the handle API rely on: equal channel lengths, finite positions and
+// velocities, known materials, and a handle table in which every slot is either free (listed
+// once in freeSlots) or names the particle that names it back.
+void checkParticles(const detail::WorldState& s) {
+    const detail::Particles& p = s.particles;
+    const size_t n = p.px.size();
+    for (const std::vector<float>* channel : p.keptFloats()) {
+        if (channel->size() != n) {
+            In::fail("particle channels of different lengths");
+        }
+    }
+    if (p.material.size() != n || p.slot.size() != n || p.expiry.size() != n ||
+        s.slotGeneration.size() != s.slotIndex.size() || n > s.def.maxParticles) {
+        In::fail("particle channels or handle table of inconsistent sizes");
+    }
+    for (size_t i = 0; i < n; ++i) {
+        const bool finite = std::isfinite(p.px[i]) && std::isfinite(p.py[i]) &&
+                            std::isfinite(p.vx[i]) && std::isfinite(p.vy[i]);
+        if (!finite || std::isnan(p.expiry[i]) || p.material[i] >= s.materials.size() ||
+            p.slot[i] >= s.slotIndex.size() || s.slotIndex[p.slot[i]] != i) {
+            In::fail("particle " + std::to_string(i) +
+                     " has a non-finite state, a bad material or a bad handle");
+        }
+    }
+    std::vector<uint8_t> free(s.slotIndex.size(), 0);
+    for (uint32_t slot : s.freeSlots) {
+        if (slot >= s.slotIndex.size() || s.slotIndex[slot] != UINT32_MAX || free[slot] != 0) {
+            In::fail("a free slot is in use or listed twice");
+        }
+        free[slot] = 1;
+    }
+    for (size_t slot = 0; slot < s.slotIndex.size(); ++slot) {
+        const uint32_t index = s.slotIndex[slot];
+        const bool used = index != UINT32_MAX && index < n && p.slot[index] == slot;
+        if (!(used || (index == UINT32_MAX && free[slot] != 0)) || s.slotGeneration[slot] == 0) {
+            In::fail("handle slot " + std::to_string(slot) + " is neither used nor free");
+        }
+    }
+}
+
 } // namespace
 
 void World::save(std::ostream& out) const {
@@ -217,11 +258,12 @@ void World::save(std::ostream& out) const {
     }
     // Particles in their current order, and the handle table.
     const detail::Particles& p = s.particles;
-    for (const auto* channel : {&p.px, &p.py, &p.vx, &p.vy, &p.density, &p.pressure, &p.life}) {
+    for (const std::vector<float>* channel : p.keptFloats()) {
         o.array(*channel);
     }
     o.array(p.material);
     o.array(p.slot);
+    o.array(p.expiry);
     o.array(s.slotIndex);
     o.array(s.slotGeneration);
     o.array(s.freeSlots);
@@ -359,35 +401,16 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
         world.addMaterial(m);
     }
     detail::Particles& p = s.particles;
-    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy, &p.density, &p.pressure, &p.life}) {
+    for (std::vector<float>* channel : p.keptFloats()) {
         in.array(*channel, "a particle channel");
     }
     in.array(p.material, "the material channel");
     in.array(p.slot, "the slot channel");
+    in.array(p.expiry, "the expiry channel");
     in.array(s.slotIndex, "the handle table");
     in.array(s.slotGeneration, "the handle generations");
     in.array(s.freeSlots, "the free slots");
-    const size_t n = p.px.size();
-    for (const auto* channel : {&p.py, &p.vx, &p.vy, &p.density, &p.pressure, &p.life}) {
-        if (channel->size() != n) {
-            In::fail("particle channels of different lengths");
-        }
-    }
-    if (p.material.size() != n || p.slot.size() != n ||
-        s.slotGeneration.size() != s.slotIndex.size() || n > def.maxParticles) {
-        In::fail("particle channels or handle table of inconsistent sizes");
-    }
-    for (size_t i = 0; i < n; ++i) {
-        if (p.material[i] >= s.materials.size() || p.slot[i] >= s.slotIndex.size() ||
-            s.slotIndex[p.slot[i]] != i) {
-            In::fail("particle " + std::to_string(i) + " has a bad material or handle");
-        }
-    }
-    for (uint32_t slot : s.freeSlots) {
-        if (slot >= s.slotIndex.size() || s.slotIndex[slot] != UINT32_MAX) {
-            In::fail("a free slot is in use");
-        }
-    }
+    checkParticles(s);
 
     const auto forces = in.get<uint64_t>();
     for (uint64_t k = 0; k < forces; ++k) {
@@ -419,6 +442,9 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
         e.carry = in.get<double>();
         e.emitted = in.get<uint32_t>();
         e.random = in.get<uint64_t>();
+        if (!(e.carry >= 0.0 && e.carry < 1.0)) {
+            In::fail("an emitter's clock is outside [0, 1)");
+        }
     }
     const auto drains = in.get<uint64_t>();
     for (uint64_t k = 0; k < drains; ++k) {
@@ -444,6 +470,10 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
     s.fieldMeasured = in.small(true, "the field flag");
     s.lastMaxAccel = in.get<float>();
     s.profile = in.get<Profile>();
+    if (!std::isfinite(s.time) || !(s.soundSpeed >= 0.0f && std::isfinite(s.soundSpeed)) ||
+        !std::isfinite(s.fieldGH) || !(s.lastMaxAccel >= 0.0f && std::isfinite(s.lastMaxAccel))) {
+        In::fail("the solver state is not finite");
+    }
     if (!in.done()) {
         In::fail("unexpected data after the last section");
     }

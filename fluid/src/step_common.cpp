@@ -12,15 +12,6 @@
 
 namespace fluid::detail {
 
-void permute(std::vector<float>& channel, std::span<const uint32_t> order,
-             std::vector<float>& tmp) {
-    tmp.resize(channel.size());
-    for (size_t k = 0; k < order.size(); ++k) {
-        tmp[k] = channel[order[k]];
-    }
-    channel.swap(tmp);
-}
-
 void refreshConstants(WorldState& s) {
     const size_t m = s.materials.size();
     s.constants.resize(m);
@@ -139,11 +130,13 @@ void externalForces(WorldState& s, float dt, double time) {
 void sortParticles(WorldState& s, float cellSize,
                    std::initializer_list<std::vector<float>*> extra) {
     Particles& p = s.particles;
+    ++s.sorts;
     s.grid.build(p.px, p.py, cellSize, s.tasks);
     const std::span<const uint32_t> order = s.grid.order();
-    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy, &p.life}) {
+    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy}) {
         permute(*channel, order, s.sortScratch);
     }
+    permute(p.expiry, order, s.sortScratchD);
     for (auto* channel : extra) {
         permute(*channel, order, s.sortScratch);
     }

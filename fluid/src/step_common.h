@@ -33,7 +33,14 @@ struct SceneFacts {
 SceneFacts sceneFacts(const WorldState& s);
 
 /// channel[k] = channel[order[k]], through `tmp`.
-void permute(std::vector<float>& channel, std::span<const uint32_t> order, std::vector<float>& tmp);
+template <class T>
+void permute(std::vector<T>& channel, std::span<const uint32_t> order, std::vector<T>& tmp) {
+    tmp.resize(channel.size());
+    for (size_t k = 0; k < order.size(); ++k) {
+        tmp[k] = channel[order[k]];
+    }
+    channel.swap(tmp);
+}
 
 /// Per-material constants from the material table (equation-of-state fields left 0).
 void refreshConstants(WorldState& s);

@@ -111,31 +111,56 @@ uint32_t WorldState::checkedIndex(ParticleHandle handle, const char* function) c
     return *index;
 }
 
-void WorldState::removeAt(uint32_t index) {
+ParticleHandle WorldState::append(glm::vec2 x, glm::vec2 v, uint16_t material, double expiry) {
+    uint32_t slot = 0;
+    if (!freeSlots.empty()) {
+        slot = freeSlots.back();
+        freeSlots.pop_back();
+    } else {
+        slot = static_cast<uint32_t>(slotIndex.size());
+        slotIndex.push_back(UINT32_MAX);
+        slotGeneration.push_back(1);
+    }
     Particles& p = particles;
-    const uint32_t last = p.size() - 1;
-    const uint32_t slot = p.slot[index];
+    slotIndex[slot] = p.size();
+    p.px.push_back(x.x);
+    p.py.push_back(x.y);
+    p.vx.push_back(v.x);
+    p.vy.push_back(v.y);
+    p.density.push_back(0.0f);
+    p.pressure.push_back(0.0f);
+    p.material.push_back(material);
+    p.slot.push_back(slot);
+    p.expiry.push_back(expiry);
+    return ParticleHandle{slot, slotGeneration[slot]};
+}
+
+void WorldState::releaseSlot(uint32_t slot) {
     slotIndex[slot] = UINT32_MAX;
     // Generation 0 is the null handle's: skip it when a slot's counter wraps.
     slotGeneration[slot] = slotGeneration[slot] + 1 == 0 ? 1 : slotGeneration[slot] + 1;
     freeSlots.push_back(slot);
+}
+
+void WorldState::removeAt(uint32_t index) {
+    Particles& p = particles;
+    const uint32_t last = p.size() - 1;
+    releaseSlot(p.slot[index]);
     if (index != last) {
-        p.px[index] = p.px[last];
-        p.py[index] = p.py[last];
-        p.vx[index] = p.vx[last];
-        p.vy[index] = p.vy[last];
+        for (std::vector<float>* channel : p.keptFloats()) {
+            (*channel)[index] = (*channel)[last];
+        }
         p.material[index] = p.material[last];
         p.slot[index] = p.slot[last];
-        p.density[index] = p.density[last];
-        p.pressure[index] = p.pressure[last];
-        p.life[index] = p.life[last];
+        p.expiry[index] = p.expiry[last];
         slotIndex[p.slot[index]] = index;
     }
-    for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy, &p.density, &p.pressure, &p.life}) {
+    for (std::vector<float>* channel : p.keptFloats()) {
         channel->pop_back();
     }
     p.material.pop_back();
     p.slot.pop_back();
+    p.expiry.pop_back();
 }
 
 } // namespace detail
@@ -168,7 +193,20 @@ MaterialId World::addMaterial(const Material& material) {
 void World::setMaterial(MaterialId id, const Material& material) {
     (void)this->material(id);
     validate(material);
+    // The material's spacing sets its emitters' lanes and rate limit: check them again, and
+    // keep the old material if one no longer fits.
+    const Material old = m_state->materials[id.index];
     m_state->materials[id.index] = material;
+    try {
+        for (const detail::EmitterState& e : m_state->emitters) {
+            if (e.def.material == id) {
+                validateEmitter(e.def, "World::setMaterial");
+            }
+        }
+    } catch (...) {
+        m_state->materials[id.index] = old;
+        throw;
+    }
 }
 
 const Material& World::material(MaterialId id) const {
@@ -192,27 +230,7 @@ ParticleHandle World::addParticle(glm::vec2 position, glm::vec2 velocity, Materi
         throw Error("World::addParticle: particle cap exceeded: the world holds maxParticles = " +
                     std::to_string(s.def.maxParticles) + " particles");
     }
-    uint32_t slot = 0;
-    if (!s.freeSlots.empty()) {
-        slot = s.freeSlots.back();
-        s.freeSlots.pop_back();
-    } else {
-        slot = static_cast<uint32_t>(s.slotIndex.size());
-        s.slotIndex.push_back(UINT32_MAX);
-        s.slotGeneration.push_back(1);
-    }
-    detail::Particles& p = s.particles;
-    s.slotIndex[slot] = p.size();
-    p.px.push_back(position.x);
-    p.py.push_back(position.y);
-    p.vx.push_back(velocity.x);
-    p.vy.push_back(velocity.y);
-    p.material.push_back(materialId.index);
-    p.slot.push_back(slot);
-    p.density.push_back(0.0f);
-    p.pressure.push_back(0.0f);
-    p.life.push_back(std::numeric_limits<float>::infinity());
-    return ParticleHandle{slot, s.slotGeneration[slot]};
+    return s.append(position, velocity, materialId.index, std::numeric_limits<double>::infinity());
 }
 
 uint32_t World::spawnBlob(const BlobDef& blob) {
@@ -271,11 +289,9 @@ uint32_t World::spawnBlob(const BlobDef& blob) {
                     " more particles would pass maxParticles = " +
                     std::to_string(m_state->def.maxParticles));
     }
-    const float life =
-        blob.lifetime > 0.0f ? blob.lifetime : std::numeric_limits<float>::infinity();
+    const double expiry = detail::expiryTime(m_state->time, blob.lifetime);
     for (glm::vec2 p : points) {
-        addParticle(p, blob.velocity, blob.material);
-        m_state->particles.life.back() = life;
+        m_state->append(p, blob.velocity, blob.material.index, expiry);
     }
     return static_cast<uint32_t>(points.size());
 }
@@ -356,17 +372,26 @@ void World::step(float frameDt) {
     // Emitters add this frame's particles, the solver moves everything, then drains, lifetimes
     // and sensors see where the particles ended (events for the host to read).
     s.removed.clear();
+    // A plugin's prepare hook may throw (a bad shape, a user plugin's own check) after the
+    // emitters ran: keep what emission changes, so that the world can be put back.
+    const detail::EmissionUndo undo(s);
     uint32_t blocked = 0;
-    const uint32_t emitted = detail::emitParticles(s, frameDt, blocked);
-    switch (s.def.solver) {
-    case Solver::PositionBased:
-        detail::stepPositionBased(s, frameDt);
-        break;
-    case Solver::Explicit:
-        detail::stepExplicit(s, frameDt);
-        break;
+    uint32_t emitted = 0;
+    try {
+        emitted = detail::emitParticles(s, frameDt, blocked);
+        switch (s.def.solver) {
+        case Solver::PositionBased:
+            detail::stepPositionBased(s, frameDt);
+            break;
+        case Solver::Explicit:
+            detail::stepExplicit(s, frameDt);
+            break;
+        }
+    } catch (...) {
+        undo.restore(s);
+        throw;
     }
-    s.profile.removed = detail::finishGameplay(s, frameDt);
+    s.profile.removed = detail::finishGameplay(s);
     s.profile.emitted = emitted;
     s.profile.emitBlocked = blocked;
     s.profile.particles = s.particles.size();
@@ -375,11 +400,12 @@ void World::step(float frameDt) {
 void World::setLifetime(ParticleHandle handle, float seconds) {
     const uint32_t i = m_state->checkedIndex(handle, "World::setLifetime");
     checkLifetime("World::setLifetime: ", seconds);
-    m_state->particles.life[i] = seconds > 0.0f ? seconds : std::numeric_limits<float>::infinity();
+    m_state->particles.expiry[i] = detail::expiryTime(m_state->time, seconds);
 }
 
 float World::lifetime(ParticleHandle handle) const {
-    return m_state->particles.life[m_state->checkedIndex(handle, "World::lifetime")];
+    const uint32_t i = m_state->checkedIndex(handle, "World::lifetime");
+    return float(m_state->particles.expiry[i] - m_state->time);
 }
 
 namespace {
@@ -404,8 +430,11 @@ void World::validateEmitter(const EmitterDef& def, const char* function) const {
     const std::string prefix = std::string(function) + ": ";
     checkVec(function, "position", def.position);
     checkVec(function, "direction", def.direction);
-    if (!(def.direction.x != 0.0f || def.direction.y != 0.0f)) {
-        throw Error(prefix + "direction = (0, 0); expected a non-zero vector");
+    if (detail::unitDirection(def.direction) == glm::vec2(0.0f, 0.0f)) {
+        std::ostringstream s;
+        s << prefix << "direction = (" << def.direction.x << ", " << def.direction.y
+          << ") has no direction; expected a non-zero vector";
+        throw Error(s.str());
     }
     checkRange("speed", def.speed, 0.01f, 100.0f, "m/s", prefix.c_str());
     checkRange("width", def.width, 0.0f, 100.0f, "m", prefix.c_str());
@@ -414,15 +443,15 @@ void World::validateEmitter(const EmitterDef& def, const char* function) const {
     checkRange("jitter", def.jitter, 0.0f, 0.5f, "1", prefix.c_str());
     const Material& mat = material(def.material);
     const float spacing = particleSpacing(mat, m_state->def.depth);
-    const float lanes = 1.0f + std::round(def.width / spacing);
-    if (!(lanes <= float(kMaxEmitterLanes))) {
+    const double lanes = detail::emitterLanes(def.width, spacing);
+    if (!(lanes <= double(kMaxEmitterLanes))) {
         std::ostringstream s;
         s << prefix << "width = " << def.width << " m is " << lanes << " lanes at " << spacing
           << " m spacing; at most " << kMaxEmitterLanes;
         throw Error(s.str());
     }
     // Rows closer than one spacing would overlap: the jet would start compressed.
-    const float limit = lanes * def.speed / spacing;
+    const auto limit = float(lanes * def.speed / spacing);
     if (def.rate > limit * 1.0001f) {
         std::ostringstream s;
         s << prefix << "rate = " << def.rate << " particles/s overlaps: a nozzle " << def.width

@@ -5,6 +5,9 @@
 
 #include <fluid/world.h>
 
+#include <array>
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -19,7 +22,9 @@ struct Particles {
     std::vector<uint16_t> material;
     std::vector<uint32_t> slot;
     std::vector<float> density, pressure;
-    std::vector<float> life; // time left to live (s); +infinity for particles that live forever
+    // Simulated time (s) at which the particle is removed; +infinity for those that live
+    // forever. Absolute and double, so that a long lifetime neither stalls nor drifts.
+    std::vector<double> expiry;
     // Per sub-step scratch, in sorted order.
     std::vector<float> ax, ay;            // total acceleration
     std::vector<float> ex, ey;            // external (plugin) acceleration
@@ -41,6 +46,14 @@ struct Particles {
     std::vector<float> invMass, volume, pairPressure, invLattice;
 
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }
+    /// The float channels that persist between steps (besides material, slot and expiry).
+    std::array<std::vector<float>*, 6> keptFloats() {
+        return {&px, &py, &vx, &vy, &density, &pressure};
+    }
+    /// See `keptFloats`.
+    std::array<const std::vector<float>*, 6> keptFloats() const {
+        return {&px, &py, &vx, &vy, &density, &pressure};
+    }
 };
 
 /// Per-material constants the hot loops read, refreshed at the start of every step.
@@ -99,6 +112,8 @@ struct WorldState {
     std::vector<float> sortScratch;
     std::vector<uint32_t> sortScratchU;
     std::vector<uint16_t> sortScratchMaterial;
+    std::vector<double> sortScratchD;
+    uint64_t sorts = 0; // particle sorts so far (EmissionUndo: has this step reordered them?)
 
     std::vector<EmitterState> emitters;
     std::vector<DrainDef> drains;
@@ -114,18 +129,62 @@ struct WorldState {
     float lastMaxAccel = 0.0f;
 
     std::optional<uint32_t> findIndex(ParticleHandle handle) const; // nullopt: null or stale
+    /// Adds a particle at the end of the arrays (the caller checked inputs and capacity).
+    ParticleHandle append(glm::vec2 x, glm::vec2 v, uint16_t material, double expiry);
+    /// Marks a removed particle's slot free and its handles stale.
+    void releaseSlot(uint32_t slot);
     uint32_t checkedIndex(ParticleHandle handle, const char* function) const;
     void removeAt(uint32_t index);
     /// Removes every particle whose `kill` entry is non-zero, keeping the others in order.
     void removeMarked(const std::vector<uint8_t>& kill);
 };
 
+/// What `World::step` needs to take emission back when a plugin's `prepare` throws: the
+/// emitters' clocks, the handle table's free list and size, the particle count and profile.
+/// Restoring is exact while the emitted particles still sit at the end of the arrays, which
+/// holds until the first sort of the step (after every prepare hook).
+class EmissionUndo {
+public:
+    explicit EmissionUndo(const WorldState& s);
+    void restore(WorldState& s) const;
+
+private:
+    bool m_active = false; // some emitter is open: the copies below were taken
+    std::vector<EmitterState> m_emitters;
+    std::vector<uint32_t> m_freeSlots;
+    size_t m_slots = 0;
+    uint32_t m_count = 0;
+    uint64_t m_sorts = 0;
+    Profile m_profile;
+};
+
+/// When a particle given `lifetime` seconds at simulated time `now` expires (unit: s; a
+/// lifetime of 0 means never: +infinity).
+inline double expiryTime(double now, float lifetime) {
+    return lifetime > 0.0f ? now + double(lifetime) : std::numeric_limits<double>::infinity();
+}
+
 /// Emitters' particles for a step of `frameDt` (start of `World::step`); returns the count.
 uint32_t emitParticles(WorldState& s, float frameDt, uint32_t& blocked);
 
-/// After a step: lifetimes run down by `frameDt`, drains and expired lifetimes remove particles
-/// (into `removed`), sensors measure. Returns the count removed.
-uint32_t finishGameplay(WorldState& s, float frameDt);
+/// After a step (time already advanced): drains and expired lifetimes remove particles (into
+/// `removed`), sensors measure. Returns the count removed.
+uint32_t finishGameplay(WorldState& s);
+
+/// Particles across one emitter row: 1 + round(width / spacing) (unit: count).
+inline double emitterLanes(float width, float spacing) {
+    return 1.0 + std::round(double(width) / double(spacing));
+}
+
+/// `direction` scaled to unit length, computed in double so that neither a tiny nor a huge
+/// vector underflows or overflows; (0, 0) for a zero or non-finite one.
+inline glm::vec2 unitDirection(glm::vec2 direction) {
+    const double len = std::hypot(double(direction.x), double(direction.y));
+    if (!(len > 0.0) || !std::isfinite(len)) {
+        return {0.0f, 0.0f};
+    }
+    return {float(double(direction.x) / len), float(double(direction.y) / len)};
+}
 
 /// The explicit solver's step (solver_explicit.cpp).
 void stepExplicit(WorldState& state, float frameDt);

@@ -189,7 +189,8 @@ struct ForceContext {
     double time = 0.0;
 };
 
-/// What every plugin gets once per `World::step`, before the sub-steps.
+/// What every plugin gets once per `World::step`: the same values in `prepare` (before the
+/// sub-steps) and in `finish` (after them; `time` is still the step's start).
 struct StepContext {
     /// The frame time passed to `World::step` (unit: s).
     float frameDt = 0.0f;

@@ -250,12 +250,13 @@ public:
     /// Number of sensors (unit: count).
     uint32_t sensorCount() const;
     /// What the sensor held at the end of the last step, one entry per material (indexed by
-    /// `MaterialId::index`; zeros before the first step). Throws for an unknown id.
+    /// `MaterialId::index`). Zeros before the first step, and after `addMaterial` or
+    /// `addSensor` until the next step measures. Throws for an unknown id.
     std::span<const SensorReading> sensorReading(SensorId id) const;
 
     /// Particles drains and lifetimes removed during the last step, ordered by drain (in the
-    /// order added, lifetimes last) and then by the particles' slots before removal: the same
-    /// for any number of workers.
+    /// order added, lifetimes last) and then by the particles' array index (the position in
+    /// the spans above) before removal: the same for any number of workers.
     std::span<const RemovedEvent> removedEvents() const;
 
     /// Writes the whole world (settings, materials, particles and handles, plugins with their
@@ -291,8 +292,11 @@ public:
 
     /// Advances the world by one game frame (unit: s; finite, range (0, 1]; typically 1/60),
     /// split into sub-steps: `PositionBasedDef::substeps` of them, or as many as the explicit
-    /// solver's CFL condition asks (see `Profile::substeps`). Throws `fluid::Error`
-    /// for a bad frameDt, leaving the world unchanged.
+    /// solver's CFL condition asks (see `Profile::substeps`). In order: emitters add the
+    /// frame's particles, the solver runs, drains and lifetimes remove particles
+    /// (`removedEvents`), sensors measure (`sensorReading`). Throws `fluid::Error` for a bad
+    /// frameDt, and passes on what a plugin's `prepare` throws, leaving the world unchanged
+    /// in both cases; a hook that throws later, during the sub-steps, leaves it mid-step.
     void step(float frameDt);
 
     /// Particles in the world (unit: count).
