@@ -29,8 +29,7 @@ std::span<const ShapeSegment> ChainBoundary::segments() const {
     return m_segments ? m_segments->segments() : std::span<const ShapeSegment>();
 }
 
-void ChainBoundary::build(double spacing, double support, std::vector<glm::dvec2>& out,
-                          LocalBounds& bounds) {
+void ChainBoundary::checkShape() const {
     const std::span<const glm::vec2> points = pointsAt(kPoints);
     const std::size_t n = points.size();
     const bool closed = value(kClosed) >= 0.5;
@@ -40,13 +39,10 @@ void ChainBoundary::build(double spacing, double support, std::vector<glm::dvec2
                     " to 4096 with setPoints before the first step" +
                     (closed ? " (a closed chain needs 3)" : ""));
     }
-    std::vector<glm::dvec2> v(points.begin(), points.end());
+    checkCoordinates(kPoints);
     const std::size_t count = closed ? n : n - 1;
-    std::vector<ShapeSegment> segments;
-    bounds.lo = glm::dvec2(INFINITY);
-    bounds.hi = glm::dvec2(-INFINITY);
     for (std::size_t i = 0; i < count; ++i) {
-        const glm::dvec2 a = v[i], b = v[(i + 1) % n];
+        const glm::vec2 a = points[i], b = points[(i + 1) % n];
         if (a == b) {
             std::ostringstream s;
             s << "plugin 'boundary.chain': parameter 'points' repeats point " << i << " = (" << a.x
@@ -54,8 +50,36 @@ void ChainBoundary::build(double spacing, double support, std::vector<glm::dvec2
               << "; expected distinct consecutive points (unit: m)";
             throw Error(s.str());
         }
-        segments.push_back(geometry::makeSegment(a, b));
     }
+}
+
+void ChainBoundary::validate() const {
+    if (!pointsAt(kPoints).empty()) {
+        checkShape(); // else not set yet (`closed` may come first): the first step says so
+    }
+}
+
+void ChainBoundary::build(double spacing, double support, std::vector<glm::dvec2>& out,
+                          LocalBounds& bounds) {
+    checkShape();
+    const std::span<const glm::vec2> points = pointsAt(kPoints);
+    const std::size_t n = points.size();
+    const bool closed = value(kClosed) >= 0.5;
+    std::vector<glm::dvec2> v(points.begin(), points.end());
+    const std::size_t count = closed ? n : n - 1;
+    std::vector<ShapeSegment> segments;
+    bounds.lo = glm::dvec2(INFINITY);
+    bounds.hi = glm::dvec2(-INFINITY);
+    // How many samples the row below lays, in double before any integer cast.
+    double length = 0.0, estimate = 1.0;
+    for (std::size_t i = 0; i < count; ++i) {
+        segments.push_back(geometry::makeSegment(v[i], v[(i + 1) % n]));
+        length += segments.back().length;
+        estimate += std::max(1.0, segments.back().length / spacing);
+    }
+    std::ostringstream what;
+    what << "length " << length << " m";
+    checkSampleCount(estimate, what.str(), spacing);
     for (const glm::dvec2 p : v) {
         bounds.lo = glm::min(bounds.lo, p);
         bounds.hi = glm::max(bounds.hi, p);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 namespace fluid {
 
@@ -22,9 +23,23 @@ void CircleBoundary::build(double spacing, double support, std::vector<glm::dvec
     m_radius = value(kRadius);
     bounds.lo = {-m_radius, -m_radius};
     bounds.hi = {m_radius, m_radius};
+    // How many samples the rings below lay, in double before any integer cast: `rings` rings
+    // of radius R - (l + 0.5) spacing, each split into about 2 pi r / spacing pieces (3 at
+    // least), and one at the centre.
+    const double layerCountD = layerCount(spacing, support);
+    const double rings = std::clamp(std::floor(m_radius / spacing - 0.75) + 1.0, 0.0, layerCountD);
+    const double estimate =
+        std::max(3.0 * rings, 2.0 * std::numbers::pi *
+                                  (rings * m_radius - 0.5 * spacing * rings * rings) / spacing) +
+        1.0;
+    std::ostringstream what;
+    what << "radius " << m_radius << " m";
+    checkSampleCount(estimate, what.str(), spacing);
     // Rings where the fluid lattice's next rows would be, one support radius deep; what is left
     // at the centre of a small disc (less than half a spacing) gets one sample.
-    const int layers = std::max(1, static_cast<int>(std::ceil(support / spacing - 1e-9)));
+    // No more than the rings (and the centre) that fit: a tiny disc in a world whose support is
+    // many spacings passes the estimate, but its layer count need not fit an int.
+    const int layers = static_cast<int>(std::min(layerCountD, rings + 1.0));
     for (int l = 0; l < layers; ++l) {
         const double r = m_radius - (l + 0.5) * spacing;
         if (r < 0.25 * spacing) {

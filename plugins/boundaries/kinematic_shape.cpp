@@ -1,11 +1,24 @@
 // fluid — base of the built-in shape boundaries: pose, velocities, samples, projection loop.
 #include <fluid/plugins/kinematic_shape.h>
 
+#include <fluid/error.h>
+
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <numbers>
+#include <sstream>
+#include <utility>
 
 namespace fluid {
+
+KinematicShape::KinematicShape(std::string_view type, std::span<const ParamDecl> params)
+    : BoundaryPlugin(type, params), m_acceptedValues(params.size()),
+      m_acceptedPoints(params.size()) {
+    for (std::size_t i = kPoseParamCount; i < params.size(); ++i) {
+        m_acceptedValues[i] = value(i); // the defaults; point lists start empty
+    }
+}
 
 KinematicShape::Pose KinematicShape::pose(double t) const {
     Pose p;
@@ -31,14 +44,79 @@ void KinematicShape::setVelocity(glm::vec2 velocity, float omega) {
 }
 
 void KinematicShape::onParamChanged(std::size_t index) {
-    if (index >= kPoseParamCount) {
-        m_built = false; // the shape itself changed: lay the samples again at the next prepare
+    if (index < kPoseParamCount) {
+        return;
     }
+    m_built = false; // the shape itself changed: lay the samples again at the next prepare
+    if (m_restoring) {
+        return;
+    }
+    try {
+        validate();
+    } catch (const Error&) {
+        // Plugin::setParam and setPoints store before they call us: put the last accepted value
+        // back, so that a rejected edit leaves the shape as it was.
+        const ParamDecl& decl = params()[index];
+        if (decl.type == ParamType::Number) {
+            storeValue(index, m_acceptedValues[index]);
+        } else if (!m_acceptedPoints[index].empty()) {
+            // Passed setPoints' own checks before, so this cannot throw.
+            m_restoring = true;
+            setPoints(decl.name, m_acceptedPoints[index]);
+            m_restoring = false;
+        }
+        throw;
+    }
+    for (std::size_t i = kPoseParamCount; i < params().size(); ++i) {
+        if (params()[i].type == ParamType::Number) {
+            m_acceptedValues[i] = value(i);
+        } else {
+            const std::span<const glm::vec2> points = pointsAt(i);
+            m_acceptedPoints[i].assign(points.begin(), points.end());
+        }
+    }
+}
+
+void KinematicShape::checkCoordinates(std::size_t index) const {
+    const std::span<const glm::vec2> points = pointsAt(index);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        const glm::vec2 p = points[k];
+        if (std::fabs(p.x) <= kMaxCoordinate && std::fabs(p.y) <= kMaxCoordinate) {
+            continue;
+        }
+        const ParamDecl& decl = params()[index];
+        std::ostringstream s;
+        s << "plugin '" << type() << "': parameter '" << decl.name << "' point " << k << " = ("
+          << p.x << ", " << p.y << ") is outside [" << -kMaxCoordinate << ", " << kMaxCoordinate
+          << "] (unit: " << decl.unit << ")";
+        throw Error(s.str());
+    }
+}
+
+void KinematicShape::checkSampleCount(double estimate, std::string_view what,
+                                      double spacing) const {
+    if (estimate <= kMaxSamples) {
+        return;
+    }
+    // Two significant digits: the estimate is rough, and a message should read at a glance.
+    const double unit = std::pow(10.0, std::floor(std::log10(estimate)) - 1.0);
+    std::ostringstream s;
+    s << "plugin '" << type() << "': " << what << " needs about " << std::fixed
+      << std::setprecision(0) << std::round(estimate / unit) * unit << std::defaultfloat
+      << std::setprecision(6) << " boundary samples at spacing " << spacing << " m; at most "
+      << kMaxSamples;
+    throw Error(s.str());
+}
+
+double KinematicShape::layerCount(double spacing, double support) {
+    return std::max(1.0, std::ceil(support / spacing - 1e-9));
 }
 
 void KinematicShape::prepare(const StepContext& context) {
     if (!m_built || m_builtSpacing != context.sampleSpacing ||
         m_builtSupport != context.supportRadius) {
+        // Not built until build returns: a shape it rejects keeps no stale geometry for project.
+        m_built = false;
         m_local.clear();
         build(context.sampleSpacing, context.supportRadius, m_local, m_bounds);
         m_built = true;
@@ -102,9 +180,24 @@ void KinematicShape::project(const ProjectContext& context, uint32_t begin, uint
 
 void KinematicShape::finish(const StepContext& context) {
     const double dt = context.frameDt;
-    // The same expressions as pose(dt), so the pose stored is the one the last projection used.
-    storeValue(kX, value(kX) + value(kVx) * dt);
-    storeValue(kY, value(kY) + value(kVy) * dt);
+    // The same expressions as pose(dt), so the pose stored is the one the last projection used
+    // (except at the edge of the range below).
+    // A position past the declared range would make the world's snapshot unloadable (World::load
+    // restores it with setParam, which checks the range): the shape stops at the edge, and its
+    // velocity out of the range goes, so that it does not keep sweeping past the edge during
+    // each step and jumping back at its end.
+    for (const auto& [position, velocity] : {std::pair<std::size_t, std::size_t>{kX, kVx},
+                                             std::pair<std::size_t, std::size_t>{kY, kVy}}) {
+        const ParamDecl& decl = params()[position];
+        const double advanced = value(position) + value(velocity) * dt;
+        const double kept = std::clamp(advanced, decl.minValue, decl.maxValue);
+        storeValue(position, kept);
+        if (kept != advanced) {
+            // The position was in range (setParam and this clamp keep it there), so the motion
+            // that left the range pointed out of it.
+            storeValue(velocity, 0.0);
+        }
+    }
     const double angle = value(kAngle) + value(kOmega) * dt;
     // Kept in [-pi, pi]: a long-spinning paddle keeps its angle's precision.
     storeValue(kAngle, std::remainder(angle, 2.0 * std::numbers::pi));

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <string>
 
@@ -115,10 +116,36 @@ bool PolygonBoundary::containsLocal(glm::dvec2 local) const {
     return m_edges && m_edges->inside(local);
 }
 
+void PolygonBoundary::validate() const {
+    if (pointsAt(kVertices).empty()) {
+        return; // not set yet: the first step says so
+    }
+    checkCoordinates(kVertices);
+    checkedVertices(pointsAt(kVertices));
+}
+
 void PolygonBoundary::build(double spacing, double support, std::vector<glm::dvec2>& out,
                             LocalBounds& bounds) {
+    checkCoordinates(kVertices);
     const std::vector<glm::dvec2> v = checkedVertices(pointsAt(kVertices));
     const std::size_t n = v.size();
+    // How many candidates the layers below lay, in double before any integer cast: every edge's
+    // pieces in every layer, and at most a half turn of arc per layer at each reflex corner.
+    const double layerCountD = layerCount(spacing, support);
+    double perimeter = 0.0, pieceCount = 0.0, reflexCount = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::dvec2 a = v[(i + n - 1) % n], b = v[i], c = v[(i + 1) % n];
+        const double len = geometry::length(c - b);
+        perimeter += len;
+        pieceCount += std::max(1.0, len / spacing);
+        reflexCount += cross(b - a, c - b) < 0.0 ? 1.0 : 0.0;
+    }
+    const double estimate =
+        layerCountD * pieceCount + reflexCount * std::numbers::pi * 0.5 * layerCountD * layerCountD;
+    std::ostringstream what;
+    what << "perimeter " << perimeter << " m";
+    checkSampleCount(estimate, what.str(), spacing);
+
     std::vector<ShapeSegment> edges;
     bounds.lo = bounds.hi = v[0];
     for (std::size_t i = 0; i < n; ++i) {
@@ -133,7 +160,7 @@ void PolygonBoundary::build(double spacing, double support, std::vector<glm::dve
     // Layers at (l + 0.5) spacing behind the surface, enough to fill one support radius, where
     // the fluid lattice's next rows would be. Shallow layers first: where layers of different
     // edges meet (thin parts, corners) the ones nearest the surface are kept.
-    const int layers = std::max(1, static_cast<int>(std::ceil(support / spacing - 1e-9)));
+    const int layers = static_cast<int>(layerCountD); // <= estimate <= kMaxSamples
     geometry::SpacedPoints kept(0.55 * spacing);
     // A candidate belongs to its layer only if no other part of the surface is clearly nearer
     // (else another edge's layer covers that spot) and it lies inside.

@@ -134,11 +134,15 @@ public:
     }
 
 private:
-    int cellX(double x) const {
-        return std::clamp(static_cast<int>(std::floor((x - m_lo.x) / m_cell)), 0, m_nx - 1);
-    }
-    int cellY(double y) const {
-        return std::clamp(static_cast<int>(std::floor((y - m_lo.y) / m_cell)), 0, m_ny - 1);
+    int cellX(double x) const { return cellOf((x - m_lo.x) / m_cell, m_nx); }
+    int cellY(double y) const { return cellOf((y - m_lo.y) / m_cell, m_ny); }
+    // Clamped in double before the cast: a particle far away (or a NaN) gives an edge cell, not
+    // an out-of-range float-to-int conversion (undefined behaviour).
+    static int cellOf(double f, int n) {
+        if (!(f >= 0.0)) {
+            return 0;
+        }
+        return f >= double(n - 1) ? n - 1 : static_cast<int>(f);
     }
     static void flatten(const std::vector<std::vector<uint32_t>>& lists,
                         std::vector<uint32_t>& start, std::vector<uint32_t>& items) {
@@ -245,8 +249,7 @@ public:
     explicit SpacedPoints(double radius) : m_radius(radius) {}
     /// Adds p unless a kept point lies closer than the radius; true when kept.
     bool add(glm::dvec2 p) {
-        const auto cx = static_cast<int64_t>(std::floor(p.x / m_radius));
-        const auto cy = static_cast<int64_t>(std::floor(p.y / m_radius));
+        const int64_t cx = cellOf(p.x / m_radius), cy = cellOf(p.y / m_radius);
         for (int64_t dy = -1; dy <= 1; ++dy) {
             for (int64_t dx = -1; dx <= 1; ++dx) {
                 const auto it = m_cells.find(key(cx + dx, cy + dy));
@@ -269,10 +272,20 @@ public:
     const std::vector<glm::dvec2>& points() const { return m_points; }
 
 private:
-    static int64_t key(int64_t x, int64_t y) { return x * 73856093 ^ y * 19349663; }
+    // Cell index, clamped before the cast (2^50 cells of any radius cover every coordinate a
+    // shape may have, and cell +- 1 cannot overflow); a NaN goes to the lowest cell.
+    static int64_t cellOf(double f) {
+        constexpr double kLimit = 0x1p50;
+        const double c = std::floor(f);
+        return c >= -kLimit ? static_cast<int64_t>(std::min(c, kLimit)) : int64_t(-kLimit);
+    }
+    // Hash of a cell, in unsigned arithmetic (wraps by definition; signed overflow would not).
+    static uint64_t key(int64_t x, int64_t y) {
+        return uint64_t(x) * 73856093u ^ uint64_t(y) * 19349663u;
+    }
     double m_radius;
     std::vector<glm::dvec2> m_points;
-    std::unordered_map<int64_t, std::vector<uint32_t>> m_cells;
+    std::unordered_map<uint64_t, std::vector<uint32_t>> m_cells;
 };
 
 } // namespace fluid::geometry

@@ -16,8 +16,10 @@ class SegmentSet;
 
 /// "boundary.chain": a polyline of thin walls (one segment thick) that fluid on either side
 /// cannot cross: a splitter in a tank, a thin lid, a funnel, a closed loop. `points` in the
-/// local frame (unit: m; 2 to 4096; consecutive points distinct); `closed` = 1 joins the last
-/// point to the first. Placed and moved by the pose parameters of `KinematicShape`.
+/// local frame (unit: m; 2 to 4096, 3 when closed; coordinates in [-1e5, 1e5]; consecutive
+/// points distinct); `closed` = 1 joins the last point to the first. Both are checked when set,
+/// whichever comes last (see `KinematicShape`). Placed and moved by the pose parameters of
+/// `KinematicShape`. At most `kMaxSamples` samples: about 20 km of wall at water spacing.
 ///
 /// Samples: one row along the segments at the spacing (both sides see it). `project` follows
 /// each particle's path: one that crosses a segment goes back to the side it came from (keeping
@@ -49,6 +51,9 @@ public:
     std::span<const ShapeSegment> segments() const;
 
 private:
+    void validate() const override;
+    // The checks of `validate` for a chain whose points are set (throws for none).
+    void checkShape() const;
     void build(double spacing, double support, std::vector<glm::dvec2>& out,
                LocalBounds& bounds) override;
     bool collide(glm::dvec2 prev, glm::dvec2 cur, double spacing, double eps,

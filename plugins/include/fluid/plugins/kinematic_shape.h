@@ -32,7 +32,19 @@ struct ShapeSegment {
 /// that sets only the velocities sees the shape move, and a host that sets the pose before every
 /// step gets exactly that pose (set the velocities too, so that the walls push the fluid with
 /// the right speed and particles swept over are caught on the right side). The angle is kept in
-/// [-pi, pi] as it advances.
+/// [-pi, pi] as it advances. The position stays inside the declared range of x and y ([-1e5,
+/// 1e5] m) so that a snapshot of the world can always be loaded again: a shape reaching the edge
+/// of that range stops there (x or y is clamped to it and the velocity component pointing out,
+/// vx or vy, is set to 0).
+///
+/// Shape parameters (points, radius, flags) are checked as soon as they are set: `setParam` and
+/// `setPoints` throw `fluid::Error` for a bad shape (a self-crossing polygon, a closed chain of 2
+/// points, a coordinate outside [-kMaxCoordinate, kMaxCoordinate]) and keep the last accepted
+/// value, so the shape stays what it was (a point list rejected before any was accepted stays
+/// stored, and the first step reports it again). Checks needing several parameters run whichever
+/// of them is set last; a shape with no points yet is not checked until its first step.
+/// The first step after a shape or spacing change throws `fluid::Error` when the shape would need
+/// more than `kMaxSamples` boundary samples at the world's spacing.
 ///
 /// Samples are laid once in the local frame (when the shape or the spacing changes) and carried
 /// to the world at every `prepare` with the velocity v + omega x r of the solid at each sample.
@@ -46,6 +58,13 @@ class KinematicShape : public BoundaryPlugin {
 public:
     /// Indices of the parameters every shape declares first, in this order.
     enum : std::size_t { kX, kY, kAngle, kVx, kVy, kOmega, kFriction, kPoseParamCount };
+    /// Largest |coordinate| of a point in a shape's local frame (unit: m): the same bound as the
+    /// pose's x and y, so that every world coordinate of a shape stays well inside float and
+    /// int range.
+    static constexpr double kMaxCoordinate = 1e5;
+    /// Most boundary samples one shape may lay (unit: count): about 64 MB of samples and
+    /// build-time caches, and some 0.1 s to lay them (a 5 km outline at water spacing).
+    static constexpr double kMaxSamples = 2'000'000;
     /// The pose, velocity and friction parameters; a shape's own parameters follow them.
     static constexpr std::array<ParamDecl, kPoseParamCount> kPoseParams{{
         {"x", "m", 0.0, -1e5, 1e5, "Position x of the shape's local origin."},
@@ -106,7 +125,8 @@ public:
     /// Keeps particles [begin, end) out of the solid (see the class comment). Needs a `prepare`
     /// first (it builds the geometry).
     void project(const ProjectContext& context, uint32_t begin, uint32_t end) final;
-    /// Advances the pose by its velocities over the frame (stepping thread).
+    /// Advances the pose by its velocities over the frame, x and y clamped to their declared
+    /// range (a shape stops at its edge: see the class comment). Stepping thread.
     void finish(const StepContext& context) override;
     /// The `friction` parameter.
     float friction() const override { return static_cast<float>(value(kFriction)); }
@@ -116,8 +136,7 @@ public:
 
 protected:
     /// `params` must start with `kPoseParams` (see `withPoseParams`).
-    KinematicShape(std::string_view type, std::span<const ParamDecl> params)
-        : BoundaryPlugin(type, params) {}
+    KinematicShape(std::string_view type, std::span<const ParamDecl> params);
 
     /// Axis-aligned bounds of the shape in its local frame (unit: m).
     struct LocalBounds {
@@ -132,9 +151,25 @@ protected:
 
     /// Checks the shape's parameters and rebuilds its geometry caches and local samples (at
     /// `spacing` m, covering `support` m behind the surface) into `out`, and its local bounds.
-    /// Throws `fluid::Error` for a bad shape. Stepping thread.
+    /// Throws `fluid::Error` for a bad shape (also one with no points yet) and, before laying
+    /// anything, for one needing more than `kMaxSamples` samples (see `checkSampleCount`).
+    /// Stepping thread.
     virtual void build(double spacing, double support, std::vector<glm::dvec2>& out,
                        LocalBounds& bounds) = 0;
+    /// Checks the shape's own parameters as they are now (throws `fluid::Error` with the same
+    /// message `build` would); called whenever one changes, so that `setParam` and `setPoints`
+    /// fail at once. A shape whose points are not set yet passes. Default: nothing to check.
+    virtual void validate() const {}
+    /// Throws `fluid::Error` when a point of the point parameter at `index` has a coordinate
+    /// outside [-kMaxCoordinate, kMaxCoordinate], naming the plugin, parameter, point and value.
+    void checkCoordinates(std::size_t index) const;
+    /// Throws `fluid::Error` when `estimate` samples (unit: count; computed in double, before any
+    /// integer cast) exceed `kMaxSamples`. `what` names the size that needs them, e.g.
+    /// "radius 10000 m"; `spacing` is the sample spacing (unit: m).
+    void checkSampleCount(double estimate, std::string_view what, double spacing) const;
+    /// Sample layers that cover `support` behind the surface at `spacing` (unit: count, >= 1;
+    /// a double, so that an absurd ratio reaches `checkSampleCount` instead of an int cast).
+    static double layerCount(double spacing, double support);
     /// The particle moved from `prev` to `cur` (local frame, unit: m). Returns false when it
     /// stays where it is; else fills `out`. `spacing` is the fluid's lattice spacing (unit: m),
     /// `eps` how far outside a surface a particle is put (unit: m). Called from worker threads:
@@ -143,10 +178,16 @@ protected:
                          Contact& out) const = 0;
     /// How far from the surface `collide` may act (unit: m): the bounds are enlarged by it.
     virtual double reach(double /*spacing*/) const { return 0.0; }
-    /// Marks the local samples and geometry stale (a shape parameter changed).
+    /// Marks the local samples and geometry stale when a shape parameter changed, and checks
+    /// the shape (`validate`); on failure restores the last accepted value and rethrows.
     void onParamChanged(std::size_t index) override;
 
 private:
+    // The shape parameters as last accepted by `validate` (by declaration index; pose entries
+    // unused), restored when a change is rejected.
+    std::vector<double> m_acceptedValues;
+    std::vector<std::vector<glm::vec2>> m_acceptedPoints;
+    bool m_restoring = false; // re-setting accepted points: skip the check
     std::vector<glm::dvec2> m_local;
     LocalBounds m_bounds;
     bool m_built = false;

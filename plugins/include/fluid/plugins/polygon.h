@@ -16,8 +16,10 @@ class SegmentSet;
 
 /// "boundary.polygon": a solid polygon the fluid stays outside of (an obstacle, a sloped floor,
 /// a paddle; a container when the polygon is a thick U or bowl around the fluid). `vertices` in
-/// the local frame (unit: m; 3 to 4096, either winding, convex or concave, simple: no edge may
-/// cross another). Placed and moved by the pose parameters of `KinematicShape`.
+/// the local frame (unit: m; 3 to 4096, coordinates in [-1e5, 1e5], either winding, convex or
+/// concave, simple: no edge may cross another, no repeated vertex, some area), checked by
+/// `setPoints` (see `KinematicShape`). Placed and moved by the pose parameters of
+/// `KinematicShape`. At most `kMaxSamples` samples: a perimeter of about 5 km at water spacing.
 ///
 /// Samples: layers at (l + 0.5) spacing inside every edge, as many as cover one support radius,
 /// arcs around the reflex corners (where the solid wraps round the fluid), shallow layers first
@@ -51,6 +53,7 @@ public:
     bool containsLocal(glm::dvec2 local) const;
 
 private:
+    void validate() const override;
     void build(double spacing, double support, std::vector<glm::dvec2>& out,
                LocalBounds& bounds) override;
     bool collide(glm::dvec2 prev, glm::dvec2 cur, double spacing, double eps,
