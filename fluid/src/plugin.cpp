@@ -69,8 +69,16 @@ void Plugin::setParam(std::string_view name, double value) {
     const std::size_t index = findParam(m_type, m_decls, name);
     checkType(m_type, m_decls[index], ParamType::Number);
     checkValue(m_type, m_decls[index], value);
+    // A plugin may refuse a value its declaration allows (geometry that does not fit): then
+    // the old value stays.
+    const double old = m_values[index];
     m_values[index] = value;
-    onParamChanged(index);
+    try {
+        onParamChanged(index);
+    } catch (...) {
+        m_values[index] = old;
+        throw;
+    }
 }
 
 std::span<const glm::vec2> Plugin::points(std::string_view name) const {
@@ -98,8 +106,14 @@ void Plugin::setPoints(std::string_view name, std::span<const glm::vec2> points)
             throw Error(s.str());
         }
     }
-    m_points[index].assign(points.begin(), points.end());
-    onParamChanged(index);
+    std::vector<glm::vec2> old(points.begin(), points.end());
+    m_points[index].swap(old);
+    try {
+        onParamChanged(index);
+    } catch (...) {
+        m_points[index].swap(old);
+        throw;
+    }
 }
 
 void Registry::add(PluginInfo info) {

@@ -13,12 +13,7 @@
 namespace fluid {
 
 KinematicShape::KinematicShape(std::string_view type, std::span<const ParamDecl> params)
-    : BoundaryPlugin(type, params), m_acceptedValues(params.size()),
-      m_acceptedPoints(params.size()) {
-    for (std::size_t i = kPoseParamCount; i < params.size(); ++i) {
-        m_acceptedValues[i] = value(i); // the defaults; point lists start empty
-    }
-}
+    : BoundaryPlugin(type, params) {}
 
 KinematicShape::Pose KinematicShape::pose(double t) const {
     Pose p;
@@ -48,33 +43,8 @@ void KinematicShape::onParamChanged(std::size_t index) {
         return;
     }
     m_built = false; // the shape itself changed: lay the samples again at the next prepare
-    if (m_restoring) {
-        return;
-    }
-    try {
-        validate();
-    } catch (const Error&) {
-        // Plugin::setParam and setPoints store before they call us: put the last accepted value
-        // back, so that a rejected edit leaves the shape as it was.
-        const ParamDecl& decl = params()[index];
-        if (decl.type == ParamType::Number) {
-            storeValue(index, m_acceptedValues[index]);
-        } else if (!m_acceptedPoints[index].empty()) {
-            // Passed setPoints' own checks before, so this cannot throw.
-            m_restoring = true;
-            setPoints(decl.name, m_acceptedPoints[index]);
-            m_restoring = false;
-        }
-        throw;
-    }
-    for (std::size_t i = kPoseParamCount; i < params().size(); ++i) {
-        if (params()[i].type == ParamType::Number) {
-            m_acceptedValues[i] = value(i);
-        } else {
-            const std::span<const glm::vec2> points = pointsAt(i);
-            m_acceptedPoints[i].assign(points.begin(), points.end());
-        }
-    }
+    // A refused shape throws; Plugin::setParam and setPoints then put the old value back.
+    validate();
 }
 
 void KinematicShape::checkCoordinates(std::size_t index) const {
@@ -95,16 +65,16 @@ void KinematicShape::checkCoordinates(std::size_t index) const {
 
 void KinematicShape::checkSampleCount(double estimate, std::string_view what,
                                       double spacing) const {
-    if (estimate <= kMaxSamples) {
+    if (estimate <= double(kMaxSamples)) {
         return;
     }
     // Two significant digits: the estimate is rough, and a message should read at a glance.
     const double unit = std::pow(10.0, std::floor(std::log10(estimate)) - 1.0);
+    const double rounded = std::isfinite(unit) ? std::round(estimate / unit) * unit : estimate;
     std::ostringstream s;
     s << "plugin '" << type() << "': " << what << " needs about " << std::fixed
-      << std::setprecision(0) << std::round(estimate / unit) * unit << std::defaultfloat
-      << std::setprecision(6) << " boundary samples at spacing " << spacing << " m; at most "
-      << kMaxSamples;
+      << std::setprecision(0) << rounded << std::defaultfloat << std::setprecision(6)
+      << " boundary samples at spacing " << spacing << " m; at most " << kMaxSamples;
     throw Error(s.str());
 }
 

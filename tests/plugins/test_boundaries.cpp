@@ -3,13 +3,17 @@
 // particles, wall velocity), plus a small world that stays deterministic across thread counts.
 #include "test_support.h"
 
+#include "plugins/boundaries/shape_geometry.h"
+
 #include <fluid/plugins/boundaries.h>
 #include <fluid/plugins/builtin.h>
 
 #include <catch2/catch.hpp>
 #include <glm/geometric.hpp>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <sstream>
 #include <vector>
@@ -107,21 +111,37 @@ TEST_CASE("shape boundaries: point parameters and shape errors", "[boundaries]")
     CHECK_THROWS_WITH(polygon.prepare(stepContext()),
                       "plugin 'boundary.polygon': parameter 'vertices' has 0 points; set 3 to "
                       "4096 vertices with setPoints before the first step");
+    // A bad shape is refused by setPoints itself, with the message the first step gave before
+    // (so a level file's loader can point at the line). The rejected list is not kept
+    // (Plugin::setPoints reverts it): a polygon that never had vertices still has none.
     const std::vector<glm::vec2> bowtie{{0, 0}, {1, 1}, {1, 0}, {0, 1}};
-    polygon.setPoints("vertices", bowtie);
+    const char* notSimple = "plugin 'boundary.polygon': parameter 'vertices' is not simple: edge "
+                            "0 (vertex 0 to 1) meets edge 2 (vertex 2 to 3)";
+    CHECK_THROWS_WITH(polygon.setPoints("vertices", bowtie), notSimple);
+    CHECK(polygon.points("vertices").empty());
     CHECK_THROWS_WITH(polygon.prepare(stepContext()),
-                      "plugin 'boundary.polygon': parameter 'vertices' is not simple: edge 0 "
-                      "(vertex 0 to 1) meets edge 2 (vertex 2 to 3)");
+                      "plugin 'boundary.polygon': parameter 'vertices' has 0 points; set 3 to "
+                      "4096 vertices with setPoints before the first step");
+    // Once a shape was accepted, a rejected edit leaves it as it was.
+    const std::vector<glm::vec2> tri{{0, 0}, {1, 0}, {0, 1}};
+    polygon.setPoints("vertices", tri);
     const std::vector<glm::vec2> flat{{0, 0}, {1, 0}, {2, 0}};
-    polygon.setPoints("vertices", flat);
-    CHECK_THROWS_WITH(polygon.prepare(stepContext()),
+    CHECK_THROWS_WITH(polygon.setPoints("vertices", flat),
                       "plugin 'boundary.polygon': parameter 'vertices' folds back at vertex 0: "
                       "edges 0 and 2 overlap");
     const std::vector<glm::vec2> repeated{{0, 0}, {1, 0}, {1, 0}, {0, 1}};
-    polygon.setPoints("vertices", repeated);
-    CHECK_THROWS_WITH(polygon.prepare(stepContext()),
+    CHECK_THROWS_WITH(polygon.setPoints("vertices", repeated),
                       "plugin 'boundary.polygon': parameter 'vertices' repeats vertex 1 = (1, 0) "
                       "as vertex 2; expected distinct consecutive vertices (unit: m)");
+    const std::vector<glm::vec2> sliver{{0, 0}, {1e5f, 0}, {0, 1e-8f}};
+    CHECK_THROWS_WITH(polygon.setPoints("vertices", sliver),
+                      "plugin 'boundary.polygon': parameter 'vertices' encloses no area "
+                      "(collinear vertices)");
+    CHECK_THROWS_WITH(polygon.setPoints("vertices", bowtie), notSimple);
+    REQUIRE(polygon.points("vertices").size() == 3);
+    CHECK(polygon.points("vertices")[2] == tri[2]);
+    CHECK_NOTHROW(polygon.prepare(stepContext()));
+    CHECK(polygon.containsLocal({0.2, 0.2}));
     const std::vector<glm::vec2> nan{{0, 0}, {1, 0}, {0, NAN}};
     CHECK_THROWS_WITH(polygon.setPoints("vertices", nan),
                       "plugin 'boundary.polygon': parameter 'vertices' point 2 = (0, nan) is not "
@@ -132,14 +152,243 @@ TEST_CASE("shape boundaries: point parameters and shape errors", "[boundaries]")
     CHECK_THROWS_WITH(chain.setPoints("points", one),
                       "plugin 'boundary.chain': parameter 'points' has 1 points; expected 2 to "
                       "4096");
+    const char* closedTwo = "plugin 'boundary.chain': parameter 'points' has 2 points; set 3 to "
+                            "4096 with setPoints before the first step (a closed chain needs 3)";
     chain.setPoints("points", two);
-    chain.setParam("closed", 1.0);
-    CHECK_THROWS_WITH(chain.prepare(stepContext()),
-                      "plugin 'boundary.chain': parameter 'points' has 2 points; set 3 to 4096 "
-                      "with setPoints before the first step (a closed chain needs 3)");
-    chain.setParam("closed", 0.0);
+    // `closed` last: refused at once, and left open.
+    CHECK_THROWS_WITH(chain.setParam("closed", 1.0), closedTwo);
+    CHECK(chain.param("closed") == 0.0);
     CHECK_NOTHROW(chain.prepare(stepContext()));
     CHECK(chain.points("points").size() == 2);
+    CHECK(chain.segments().size() == 1);
+}
+
+TEST_CASE("chain: closed and points are checked whichever is set last", "[boundaries]") {
+    const std::vector<glm::vec2> two{{0.0f, 0.0f}, {1.0f, 0.0f}};
+    const std::vector<glm::vec2> three{{0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}};
+    const char* closedTwo = "plugin 'boundary.chain': parameter 'points' has 2 points; set 3 to "
+                            "4096 with setPoints before the first step (a closed chain needs 3)";
+    // `closed` first, before any points: allowed (a default chain has none yet).
+    ChainBoundary chain;
+    CHECK_NOTHROW(chain.setParam("closed", 1.0));
+    // The points last: 2 are refused for a closed chain, 3 accepted.
+    CHECK_THROWS_WITH(chain.setPoints("points", two), closedTwo);
+    chain.setPoints("points", three);
+    // A rejected edit keeps the accepted loop.
+    CHECK_THROWS_WITH(chain.setPoints("points", two), closedTwo);
+    CHECK(chain.points("points").size() == 3);
+    chain.prepare(stepContext());
+    CHECK(chain.segments().size() == 3);
+    // Opening it makes 2 points fine again.
+    chain.setParam("closed", 0.0);
+    chain.setPoints("points", two);
+    chain.prepare(stepContext());
+    CHECK(chain.segments().size() == 1);
+    // Consecutive repeats: refused at once; a closed chain also joins the last to the first.
+    const std::vector<glm::vec2> repeat{{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 0.0f}};
+    CHECK_THROWS_WITH(chain.setPoints("points", repeat),
+                      "plugin 'boundary.chain': parameter 'points' repeats point 1 = (1, 0) as "
+                      "point 2; expected distinct consecutive points (unit: m)");
+    const std::vector<glm::vec2> loopBack{{0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}, {0.0f, 0.0f}};
+    chain.setPoints("points", loopBack); // open: the last point may equal the first
+    CHECK_THROWS_WITH(chain.setParam("closed", 1.0),
+                      "plugin 'boundary.chain': parameter 'points' repeats point 3 = (0, 0) as "
+                      "point 0; expected distinct consecutive points (unit: m)");
+    CHECK(chain.param("closed") == 0.0);
+    // The constructor's points and flag go through the same checks.
+    CHECK_THROWS_WITH(ChainBoundary(two, true), closedTwo);
+    // Through the registry (what a level file uses): closed before the points.
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    const std::array<ParamValue, 1> closed{{{"closed", 1.0}}};
+    auto made = registry.createBoundary("boundary.chain", closed);
+    CHECK_THROWS_WITH(made->setPoints("points", two), closedTwo);
+    CHECK_NOTHROW(made->setPoints("points", three));
+}
+
+TEST_CASE("shape boundaries: coordinates beyond 1e5 m are refused when set", "[boundaries]") {
+    std::vector<glm::vec2> square{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    square[3] = {1e30f, 0.0f};
+    PolygonBoundary polygon;
+    CHECK_THROWS_WITH(polygon.setPoints("vertices", square),
+                      "plugin 'boundary.polygon': parameter 'vertices' point 3 = (1e+30, 0) is "
+                      "outside [-100000, 100000] (unit: m)");
+    // Checked before the geometry (this one would also be refused as not simple).
+    const std::vector<glm::vec2> far{{0, 0}, {1, 1}, {1, 0}, {0, -100001.0f}};
+    CHECK_THROWS_WITH(polygon.setPoints("vertices", far),
+                      "plugin 'boundary.polygon': parameter 'vertices' point 3 = (0, -100001) is "
+                      "outside [-100000, 100000] (unit: m)");
+    // The bound itself is fine.
+    const std::vector<glm::vec2> edge{{-1e5f, -1e5f}, {1e5f, -1e5f}, {0.0f, 1e5f}};
+    CHECK_NOTHROW(polygon.setPoints("vertices", edge));
+
+    ChainBoundary chain;
+    const std::vector<glm::vec2> wall{{0.0f, 0.0f}, {-2e5f, 3.0f}};
+    CHECK_THROWS_WITH(chain.setPoints("points", wall),
+                      "plugin 'boundary.chain': parameter 'points' point 1 = (-200000, 3) is "
+                      "outside [-100000, 100000] (unit: m)");
+    // The rejected list is not kept: the chain still has no points.
+    CHECK(chain.points("points").empty());
+    CHECK_THROWS_WITH(chain.prepare(stepContext()),
+                      "plugin 'boundary.chain': parameter 'points' has 0 points; set 2 to 4096 "
+                      "with setPoints before the first step");
+
+    // The circle's radius has its declared range (tighter than the coordinates').
+    CircleBoundary circle;
+    CHECK_THROWS_WITH(circle.setParam("radius", 1e5),
+                      "plugin 'boundary.circle': parameter 'radius' = 100000 is out of range "
+                      "[0.0001, 10000] (unit: m)");
+}
+
+TEST_CASE("shape boundaries: too many samples are refused before any is laid", "[boundaries]") {
+    // Water spacing 0.01 m and support 0.032 m: 4 layers, some 400 samples per metre of outline.
+    CircleBoundary circle({0.0f, 0.0f}, 1e4f);
+    CHECK_THROWS_WITH(circle.prepare(stepContext()),
+                      "plugin 'boundary.circle': radius 10000 m needs about 25000000 boundary "
+                      "samples at spacing 0.01 m; at most 2000000");
+    CHECK(circle.samples().size() == 0);
+    CHECK(circle.localSamples().empty());
+
+    const std::vector<glm::vec2> huge{{-1e5f, -1e5f}, {1e5f, -1e5f}, {1e5f, 1e5f}, {-1e5f, 1e5f}};
+    PolygonBoundary polygon(huge);
+    CHECK_THROWS_WITH(polygon.prepare(stepContext()),
+                      "plugin 'boundary.polygon': perimeter 800000 m needs about 320000000 "
+                      "boundary samples at spacing 0.01 m; at most 2000000");
+    CHECK(polygon.samples().size() == 0);
+    // A rejected shape is not half-built: project leaves particles alone.
+    Moves moves;
+    moves.add({0.0f, -2e5f}, {0.0f, 0.0f}, {0.0f, 1.0f});
+    moves.project(polygon);
+    CHECK(moves.at(0) == glm::vec2(0.0f, 0.0f));
+
+    ChainBoundary chain(std::vector<glm::vec2>{{-1e4f, 0.0f}, {1e4f, 0.0f}, {1e4f, 1e4f}});
+    CHECK_THROWS_WITH(chain.prepare(stepContext()),
+                      "plugin 'boundary.chain': length 30000 m needs about 3000000 boundary "
+                      "samples at spacing 0.01 m; at most 2000000");
+
+    // A spacing far below the support (many layers) is caught the same way, without an
+    // integer overflow, and a tiny disc there still gets its one centre sample.
+    const StepContext deep{kFrame, 0.0, 1e-6f, 10.0f};
+    CircleBoundary post({0.0f, 0.0f}, 1.0f);
+    CHECK_THROWS_WITH(post.prepare(deep),
+                      "plugin 'boundary.circle': radius 1 m needs about 3100000000000 boundary "
+                      "samples at spacing 1e-06 m; at most 2000000");
+    const StepContext wide{kFrame, 0.0, 0.01f, 1e7f};
+    CircleBoundary speck({0.0f, 0.0f}, 2e-4f);
+    speck.prepare(wide);
+    CHECK(speck.localSamples().size() == 1);
+
+    // Below the cap: laid (a 400 m outline, some 160,000 samples).
+    const std::vector<glm::vec2> big{
+        {0.0f, 0.0f}, {100.0f, 0.0f}, {100.0f, 100.0f}, {0.0f, 100.0f}};
+    PolygonBoundary field(big);
+    const auto t0 = std::chrono::steady_clock::now();
+    field.prepare(stepContext());
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("[measure] 100 m square polygon: %zu samples laid in %.3f s\n",
+                field.samples().size(), seconds);
+    CHECK(field.samples().size() > 150000);
+    CHECK(field.samples().size() <= 160000);
+}
+
+TEST_CASE("shape boundaries: a shape moving past 1e5 m stops there and its world reloads",
+          "[boundaries]") {
+    CircleBoundary circle({99990.0f, 0.0f}, 0.1f);
+    circle.setVelocity({1000.0f, -3.0f}, 0.0f);
+    circle.finish(stepContext(1.0f / 60.0f)); // 99990 + 16.7 m: past the edge
+    CHECK(circle.param("x") == 1e5);
+    CHECK(circle.param("vx") == 0.0); // stopped: no sweeping past the edge in later steps
+    CHECK(circle.param("vy") == -3.0);
+    CHECK(circle.param("y") == Approx(-3.0 / 60.0));
+    circle.finish(stepContext(1.0f / 60.0f));
+    CHECK(circle.param("x") == 1e5);
+    // The other way, and y too.
+    circle.setPose({-99999.0f, -99999.0f}, 0.0f);
+    circle.setVelocity({-1000.0f, -1000.0f}, 0.0f);
+    circle.finish(stepContext(1.0f / 60.0f));
+    CHECK(circle.param("x") == -1e5);
+    CHECK(circle.param("y") == -1e5);
+    CHECK(circle.param("vx") == 0.0);
+    CHECK(circle.param("vy") == 0.0);
+
+    // In a world: the snapshot taken after the shape reached the edge loads.
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    World world;
+    const MaterialId water = world.addMaterial(fluid::water());
+    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 0.2f, 0.2f));
+    auto paddle = std::make_unique<PolygonBoundary>(
+        std::vector<glm::vec2>{{-0.05f, -0.01f}, {0.05f, -0.01f}, {0.05f, 0.01f}});
+    paddle->setPose({99995.0f, 0.5f}, 0.0f);
+    paddle->setVelocity({900.0f, 0.0f}, 1.0f);
+    world.addBoundary(std::move(paddle));
+    world.spawnBlob(latticeBlock(world, water, 0.0f, 0.0f, 8, 8));
+    for (int f = 0; f < 3; ++f) {
+        world.step(kFrame);
+    }
+    CHECK(world.boundaries()[1]->param("x") == 1e5);
+    std::stringstream bytes;
+    world.save(bytes);
+    World copy = World::load(bytes, registry);
+    CHECK(copy.boundaries()[1]->param("x") == 1e5);
+    CHECK(copy.boundaries()[1]->param("angle") == world.boundaries()[1]->param("angle"));
+}
+
+TEST_CASE("shape boundaries: far and non-finite positions give edge cells, not overflow",
+          "[boundaries]") {
+    // The segment grid and the sample hash clamp cell indices before casting: a position far
+    // beyond the shape (or NaN, from a blown-up host) lands in an edge cell, never in an
+    // out-of-range float-to-int conversion or a signed overflow (undefined behaviour, which a
+    // sanitizer build of this test reports).
+    geometry::SegmentSet set;
+    set.build({geometry::makeSegment({0, 0}, {1, 0}), geometry::makeSegment({1, 0}, {1, 1}),
+               geometry::makeSegment({1, 1}, {0, 1}), geometry::makeSegment({0, 1}, {0, 0})},
+              0.1);
+    double t = 0.0;
+    CHECK(set.firstCrossing({1e30, 0.5}, {-1e30, 0.5}, 0, t) == 1); // the right edge first
+    CHECK(t == Approx(0.5));
+    CHECK(set.firstCrossing({0.5, -1e300}, {0.5, 1e300}, 0, t) == 0);
+    glm::dvec2 closest{0.0, 0.0};
+    double distance = 0.0;
+    CHECK(set.nearest({1e30, -1e30}, 1.0, closest, distance) == -1);
+    CHECK(set.nearest({NAN, 0.5}, 1.0, closest, distance) == -1);
+    CHECK(set.inside({0.5, 0.5}));
+    CHECK_FALSE(set.inside({-1e30, 0.5}));
+    CHECK_FALSE(set.inside({0.5, 1e30}));
+    CHECK_FALSE(set.inside({0.5, NAN}));
+
+    geometry::SpacedPoints kept(0.0055);
+    CHECK(kept.add({1e30, 0.0}));
+    CHECK_FALSE(kept.add({1e30, 0.0})); // found again in its (clamped) cell
+    CHECK(kept.add({9e29, 0.0}));       // the same clamped cell, far apart: kept
+    CHECK(kept.add({-1e30, -1e30}));
+    CHECK(kept.add({-1e5, 1e5}));
+    CHECK_FALSE(kept.add({-1e5 + 0.005, 1e5}));
+    CHECK(kept.points().size() == 4);
+
+    // Through the plugins: far particles are left where they are, NaN ones too, and a path
+    // from far away through the shape ends somewhere finite.
+    const std::vector<glm::vec2> square{{0, 0}, {0.1f, 0}, {0.1f, 0.1f}, {0, 0.1f}};
+    PolygonBoundary polygon(square);
+    ChainBoundary chain(std::vector<glm::vec2>{{0.0f, 0.0f}, {0.1f, 0.1f}, {0.2f, 0.0f}});
+    CircleBoundary circle({0.05f, 0.05f}, 0.03f);
+    for (BoundaryPlugin* plugin :
+         std::initializer_list<BoundaryPlugin*>{&polygon, &chain, &circle}) {
+        CAPTURE(plugin->type());
+        plugin->prepare(stepContext());
+        Moves moves;
+        moves.add({1e30f, 0.05f}, {-1e30f, 0.05f}, {0.0f, 0.0f});
+        moves.add({3e38f, 3e38f}, {3e38f, -3e38f}, {0.0f, 0.0f});
+        moves.add({0.05f, -1e30f}, {0.05f, -1e30f}, {0.0f, 0.0f});
+        moves.add({NAN, 0.05f}, {NAN, 0.05f}, {0.0f, 0.0f});
+        moves.project(*plugin);
+        CHECK(std::isfinite(moves.at(0).x));
+        CHECK(std::isfinite(moves.at(0).y));
+        CHECK(moves.at(1) == glm::vec2(3e38f, -3e38f));
+        CHECK(moves.at(2) == glm::vec2(0.05f, -1e30f));
+        CHECK(std::isnan(moves.at(3).x));
+    }
 }
 
 TEST_CASE("shape boundaries: kinematic pose at time t and after finish", "[boundaries]") {

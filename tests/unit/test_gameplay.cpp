@@ -402,3 +402,19 @@ TEST_CASE("setMaterial keeps emitters valid; the registry refuses duplicate para
         "Registry::add: plugin type 'force.twice' declares parameter 'a' twice");
     CHECK(registry.types().empty());
 }
+
+TEST_CASE("a value the plugin refuses in onParamChanged reverts, numbers and points alike",
+          "[gameplay]") {
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    std::unique_ptr<Plugin> polygon = registry.create("boundary.polygon");
+    // A bow tie: its edges cross, which the declaration's count range cannot see.
+    const std::vector<glm::vec2> bowTie{{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+    CHECK_THROWS_AS(polygon->setPoints("vertices", bowTie), Error);
+    CHECK(polygon->points("vertices").empty()); // never had points: still none
+    const std::vector<glm::vec2> square{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    polygon->setPoints("vertices", square);
+    CHECK_THROWS_AS(polygon->setPoints("vertices", bowTie), Error);
+    const auto kept = polygon->points("vertices");
+    CHECK(std::vector<glm::vec2>(kept.begin(), kept.end()) == square);
+}

@@ -166,7 +166,8 @@ protected:
     /// Stores a value the plugin computed itself (a pose advanced by its velocity, a trigger
     /// reset), without range checks and without `onParamChanged`. Stepping thread only.
     void storeValue(std::size_t index, double value) { m_values[index] = value; }
-    /// Called after `setParam` or `setPoints` changed a value (stepping thread). Default: nothing.
+    /// Called after `setParam` or `setPoints` changed a value (stepping thread); it may throw
+    /// `fluid::Error` to refuse the value, which then reverts to the old one. Default: nothing.
     virtual void onParamChanged(std::size_t /*index*/) {}
 
 private:

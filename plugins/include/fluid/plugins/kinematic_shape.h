@@ -39,9 +39,8 @@ struct ShapeSegment {
 ///
 /// Shape parameters (points, radius, flags) are checked as soon as they are set: `setParam` and
 /// `setPoints` throw `fluid::Error` for a bad shape (a self-crossing polygon, a closed chain of 2
-/// points, a coordinate outside [-kMaxCoordinate, kMaxCoordinate]) and keep the last accepted
-/// value, so the shape stays what it was (a point list rejected before any was accepted stays
-/// stored, and the first step reports it again). Checks needing several parameters run whichever
+/// points, a coordinate outside [-kMaxCoordinate, kMaxCoordinate]) and keep the old value, so
+/// the shape stays what it was. Checks needing several parameters run whichever
 /// of them is set last; a shape with no points yet is not checked until its first step.
 /// The first step after a shape or spacing change throws `fluid::Error` when the shape would need
 /// more than `kMaxSamples` boundary samples at the world's spacing.
@@ -62,9 +61,11 @@ public:
     /// pose's x and y, so that every world coordinate of a shape stays well inside float and
     /// int range.
     static constexpr double kMaxCoordinate = 1e5;
-    /// Most boundary samples one shape may lay (unit: count): about 64 MB of samples and
-    /// build-time caches, and some 0.1 s to lay them (a 5 km outline at water spacing).
-    static constexpr double kMaxSamples = 2'000'000;
+    /// Most boundary samples one shape may lay (unit: count): a polygon with a 5 km outline at
+    /// water spacing (0.01 m, 4 layers). Laying that many took 3.5 s and 240 MB at peak on the
+    /// development machine (a 2.5 km outline: 1 s), once, at the first step or after the shape
+    /// or spacing changed.
+    static constexpr std::size_t kMaxSamples = 2'000'000;
     /// The pose, velocity and friction parameters; a shape's own parameters follow them.
     static constexpr std::array<ParamDecl, kPoseParamCount> kPoseParams{{
         {"x", "m", 0.0, -1e5, 1e5, "Position x of the shape's local origin."},
@@ -179,15 +180,10 @@ protected:
     /// How far from the surface `collide` may act (unit: m): the bounds are enlarged by it.
     virtual double reach(double /*spacing*/) const { return 0.0; }
     /// Marks the local samples and geometry stale when a shape parameter changed, and checks
-    /// the shape (`validate`); on failure restores the last accepted value and rethrows.
+    /// the shape (`validate`), which throws to refuse it (the old value then stays).
     void onParamChanged(std::size_t index) override;
 
 private:
-    // The shape parameters as last accepted by `validate` (by declaration index; pose entries
-    // unused), restored when a change is rejected.
-    std::vector<double> m_acceptedValues;
-    std::vector<std::vector<glm::vec2>> m_acceptedPoints;
-    bool m_restoring = false; // re-setting accepted points: skip the check
     std::vector<glm::dvec2> m_local;
     LocalBounds m_bounds;
     bool m_built = false;
