@@ -1,6 +1,8 @@
 // fluid — built-in force plugin: damping zone, an exact exponential velocity decay.
 #include <fluid/plugins/damping_zone.h>
 
+#include "relaxation.h"
+
 #include <cmath>
 
 namespace fluid {
@@ -16,10 +18,9 @@ DampingZoneForce::DampingZoneForce(float rate, glm::vec2 min, glm::vec2 max) : D
 void DampingZoneForce::apply(const ForceContext& context, uint32_t begin, uint32_t end) {
     const auto x0 = static_cast<float>(value(kMinX)), y0 = static_cast<float>(value(kMinY));
     const auto x1 = static_cast<float>(value(kMaxX)), y1 = static_cast<float>(value(kMaxY));
-    // As the wind with zero wind velocity: lambda dt = 1 - exp(-c dt) keeps exactly exp(-c dt)
-    // of the velocity per sub-step and never reverses it.
-    const double dt = double(context.dt), rate = value(kRate);
-    const auto lambda = static_cast<float>(dt > 0.0 ? -std::expm1(-rate * dt) / dt : rate);
+    // As the wind with zero wind velocity: keeps exactly exp(-c dt) of the velocity per
+    // sub-step and never reverses it.
+    const auto lambda = static_cast<float>(detail::relaxationRate(value(kRate), context.dt));
     const auto px = context.particles.px, py = context.particles.py;
     const auto vx = context.particles.vx, vy = context.particles.vy;
     for (uint32_t i = begin; i < end; ++i) {

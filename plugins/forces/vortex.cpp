@@ -1,6 +1,8 @@
 // fluid — built-in force plugin: vortex with a Rankine profile and exponential spin-up.
 #include <fluid/plugins/vortex.h>
 
+#include "relaxation.h"
+
 #include <cmath>
 #include <limits>
 
@@ -21,10 +23,8 @@ void VortexForce::apply(const ForceContext& context, uint32_t begin, uint32_t en
     const double cutoff = value(kCutoff);
     const double cut2 = cutoff > 0.0 ? cutoff * cutoff : std::numeric_limits<double>::infinity();
     const double r2Core = radius * radius;
-    // The exact drag over the sub-step: v_t - u -> (v_t - u) exp(-k dt) (k itself for dt = 0,
-    // a caller asking for the instantaneous field).
-    const double dt = double(context.dt);
-    const double lambda = dt > 0.0 ? -std::expm1(-rate * dt) / dt : rate;
+    // The exact drag over the sub-step: v_t - u -> (v_t - u) exp(-k dt).
+    const double lambda = detail::relaxationRate(rate, context.dt);
     const auto px = context.particles.px, py = context.particles.py;
     const auto vx = context.particles.vx, vy = context.particles.vy;
     for (uint32_t i = begin; i < end; ++i) {

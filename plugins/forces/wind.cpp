@@ -1,6 +1,8 @@
 // fluid — built-in force plugin: wind, an exact exponential drag towards a wind velocity.
 #include <fluid/plugins/wind.h>
 
+#include "relaxation.h"
+
 #include <cmath>
 
 namespace fluid {
@@ -15,11 +17,7 @@ void WindForce::apply(const ForceContext& context, uint32_t begin, uint32_t end)
     const auto wx = static_cast<float>(value(kVx)), wy = static_cast<float>(value(kVy));
     const auto x0 = static_cast<float>(value(kMinX)), y0 = static_cast<float>(value(kMinY));
     const auto x1 = static_cast<float>(value(kMaxX)), y1 = static_cast<float>(value(kMaxY));
-    // lambda dt = 1 - exp(-k dt): a sub-step leaves exactly exp(-k dt) of the velocity
-    // difference, however large k dt (explicit k dt would overshoot past the wind at k dt > 1
-    // and diverge at k dt > 2). dt = 0 (the instantaneous field) gives k.
-    const double dt = double(context.dt), rate = value(kRate);
-    const auto lambda = static_cast<float>(dt > 0.0 ? -std::expm1(-rate * dt) / dt : rate);
+    const auto lambda = static_cast<float>(detail::relaxationRate(value(kRate), context.dt));
     const auto px = context.particles.px, py = context.particles.py;
     const auto vx = context.particles.vx, vy = context.particles.vy;
     for (uint32_t i = begin; i < end; ++i) {
