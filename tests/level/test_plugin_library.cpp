@@ -42,19 +42,6 @@ template <class F> std::string errorOf(F&& load) {
     return "";
 }
 
-// Angular momentum about (cx, cy) (unit: kg m^2/s), z component.
-double angularMomentum(const World& world, double cx, double cy) {
-    const auto px = world.positionX(), py = world.positionY();
-    const auto vx = world.velocityX(), vy = world.velocityY();
-    const auto mat = world.materialIndex();
-    double l = 0.0;
-    for (uint32_t i = 0; i < world.particleCount(); ++i) {
-        const double m = world.material(MaterialId{mat[i]}).mass;
-        l += m * ((px[i] - cx) * vy[i] - (py[i] - cy) * vx[i]);
-    }
-    return l;
-}
-
 // A zero-g disc of water centred on a whirlpool made by `registry`; returns the angular
 // momentum every 6 frames over 30 frames and the final state hash.
 struct SpinResult {

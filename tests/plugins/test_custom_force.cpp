@@ -9,23 +9,6 @@
 using namespace fluid;
 using namespace fluid::test;
 
-namespace {
-
-// Angular momentum about (cx, cy) (unit: kg m^2/s), z component.
-double angularMomentum(const World& world, double cx, double cy) {
-    const auto px = world.positionX(), py = world.positionY();
-    const auto vx = world.velocityX(), vy = world.velocityY();
-    const auto mat = world.materialIndex();
-    double l = 0.0;
-    for (uint32_t i = 0; i < world.particleCount(); ++i) {
-        const double m = world.material(MaterialId{mat[i]}).mass;
-        l += m * ((px[i] - cx) * vy[i] - (py[i] - cy) * vx[i]);
-    }
-    return l;
-}
-
-} // namespace
-
 TEST_CASE("the whirlpool example registers next to the built-ins", "[unit][plugins][example]") {
     Registry registry;
     registerBuiltinPlugins(registry);

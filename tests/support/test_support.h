@@ -63,6 +63,19 @@ inline glm::dvec2 momentum(const World& world) {
     return p;
 }
 
+/// Angular momentum about (cx, cy), z component (unit: kg m^2/s), in double.
+inline double angularMomentum(const World& world, double cx, double cy) {
+    const auto px = world.positionX(), py = world.positionY();
+    const auto vx = world.velocityX(), vy = world.velocityY();
+    const auto mat = world.materialIndex();
+    double l = 0.0;
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        const double m = world.material(MaterialId{mat[i]}).mass;
+        l += m * ((px[i] - cx) * vy[i] - (py[i] - cy) * vx[i]);
+    }
+    return l;
+}
+
 /// Total mass (unit: kg).
 inline double totalMass(const World& world) {
     const auto mat = world.materialIndex();
