@@ -336,7 +336,7 @@ void pbfSampleForces(WorldState& s, const PbfConstants& c, float weight) {
         for (uint32_t k = b; k < e; ++k) {
             const float xw = w.px[k], yw = w.py[k];
             const float vxw = w.vx[k], vyw = w.vy[k], friction = w.friction[k];
-            float accX[kLanes] = {}, accY[kLanes] = {};
+            float accX[kLanes] = {}, accY[kLanes] = {}, accD[kLanes] = {};
             s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
                 lanes(jb, je, [&](size_t j, int l) {
                     const float dx = px[j] - xw, dy = py[j] - yw;
@@ -349,10 +349,12 @@ void pbfSampleForces(WorldState& s, const PbfConstants& c, float weight) {
                     const float fv = depth * vol[j] * friction * mu[j] * kL * invH4 * t;
                     accX[l] += fp * dx - fv * (vxw - vx[j]);
                     accY[l] += fp * dy - fv * (vyw - vy[j]);
+                    accD[l] += fv;
                 });
             });
             w.fx[w.source[k]] += weight * c.sampleVolume * laneSum(accX);
             w.fy[w.source[k]] += weight * c.sampleVolume * laneSum(accY);
+            w.drag[w.source[k]] += weight * c.sampleVolume * laneSum(accD);
         }
     });
 }

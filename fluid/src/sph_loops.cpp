@@ -260,7 +260,7 @@ void computeSampleForces(WorldState& s, float sampleVolume, float weight) {
         for (uint32_t k = b; k < e; ++k) {
             const float xw = w.px[k], yw = w.py[k], pw = w.pressure[k];
             const float vxw = w.vx[k], vyw = w.vy[k], friction = w.friction[k];
-            float accX[kLanes] = {}, accY[kLanes] = {};
+            float accX[kLanes] = {}, accY[kLanes] = {}, accD[kLanes] = {};
             s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
                 lanes(jb, je, [&](size_t j, int l) {
                     const float dx = px[j] - xw, dy = py[j] - yw;
@@ -272,10 +272,12 @@ void computeSampleForces(WorldState& s, float sampleVolume, float weight) {
                     const float fv = mass[j] * friction * mu[j] * invRho[j] * kL * invH4 * t;
                     accX[l] += fp * dx - fv * (vxw - vx[j]);
                     accY[l] += fp * dy - fv * (vyw - vy[j]);
+                    accD[l] += fv;
                 });
             });
             w.fx[w.source[k]] += weight * sampleVolume * laneSum(accX);
             w.fy[w.source[k]] += weight * sampleVolume * laneSum(accY);
+            w.drag[w.source[k]] += weight * sampleVolume * laneSum(accD);
         }
     });
 }

@@ -32,8 +32,12 @@ void refreshConstants(WorldState& s) {
         const double h = mat.smoothingDistance;
         const int reach = static_cast<int>(std::ceil(h / spacing));
         double sum = 0.0;
+        c.neighbours = 0.0f;
         for (int a = -reach; a <= reach; ++a) {
             for (int b = -reach; b <= reach; ++b) {
+                if ((a != 0 || b != 0) && spacing * std::sqrt(double(a * a + b * b)) < h) {
+                    c.neighbours += 1.0f;
+                }
                 sum += double(
                     kernel::wendland(float(spacing * std::sqrt(double(a * a + b * b))), float(h)));
             }
@@ -54,6 +58,7 @@ void gatherSamples(WorldState& s, const StepContext& context) {
     out.pluginBegin.push_back(static_cast<uint32_t>(total));
     out.fx.assign(total, 0.0f);
     out.fy.assign(total, 0.0f);
+    out.drag.assign(total, 0.0f);
 }
 
 // Positions of all samples at `t` seconds into the step, sorted by cell (rebuilt each sub-step
@@ -263,8 +268,10 @@ void deliverSampleForces(WorldState& s) {
     for (size_t k = 0; k < s.boundaries.size(); ++k) {
         const size_t b = s.samples.pluginBegin[k], e = s.samples.pluginBegin[k + 1];
         if (s.boundaries[k]->wantsForces()) {
-            s.boundaries[k]->receiveForces(std::span<const float>(s.samples.fx).subspan(b, e - b),
-                                           std::span<const float>(s.samples.fy).subspan(b, e - b));
+            s.boundaries[k]->receiveForces(
+                std::span<const float>(s.samples.fx).subspan(b, e - b),
+                std::span<const float>(s.samples.fy).subspan(b, e - b),
+                std::span<const float>(s.samples.drag).subspan(b, e - b));
         }
     }
 }

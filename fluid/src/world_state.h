@@ -69,6 +69,7 @@ struct MaterialConstants {
     float support = 0;            // h (m)
     float gamma = 0;              // surface tension (Akinci 2013)
     float lattice = 0; // V sum W over the material's square lattice (1; 1.0042 for water)
+    float neighbours = 0; // lattice points within h of one (count; 29 water, 49 yoghurt)
 };
 
 /// Boundary samples of all boundary plugins, sorted by cell for the sub-step.
@@ -77,6 +78,7 @@ struct Samples {
     std::vector<uint32_t> source; // index in the concatenation of the plugins' sample arrays
     std::vector<float> fx,
         fy; // force on each sample (N), in concatenation order, summed over sub-steps
+    std::vector<float> drag; // d(force)/d(sample velocity) (N s/m), same order and weighting
     std::vector<uint32_t> pluginBegin; // first concatenated index of each plugin (+ total)
     Grid grid;
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }

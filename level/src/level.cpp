@@ -1,6 +1,8 @@
 // fluid::level — the level format (docs/levels.md): reads a JSON level strictly and builds its
 // world. Every problem is a LevelError located at the value (or key) that caused it.
+#include "bodies.h"
 #include "json_positions.h"
+#include "names.h"
 
 #include <fluid/level.h>
 #include <fluid/material.h>
@@ -44,8 +46,11 @@ namespace {
 
 using detail::childPointer;
 using detail::formatNumber;
+using detail::joined;
 using detail::Json;
 using detail::JsonDocument;
+using detail::located;
+using detail::NameTable;
 using detail::ObjectReader;
 using detail::Range;
 
@@ -79,71 +84,6 @@ constexpr MaterialField kMaterialFields[] = {
     {"surfaceTension", &Material::surfaceTension, {0.0, 1e3, "m^3/(kg s^2)"}},
 };
 
-// "a, b, c" for messages; long lists are cut ("... and 40 more").
-std::string joined(const std::vector<std::string>& names) {
-    constexpr std::size_t kShown = 20;
-    if (names.empty()) {
-        return "(none)";
-    }
-    std::string out;
-    for (std::size_t k = 0; k < names.size() && k < kShown; ++k) {
-        out += (k == 0 ? "" : ", ") + names[k];
-    }
-    if (names.size() > kShown) {
-        out += " and " + std::to_string(names.size() - kShown) + " more";
-    }
-    return out;
-}
-
-// Names of one list of the file (materials, sensors...): unique, looked up by references.
-template <class Id> class NameTable {
-public:
-    explicit NameTable(std::string_view what) : m_what(what) {}
-
-    void add(const JsonDocument& doc, const std::string& name, const std::string& pointer, Id id) {
-        const auto [it, added] = m_index.emplace(name, m_entries.size());
-        if (!added) {
-            doc.fail(pointer, "duplicate " + std::string(m_what) + " name '" + name +
-                                  "' (first used at " + m_entries[it->second].pointer +
-                                  "); names must be unique");
-        }
-        m_entries.push_back({name, pointer, id});
-    }
-
-    Id find(const JsonDocument& doc, const std::string& name, const std::string& pointer) const {
-        if (const auto it = m_index.find(name); it != m_index.end()) {
-            return m_entries[it->second].id;
-        }
-        std::vector<std::string> known;
-        for (const Entry& e : m_entries) {
-            known.push_back(e.name);
-        }
-        doc.fail(pointer,
-                 "unknown " + std::string(m_what) + " '" + name + "'; known: " + joined(known));
-    }
-
-private:
-    struct Entry {
-        std::string name;
-        std::string pointer;
-        Id id;
-    };
-    std::string_view m_what;
-    std::vector<Entry> m_entries;
-    std::map<std::string, std::size_t> m_index;
-};
-
-// A fluid::Error from the world, re-thrown at the block of the file that caused it.
-template <class F> auto located(const JsonDocument& doc, const std::string& pointer, F&& f) {
-    try {
-        return f();
-    } catch (const LevelError&) {
-        throw;
-    } catch (const Error& e) {
-        doc.fail(pointer, e.what());
-    }
-}
-
 class LevelReader {
 public:
     LevelReader(const JsonDocument& doc, const Registry& registry, const LevelOptions& options,
@@ -153,7 +93,7 @@ public:
     void read() {
         const ObjectReader root(m_doc, m_doc.root(), "", "a level");
         root.allowOnly({"version", "name", "description", "world", "materials", "blobs", "plugins",
-                        "emitters", "drains", "sensors", "goal"});
+                        "emitters", "drains", "sensors", "goal", "bodies", "joints", "coupling"});
         root.required("version", "the format version (1)");
         const uint64_t v = root.integer("version", {1.0, 1e9, "1"}, kVersion);
         if (v != kVersion) {
@@ -172,6 +112,9 @@ public:
         readDrains(root);
         readSensors(root);
         readGoal(root);
+        // Last: the coupling's boundary plugin joins after the file's containers (see
+        // box2d::Coupling), and bodies' densities read the finished world's materials.
+        detail::readBodies(m_doc, root, m_level);
     }
 
 private:
@@ -695,8 +638,43 @@ GoalState Level::goalState() const {
     return m_goalState;
 }
 
+Level& Level::operator=(Level&& other) noexcept {
+    if (this == &other) {
+        return *this;
+    }
+    // The coupling refers to this level's world (its plugin) and Box2D world: it goes before
+    // either is replaced. The rest is member by member, in declaration order.
+    coupling.reset();
+    joints.clear();
+    bodies.clear();
+    physics.reset();
+    file = std::move(other.file);
+    name = std::move(other.name);
+    description = std::move(other.description);
+    version = other.version;
+    frameRate = other.frameRate;
+    world = std::move(other.world);
+    materials = std::move(other.materials);
+    emitters = std::move(other.emitters);
+    drains = std::move(other.drains);
+    sensors = std::move(other.sensors);
+    plugins = std::move(other.plugins);
+    goal = std::move(other.goal);
+    physics = std::move(other.physics);
+    coupling = std::move(other.coupling);
+    bodies = std::move(other.bodies);
+    joints = std::move(other.joints);
+    m_goalState = other.m_goalState;
+    return *this;
+}
+
 void Level::step() {
-    world.step(1.0f / frameRate);
+    const float dt = 1.0f / frameRate;
+    if (coupling) {
+        coupling->step(world, dt);
+    } else {
+        world.step(dt);
+    }
     goalState();
 }
 

@@ -105,46 +105,58 @@ void KinematicShape::prepare(const StepContext& context) {
     }
 }
 
-void KinematicShape::project(const ProjectContext& context, uint32_t begin, uint32_t end) {
-    if (!m_built) {
-        return; // no prepare yet: no geometry to test against
-    }
-    const Pose before = pose(double(context.prevTimeInStep));
-    const Pose now = pose(double(context.timeInStep));
-    const double spacing = context.spacing;
+KinematicShape::Sweep KinematicShape::sweep(const ProjectContext& context) const {
+    Sweep w;
+    w.before = pose(double(context.prevTimeInStep));
+    w.now = pose(double(context.timeInStep));
+    w.spacing = context.spacing;
     // How far outside a surface a particle is put: small against the spacing, large against the
     // rounding of a float position (a few ulps at the shape's distance from the world origin),
     // so that the stored position is still outside.
     const double extent = std::max({std::fabs(m_bounds.lo.x), std::fabs(m_bounds.lo.y),
                                     std::fabs(m_bounds.hi.x), std::fabs(m_bounds.hi.y)});
-    const double magnitude = std::fabs(now.origin.x) + std::fabs(now.origin.y) + extent;
-    const double eps = std::max(1e-3 * spacing, 4e-7 * magnitude);
-    const double margin = reach(spacing) + eps;
-    const glm::dvec2 lo = m_bounds.lo - margin, hi = m_bounds.hi + margin;
+    const double magnitude = std::fabs(w.now.origin.x) + std::fabs(w.now.origin.y) + extent;
+    w.eps = std::max(1e-3 * w.spacing, 4e-7 * magnitude);
+    const double margin = reach(w.spacing) + w.eps;
+    w.lo = m_bounds.lo - margin;
+    w.hi = m_bounds.hi + margin;
+    return w;
+}
+
+void KinematicShape::projectParticle(const Sweep& w, const ProjectContext& context,
+                                     uint32_t i) const {
+    const glm::dvec2 p = w.before.toLocal({context.prevX[i], context.prevY[i]});
+    const glm::dvec2 c = w.now.toLocal({context.px[i], context.py[i]});
+    // Early out: the path's box misses the shape's.
+    if (std::max(p.x, c.x) < w.lo.x || std::min(p.x, c.x) > w.hi.x || std::max(p.y, c.y) < w.lo.y ||
+        std::min(p.y, c.y) > w.hi.y) {
+        return;
+    }
+    Contact contact;
+    if (!collide(p, c, w.spacing, w.eps, contact)) {
+        return;
+    }
+    const glm::dvec2 x = w.now.toWorld(contact.point);
+    context.px[i] = static_cast<float>(x.x);
+    context.py[i] = static_cast<float>(x.y);
+    // No velocity into the wall relative to the wall's own velocity there: v_n >= wall v_n.
+    const glm::dvec2 n = w.now.rotate(contact.normal);
+    const glm::dvec2 wall = w.now.velocityAt(x);
+    const double vn = context.vx[i] * n.x + context.vy[i] * n.y;
+    const double wallN = wall.x * n.x + wall.y * n.y;
+    if (vn < wallN) {
+        context.vx[i] = static_cast<float>(context.vx[i] + (wallN - vn) * n.x);
+        context.vy[i] = static_cast<float>(context.vy[i] + (wallN - vn) * n.y);
+    }
+}
+
+void KinematicShape::project(const ProjectContext& context, uint32_t begin, uint32_t end) {
+    if (!m_built) {
+        return; // no prepare yet: no geometry to test against
+    }
+    const Sweep w = sweep(context);
     for (uint32_t i = begin; i < end; ++i) {
-        const glm::dvec2 p = before.toLocal({context.prevX[i], context.prevY[i]});
-        const glm::dvec2 c = now.toLocal({context.px[i], context.py[i]});
-        // Early out: the path's box misses the shape's.
-        if (std::max(p.x, c.x) < lo.x || std::min(p.x, c.x) > hi.x || std::max(p.y, c.y) < lo.y ||
-            std::min(p.y, c.y) > hi.y) {
-            continue;
-        }
-        Contact contact;
-        if (!collide(p, c, spacing, eps, contact)) {
-            continue;
-        }
-        const glm::dvec2 w = now.toWorld(contact.point);
-        context.px[i] = static_cast<float>(w.x);
-        context.py[i] = static_cast<float>(w.y);
-        // No velocity into the wall relative to the wall's own velocity there: v_n >= wall v_n.
-        const glm::dvec2 n = now.rotate(contact.normal);
-        const glm::dvec2 wall = now.velocityAt(w);
-        const double vn = context.vx[i] * n.x + context.vy[i] * n.y;
-        const double wallN = wall.x * n.x + wall.y * n.y;
-        if (vn < wallN) {
-            context.vx[i] = static_cast<float>(context.vx[i] + (wallN - vn) * n.x);
-            context.vy[i] = static_cast<float>(context.vy[i] + (wallN - vn) * n.y);
-        }
+        projectParticle(w, context, i);
     }
 }
 

@@ -7,6 +7,8 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -175,6 +177,102 @@ TEST_CASE("fluid-run: bad input exits non-zero with the loader's message", "[flu
     const Run noFrames = fluidRun({kDam}, dir);
     CHECK(noFrames.status != 0);
     CHECK(noFrames.err.find("--frames") != std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("fluid-run writes each Box2D body's pose, velocity and submerged fraction",
+          "[fluid-run][bodies]") {
+    const fs::path dir = fs::temp_directory_path() / "fluid_run_bodies";
+    fs::remove_all(dir);
+    const std::string crates = std::string(FLUID_LEVELS_DIR) + "/crates.json";
+    const Run run = fluidRun({crates, "--frames", "30", "--csv", (dir / "b.csv").string()}, dir);
+    INFO(run.err);
+    REQUIRE(run.status == 0);
+    CHECK(run.out.find(", 9 bodies") != std::string::npos);
+    const auto rows = readCsv(dir / "b.csv");
+    REQUIRE(rows.size() == 31);
+    const std::vector<std::string>& header = rows[0];
+    // Seven columns per body, in file order, after the fluid's.
+    const std::vector<std::string> bodies{"tank",  "cork",  "pine", "oak",   "ball",
+                                          "brick", "stone", "hull", "barrel"};
+    const std::vector<std::string> fields{"x", "y", "angle", "vx", "vy", "omega", "submerged"};
+    REQUIRE(header.size() >= bodies.size() * fields.size());
+    const size_t first = header.size() - bodies.size() * fields.size();
+    CHECK(header[first - 1] == "m_water_cy");
+    for (size_t b = 0; b < bodies.size(); ++b) {
+        for (size_t f = 0; f < fields.size(); ++f) {
+            CHECK(header[first + b * fields.size() + f] == "b_" + bodies[b] + "_" + fields[f]);
+        }
+    }
+    const auto column = [&](const std::string& name) {
+        const auto it = std::find(header.begin(), header.end(), name);
+        REQUIRE(it != header.end());
+        return size_t(it - header.begin());
+    };
+    // The same numbers as playing the level in-process, all finite; the tank is dry (not coupled):
+    // its submerged cell is empty.
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    Level level = loadLevel(crates, registry);
+    for (int f = 1; f <= 30; ++f) {
+        level.step();
+        REQUIRE(rows[f].size() == header.size());
+        for (size_t k = first; k < header.size(); ++k) {
+            if (header[k] == "b_tank_submerged") {
+                CHECK(rows[f][k].empty());
+                continue;
+            }
+            INFO(header[k] << " at frame " << f);
+            REQUIRE_FALSE(rows[f][k].empty());
+            CHECK(std::isfinite(std::stod(rows[f][k])));
+        }
+    }
+    const b2Body* brick = level.bodies[5].second;
+    CHECK(std::stod(rows[30][column("b_brick_x")]) == Approx(brick->GetPosition().x));
+    CHECK(std::stod(rows[30][column("b_brick_y")]) == Approx(brick->GetPosition().y));
+    CHECK(std::stod(rows[30][column("b_brick_angle")]) == Approx(brick->GetAngle()));
+    CHECK(std::stod(rows[30][column("b_brick_vy")]) ==
+          Approx(brick->GetLinearVelocity().y).margin(1e-6));
+    CHECK(std::stod(rows[30][column("b_brick_submerged")]) ==
+          Approx(level.coupling->report(brick)->submergedFraction));
+    // The stone falls from 0.6 m: by frame 30 (0.5 s) it has dropped into the water.
+    CHECK(std::stod(rows[30][column("b_stone_y")]) < 0.3);
+    // The barrel was given 2 rad/s: it turns.
+    CHECK(std::stod(rows[1][column("b_barrel_omega")]) == Approx(2.0).margin(0.1));
+    fs::remove_all(dir);
+}
+
+TEST_CASE("fluid-run: with Box2D bodies the CSV is identical for 1 and 2 threads",
+          "[fluid-run][bodies]") {
+    const fs::path dir = fs::temp_directory_path() / "fluid_run_bodies_threads";
+    fs::remove_all(dir);
+    const std::string crates = std::string(FLUID_LEVELS_DIR) + "/crates.json";
+    const Run one = fluidRun(
+        {crates, "--frames", "20", "--threads", "1", "--csv", (dir / "1.csv").string()}, dir);
+    const Run two = fluidRun(
+        {crates, "--frames", "20", "--threads", "2", "--csv", (dir / "2.csv").string()}, dir);
+    REQUIRE(one.status == 0);
+    REQUIRE(two.status == 0);
+    CHECK(slurp(dir / "1.csv") == slurp(dir / "2.csv"));
+    fs::remove_all(dir);
+}
+
+TEST_CASE("fluid-run warns that snapshots of a level with bodies hold the fluid only",
+          "[fluid-run][bodies]") {
+    const fs::path dir = fs::temp_directory_path() / "fluid_run_bodies_snap";
+    fs::remove_all(dir);
+    const Run run = fluidRun({std::string(FLUID_LEVELS_DIR) + "/paddle_wheel.json", "--frames", "2",
+                              "--snapshot-every", "2", "--out", (dir / "s").string()},
+                             dir);
+    CHECK(run.status == 0);
+    CHECK(run.err.find("fluid-run: warning: the level has Box2D bodies; snapshots hold the "
+                       "fluid only") != std::string::npos);
+    REQUIRE(fs::exists(dir / "s" / "frame_000002.snap"));
+    // As the warning says: the built-in registry has no "box2d.bodies".
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    CHECK_THROWS_WITH(World::loadFile((dir / "s" / "frame_000002.snap").string(), registry),
+                      Catch::Contains("box2d.bodies"));
     fs::remove_all(dir);
 }
 

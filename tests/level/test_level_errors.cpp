@@ -87,7 +87,8 @@ TEST_CASE("level errors: the document must be an object with a supported version
 TEST_CASE("level errors: unknown keys are named with the allowed ones", "[level][errors]") {
     CHECK(errorOf(level(R"(, "wrld": {})")) ==
           "t.json:1:50: at /wrld: unknown key 'wrld'; allowed: version, name, description, "
-          "world, materials, blobs, plugins, emitters, drains, sensors, goal");
+          "world, materials, blobs, plugins, emitters, drains, sensors, goal, bodies, joints, "
+          "coupling");
     // The first unknown key in text order (nlohmann keeps members sorted by name).
     CHECK(errorOf(level(R"(, "world": {"zz": 1, "frameRate": 60, "aa": 2})")) ==
           "t.json:1:60: at /world/zz: unknown key 'zz'; allowed: gravity, frameRate, solver, "
@@ -102,7 +103,8 @@ TEST_CASE("level errors: unknown keys are named with the allowed ones", "[level]
     // Pointers escape '/' and '~' (RFC 6901).
     CHECK(errorOf(level(R"(, "a/b~": 1)")) ==
           "t.json:1:50: at /a~1b~0: unknown key 'a/b~'; allowed: version, name, description, "
-          "world, materials, blobs, plugins, emitters, drains, sensors, goal");
+          "world, materials, blobs, plugins, emitters, drains, sensors, goal, bodies, joints, "
+          "coupling");
 }
 
 TEST_CASE("level errors: a repeated key is an error, not a silent overwrite", "[level][errors]") {

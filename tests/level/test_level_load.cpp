@@ -66,8 +66,10 @@ const Level::PluginEntry* plugin(const Level& level, std::string_view name) {
 
 // Levels with a test case of their own below (each runs 120 frames or more and checks for
 // NaN); any other level in levels/ is run here, so a new level is never left untested.
-constexpr std::string_view kLevelsWithOwnTest[] = {"dam_break.json", "zero_g_blobs.json",
-                                                   "fill_the_cup.json", "planetoid.json"};
+// paddle_wheel.json and crates.json are played in test_level_box2d_levels.cpp.
+constexpr std::string_view kLevelsWithOwnTest[] = {"dam_break.json",    "zero_g_blobs.json",
+                                                   "fill_the_cup.json", "planetoid.json",
+                                                   "paddle_wheel.json", "crates.json"};
 
 TEST_CASE("every shipped level loads, and levels without a test of their own run 120 frames",
           "[level]") {
@@ -305,7 +307,9 @@ TEST_CASE("the fuzz seed with every key of the format loads as written", "[level
     REQUIRE(level.world.forces().size() == 7);
     CHECK(level.world.forces()[1]->type() == "force.point_gravity");
     CHECK(level.world.forces()[6]->type() == "force.damping");
-    REQUIRE(level.world.boundaries().size() == 4);
+    // Four boundaries of the file, then the Box2D coupling's.
+    REQUIRE(level.world.boundaries().size() == 5);
+    CHECK(level.world.boundaries()[4]->type() == "box2d.bodies");
     CHECK(level.world.boundaries()[1]->points("vertices").size() == 3);
     CHECK(level.world.boundaries()[2]->points("points")[1] == glm::vec2(0.3f, 0.4f));
     // Unnamed plugins are listed under their type.
@@ -323,6 +327,14 @@ TEST_CASE("the fuzz seed with every key of the format loads as written", "[level
     CHECK(level.goal.measure == GoalMeasure::Volume);
     CHECK(level.goal.amount == 0.001);
     CHECK(level.world.particleCount() > 100);
+    // Three bodies (the third unnamed), one joint, the coupling's settings.
+    REQUIRE(level.bodies.size() == 3);
+    CHECK(level.bodies[2].first == "body2");
+    CHECK(level.bodies[2].second->GetType() == b2_kinematicBody);
+    REQUIRE(level.joints.size() == 1);
+    CHECK(level.joints[0].first == "hinge");
+    REQUIRE(level.coupling != nullptr);
+    CHECK(level.coupling->def().velocityIterations == 8);
 }
 
 TEST_CASE("LevelOptions override the file's workers and cap its particles", "[level]") {

@@ -292,8 +292,11 @@ public:
     /// True to have the fluid's force on each sample reported through `receiveForces`.
     virtual bool wantsForces() const { return false; }
     /// After the step: the fluid's force on each sample, averaged over the step's sub-steps
-    /// (unit: N), in sample order. Default: nothing.
-    virtual void receiveForces(std::span<const float> /*fx*/, std::span<const float> /*fy*/) {}
+    /// (unit: N), and how fast its viscous part grows with the sample's velocity against the
+    /// fluid's, `drag` = -dF/dv_sample >= 0 (unit: N s/m; a host integrating a body explicitly
+    /// needs it to stay stable in a viscous fluid), all in sample order. Default: nothing.
+    virtual void receiveForces(std::span<const float> /*fx*/, std::span<const float> /*fy*/,
+                               std::span<const float> /*drag*/) {}
     /// Wall friction: scale of the fluid's viscosity against this solid (unit: 1; 0 = free slip,
     /// 1 = the fluid's own viscosity, larger = stickier).
     virtual float friction() const { return 0.0f; }

@@ -1,14 +1,19 @@
 // fluid::level — level files: a whole scene (world settings, materials, blobs, plugins,
-// emitters, drains, sensors, goal) described in JSON. Format reference: docs/levels.md.
+// emitters, drains, sensors, goal, Box2D bodies and joints) described in JSON. Format reference:
+// docs/levels.md.
 #pragma once
 
+#include <fluid/box2d/coupling.h>
 #include <fluid/error.h>
 #include <fluid/gameplay.h>
 #include <fluid/registry.h>
 #include <fluid/task.h>
 #include <fluid/world.h>
 
+#include <box2d/box2d.h>
+
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -91,8 +96,15 @@ struct LevelGoal {
     std::string description;
 };
 
-/// A loaded level: the world, ready to step, and the names the file gave things.
-/// Thread rule: as `World`.
+/// Collision category (`b2Filter::categoryBits`) of the fixtures of a level body declared with
+/// `"fluid": false`: the level's coupling leaves them out (its `CouplingDef::categoryMask` is
+/// every bit but this one). Other fixtures keep Box2D's default category, 0x0001. Box2D's
+/// collisions between bodies are unchanged (every fixture's `maskBits` stays 0xFFFF).
+inline constexpr uint16_t kDryFixtureCategory = 0x8000;
+
+/// A loaded level: the world, ready to step, the Box2D bodies coupled to it, and the names the
+/// file gave things. Movable, not copyable (the Box2D world and its coupling move with it).
+/// Thread rule: as `World`; Box2D is not thread-safe, so `physics` only on the stepping thread.
 struct Level {
     /// File name given to the loader.
     std::string file;
@@ -126,6 +138,28 @@ struct Level {
     std::vector<PluginEntry> plugins;
     /// The goal, if any.
     LevelGoal goal;
+    /// The Box2D world of the file's `bodies`, with the level's uniform gravity (the sum of its
+    /// `force.gravity` plugins, (0, 0) without one); null when the file declares no body.
+    std::unique_ptr<b2World> physics;
+    /// Couples `physics` to `world` (two-way: the fluid pushes the bodies, the bodies are
+    /// boundaries of the fluid); null when `physics` is. Declared after `world` and `physics`,
+    /// so that it is destroyed before either.
+    std::unique_ptr<box2d::Coupling> coupling;
+    /// Bodies by name, in file order (an unnamed body is `body<k>`, k = its index in `bodies`).
+    /// Owned by `physics`.
+    std::vector<std::pair<std::string, b2Body*>> bodies;
+    /// Joints by name, in file order (an unnamed joint is `joint<k>`). Owned by `physics`.
+    std::vector<std::pair<std::string, b2Joint*>> joints;
+
+    /// An empty level (no material; `loadLevel` and `parseLevel` make real ones).
+    Level() = default;
+    /// Moves the world, the Box2D world and the coupling; `other` is left empty.
+    Level(Level&& other) noexcept = default;
+    /// Destroys this level's coupling first (it refers to this level's world and Box2D world),
+    /// then takes `other`'s contents.
+    Level& operator=(Level&& other) noexcept;
+    /// Destroys the coupling, then the Box2D world, then the world.
+    ~Level() = default;
 
     /// The goal's amount the sensor held at the end of the last step (unit: per
     /// `goal.measure`: count, 1 or m^3; 0 without a goal or before the first step). Fraction =
@@ -136,8 +170,9 @@ struct Level {
     /// first. Both are final: the first answer other than `Pending` is kept (call this after
     /// every step, or use `step()`, so that a sensor filled for one frame is not missed).
     GoalState goalState() const;
-    /// Steps the world by one frame, 1 / `frameRate` s, and updates the goal state.
-    /// Throws as `World::step`.
+    /// Steps the level by one frame, 1 / `frameRate` s, and updates the goal state: with bodies,
+    /// `coupling->step(world, dt)` (fluid step, fluid forces on the bodies, `b2World::Step`);
+    /// without, `world.step(dt)`. Throws as `World::step` and `box2d::Coupling::step`.
     void step();
 
 private:

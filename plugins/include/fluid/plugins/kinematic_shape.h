@@ -126,6 +126,28 @@ public:
     /// Keeps particles [begin, end) out of the solid (see the class comment). Needs a `prepare`
     /// first (it builds the geometry).
     void project(const ProjectContext& context, uint32_t begin, uint32_t end) final;
+    /// What `project` works out once per call: the poses at the path's two ends and the
+    /// tolerances. Plain data; any thread.
+    struct Sweep {
+        /// Pose at `ProjectContext::prevTimeInStep` and at `timeInStep`.
+        Pose before, now;
+        /// Lattice spacing (unit: m) and how far outside a surface a particle is put (unit: m).
+        double spacing = 0.0, eps = 0.0;
+        /// Local bounds enlarged by `reach` and `eps` (unit: m): paths missing them are skipped.
+        glm::dvec2 lo{0.0, 0.0}, hi{0.0, 0.0};
+    };
+    /// The sweep of one `project` call. Valid after `prepare` built the geometry (`built()`).
+    Sweep sweep(const ProjectContext& context) const;
+    /// What `project` does to particle `i`, with the sweep of this call: for owners that
+    /// keep several shapes and pick, per particle, the ones near it (the Box2D coupling).
+    /// Writes only slot `i`; any worker thread.
+    void projectParticle(const Sweep& sweep, const ProjectContext& context, uint32_t i) const;
+    /// True once `prepare` built the geometry for the current shape and spacing.
+    bool built() const { return m_built; }
+    /// Axis-aligned bounds of the shape in its local frame (unit: m), as last built.
+    glm::dvec2 localMin() const { return m_bounds.lo; }
+    /// See `localMin`.
+    glm::dvec2 localMax() const { return m_bounds.hi; }
     /// Advances the pose by its velocities over the frame, x and y clamped to their declared
     /// range (a shape stops at its edge: see the class comment). Stepping thread.
     void finish(const StepContext& context) override;

@@ -1,0 +1,81 @@
+// fluid::level — private: the names a level file gives things (unique per list, looked up by
+// references) and errors of the world re-located at the block of the file that caused them.
+// Shared by the level reader (level.cpp) and the Box2D bodies reader (bodies.cpp).
+#pragma once
+
+#include "json_positions.h"
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fluid::detail {
+
+// "a, b, c" for messages; long lists are cut ("... and 40 more").
+inline std::string joined(const std::vector<std::string>& names) {
+    constexpr std::size_t kShown = 20;
+    if (names.empty()) {
+        return "(none)";
+    }
+    std::string out;
+    for (std::size_t k = 0; k < names.size() && k < kShown; ++k) {
+        out += (k == 0 ? "" : ", ") + names[k];
+    }
+    if (names.size() > kShown) {
+        out += " and " + std::to_string(names.size() - kShown) + " more";
+    }
+    return out;
+}
+
+// Names of one list of the file (materials, sensors...): unique, looked up by references.
+template <class Id> class NameTable {
+public:
+    explicit NameTable(std::string_view what) : m_what(what) {}
+
+    void add(const JsonDocument& doc, const std::string& name, const std::string& pointer, Id id) {
+        const auto [it, added] = m_index.emplace(name, m_entries.size());
+        if (!added) {
+            doc.fail(pointer, "duplicate " + std::string(m_what) + " name '" + name +
+                                  "' (first used at " + m_entries[it->second].pointer +
+                                  "); names must be unique");
+        }
+        m_entries.push_back({name, pointer, id});
+    }
+
+    Id find(const JsonDocument& doc, const std::string& name, const std::string& pointer) const {
+        if (const auto it = m_index.find(name); it != m_index.end()) {
+            return m_entries[it->second].id;
+        }
+        std::vector<std::string> known;
+        for (const Entry& e : m_entries) {
+            known.push_back(e.name);
+        }
+        doc.fail(pointer,
+                 "unknown " + std::string(m_what) + " '" + name + "'; known: " + joined(known));
+    }
+
+private:
+    struct Entry {
+        std::string name;
+        std::string pointer;
+        Id id;
+    };
+    std::string_view m_what;
+    std::vector<Entry> m_entries;
+    std::map<std::string, std::size_t> m_index;
+};
+
+// A fluid::Error from the world, re-thrown at the block of the file that caused it.
+template <class F> auto located(const JsonDocument& doc, const std::string& pointer, F&& f) {
+    try {
+        return f();
+    } catch (const LevelError&) {
+        throw;
+    } catch (const Error& e) {
+        doc.fail(pointer, e.what());
+    }
+}
+
+} // namespace fluid::detail

@@ -1,0 +1,238 @@
+// fluid — two-way coupling with Box2D 2.4 rigid bodies (library target fluid::box2d).
+#pragma once
+
+#include <fluid/material.h>
+#include <fluid/world.h>
+
+#include <glm/vec2.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <vector>
+
+class b2Body;
+class b2Fixture;
+class b2World;
+
+namespace fluid::box2d {
+
+/// Which fixtures touch fluid, and the settings of the frame `Coupling::step` runs.
+/// Plain data; validated by the `Coupling` constructor and `Coupling::setDef` (they throw
+/// `fluid::Error` naming the field, its value and range).
+struct CouplingDef {
+    /// A fixture touches fluid when `(fixture.GetFilterData().categoryBits & categoryMask) != 0`
+    /// (unit: bit mask; default 0xFFFF: every fixture). Sensors (`b2Fixture::IsSensor`) never do.
+    uint16_t categoryMask = 0xFFFF;
+    /// Per-fixture choice on top of the mask (for example from the game's `userData`): a
+    /// fixture touches fluid only if this returns true. Empty = every fixture the mask lets
+    /// through. Called on the stepping thread at every step, for every fixture; must not
+    /// create or destroy bodies.
+    std::function<bool(const b2Fixture&)> filter;
+    /// Wall viscosity of every fixture (unit: 1; range [0, 10]; 0 = free slip, 1 = the
+    /// fluid's own viscosity against the surface, larger = stickier).
+    float friction = 1.0f;
+    /// A body that starts touching fluid with its centre of mass moving faster than this makes
+    /// a `SplashEvent` (unit: m/s; range [0, 1e3]).
+    float splashSpeed = 1.0f;
+    /// Velocity iterations of the `b2World::Step` that `Coupling::step` runs (unit: count;
+    /// range [1, 1000]).
+    int32_t velocityIterations = 8;
+    /// Position iterations of that `b2World::Step` (unit: count; range [1, 1000]).
+    int32_t positionIterations = 3;
+};
+
+/// What the fluid did to one body during the last step, and how much of it is in fluid.
+/// Plain data; valid until the next step.
+struct BodyReport {
+    /// The body (owned by the game's `b2World`).
+    b2Body* body = nullptr;
+    /// The fluid's force on the body, pressure and viscosity, averaged over the step (unit: N).
+    /// Reported for every body; dynamic bodies receive it through the added-mass relaxation
+    /// (see `Coupling`), which gives the same force once it holds steady.
+    glm::vec2 force{0.0f, 0.0f};
+    /// The fluid's torque about the body's centre of mass, averaged over the step (unit: N m;
+    /// counter-clockwise positive).
+    float torque = 0.0f;
+    /// Area of the body's circle and polygon fixtures that lies in fluid at the end of the step
+    /// (unit: m^2; see `Coupling` for how it is measured).
+    float submergedArea = 0.0f;
+    /// `submergedArea` over the area of the body's coupled circle and polygon fixtures (unit: 1;
+    /// range [0, 1]; 0 for a body with only edges and chains).
+    float submergedFraction = 0.0f;
+    /// Coupled outline points of the body with fluid next to them (unit: count): 0 = dry.
+    uint32_t wetPoints = 0;
+    /// The material most of the wet points touch (index in the world's materials; meaningful
+    /// when `wetPoints > 0`).
+    uint16_t material = 0;
+};
+
+/// A body entered fluid fast: it was dry at the end of the previous step, is wet now, and its
+/// centre of mass moved faster than `CouplingDef::splashSpeed`. Plain data.
+struct SplashEvent {
+    /// The body.
+    b2Body* body = nullptr;
+    /// Mean position of the body's wet outline points (unit: m): where the splash is.
+    glm::vec2 position{0.0f, 0.0f};
+    /// Speed of the body's centre of mass at the start of the step (unit: m/s).
+    float speed = 0.0f;
+    /// The material it hit (index in the world's materials).
+    uint16_t material = 0;
+};
+
+/// Whether a contact began or ended.
+enum class ContactPhase : uint8_t {
+    /// The body was dry after the previous step and is wet now.
+    Begin,
+    /// The body was wet after the previous step and is dry now (or stopped being coupled:
+    /// its fixtures were filtered out; a destroyed body reports nothing).
+    End,
+};
+
+/// A body started or stopped touching fluid (one event per body, not per particle).
+struct ContactEvent {
+    /// The body.
+    b2Body* body = nullptr;
+    /// Begin or end.
+    ContactPhase phase = ContactPhase::Begin;
+    /// The material touched most (Begin: now; End: at the last wet step).
+    uint16_t material = 0;
+};
+
+/// The areal density of a material (unit: kg/m^2): rest density x the world's slab depth. A
+/// Box2D body with this `b2FixtureDef::density` is neutrally buoyant in that material; half of
+/// it floats half submerged. Any thread.
+float arealDensity(const World& world, MaterialId material);
+
+class BodyBoundary;
+
+/// Two-way coupling of a fluid `World` with a Box2D `b2World`.
+///
+/// Every coupled fixture (circle, polygon, edge, chain; static, kinematic or dynamic body) is a
+/// boundary of the fluid: it is sampled like the built-in shapes (`boundary.circle`,
+/// `boundary.polygon`, `boundary.chain`), so it adds to the density and pressure near it and
+/// particles never enter it. Bodies and fixtures created or destroyed between steps are picked
+/// up at the next step. The fluid's pressure and viscous forces on each body's samples are
+/// summed in sample order and applied to dynamic bodies at their centre of mass, with the torque
+/// about it: buoyancy and drag come out of the fluid, not a formula.
+///
+/// One frame (`step`):
+///   1. the fluid world steps by dt; during its sub-steps every body moves rigidly with the
+///      velocity it had at the start (centre of mass along a line, turning at its angular
+///      velocity);
+///   2. the fluid's force and torque on each body, averaged over the sub-steps, are applied
+///      to dynamic bodies (`b2Body::ApplyForce` at the centre of mass, `ApplyTorque`, waking
+///      the body), relaxed for added mass (below);
+///   3. the `b2World` steps by dt;
+///   4. the reports (`bodies`), splashes and contact events are made from the particles and
+///      body poses after steps 1 and 3.
+/// A game that steps Box2D itself calls `stepFluid(dt)` (steps 1, 2 and 4 with the poses
+/// before its own `b2World::Step`) and then `b2World::Step(dt, ...)`.
+///
+/// Added mass: the fluid solver holds the fluid incompressible, so it answers a body's change
+/// of velocity at once with a force that, for a light body (the fluid it pushes aside weighs
+/// more than it does), overshoots: the body and the fluid would trade ever larger kicks from
+/// frame to frame. The force applied is therefore relaxed: F_applied = w F + (1 - w)
+/// F_applied(previous step), w = m / (m + m_added), with m_added = the areal density of the
+/// material touched x the submerged area of the previous step (a submerged disc's added mass
+/// in 2D potential flow); the torque likewise. This is the implicit answer to "the fluid's
+/// reaction is proportional to the body's acceleration", so a steady force (buoyancy at
+/// rest, steady drag) is applied unchanged, a dry body gets the force as is (w = 1), and a
+/// light body responds to a change over a few frames, as a ball held under water does.
+///
+/// Submerged area: each circle and polygon fixture carries points along its outline at the
+/// world's sample spacing; a point is wet when a particle centre lies within 0.75 spacing of it.
+/// The longest run of wet points along the outline (gaps of up to two dry points bridged)
+/// and the straight chord between its ends enclose the submerged part of the (convex) fixture;
+/// a lone drop on top of a crate does not count as submerging it.
+///
+/// Units: Box2D's own (m, kg, s), which are fluid's. A body's mass in Box2D is density x area
+/// (kg/m^2 x m^2); use `arealDensity` to relate a body to a material. Polygon skin radius
+/// (`b2_polygonRadius`, 0.01 m) is ignored: the fluid sees the core polygon.
+///
+/// Order among boundaries: the coupling is one boundary plugin of the world (type
+/// "box2d.bodies"), added by the constructor; boundaries added after it have the final word in
+/// each projection, so add containers (`boundary.box`) before creating the coupling.
+/// Snapshots (`World::save`) of a coupled world cannot be loaded: "box2d.bodies" is not in the
+/// registry (the Box2D world is the game's to save).
+///
+/// Limits: a body farther than 1e5 m from the origin, or whose speed exceeds 1e3 m/s, is
+/// skipped for that step (it is neither a boundary nor pushed); a chain of more than 4096
+/// vertices throws `fluid::Error` naming the body from `step`.
+///
+/// Thread rule: the stepping thread only; Box2D is not thread-safe, and the coupling reads the
+/// `b2World` only in `step`/`stepFluid` (the fluid's workers never touch it). Lifetime: the
+/// `b2World` must outlive the coupling, and the world its coupling (the world owns the plugin
+/// the coupling talks to). Destroying the coupling first leaves that plugin in the world,
+/// empty: bodies stop being boundaries. The world is passed to every step rather than kept,
+/// so that a `World` (a movable value) may be moved after the coupling was made.
+class Coupling {
+public:
+    /// Attaches `physics` to `world` (adds the "box2d.bodies" boundary plugin). Throws
+    /// `fluid::Error` for a bad `def`. Stepping thread, between steps.
+    Coupling(World& world, b2World& physics, const CouplingDef& def = {});
+    /// Detaches: the world's plugin stops seeing bodies.
+    ~Coupling();
+    /// Not copyable.
+    Coupling(const Coupling&) = delete;
+    /// Not assignable.
+    Coupling& operator=(const Coupling&) = delete;
+
+    /// One game frame (see the class comment): fluid step, forces to bodies, Box2D step, reports.
+    /// `world` must be the world given to the constructor (it may have been moved since);
+    /// `dt` as `World::step` (unit: s; range (0, 1]). Throws `fluid::Error` for another world,
+    /// and what `World::step` throws (bodies are then left untouched).
+    void step(World& world, float dt);
+    /// Steps 1, 2 and 4 of `step` without stepping Box2D: for games that call
+    /// `b2World::Step(dt, ...)` themselves, right after this. Same arguments and errors.
+    void stepFluid(World& world, float dt);
+
+    /// The settings.
+    const CouplingDef& def() const;
+    /// Replaces the settings (validated; throws `fluid::Error` naming the field and keeps the
+    /// old ones). Takes effect at the next step.
+    void setDef(const CouplingDef& def);
+
+    /// One report per coupled body after the last step, in the `b2World`'s body order
+    /// (`GetBodyList`). Valid until the next step.
+    std::span<const BodyReport> bodies() const;
+    /// The report of `body` after the last step; nullptr if it was not coupled then.
+    const BodyReport* report(const b2Body* body) const;
+    /// Splashes of the last step, in body order. Valid until the next step.
+    std::span<const SplashEvent> splashes() const;
+    /// Contact begin and end events of the last step, in body order (ends of bodies no longer
+    /// coupled last). Valid until the next step.
+    std::span<const ContactEvent> contacts() const;
+
+    /// The Box2D world.
+    b2World& physics() const;
+
+private:
+    void checkWorld(const World& world, const char* function) const;
+    void applyForces(const World& world, float dt);
+    void makeReports(const World& world);
+
+    // A body after the previous step: wet state for contact events; submerged area, material
+    // and the force and torque applied, for the added-mass relaxation.
+    struct Previous {
+        b2Body* body = nullptr;
+        bool wet = false;
+        uint16_t material = 0;
+        double submergedArea = 0.0;
+        glm::dvec2 appliedForce{0.0, 0.0};
+        double appliedTorque = 0.0;
+    };
+
+    b2World* m_physics;
+    BodyBoundary* m_boundary; // owned by the world
+    CouplingDef m_def;
+    std::vector<BodyReport> m_reports;
+    std::vector<SplashEvent> m_splashes;
+    std::vector<ContactEvent> m_contacts;
+    std::vector<Previous> m_previous;
+    std::vector<glm::dvec2> m_appliedForce; // per body of the step, in body order
+    std::vector<double> m_appliedTorque;
+};
+
+} // namespace fluid::box2d

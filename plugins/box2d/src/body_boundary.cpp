@@ -1,0 +1,482 @@
+// fluid::box2d — Box2D fixtures as fluid boundaries: sampling, projection, forces.
+#include "body_boundary.h"
+
+#include <fluid/error.h>
+#include <fluid/plugins/chain.h>
+#include <fluid/plugins/circle.h>
+#include <fluid/plugins/polygon.h>
+
+#include <box2d/box2d.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace fluid::box2d {
+
+namespace {
+
+enum Kind : int { kCircle = 0, kPolygon = 1, kEdge = 2, kChain = 3 };
+
+// Largest |position| (unit: m) and |velocity| (unit: m/s, rad/s) of a coupled body: the range of
+// the shapes' pose parameters (see KinematicShape::kPoseParams).
+constexpr double kMaxPosition = 1e5;
+constexpr double kMaxSpeed = 1e3;
+
+glm::dvec2 toVec(b2Vec2 v) {
+    return {double(v.x), double(v.y)};
+}
+
+glm::dvec2 rotate(glm::dvec2 v, double c, double s) {
+    return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+
+// Points along a -> b at most `spacing` apart, a included, b not.
+void addEdgeProbes(glm::dvec2 a, glm::dvec2 b, double spacing, std::vector<glm::dvec2>& out) {
+    const double length = std::sqrt((b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y));
+    const int n = std::max(1, static_cast<int>(std::ceil(length / spacing)));
+    for (int k = 0; k < n; ++k) {
+        const double t = double(k) / double(n);
+        out.push_back(a + t * (b - a));
+    }
+}
+
+double shoelace(std::span<const glm::dvec2> points) {
+    double twice = 0.0;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        const glm::dvec2 a = points[k], b = points[(k + 1) % points.size()];
+        twice += a.x * b.y - a.y * b.x;
+    }
+    return 0.5 * twice;
+}
+
+int64_t cellKey(glm::dvec2 p, double cell) {
+    const auto ix = static_cast<int64_t>(std::floor(p.x / cell));
+    const auto iy = static_cast<int64_t>(std::floor(p.y / cell));
+    return ix * (int64_t(1) << 32) + iy;
+}
+
+std::string where(uint32_t bodyIndex, uint32_t fixtureIndex) {
+    return "box2d.bodies: body " + std::to_string(bodyIndex) +
+           " (in b2World::GetBodyList order) fixture " + std::to_string(fixtureIndex) + ": ";
+}
+
+} // namespace
+
+// ---- BoxGrid ------------------------------------------------------------------------------
+
+int BoxGrid::cellX(float x) const {
+    const float c = std::floor((x - m_bounds.loX) * m_invCell);
+    return static_cast<int>(std::clamp(c, 0.0f, float(m_cellsX - 1)));
+}
+
+int BoxGrid::cellY(float y) const {
+    const float c = std::floor((y - m_bounds.loY) * m_invCell);
+    return static_cast<int>(std::clamp(c, 0.0f, float(m_cellsY - 1)));
+}
+
+void BoxGrid::build(std::span<const Box> boxes, float cellSize) {
+    m_cellsX = m_cellsY = 0;
+    m_start.clear();
+    m_entries.clear();
+    if (boxes.empty()) {
+        return;
+    }
+    m_bounds = boxes[0];
+    for (const Box& b : boxes) {
+        m_bounds.loX = std::min(m_bounds.loX, b.loX);
+        m_bounds.loY = std::min(m_bounds.loY, b.loY);
+        m_bounds.hiX = std::max(m_bounds.hiX, b.hiX);
+        m_bounds.hiY = std::max(m_bounds.hiY, b.hiY);
+    }
+    constexpr float kMaxCells = 256.0f;
+    const float extent = std::max(m_bounds.hiX - m_bounds.loX, m_bounds.hiY - m_bounds.loY);
+    const float cell = std::max(cellSize, extent / kMaxCells);
+    m_invCell = 1.0f / cell;
+    m_cellsX = static_cast<uint32_t>(
+        std::clamp(std::ceil((m_bounds.hiX - m_bounds.loX) * m_invCell), 1.0f, kMaxCells));
+    m_cellsY = static_cast<uint32_t>(
+        std::clamp(std::ceil((m_bounds.hiY - m_bounds.loY) * m_invCell), 1.0f, kMaxCells));
+    m_start.assign(std::size_t(m_cellsX) * m_cellsY + 1, 0);
+    // Count, prefix-sum, fill: each cell's list in box order.
+    for (int pass = 0; pass < 2; ++pass) {
+        std::vector<uint32_t> fill;
+        if (pass == 1) {
+            for (std::size_t c = 1; c < m_start.size(); ++c) {
+                m_start[c] += m_start[c - 1];
+            }
+            m_entries.resize(m_start.back());
+            fill.assign(m_start.begin(), m_start.end() - 1);
+        }
+        for (uint32_t index = 0; index < boxes.size(); ++index) {
+            const Box& b = boxes[index];
+            for (int y = cellY(b.loY); y <= cellY(b.hiY); ++y) {
+                for (int x = cellX(b.loX); x <= cellX(b.hiX); ++x) {
+                    const uint32_t cellIndex = uint32_t(y) * m_cellsX + uint32_t(x);
+                    if (pass == 0) {
+                        ++m_start[cellIndex + 1];
+                    } else {
+                        m_entries[fill[cellIndex]++] = index;
+                    }
+                }
+            }
+        }
+    }
+}
+
+// ---- BodyBoundary -------------------------------------------------------------------------
+
+BodyBoundary::BodyBoundary() : BoundaryPlugin(kType, {}) {}
+
+BodyBoundary::~BodyBoundary() = default;
+
+void BodyBoundary::attach(b2World* physics, const CouplingDef* def) {
+    m_physics = physics;
+    m_def = def;
+    if (physics == nullptr) {
+        m_samples.clear();
+        m_bodies.clear();
+        m_colliders.clear();
+        m_boxes.clear();
+        m_grid.build({}, 1.0f);
+    }
+}
+
+float BodyBoundary::friction() const {
+    return m_def != nullptr ? m_def->friction : 0.0f;
+}
+
+bool BodyBoundary::couples(const b2Fixture& fixture) const {
+    if (fixture.IsSensor()) {
+        return false;
+    }
+    if ((fixture.GetFilterData().categoryBits & m_def->categoryMask) == 0) {
+        return false;
+    }
+    return !m_def->filter || m_def->filter(fixture);
+}
+
+uint32_t BodyBoundary::findOrBuild(b2Fixture& fixture, const glm::dvec2& localCenter,
+                                   uint32_t bodyIndex, uint32_t fixtureIndex) {
+    // The geometry in the centre-of-mass frame, as numbers.
+    std::vector<float> signature;
+    std::vector<glm::dvec2> points; // outline in the centre-of-mass frame
+    glm::dvec2 offset{0.0, 0.0};
+    double radius = 0.0;
+    bool closed = false;
+    const b2Shape* shape = fixture.GetShape();
+    switch (shape->GetType()) {
+    case b2Shape::e_circle: {
+        const auto* circle = static_cast<const b2CircleShape*>(shape);
+        radius = circle->m_radius;
+        offset = toVec(circle->m_p) - localCenter;
+        signature = {float(kCircle), float(radius), float(offset.x), float(offset.y)};
+        closed = true;
+        break;
+    }
+    case b2Shape::e_polygon: {
+        const auto* polygon = static_cast<const b2PolygonShape*>(shape);
+        signature = {float(kPolygon)};
+        for (int32 k = 0; k < polygon->m_count; ++k) {
+            points.push_back(toVec(polygon->m_vertices[k]) - localCenter);
+        }
+        closed = true;
+        break;
+    }
+    case b2Shape::e_edge: {
+        const auto* edge = static_cast<const b2EdgeShape*>(shape);
+        signature = {float(kEdge)};
+        points = {toVec(edge->m_vertex1) - localCenter, toVec(edge->m_vertex2) - localCenter};
+        break;
+    }
+    case b2Shape::e_chain: {
+        const auto* chain = static_cast<const b2ChainShape*>(shape);
+        signature = {float(kChain)};
+        int32 count = chain->m_count;
+        // b2ChainShape::CreateLoop repeats the first vertex at the end.
+        if (count >= 4 && chain->m_vertices[0] == chain->m_vertices[count - 1]) {
+            closed = true;
+            --count;
+        }
+        for (int32 k = 0; k < count; ++k) {
+            points.push_back(toVec(chain->m_vertices[k]) - localCenter);
+        }
+        signature.push_back(closed ? 1.0f : 0.0f);
+        break;
+    }
+    default:
+        throw Error(where(bodyIndex, fixtureIndex) + "unknown Box2D shape type " +
+                    std::to_string(int(shape->GetType())));
+    }
+    for (const glm::dvec2 p : points) {
+        signature.push_back(float(p.x));
+        signature.push_back(float(p.y));
+    }
+
+    const auto found = m_index.find(&fixture);
+    if (found != m_index.end() && m_entries[found->second].signature == signature) {
+        m_entries[found->second].seen = true;
+        return found->second;
+    }
+
+    FixtureEntry entry;
+    entry.fixture = &fixture;
+    entry.signature = std::move(signature);
+    entry.offset = offset;
+    entry.closed = closed;
+    std::vector<glm::vec2> vertices(points.size());
+    std::transform(points.begin(), points.end(), vertices.begin(),
+                   [](glm::dvec2 p) { return glm::vec2(p); });
+    try {
+        if (shape->GetType() == b2Shape::e_circle) {
+            auto circle = std::make_unique<CircleBoundary>();
+            circle->setParam("radius", radius);
+            entry.shape = std::move(circle);
+            entry.area = std::numbers::pi * radius * radius;
+        } else if (shape->GetType() == b2Shape::e_polygon) {
+            auto polygon = std::make_unique<PolygonBoundary>();
+            polygon->setPoints("vertices", vertices);
+            entry.shape = std::move(polygon);
+            entry.area = std::fabs(shoelace(points));
+        } else {
+            auto chain = std::make_unique<ChainBoundary>();
+            chain->setParam("closed", closed ? 1.0 : 0.0);
+            chain->setPoints("points", vertices);
+            entry.shape = std::move(chain);
+        }
+    } catch (const Error& e) {
+        throw Error(where(bodyIndex, fixtureIndex) + e.what());
+    }
+    entry.outline = std::move(points);
+    entry.radius = radius;
+    entry.seen = true;
+    if (found != m_index.end()) {
+        m_entries[found->second] = std::move(entry);
+        return found->second;
+    }
+    m_entries.push_back(std::move(entry));
+    m_index.emplace(&fixture, uint32_t(m_entries.size() - 1));
+    return uint32_t(m_entries.size() - 1);
+}
+
+namespace {
+
+// Lays the outline probes of `entry` at `spacing` and sorts them into cells of `cell`.
+void layProbes(FixtureEntry& entry, double spacing, double cell) {
+    entry.probes.clear();
+    if (entry.radius > 0.0) {
+        const int n = std::max(
+            8, static_cast<int>(std::ceil(2.0 * std::numbers::pi * entry.radius / spacing)));
+        for (int k = 0; k < n; ++k) {
+            const double a = 2.0 * std::numbers::pi * double(k) / double(n);
+            entry.probes.push_back(entry.offset +
+                                   entry.radius * glm::dvec2(std::cos(a), std::sin(a)));
+        }
+    } else {
+        const std::vector<glm::dvec2>& outline = entry.outline;
+        const std::size_t edges = entry.closed ? outline.size() : outline.size() - 1;
+        for (std::size_t k = 0; k < edges; ++k) {
+            addEdgeProbes(outline[k], outline[(k + 1) % outline.size()], spacing, entry.probes);
+        }
+        if (!entry.closed) {
+            entry.probes.push_back(outline.back());
+        }
+    }
+    entry.probeArea = entry.closed ? std::fabs(shoelace(entry.probes)) : 0.0;
+    entry.probeCells.clear();
+    for (uint32_t k = 0; k < entry.probes.size(); ++k) {
+        entry.probeCells.emplace_back(cellKey(entry.probes[k], cell), k);
+    }
+    std::sort(entry.probeCells.begin(), entry.probeCells.end());
+    entry.probeSpacing = spacing;
+    entry.probeCell = cell;
+}
+
+} // namespace
+
+void BodyBoundary::prepare(const StepContext& context) {
+    m_samples.clear();
+    m_bodies.clear();
+    m_colliders.clear();
+    m_boxes.clear();
+    m_spacing = context.sampleSpacing;
+    if (m_physics == nullptr) {
+        m_grid.build({}, 1.0f);
+        return;
+    }
+    for (FixtureEntry& e : m_entries) {
+        e.seen = false;
+    }
+    const double spacing = context.sampleSpacing;
+    const double wetCell = 0.75 * spacing;
+    const double frameDt = context.frameDt;
+    uint32_t bodyIndex = 0;
+    for (b2Body* body = m_physics->GetBodyList(); body != nullptr;
+         body = body->GetNext(), ++bodyIndex) {
+        if (!body->IsEnabled()) {
+            continue;
+        }
+        const glm::dvec2 com = toVec(body->GetWorldCenter());
+        const glm::dvec2 velocity = toVec(body->GetLinearVelocity());
+        const double omega = body->GetAngularVelocity();
+        const double angle = std::remainder(double(body->GetAngle()), 2.0 * std::numbers::pi);
+        if (!std::isfinite(com.x) || !std::isfinite(com.y) || !std::isfinite(angle) ||
+            std::fabs(com.x) > kMaxPosition || std::fabs(com.y) > kMaxPosition ||
+            !(std::fabs(velocity.x) <= kMaxSpeed) || !(std::fabs(velocity.y) <= kMaxSpeed) ||
+            !(std::fabs(omega) <= kMaxSpeed)) {
+            continue; // out of the shapes' range this step: neither a boundary nor pushed
+        }
+        BodyEntry be;
+        be.body = body;
+        be.type = int(body->GetType());
+        be.com = com;
+        be.velocity = velocity;
+        be.colliderBegin = uint32_t(m_colliders.size());
+        const glm::dvec2 localCenter = toVec(body->GetLocalCenter());
+        const double c = std::cos(angle), s = std::sin(angle);
+        uint32_t fixtureIndex = 0;
+        for (b2Fixture* fixture = body->GetFixtureList(); fixture != nullptr;
+             fixture = fixture->GetNext(), ++fixtureIndex) {
+            if (!couples(*fixture)) {
+                continue;
+            }
+            const uint32_t index = findOrBuild(*fixture, localCenter, bodyIndex, fixtureIndex);
+            FixtureEntry& entry = m_entries[index];
+            if (entry.probeCells.empty() || entry.probeSpacing != spacing) {
+                layProbes(entry, spacing, wetCell); // new, rebuilt, or another spacing
+            }
+            // Pose: the shape's local origin is the body's centre of mass (a circle's own
+            // centre), moving with the body's velocity there during the step.
+            const glm::dvec2 origin = com + rotate(entry.offset, c, s);
+            const glm::dvec2 r = origin - com;
+            const glm::dvec2 v = velocity + omega * glm::dvec2(-r.y, r.x);
+            const auto clampSpeed = [](double x) { return std::clamp(x, -kMaxSpeed, kMaxSpeed); };
+            try {
+                entry.shape->setPose(glm::vec2(std::clamp(origin.x, -kMaxPosition, kMaxPosition),
+                                               std::clamp(origin.y, -kMaxPosition, kMaxPosition)),
+                                     float(angle));
+                entry.shape->setVelocity(glm::vec2(clampSpeed(v.x), clampSpeed(v.y)), float(omega));
+                entry.shape->prepare(context);
+            } catch (const Error& e) {
+                throw Error(where(bodyIndex, fixtureIndex) + e.what());
+            }
+            Collider collider;
+            collider.entry = index;
+            collider.body = uint32_t(m_bodies.size());
+            collider.sampleBegin = uint32_t(m_samples.size());
+            const BoundarySamples& samples = entry.shape->samples();
+            for (std::size_t k = 0; k < samples.size(); ++k) {
+                m_samples.add(samples.px[k], samples.py[k], samples.vx[k], samples.vy[k]);
+            }
+            collider.sampleEnd = uint32_t(m_samples.size());
+            m_colliders.push_back(collider);
+
+            // Where the shape sweeps during the step: its local box turned by the angle at
+            // rest, or the circle about its origin that holds it at any angle, at both ends of
+            // the straight path of the origin; plus the reach of a projection.
+            const glm::dvec2 lo = entry.shape->localMin(), hi = entry.shape->localMax();
+            const glm::dvec2 end = origin + frameDt * v;
+            Box box;
+            glm::dvec2 extentLo, extentHi;
+            if (omega == 0.0) {
+                extentLo = glm::dvec2(1e300);
+                extentHi = glm::dvec2(-1e300);
+                for (const glm::dvec2 corner :
+                     {lo, hi, glm::dvec2(lo.x, hi.y), glm::dvec2(hi.x, lo.y)}) {
+                    const glm::dvec2 w = rotate(corner, c, s);
+                    extentLo = glm::min(extentLo, w);
+                    extentHi = glm::max(extentHi, w);
+                }
+            } else {
+                double reach = 0.0;
+                for (const glm::dvec2 corner :
+                     {lo, hi, glm::dvec2(lo.x, hi.y), glm::dvec2(hi.x, lo.y)}) {
+                    reach = std::max(reach, std::sqrt(corner.x * corner.x + corner.y * corner.y));
+                }
+                extentLo = glm::dvec2(-reach);
+                extentHi = glm::dvec2(reach);
+            }
+            const double margin = spacing;
+            box.loX = float(std::min(origin.x, end.x) + extentLo.x - margin);
+            box.loY = float(std::min(origin.y, end.y) + extentLo.y - margin);
+            box.hiX = float(std::max(origin.x, end.x) + extentHi.x + margin);
+            box.hiY = float(std::max(origin.y, end.y) + extentHi.y + margin);
+            m_boxes.push_back(box);
+        }
+        be.colliderEnd = uint32_t(m_colliders.size());
+        if (be.colliderEnd > be.colliderBegin) {
+            m_bodies.push_back(be);
+        }
+    }
+
+    // Entries of fixtures not seen (destroyed, filtered out) go; colliders follow the moves.
+    std::vector<uint32_t> remap(m_entries.size(), 0);
+    uint32_t kept = 0;
+    for (uint32_t k = 0; k < m_entries.size(); ++k) {
+        if (m_entries[k].seen) {
+            remap[k] = kept;
+            if (kept != k) {
+                m_entries[kept] = std::move(m_entries[k]);
+            }
+            ++kept;
+        }
+    }
+    m_entries.resize(kept);
+    m_index.clear();
+    for (uint32_t k = 0; k < kept; ++k) {
+        m_index.emplace(m_entries[k].fixture, k);
+    }
+    for (Collider& collider : m_colliders) {
+        collider.entry = remap[collider.entry];
+    }
+    m_grid.build(m_boxes, std::max(4.0f * context.supportRadius, 0.1f));
+}
+
+void BodyBoundary::project(const ProjectContext& context, uint32_t begin, uint32_t end) {
+    if (m_colliders.empty()) {
+        return;
+    }
+    // Each collider's sweep, worked out the first time a particle of this range comes near it.
+    std::vector<KinematicShape::Sweep> sweeps(m_colliders.size());
+    std::vector<uint8_t> ready(m_colliders.size(), 0);
+    for (uint32_t i = begin; i < end; ++i) {
+        const Box path{
+            std::min(context.prevX[i], context.px[i]), std::min(context.prevY[i], context.py[i]),
+            std::max(context.prevX[i], context.px[i]), std::max(context.prevY[i], context.py[i])};
+        m_grid.forEach(path, m_boxes, [&](uint32_t k) {
+            const KinematicShape& shape = *m_entries[m_colliders[k].entry].shape;
+            if (ready[k] == 0) {
+                sweeps[k] = shape.sweep(context);
+                ready[k] = 1;
+            }
+            shape.projectParticle(sweeps[k], context, i);
+        });
+    }
+}
+
+void BodyBoundary::receiveForces(std::span<const float> fx, std::span<const float> fy,
+                                 std::span<const float> drag) {
+    // Summed in sample order, in double: the same bits for any number of workers.
+    for (BodyEntry& body : m_bodies) {
+        glm::dvec2 force{0.0, 0.0};
+        double torque = 0.0, linear = 0.0, angular = 0.0;
+        for (uint32_t k = body.colliderBegin; k < body.colliderEnd; ++k) {
+            const Collider& collider = m_colliders[k];
+            for (uint32_t j = collider.sampleBegin; j < collider.sampleEnd; ++j) {
+                const glm::dvec2 f{fx[j], fy[j]};
+                const glm::dvec2 r = glm::dvec2(m_samples.px[j], m_samples.py[j]) - body.com;
+                force += f;
+                torque += r.x * f.y - r.y * f.x;
+                linear += drag[j];
+                angular += drag[j] * (r.x * r.x + r.y * r.y);
+            }
+        }
+        body.force = force;
+        body.torque = torque;
+        body.drag = linear;
+        body.angularDrag = angular;
+    }
+}
+
+} // namespace fluid::box2d

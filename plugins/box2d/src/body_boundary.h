@@ -1,0 +1,185 @@
+// fluid::box2d — the boundary plugin that turns Box2D fixtures into fluid boundaries (internal).
+#pragma once
+
+#include <fluid/box2d/coupling.h>
+#include <fluid/plugin.h>
+#include <fluid/plugins/kinematic_shape.h>
+
+#include <glm/common.hpp>
+#include <glm/vec2.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+class b2Body;
+class b2Fixture;
+class b2World;
+
+namespace fluid::box2d {
+
+/// Axis-aligned box in world coordinates (unit: m).
+struct Box {
+    float loX = 0.0f, loY = 0.0f, hiX = 0.0f, hiY = 0.0f;
+    /// True when the two boxes share a point.
+    bool overlaps(const Box& o) const {
+        return loX <= o.hiX && o.loX <= hiX && loY <= o.hiY && o.loY <= hiY;
+    }
+};
+
+/// A uniform grid of boxes: which boxes meet each cell (CSR lists in box order). A particle
+/// whose path stays in one cell tests only that cell's list; a path over several cells tests
+/// every box (rare: cells are much larger than a particle's move per sub-step).
+class BoxGrid {
+public:
+    /// Rebuilds the grid over `boxes` with cells about `cellSize` m wide (larger if the boxes
+    /// span more than 256 cells in x or y).
+    void build(std::span<const Box> boxes, float cellSize);
+    /// Calls `visit(index)` for every box that may meet `query`, in box order.
+    template <class F> void forEach(const Box& query, std::span<const Box> boxes, F&& visit) const {
+        if (m_cellsX == 0 || !query.overlaps(m_bounds)) {
+            return;
+        }
+        const int x0 = cellX(query.loX), x1 = cellX(query.hiX);
+        const int y0 = cellY(query.loY), y1 = cellY(query.hiY);
+        if (x0 == x1 && y0 == y1) {
+            const uint32_t cell = uint32_t(y0) * m_cellsX + uint32_t(x0);
+            for (uint32_t k = m_start[cell]; k < m_start[cell + 1]; ++k) {
+                const uint32_t index = m_entries[k];
+                if (boxes[index].overlaps(query)) {
+                    visit(index);
+                }
+            }
+            return;
+        }
+        for (uint32_t index = 0; index < boxes.size(); ++index) {
+            if (boxes[index].overlaps(query)) {
+                visit(index);
+            }
+        }
+    }
+
+private:
+    int cellX(float x) const;
+    int cellY(float y) const;
+
+    Box m_bounds;
+    float m_invCell = 1.0f;
+    uint32_t m_cellsX = 0, m_cellsY = 0;
+    std::vector<uint32_t> m_start, m_entries;
+};
+
+/// One coupled fixture as the fluid sees it, cached between steps (its samples are laid once).
+struct FixtureEntry {
+    /// The Box2D fixture (compared by address and geometry: a new fixture at a freed address
+    /// with another shape is rebuilt).
+    b2Fixture* fixture = nullptr;
+    /// The fixture's geometry in its body's centre-of-mass frame, as numbers: kind, sizes,
+    /// vertices. A change rebuilds the entry.
+    std::vector<float> signature;
+    /// The sampled shape (polygon, circle or chain) the world never sees directly.
+    std::unique_ptr<KinematicShape> shape;
+    /// Centre of a circle in the body's centre-of-mass frame (unit: m; 0 for other shapes,
+    /// which are laid out in that frame).
+    glm::dvec2 offset{0.0, 0.0};
+    /// Vertices of a polygon, edge or chain in the centre-of-mass frame (unit: m; empty for a
+    /// circle) and a circle's radius (unit: m; 0 for the others).
+    std::vector<glm::dvec2> outline;
+    double radius = 0.0;
+    /// Points along the outline in the centre-of-mass frame, in order, at most the sample
+    /// spacing apart, a polygon's vertices among them (unit: m).
+    std::vector<glm::dvec2> probes;
+    /// True when the outline is a loop (circle, polygon, closed chain).
+    bool closed = false;
+    /// Area enclosed (unit: m^2; 0 for edges and chains) and the area of the probe polygon
+    /// (to scale a run's area for the circle's discretisation).
+    double area = 0.0, probeArea = 0.0;
+    /// Probes sorted by cell of side `probeCell` (cell key, probe index), for wet tests.
+    std::vector<std::pair<int64_t, uint32_t>> probeCells;
+    /// Spacing and cell size the probes were laid for (unit: m).
+    double probeSpacing = 0.0, probeCell = 0.0;
+    /// Seen at the last `prepare` (entries not seen are dropped).
+    bool seen = false;
+};
+
+/// A coupled body at the last `prepare`.
+struct BodyEntry {
+    /// The body.
+    b2Body* body = nullptr;
+    /// Box2D body type (b2BodyType).
+    int type = 0;
+    /// Centre of mass (unit: m) and its velocity (unit: m/s) at the start of the step.
+    glm::dvec2 com{0.0, 0.0}, velocity{0.0, 0.0};
+    /// The fluid's force (unit: N) and torque about `com` (unit: N m), averaged over the step.
+    glm::dvec2 force{0.0, 0.0};
+    double torque = 0.0;
+    /// How fast the viscous force grows with the body's speed through the fluid (unit: N s/m),
+    /// and the viscous torque with its angular velocity (unit: N m s): sums over its samples.
+    double drag = 0.0, angularDrag = 0.0;
+    /// The body's colliders: [colliderBegin, colliderEnd) in `BodyBoundary::colliders`.
+    uint32_t colliderBegin = 0, colliderEnd = 0;
+};
+
+/// A coupled fixture in this step: its cache entry, samples and swept box.
+struct Collider {
+    /// Index in the fixture cache.
+    uint32_t entry = 0;
+    /// Index in `BodyBoundary::bodies`.
+    uint32_t body = 0;
+    /// Its samples: [sampleBegin, sampleEnd) of the plugin's samples.
+    uint32_t sampleBegin = 0, sampleEnd = 0;
+};
+
+/// "box2d.bodies": the boundary plugin of a `Coupling`. Not in the registry (it needs the
+/// game's `b2World`). Thread rule: see `BoundaryPlugin`; `attach` and the accessors on the
+/// stepping thread between steps.
+class BodyBoundary final : public BoundaryPlugin {
+public:
+    /// Type string.
+    static constexpr std::string_view kType = "box2d.bodies";
+    /// Detached: no samples until `attach`.
+    BodyBoundary();
+    ~BodyBoundary() override;
+
+    /// Reads `physics` from the next step on (nullptr detaches); `def` must outlive the plugin's
+    /// use (the coupling owns it and detaches before it goes).
+    void attach(b2World* physics, const CouplingDef* def);
+    /// True when attached.
+    bool attached() const { return m_physics != nullptr; }
+
+    void prepare(const StepContext& context) override;
+    void project(const ProjectContext& context, uint32_t begin, uint32_t end) override;
+    bool wantsForces() const override { return m_physics != nullptr; }
+    void receiveForces(std::span<const float> fx, std::span<const float> fy,
+                       std::span<const float> drag) override;
+    float friction() const override;
+
+    /// The coupled bodies of the last `prepare`, in body-list order.
+    std::span<const BodyEntry> bodies() const { return m_bodies; }
+    /// The coupled fixtures of the last `prepare`, body by body.
+    std::span<const Collider> colliders() const { return m_colliders; }
+    /// The fixture cache entry `index`.
+    const FixtureEntry& entry(uint32_t index) const { return m_entries[index]; }
+    /// Sample spacing of the last `prepare` (unit: m; 0 before).
+    double spacing() const { return m_spacing; }
+
+private:
+    bool couples(const b2Fixture& fixture) const;
+    uint32_t findOrBuild(b2Fixture& fixture, const glm::dvec2& localCenter, uint32_t bodyIndex,
+                         uint32_t fixtureIndex);
+
+    b2World* m_physics = nullptr;
+    const CouplingDef* m_def = nullptr;
+    std::vector<FixtureEntry> m_entries;
+    std::unordered_map<const b2Fixture*, uint32_t> m_index; // lookup only, never iterated
+    std::vector<BodyEntry> m_bodies;
+    std::vector<Collider> m_colliders;
+    std::vector<Box> m_boxes; // per collider: where it sweeps during the step
+    BoxGrid m_grid;
+    double m_spacing = 0.0;
+};
+
+} // namespace fluid::box2d

@@ -1,0 +1,428 @@
+// fluid::box2d — the coupling's frame: fluid step, forces to bodies, Box2D step, reports.
+#include <fluid/box2d/coupling.h>
+
+#include "body_boundary.h"
+
+#include <fluid/error.h>
+
+#include <box2d/box2d.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace fluid::box2d {
+
+namespace {
+
+void checkRange(const char* field, double value, double lo, double hi, const char* unit) {
+    if (std::isfinite(value) && value >= lo && value <= hi) {
+        return;
+    }
+    std::ostringstream s;
+    s << "fluid::box2d::CouplingDef: " << field << " = " << value << " is out of range [" << lo
+      << ", " << hi << "] (unit: " << unit << ")";
+    throw Error(s.str());
+}
+
+void validate(const CouplingDef& def) {
+    checkRange("friction", def.friction, 0.0, 10.0, "1");
+    checkRange("splashSpeed", def.splashSpeed, 0.0, 1e3, "m/s");
+    checkRange("velocityIterations", def.velocityIterations, 1.0, 1000.0, "count");
+    checkRange("positionIterations", def.positionIterations, 1.0, 1000.0, "count");
+}
+
+double shoelace(std::span<const glm::dvec2> points) {
+    double twice = 0.0;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        const glm::dvec2 a = points[k], b = points[(k + 1) % points.size()];
+        twice += a.x * b.y - a.y * b.x;
+    }
+    return 0.5 * twice;
+}
+
+// Dry gaps of at most this many probes between wet ones count as wet: a particle may rest a
+// little farther from the surface here and there.
+constexpr std::size_t kBridge = 2;
+
+// How far below the fluid's surface the chord across a run of wet points lies (unit: spacings;
+// see submergedArea).
+constexpr double kChordDepth = 1.0;
+
+// The area of a convex fixture's outline loop cut off by the chord across its longest run of
+// wet probes (see the Coupling class comment), scaled from the probe polygon to the shape.
+double submergedArea(const FixtureEntry& entry, std::span<const uint8_t> wet, double spacing) {
+    const std::size_t n = entry.probes.size();
+    std::size_t wetCount = 0;
+    for (const uint8_t w : wet) {
+        wetCount += w;
+    }
+    if (wetCount == 0 || entry.probeArea <= 0.0) {
+        return 0.0;
+    }
+    std::vector<uint8_t> run(wet.begin(), wet.end());
+    if (wetCount < n) {
+        // Bridge short dry gaps, walking once round the loop from a wet probe.
+        std::size_t start = 0;
+        while (wet[start] == 0) {
+            ++start;
+        }
+        std::size_t gap = 0;
+        for (std::size_t step = 1; step <= n; ++step) {
+            const std::size_t k = (start + step) % n;
+            if (wet[k] == 0) {
+                ++gap;
+                continue;
+            }
+            if (gap > 0 && gap <= kBridge) {
+                for (std::size_t g = 1; g <= gap; ++g) {
+                    run[(k + n - g) % n] = 1;
+                }
+            }
+            gap = 0;
+        }
+    }
+    std::size_t dry = n;
+    for (std::size_t k = 0; k < n; ++k) {
+        if (run[k] == 0) {
+            dry = k;
+            break;
+        }
+    }
+    if (dry == n) {
+        return entry.area; // wet all round
+    }
+    // The longest run, walking once round from a dry probe (the first of equal runs wins).
+    std::size_t bestStart = 0, bestLength = 0, length = 0;
+    for (std::size_t step = 1; step <= n; ++step) {
+        const std::size_t k = (dry + step) % n;
+        if (run[k] != 0) {
+            ++length;
+            if (length > bestLength) {
+                bestLength = length;
+                bestStart = (k + n + 1 - length) % n;
+            }
+        } else {
+            length = 0;
+        }
+    }
+    if (bestLength < 3) {
+        return 0.0;
+    }
+    std::vector<glm::dvec2> polygon(bestLength);
+    for (std::size_t k = 0; k < bestLength; ++k) {
+        polygon[k] = entry.probes[(bestStart + k) % n];
+    }
+    // The chord between the run's ends lies below the fluid's surface: the top particles'
+    // centres sit half a spacing under it, and those against a body a little lower still
+    // (measured: floating discs and squares at 0.25 to 0.75 of water's density, the chord 0.9
+    // to 1.5 spacings under the far-field surface). The band of one spacing above the chord
+    // belongs to the submerged part.
+    const glm::dvec2 chord = polygon.back() - polygon.front();
+    const double band = std::sqrt(chord.x * chord.x + chord.y * chord.y) * kChordDepth * spacing;
+    return std::min(entry.area,
+                    entry.area * (std::fabs(shoelace(polygon)) + band) / entry.probeArea);
+}
+
+} // namespace
+
+float arealDensity(const World& world, MaterialId material) {
+    return world.material(material).restDensity * world.def().depth;
+}
+
+Coupling::Coupling(World& world, b2World& physics, const CouplingDef& def)
+    : m_physics(&physics), m_boundary(nullptr), m_def(def) {
+    validate(def);
+    auto plugin = std::make_unique<BodyBoundary>();
+    plugin->attach(&physics, &m_def);
+    m_boundary = &static_cast<BodyBoundary&>(world.addBoundary(std::move(plugin)));
+}
+
+Coupling::~Coupling() {
+    m_boundary->attach(nullptr, nullptr);
+}
+
+const CouplingDef& Coupling::def() const {
+    return m_def;
+}
+
+void Coupling::setDef(const CouplingDef& def) {
+    validate(def);
+    m_def = def;
+}
+
+b2World& Coupling::physics() const {
+    return *m_physics;
+}
+
+std::span<const BodyReport> Coupling::bodies() const {
+    return m_reports;
+}
+
+const BodyReport* Coupling::report(const b2Body* body) const {
+    for (const BodyReport& r : m_reports) {
+        if (r.body == body) {
+            return &r;
+        }
+    }
+    return nullptr;
+}
+
+std::span<const SplashEvent> Coupling::splashes() const {
+    return m_splashes;
+}
+
+std::span<const ContactEvent> Coupling::contacts() const {
+    return m_contacts;
+}
+
+void Coupling::checkWorld(const World& world, const char* function) const {
+    for (const auto& plugin : world.boundaries()) {
+        if (plugin.get() == m_boundary) {
+            return;
+        }
+    }
+    throw Error(std::string("fluid::box2d::Coupling::") + function +
+                ": the world is not the one this coupling was made with");
+}
+
+void Coupling::step(World& world, float dt) {
+    checkWorld(world, "step");
+    world.step(dt);
+    applyForces(world, dt);
+    m_physics->Step(dt, m_def.velocityIterations, m_def.positionIterations);
+    makeReports(world);
+}
+
+void Coupling::stepFluid(World& world, float dt) {
+    checkWorld(world, "stepFluid");
+    world.step(dt);
+    applyForces(world, dt);
+    makeReports(world);
+}
+
+void Coupling::applyForces(const World& world, float dt) {
+    const std::span<const BodyEntry> bodies = m_boundary->bodies();
+    std::unordered_map<const b2Body*, const Previous*> previous; // lookup only
+    for (const Previous& p : m_previous) {
+        previous.emplace(p.body, &p);
+    }
+    m_appliedForce.assign(bodies.size(), glm::dvec2(0.0, 0.0));
+    m_appliedTorque.assign(bodies.size(), 0.0);
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        const BodyEntry& entry = bodies[b];
+        if (entry.type != b2_dynamicBody) {
+            continue;
+        }
+        glm::dvec2 f = entry.force;
+        double torque = entry.torque;
+        if (!std::isfinite(f.x) || !std::isfinite(f.y) || !std::isfinite(torque)) {
+            continue; // never hand Box2D a NaN: it would spread through every contact
+        }
+        // The relaxation for added mass and drag (see the class comment).
+        const auto found = previous.find(entry.body);
+        if (found != previous.end()) {
+            const Previous& p = *found->second;
+            double added = 0.0;
+            if (p.submergedArea > 0.0 && p.material < world.materialCount()) {
+                added = p.submergedArea * arealDensity(world, MaterialId{p.material});
+            }
+            const double mass = entry.body->GetMass();
+            const double inertia =
+                entry.body->GetInertia() -
+                mass * b2Dot(entry.body->GetLocalCenter(), entry.body->GetLocalCenter());
+            const double w = mass / (mass + added + dt * entry.drag);
+            const double wr =
+                inertia > 0.0 ? inertia / (inertia * (1.0 + added / mass) + dt * entry.angularDrag)
+                              : 1.0;
+            f = w * f + (1.0 - w) * p.appliedForce;
+            torque = wr * torque + (1.0 - wr) * p.appliedTorque;
+        }
+        m_appliedForce[b] = f;
+        m_appliedTorque[b] = torque;
+        if (f.x != 0.0 || f.y != 0.0) {
+            entry.body->ApplyForce(b2Vec2(float(f.x), float(f.y)), entry.body->GetWorldCenter(),
+                                   true);
+        }
+        if (torque != 0.0) {
+            entry.body->ApplyTorque(float(torque), true);
+        }
+    }
+}
+
+void Coupling::makeReports(const World& world) {
+    const std::span<const BodyEntry> bodies = m_boundary->bodies();
+    const std::span<const Collider> colliders = m_boundary->colliders();
+    const double spacing = m_boundary->spacing();
+    const double wetRadius = 0.75 * spacing;
+
+    // Each collider's probes in the world, at the bodies' poses now.
+    std::vector<uint32_t> probeBegin(colliders.size() + 1, 0);
+    for (std::size_t k = 0; k < colliders.size(); ++k) {
+        probeBegin[k + 1] =
+            probeBegin[k] + uint32_t(m_boundary->entry(colliders[k].entry).probes.size());
+    }
+    std::vector<uint8_t> wet(probeBegin.back(), 0);
+    std::vector<uint16_t> wetMaterial(probeBegin.back(), 0);
+    struct Frame {
+        glm::dvec2 com{0.0, 0.0};
+        double c = 1.0, s = 0.0;
+    };
+    std::vector<Frame> frames(bodies.size());
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        const double angle = bodies[b].body->GetAngle();
+        const b2Vec2 com = bodies[b].body->GetWorldCenter();
+        frames[b] = {{com.x, com.y}, std::cos(angle), std::sin(angle)};
+    }
+    std::vector<Box> boxes(colliders.size());
+    for (std::size_t k = 0; k < colliders.size(); ++k) {
+        const Frame& f = frames[colliders[k].body];
+        glm::dvec2 lo(1e300), hi(-1e300);
+        for (const glm::dvec2 p : m_boundary->entry(colliders[k].entry).probes) {
+            const glm::dvec2 w = f.com + glm::dvec2(f.c * p.x - f.s * p.y, f.s * p.x + f.c * p.y);
+            lo = glm::min(lo, w);
+            hi = glm::max(hi, w);
+        }
+        boxes[k] = {float(lo.x - wetRadius), float(lo.y - wetRadius), float(hi.x + wetRadius),
+                    float(hi.y + wetRadius)};
+    }
+    BoxGrid grid;
+    grid.build(boxes, float(std::max(8.0 * spacing, 0.1)));
+
+    // Every particle marks the probes within wetRadius of it (the first, in slot order, names
+    // the material).
+    const std::span<const float> px = world.positionX(), py = world.positionY();
+    const std::span<const uint16_t> material = world.materialIndex();
+    const double r2 = wetRadius * wetRadius;
+    for (uint32_t i = 0; i < px.size(); ++i) {
+        const Box point{px[i], py[i], px[i], py[i]};
+        grid.forEach(point, boxes, [&](uint32_t k) {
+            const FixtureEntry& entry = m_boundary->entry(colliders[k].entry);
+            const Frame& f = frames[colliders[k].body];
+            const glm::dvec2 d = glm::dvec2(px[i], py[i]) - f.com;
+            const glm::dvec2 local(f.c * d.x + f.s * d.y, -f.s * d.x + f.c * d.y);
+            const auto ix = static_cast<int64_t>(std::floor(local.x / entry.probeCell));
+            const auto iy = static_cast<int64_t>(std::floor(local.y / entry.probeCell));
+            for (int64_t cx = ix - 1; cx <= ix + 1; ++cx) {
+                for (int64_t cy = iy - 1; cy <= iy + 1; ++cy) {
+                    const int64_t key = cx * (int64_t(1) << 32) + cy;
+                    auto it =
+                        std::lower_bound(entry.probeCells.begin(), entry.probeCells.end(), key,
+                                         [](const std::pair<int64_t, uint32_t>& a, int64_t b) {
+                                             return a.first < b;
+                                         });
+                    for (; it != entry.probeCells.end() && it->first == key; ++it) {
+                        const glm::dvec2 e = entry.probes[it->second] - local;
+                        const uint32_t slot = probeBegin[k] + it->second;
+                        if (e.x * e.x + e.y * e.y <= r2 && wet[slot] == 0) {
+                            wet[slot] = 1;
+                            wetMaterial[slot] = material[i];
+                        }
+                    }
+                }
+            }
+        });
+    }
+
+    // Reports, in body order.
+    m_reports.assign(bodies.size(), BodyReport{});
+    std::vector<uint32_t> counts;
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        const BodyEntry& entry = bodies[b];
+        BodyReport& r = m_reports[b];
+        r.body = entry.body;
+        r.force = glm::vec2(entry.force);
+        r.torque = float(entry.torque);
+        double area = 0.0, submerged = 0.0;
+        counts.clear();
+        for (uint32_t k = entry.colliderBegin; k < entry.colliderEnd; ++k) {
+            const FixtureEntry& fixture = m_boundary->entry(colliders[k].entry);
+            const std::span<const uint8_t> flags(wet.data() + probeBegin[k],
+                                                 probeBegin[k + 1] - probeBegin[k]);
+            for (uint32_t p = probeBegin[k]; p < probeBegin[k + 1]; ++p) {
+                if (wet[p] != 0) {
+                    ++r.wetPoints;
+                    if (counts.size() <= wetMaterial[p]) {
+                        counts.resize(std::size_t(wetMaterial[p]) + 1, 0);
+                    }
+                    ++counts[wetMaterial[p]];
+                }
+            }
+            if (fixture.area > 0.0) {
+                area += fixture.area;
+                submerged += submergedArea(fixture, flags, spacing);
+            }
+        }
+        r.submergedArea = float(submerged);
+        r.submergedFraction = area > 0.0 ? float(std::clamp(submerged / area, 0.0, 1.0)) : 0.0f;
+        if (!counts.empty()) {
+            r.material = uint16_t(std::max_element(counts.begin(), counts.end()) - counts.begin());
+        }
+    }
+
+    // Events: bodies that changed state since the previous step, in body order; then bodies
+    // that were wet and are no longer coupled (still in the b2World: destroyed ones say
+    // nothing, their address may already be another body's).
+    m_splashes.clear();
+    m_contacts.clear();
+    std::unordered_map<const b2Body*, const Previous*> previous; // lookup only
+    for (const Previous& p : m_previous) {
+        previous.emplace(p.body, &p);
+    }
+    std::unordered_set<const b2Body*> current; // lookup only
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        const BodyReport& r = m_reports[b];
+        current.insert(r.body);
+        const auto found = previous.find(r.body);
+        const bool wasWet = found != previous.end() && found->second->wet;
+        const bool isWet = r.wetPoints > 0;
+        if (!wasWet && isWet) {
+            m_contacts.push_back({r.body, ContactPhase::Begin, r.material});
+            const double speed = std::sqrt(bodies[b].velocity.x * bodies[b].velocity.x +
+                                           bodies[b].velocity.y * bodies[b].velocity.y);
+            if (speed > m_def.splashSpeed) {
+                glm::dvec2 sum{0.0, 0.0};
+                const Frame& f = frames[b];
+                for (uint32_t k = bodies[b].colliderBegin; k < bodies[b].colliderEnd; ++k) {
+                    const FixtureEntry& fixture = m_boundary->entry(colliders[k].entry);
+                    for (uint32_t p = 0; p < fixture.probes.size(); ++p) {
+                        if (wet[probeBegin[k] + p] != 0) {
+                            const glm::dvec2 q = fixture.probes[p];
+                            sum += f.com + glm::dvec2(f.c * q.x - f.s * q.y, f.s * q.x + f.c * q.y);
+                        }
+                    }
+                }
+                const glm::dvec2 at = sum / double(r.wetPoints);
+                m_splashes.push_back({r.body, glm::vec2(at), float(speed), r.material});
+            }
+        } else if (wasWet && !isWet) {
+            m_contacts.push_back({r.body, ContactPhase::End, found->second->material});
+        }
+    }
+    bool anyGone = false;
+    for (const Previous& p : m_previous) {
+        anyGone = anyGone || (p.wet && current.count(p.body) == 0);
+    }
+    if (anyGone) {
+        std::unordered_set<const b2Body*> alive; // lookup only
+        for (const b2Body* body = m_physics->GetBodyList(); body != nullptr;
+             body = body->GetNext()) {
+            alive.insert(body);
+        }
+        for (const Previous& p : m_previous) {
+            if (p.wet && current.count(p.body) == 0 && alive.count(p.body) != 0) {
+                m_contacts.push_back({p.body, ContactPhase::End, p.material});
+            }
+        }
+    }
+    m_previous.clear();
+    for (std::size_t b = 0; b < m_reports.size(); ++b) {
+        const BodyReport& r = m_reports[b];
+        m_previous.push_back({r.body, r.wetPoints > 0, r.material, double(r.submergedArea),
+                              m_appliedForce[b], m_appliedTorque[b]});
+    }
+}
+
+} // namespace fluid::box2d

@@ -1,0 +1,164 @@
+// fluid tests — the shipped levels with Box2D bodies: levels/paddle_wheel.json (the faucet's
+// stream turns the wheel, in the direction of the side it falls on) and levels/crates.json
+// (bodies as the file says; light crates float as deep as their density says, heavy ones sink).
+// Short runs: fluid-tests-level is a fast executable.
+#include <catch2/catch.hpp>
+
+#include <fluid/level.h>
+#include <fluid/plugins/builtin.h>
+
+#include "test_support.h"
+
+#include <box2d/box2d.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+using namespace fluid;
+
+namespace {
+
+const Registry& builtins() {
+    static const Registry registry = [] {
+        Registry r;
+        registerBuiltinPlugins(r);
+        return r;
+    }();
+    return registry;
+}
+
+std::string readLevel(const char* name) {
+    std::ifstream in(std::string(FLUID_LEVELS_DIR) + "/" + name, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+b2Body* bodyNamed(const Level& level, std::string_view name) {
+    for (const auto& [n, body] : level.bodies) {
+        if (n == name) {
+            return body;
+        }
+    }
+    FAIL("no body " << name);
+    return nullptr;
+}
+
+bool finite(const b2Body* body) {
+    const b2Vec2 p = body->GetPosition(), v = body->GetLinearVelocity();
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(body->GetAngle()) &&
+           std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(body->GetAngularVelocity());
+}
+
+// Plays `frames` frames; returns the wall time per frame (unit: ms).
+double play(Level& level, int frames) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int f = 0; f < frames; ++f) {
+        level.step();
+    }
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+               .count() /
+           frames;
+}
+
+} // namespace
+
+TEST_CASE("paddle_wheel.json: the stream turns the wheel the way of the side it falls on",
+          "[level][bodies]") {
+    const std::string text = readLevel("paddle_wheel.json");
+    // The shipped faucet pours right of the axle (x = 0.62 > 0.5): clockwise. Its mirror image
+    // pours left of it (x = 0.38): counter-clockwise.
+    const std::string faucet = "\"position\": [0.62, 0.95]";
+    REQUIRE(text.find(faucet) != std::string::npos);
+    std::string mirrored = text;
+    mirrored.replace(mirrored.find(faucet), faucet.size(), "\"position\": [0.38, 0.95]");
+
+    for (const double side : {1.0, -1.0}) {
+        Level level = parseLevel(side > 0 ? text : mirrored, "paddle_wheel.json", builtins());
+        REQUIRE(level.bodies.size() == 2);
+        REQUIRE(level.joints.size() == 1);
+        const b2Body* wheel = bodyNamed(level, "wheel");
+        CHECK(wheel->GetType() == b2_dynamicBody);
+        CHECK(bodyNamed(level, "axle")->GetType() == b2_staticBody);
+        // A balanced wheel: it stays put until the water arrives (about 10 frames).
+        play(level, 6);
+        CHECK(std::abs(wheel->GetAngle()) < 1e-3f);
+        // 3 s of simulated time in all.
+        const double ms = play(level, 174);
+        const float angle = wheel->GetAngle(), omega = wheel->GetAngularVelocity();
+        INFO("side " << side << ": angle " << angle << " rad, omega " << omega << " rad/s");
+        // More than one full turn, clockwise (negative) when the stream falls on the right.
+        CHECK(-side * angle > 2.0 * M_PI);
+        CHECK(-side * omega > 2.0);
+        // The revolute joint holds the wheel on its axle.
+        CHECK(std::abs(wheel->GetPosition().x - 0.5f) < 2e-3f);
+        CHECK(std::abs(wheel->GetPosition().y - 0.5f) < 2e-3f);
+        CHECK(test::allFinite(level.world));
+        CHECK(level.world.particleCount() < 3000);
+        std::printf("[measure] paddle_wheel.json (faucet %s of the axle): after 3 s angle %.2f "
+                    "rad, omega %.2f rad/s, %u particles, %.2f ms per frame\n",
+                    side > 0 ? "right" : "left", angle, omega, level.world.particleCount(), ms);
+    }
+}
+
+TEST_CASE("crates.json: bodies as written; light crates float, heavy ones sink",
+          "[level][bodies]") {
+    Level level = parseLevel(readLevel("crates.json"), "crates.json", builtins());
+    REQUIRE(level.bodies.size() == 9);
+    const double areal = box2d::arealDensity(level.world, level.materials[0].second);
+    // The tank walls are Box2D's only (the fluid has its boundary.box): static and dry.
+    const b2Body* tank = bodyNamed(level, "tank");
+    CHECK(tank->GetType() == b2_staticBody);
+    CHECK(tank->GetFixtureList()->GetFilterData().categoryBits == kDryFixtureCategory);
+    // Masses from densityRatio: ratio x areal density x area.
+    CHECK(bodyNamed(level, "cork")->GetMass() == Approx(0.25 * areal * 0.1 * 0.08).epsilon(1e-5));
+    CHECK(bodyNamed(level, "brick")->GetMass() == Approx(2.0 * areal * 0.1 * 0.05).epsilon(1e-5));
+    CHECK(bodyNamed(level, "stone")->GetMass() ==
+          Approx(1.5 * areal * M_PI * 0.035 * 0.035).epsilon(1e-5));
+    CHECK(bodyNamed(level, "hull")->GetMass() ==
+          Approx(0.4 * areal * 0.5 * 0.14 * 0.08).epsilon(1e-5));
+    CHECK(level.world.particleCount() < 3000);
+
+    const double ms = play(level, 120);
+    CHECK(test::allFinite(level.world));
+    for (const auto& [name, body] : level.bodies) {
+        INFO(name);
+        CHECK(finite(body));
+        if (body->GetType() != b2_dynamicBody) {
+            continue;
+        }
+        // Nothing left the tank.
+        CHECK(body->GetPosition().x > 0.0f);
+        CHECK(body->GetPosition().x < 2.0f);
+        CHECK(body->GetPosition().y > 0.0f);
+        CHECK(body->GetPosition().y < 1.0f);
+    }
+    // After 2 s: the brick (2x the water's density) and the stone (1.5x) lie on the floor under
+    // water; the wooden crates float, deeper the denser they are (Archimedes: the submerged
+    // fraction of a floating box is its density ratio, 0.25, 0.5, 0.75).
+    const auto submerged = [&](std::string_view name) {
+        const box2d::BodyReport* report = level.coupling->report(bodyNamed(level, name));
+        REQUIRE(report != nullptr);
+        return report->submergedFraction;
+    };
+    const float brick = bodyNamed(level, "brick")->GetPosition().y;
+    const float stone = bodyNamed(level, "stone")->GetPosition().y;
+    CHECK(brick < 0.05f);
+    CHECK(stone < 0.05f);
+    CHECK(submerged("brick") > 0.9f);
+    CHECK(submerged("stone") > 0.9f);
+    const float cork = submerged("cork"), pine = submerged("pine"), oak = submerged("oak");
+    CHECK(cork > 0.05f);
+    CHECK(cork < pine);
+    CHECK(pine < oak);
+    CHECK(oak < 0.95f);
+    CHECK(bodyNamed(level, "cork")->GetPosition().y > bodyNamed(level, "oak")->GetPosition().y);
+    std::printf("[measure] crates.json after 2 s: brick y %.3f m, stone y %.3f m; submerged "
+                "fraction cork %.2f (ratio 0.25), pine %.2f (0.5), oak %.2f (0.75); %u "
+                "particles, %.2f ms per frame\n",
+                brick, stone, cork, pine, oak, level.world.particleCount(), ms);
+}
