@@ -301,6 +301,7 @@ void BodyBoundary::prepare(const StepContext& context) {
     m_colliders.clear();
     m_boxes.clear();
     m_spacing = context.sampleSpacing;
+    m_frameDt = context.frameDt;
     if (m_physics == nullptr) {
         m_grid.build({}, 1.0f);
         return;
@@ -332,6 +333,8 @@ void BodyBoundary::prepare(const StepContext& context) {
         be.type = int(body->GetType());
         be.com = com;
         be.velocity = velocity;
+        be.angle = angle;
+        be.omega = omega;
         be.colliderBegin = uint32_t(m_colliders.size());
         const glm::dvec2 localCenter = toVec(body->GetLocalCenter());
         const double c = std::cos(angle), s = std::sin(angle);

@@ -113,6 +113,8 @@ struct BodyEntry {
     int type = 0;
     /// Centre of mass (unit: m) and its velocity (unit: m/s) at the start of the step.
     glm::dvec2 com{0.0, 0.0}, velocity{0.0, 0.0};
+    /// Angle (unit: rad) and angular velocity (unit: rad/s) at the start of the step.
+    double angle = 0.0, omega = 0.0;
     /// The fluid's force (unit: N) and torque about `com` (unit: N m), averaged over the step.
     glm::dvec2 force{0.0, 0.0};
     double torque = 0.0;
@@ -165,6 +167,9 @@ public:
     const FixtureEntry& entry(uint32_t index) const { return m_entries[index]; }
     /// Sample spacing of the last `prepare` (unit: m; 0 before).
     double spacing() const { return m_spacing; }
+    /// Frame time of the last `prepare` (unit: s): the bodies stood at com + velocity x
+    /// frameDt, angle + omega x frameDt at the end of the fluid's step.
+    double frameDt() const { return m_frameDt; }
 
 private:
     bool couples(const b2Fixture& fixture) const;
@@ -180,6 +185,7 @@ private:
     std::vector<Box> m_boxes; // per collider: where it sweeps during the step
     BoxGrid m_grid;
     double m_spacing = 0.0;
+    double m_frameDt = 0.0;
 };
 
 } // namespace fluid::box2d

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <unordered_map>
 #include <unordered_set>
@@ -53,7 +54,9 @@ constexpr double kChordDepth = 1.0;
 
 // The area of a convex fixture's outline loop cut off by the chord across its longest run of
 // wet probes (see the Coupling class comment), scaled from the probe polygon to the shape.
-double submergedArea(const FixtureEntry& entry, std::span<const uint8_t> wet, double spacing) {
+double submergedArea(const FixtureEntry& entry, std::span<const uint8_t> wet, double spacing,
+                     double& chordLength) {
+    chordLength = 0.0;
     const std::size_t n = entry.probes.size();
     std::size_t wetCount = 0;
     for (const uint8_t w : wet) {
@@ -121,7 +124,8 @@ double submergedArea(const FixtureEntry& entry, std::span<const uint8_t> wet, do
     // to 1.5 spacings under the far-field surface). The band of one spacing above the chord
     // belongs to the submerged part.
     const glm::dvec2 chord = polygon.back() - polygon.front();
-    const double band = std::sqrt(chord.x * chord.x + chord.y * chord.y) * kChordDepth * spacing;
+    chordLength = std::sqrt(chord.x * chord.x + chord.y * chord.y);
+    const double band = chordLength * kChordDepth * spacing;
     return std::min(entry.area,
                     entry.area * (std::fabs(shoelace(polygon)) + band) / entry.probeArea);
 }
@@ -191,19 +195,21 @@ void Coupling::checkWorld(const World& world, const char* function) const {
 void Coupling::step(World& world, float dt) {
     checkWorld(world, "step");
     world.step(dt);
-    applyForces(world, dt);
-    m_physics->Step(dt, m_def.velocityIterations, m_def.positionIterations);
     makeReports(world);
+    applyForces(dt);
+    remember();
+    m_physics->Step(dt, m_def.velocityIterations, m_def.positionIterations);
 }
 
 void Coupling::stepFluid(World& world, float dt) {
     checkWorld(world, "stepFluid");
     world.step(dt);
-    applyForces(world, dt);
     makeReports(world);
+    applyForces(dt);
+    remember();
 }
 
-void Coupling::applyForces(const World& world, float dt) {
+void Coupling::applyForces(float dt) {
     const std::span<const BodyEntry> bodies = m_boundary->bodies();
     std::unordered_map<const b2Body*, const Previous*> previous; // lookup only
     for (const Previous& p : m_previous) {
@@ -223,23 +229,21 @@ void Coupling::applyForces(const World& world, float dt) {
         }
         // The relaxation for added mass and drag (see the class comment).
         const auto found = previous.find(entry.body);
-        if (found != previous.end()) {
-            const Previous& p = *found->second;
-            double added = 0.0;
-            if (p.submergedArea > 0.0 && p.material < world.materialCount()) {
-                added = p.submergedArea * arealDensity(world, MaterialId{p.material});
-            }
-            const double mass = entry.body->GetMass();
-            const double inertia =
-                entry.body->GetInertia() -
-                mass * b2Dot(entry.body->GetLocalCenter(), entry.body->GetLocalCenter());
-            const double w = mass / (mass + added + dt * entry.drag);
-            const double wr =
-                inertia > 0.0 ? inertia / (inertia * (1.0 + added / mass) + dt * entry.angularDrag)
-                              : 1.0;
-            f = w * f + (1.0 - w) * p.appliedForce;
-            torque = wr * torque + (1.0 - wr) * p.appliedTorque;
-        }
+        const double mass = entry.body->GetMass();
+        const glm::dvec2 center{entry.body->GetLocalCenter().x, entry.body->GetLocalCenter().y};
+        const double inertia =
+            entry.body->GetInertia() - mass * (center.x * center.x + center.y * center.y);
+        const double added = m_addedMass[b];
+        const double w = mass / (mass + added + double(dt) * entry.drag);
+        const double wr =
+            inertia > 0.0
+                ? inertia / (inertia * (1.0 + added / mass) + double(dt) * entry.angularDrag)
+                : 1.0;
+        const glm::dvec2 previousForce =
+            found != previous.end() ? found->second->appliedForce : glm::dvec2(0.0, 0.0);
+        const double previousTorque = found != previous.end() ? found->second->appliedTorque : 0.0;
+        f = w * f + (1.0 - w) * previousForce;
+        torque = wr * torque + (1.0 - wr) * previousTorque;
         m_appliedForce[b] = f;
         m_appliedTorque[b] = torque;
         if (f.x != 0.0 || f.y != 0.0) {
@@ -249,6 +253,15 @@ void Coupling::applyForces(const World& world, float dt) {
         if (torque != 0.0) {
             entry.body->ApplyTorque(float(torque), true);
         }
+    }
+}
+
+void Coupling::remember() {
+    m_previous.clear();
+    for (std::size_t b = 0; b < m_reports.size(); ++b) {
+        const BodyReport& r = m_reports[b];
+        m_previous.push_back({r.body, r.wetPoints > 0, r.material, double(r.submergedArea),
+                              m_appliedForce[b], m_appliedTorque[b]});
     }
 }
 
@@ -270,11 +283,13 @@ void Coupling::makeReports(const World& world) {
         glm::dvec2 com{0.0, 0.0};
         double c = 1.0, s = 0.0;
     };
+    // Where the fluid's step left each body: its start pose moved on by its velocities.
+    const double frameDt = m_boundary->frameDt();
     std::vector<Frame> frames(bodies.size());
     for (std::size_t b = 0; b < bodies.size(); ++b) {
-        const double angle = bodies[b].body->GetAngle();
-        const b2Vec2 com = bodies[b].body->GetWorldCenter();
-        frames[b] = {{com.x, com.y}, std::cos(angle), std::sin(angle)};
+        const BodyEntry& e = bodies[b];
+        const double angle = e.angle + e.omega * frameDt;
+        frames[b] = {e.com + frameDt * e.velocity, std::cos(angle), std::sin(angle)};
     }
     std::vector<Box> boxes(colliders.size());
     for (std::size_t k = 0; k < colliders.size(); ++k) {
@@ -328,6 +343,7 @@ void Coupling::makeReports(const World& world) {
 
     // Reports, in body order.
     m_reports.assign(bodies.size(), BodyReport{});
+    m_addedMass.assign(bodies.size(), 0.0);
     std::vector<uint32_t> counts;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         const BodyEntry& entry = bodies[b];
@@ -335,7 +351,7 @@ void Coupling::makeReports(const World& world) {
         r.body = entry.body;
         r.force = glm::vec2(entry.force);
         r.torque = float(entry.torque);
-        double area = 0.0, submerged = 0.0;
+        double area = 0.0, submerged = 0.0, chords = 0.0;
         counts.clear();
         for (uint32_t k = entry.colliderBegin; k < entry.colliderEnd; ++k) {
             const FixtureEntry& fixture = m_boundary->entry(colliders[k].entry);
@@ -351,14 +367,22 @@ void Coupling::makeReports(const World& world) {
                 }
             }
             if (fixture.area > 0.0) {
+                double chord = 0.0;
                 area += fixture.area;
-                submerged += submergedArea(fixture, flags, spacing);
+                submerged += submergedArea(fixture, flags, spacing, chord);
+                chords += chord * chord;
             }
         }
         r.submergedArea = float(submerged);
         r.submergedFraction = area > 0.0 ? float(std::clamp(submerged / area, 0.0, 1.0)) : 0.0f;
         if (!counts.empty()) {
             r.material = uint16_t(std::max_element(counts.begin(), counts.end()) - counts.begin());
+        }
+        // The added mass the relaxation assumes (see the class comment): the submerged area's,
+        // or, entering the fluid, a plate's as wide as the wet chord at a free surface.
+        if (r.wetPoints > 0 && r.material < world.materialCount()) {
+            m_addedMass[b] = arealDensity(world, MaterialId{r.material}) *
+                             std::max(submerged, std::numbers::pi / 8.0 * chords);
         }
     }
 
@@ -416,12 +440,6 @@ void Coupling::makeReports(const World& world) {
                 m_contacts.push_back({p.body, ContactPhase::End, p.material});
             }
         }
-    }
-    m_previous.clear();
-    for (std::size_t b = 0; b < m_reports.size(); ++b) {
-        const BodyReport& r = m_reports[b];
-        m_previous.push_back({r.body, r.wetPoints > 0, r.material, double(r.submergedArea),
-                              m_appliedForce[b], m_appliedTorque[b]});
     }
 }
 

@@ -210,8 +210,9 @@ public:
 
 private:
     void checkWorld(const World& world, const char* function) const;
-    void applyForces(const World& world, float dt);
+    void applyForces(float dt);
     void makeReports(const World& world);
+    void remember();
 
     // A body after the previous step: wet state for contact events; submerged area, material
     // and the force and torque applied, for the added-mass relaxation.
@@ -233,6 +234,7 @@ private:
     std::vector<Previous> m_previous;
     std::vector<glm::dvec2> m_appliedForce; // per body of the step, in body order
     std::vector<double> m_appliedTorque;
+    std::vector<double> m_addedMass; // per body of the step (kg), for the relaxation
 };
 
 } // namespace fluid::box2d
