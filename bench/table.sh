@@ -1,10 +1,17 @@
 #!/usr/bin/env bash
 # Runs the benchmark rows of bench/README.md one after the other and prints them as markdown
 # table rows (scene, particles, threads, solver, ms per frame, sub-steps, iterations, largest
-# compression, ns per particle per sub-step, peak memory, command). Usage: bench/table.sh [path/to/fluid-bench]
-# Run it on an otherwise idle machine: it takes about ten minutes on 2 cores.
+# compression, ns per particle per sub-step, peak memory, command).
+# Usage: bench/table.sh [path/to/fluid-bench] [all|crates]
+#   all     (default) the rows of the main table; about ten minutes on 2 cores.
+#   crates  the Box2D crates table: the 16k dam and the crates scene with and without coupling,
+#           1 and 2 threads (scene, particles, threads, ms per frame median / mean / p90,
+#           sub-steps, ns per particle per sub-step, peak memory, command); about 12 minutes.
+# Run it on an otherwise idle machine.
 set -euo pipefail
 bench=${1:-build/release/bench/fluid-bench}
+set=${2:-all}
+[[ "$set" == all || "$set" == crates ]] || { echo "bench/table.sh: unknown set '$set' (expected all or crates)" >&2; exit 2; }
 [[ -x "$bench" ]] || { echo "bench/table.sh: no fluid-bench at $bench (build the release preset first)" >&2; exit 1; }
 
 tmp=$(mktemp -d)
@@ -12,14 +19,20 @@ trap 'rm -rf "$tmp"' EXIT
 
 field() { grep -o "$1=[0-9.]*" "$tmp/out" | cut -d= -f2; }
 
-row() {
-    local args="$*" rss="n/a"
+# Runs fluid-bench with the given arguments into $tmp/out; sets rss (peak memory).
+measure() {
+    rss="n/a"
     if [[ -x /usr/bin/time ]]; then
         /usr/bin/time -o "$tmp/rss" -f '%M' "$bench" "$@" > "$tmp/out" 2> /dev/null
         rss=$(awk '{ printf "%.1f MB", $1 / 1024 }' "$tmp/rss")
     else
         "$bench" "$@" > "$tmp/out" 2> /dev/null
     fi
+}
+
+row() {
+    local args="$*" rss
+    measure "$@"
     local scene solver eos iterations
     scene=$(grep -o -- '--scene [a-z]*' <<<"$args" | cut -d' ' -f2)
     solver=$(grep -o 'solver=[a-z-]*' "$tmp/out" | tail -1 | cut -d= -f2)
@@ -32,6 +45,27 @@ row() {
         "$(awk -v e="$(field density_error_max)" 'BEGIN { printf "%.2f", 100 * e }')" \
         "$(field ns_per_particle_substep)" "$rss" "$args"
 }
+
+# A row of the crates table: "crates" with coupling, "crates, not coupled" with --no-coupling.
+crates_row() {
+    local args="$*" rss scene
+    measure "$@"
+    scene=$(grep -o -- '--scene [a-z]*' <<<"$args" | cut -d' ' -f2)
+    if [[ "$args" == *--no-coupling* ]]; then scene="$scene, not coupled"; fi
+    printf '| %s | %s | %s | %s | %s | %s | %s | %s | %s | `fluid-bench %s` |\n' \
+        "$scene" "$(field particles)" "$(field threads)" "$(field ms_per_frame)" \
+        "$(field ms_per_frame_mean)" "$(field ms_per_frame_p90)" "$(field substeps_per_frame)" \
+        "$(field ns_per_particle_substep)" "$rss" "$args"
+}
+
+if [[ "$set" == crates ]]; then
+    for threads in 1 2; do
+        crates_row --scene dam --particles 16000 --frames 60 --warmup 2 --threads $threads
+        crates_row --scene crates --particles 16000 --frames 60 --warmup 2 --threads $threads --no-coupling
+        crates_row --scene crates --particles 16000 --frames 60 --warmup 2 --threads $threads
+    done
+    exit 0
+fi
 
 for particles in 4000 16000; do
     for threads in 1 2; do
