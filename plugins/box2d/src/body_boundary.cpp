@@ -23,6 +23,11 @@ enum Kind : int { kCircle = 0, kPolygon = 1, kEdge = 2, kChain = 3 };
 // the shapes' pose parameters (see KinematicShape::kPoseParams).
 constexpr double kMaxPosition = 1e5;
 constexpr double kMaxSpeed = 1e3;
+// A body whose pose moved this much further than its velocity says since the fluid last saw it
+// (unit: sample spacings; rad) was moved by hand: Box2D's own position correction of contacts
+// stays well under it.
+constexpr double kJump = 2.0;
+constexpr double kJumpAngle = 0.2;
 
 glm::dvec2 toVec(b2Vec2 v) {
     return {double(v.x), double(v.y)};
@@ -312,16 +317,38 @@ void BodyBoundary::prepare(const StepContext& context) {
     const double spacing = context.sampleSpacing;
     const double wetCell = 0.75 * spacing;
     const double frameDt = context.frameDt;
+    m_nextPose.clear();
     uint32_t bodyIndex = 0;
     for (b2Body* body = m_physics->GetBodyList(); body != nullptr;
          body = body->GetNext(), ++bodyIndex) {
         if (!body->IsEnabled()) {
             continue;
         }
-        const glm::dvec2 com = toVec(body->GetWorldCenter());
-        const glm::dvec2 velocity = toVec(body->GetLinearVelocity());
-        const double omega = body->GetAngularVelocity();
-        const double angle = std::remainder(double(body->GetAngle()), 2.0 * std::numbers::pi);
+        // The sweep: from where the fluid last saw the body (the end of its previous step) to
+        // where Box2D has put it now, at constant speed. A body seen for the first time, or one
+        // that jumped (b2Body::SetTransform, or a new body at a destroyed one's address), comes
+        // in along its velocity instead: sweeping a teleport would shove the fluid along the way.
+        const glm::dvec2 endCom = toVec(body->GetWorldCenter());
+        const double endAngle = body->GetAngle();
+        const glm::dvec2 vNow = toVec(body->GetLinearVelocity());
+        const double wNow = body->GetAngularVelocity();
+        glm::dvec2 startCom = endCom - frameDt * vNow;
+        double startAngle = endAngle - frameDt * wNow;
+        const auto last = m_lastPose.find(body);
+        if (last != m_lastPose.end()) {
+            const glm::dvec2 d = (endCom - last->second.com) - frameDt * vNow;
+            const double turn = (endAngle - last->second.angle) - frameDt * wNow;
+            if (std::sqrt(d.x * d.x + d.y * d.y) <= kJump * spacing &&
+                std::fabs(turn) <= kJumpAngle) {
+                startCom = last->second.com;
+                startAngle = last->second.angle;
+            }
+        }
+        m_nextPose.emplace(body, LastPose{endCom, endAngle});
+        const glm::dvec2 com = startCom;
+        const glm::dvec2 velocity = (endCom - startCom) / frameDt;
+        const double omega = (endAngle - startAngle) / frameDt;
+        const double angle = std::remainder(startAngle, 2.0 * std::numbers::pi);
         if (!std::isfinite(com.x) || !std::isfinite(com.y) || !std::isfinite(angle) ||
             std::fabs(com.x) > kMaxPosition || std::fabs(com.y) > kMaxPosition ||
             !(std::fabs(velocity.x) <= kMaxSpeed) || !(std::fabs(velocity.y) <= kMaxSpeed) ||
@@ -434,6 +461,7 @@ void BodyBoundary::prepare(const StepContext& context) {
         collider.entry = remap[collider.entry];
     }
     m_grid.build(m_boxes, std::max(4.0f * context.supportRadius, 0.1f));
+    m_lastPose.swap(m_nextPose);
 }
 
 void BodyBoundary::project(const ProjectContext& context, uint32_t begin, uint32_t end) {

@@ -111,9 +111,11 @@ struct BodyEntry {
     b2Body* body = nullptr;
     /// Box2D body type (b2BodyType).
     int type = 0;
-    /// Centre of mass (unit: m) and its velocity (unit: m/s) at the start of the step.
+    /// Centre of mass at the start of the fluid's step (unit: m) and the velocity it sweeps at
+    /// (unit: m/s): from where the previous step left it to where Box2D has put it.
     glm::dvec2 com{0.0, 0.0}, velocity{0.0, 0.0};
-    /// Angle (unit: rad) and angular velocity (unit: rad/s) at the start of the step.
+    /// Angle at the start (unit: rad, in [-pi, pi]) and the angular velocity of the sweep
+    /// (unit: rad/s).
     double angle = 0.0, omega = 0.0;
     /// The fluid's force (unit: N) and torque about `com` (unit: N m), averaged over the step.
     glm::dvec2 force{0.0, 0.0};
@@ -186,6 +188,13 @@ private:
     BoxGrid m_grid;
     double m_spacing = 0.0;
     double m_frameDt = 0.0;
+    // Where each body stood at the end of the fluid's last step (centre of mass, angle):
+    // lookup only, never iterated.
+    struct LastPose {
+        glm::dvec2 com{0.0, 0.0};
+        double angle = 0.0;
+    };
+    std::unordered_map<const b2Body*, LastPose> m_lastPose, m_nextPose;
 };
 
 } // namespace fluid::box2d

@@ -194,11 +194,11 @@ void Coupling::checkWorld(const World& world, const char* function) const {
 
 void Coupling::step(World& world, float dt) {
     checkWorld(world, "step");
-    world.step(dt);
-    makeReports(world);
-    applyForces(dt);
-    remember();
+    if (!(dt > 0.0f && dt <= 1.0f)) {
+        world.step(dt); // throws World::step's own message, before Box2D moves anything
+    }
     m_physics->Step(dt, m_def.velocityIterations, m_def.positionIterations);
+    stepFluid(world, dt);
 }
 
 void Coupling::stepFluid(World& world, float dt) {
@@ -216,6 +216,7 @@ void Coupling::applyForces(float dt) {
         previous.emplace(p.body, &p);
     }
     m_appliedForce.assign(bodies.size(), glm::dvec2(0.0, 0.0));
+    m_buoyancy.assign(bodies.size(), glm::dvec2(0.0, 0.0));
     m_appliedTorque.assign(bodies.size(), 0.0);
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         const BodyEntry& entry = bodies[b];
@@ -239,11 +240,33 @@ void Coupling::applyForces(float dt) {
             inertia > 0.0
                 ? inertia / (inertia * (1.0 + added / mass) + double(dt) * entry.angularDrag)
                 : 1.0;
-        const glm::dvec2 previousForce =
-            found != previous.end() ? found->second->appliedForce : glm::dvec2(0.0, 0.0);
+        // Hydrostatic part, from this step's submerged area: it follows the body's position
+        // at once (relaxing it too would delay the buoyancy spring and pump energy into a
+        // floating body's bobbing). The rest (added mass, drag, waves) is relaxed.
+        const b2Vec2 g2 = m_physics->GetGravity();
+        const glm::dvec2 buoyancy =
+            -m_displaced[b] * double(entry.body->GetGravityScale()) * glm::dvec2(g2.x, g2.y);
+        const glm::dvec2 previousForce = found != previous.end()
+                                             ? found->second->appliedForce - found->second->buoyancy
+                                             : glm::dvec2(0.0, 0.0);
         const double previousTorque = found != previous.end() ? found->second->appliedTorque : 0.0;
-        f = w * f + (1.0 - w) * previousForce;
+        f = buoyancy + w * (f - buoyancy) + (1.0 - w) * previousForce;
         torque = wr * torque + (1.0 - wr) * previousTorque;
+        // The fluid held the body's sweep velocity for the whole step, so it pushed back for
+        // the whole step; what it does beyond the hydrostatic part may slow the body to rest in
+        // one frame, never throw it back (a crate slammed flat onto water would bounce off).
+        const double speed =
+            std::sqrt(entry.velocity.x * entry.velocity.x + entry.velocity.y * entry.velocity.y);
+        if (speed > 0.0) {
+            const glm::dvec2 u = entry.velocity / speed;
+            const glm::dvec2 dynamic = f - buoyancy;
+            const double against = -(dynamic.x * u.x + dynamic.y * u.y);
+            const double limit = mass * speed / double(dt);
+            if (against > limit) {
+                f += (against - limit) * u;
+            }
+        }
+        m_buoyancy[b] = buoyancy;
         m_appliedForce[b] = f;
         m_appliedTorque[b] = torque;
         if (f.x != 0.0 || f.y != 0.0) {
@@ -261,7 +284,7 @@ void Coupling::remember() {
     for (std::size_t b = 0; b < m_reports.size(); ++b) {
         const BodyReport& r = m_reports[b];
         m_previous.push_back({r.body, r.wetPoints > 0, r.material, double(r.submergedArea),
-                              m_appliedForce[b], m_appliedTorque[b]});
+                              m_appliedForce[b], m_appliedTorque[b], m_buoyancy[b]});
     }
 }
 
@@ -344,6 +367,7 @@ void Coupling::makeReports(const World& world) {
     // Reports, in body order.
     m_reports.assign(bodies.size(), BodyReport{});
     m_addedMass.assign(bodies.size(), 0.0);
+    m_displaced.assign(bodies.size(), 0.0);
     std::vector<uint32_t> counts;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         const BodyEntry& entry = bodies[b];
@@ -381,8 +405,9 @@ void Coupling::makeReports(const World& world) {
         // The added mass the relaxation assumes (see the class comment): the submerged area's,
         // or, entering the fluid, a plate's as wide as the wet chord at a free surface.
         if (r.wetPoints > 0 && r.material < world.materialCount()) {
-            m_addedMass[b] = arealDensity(world, MaterialId{r.material}) *
-                             std::max(submerged, std::numbers::pi / 8.0 * chords);
+            const double rho = arealDensity(world, MaterialId{r.material});
+            m_addedMass[b] = rho * std::max(submerged, std::numbers::pi / 8.0 * chords);
+            m_displaced[b] = rho * submerged;
         }
     }
 

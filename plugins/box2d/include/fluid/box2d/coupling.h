@@ -75,7 +75,8 @@ struct SplashEvent {
     b2Body* body = nullptr;
     /// Mean position of the body's wet outline points (unit: m): where the splash is.
     glm::vec2 position{0.0f, 0.0f};
-    /// Speed of the body's centre of mass at the start of the step (unit: m/s).
+    /// Speed of the body's centre of mass during the fluid's step (unit: m/s): from where the
+    /// previous step left it to where Box2D put it, over dt.
     float speed = 0.0f;
     /// The material it hit (index in the world's materials).
     uint16_t material = 0;
@@ -118,32 +119,40 @@ class BodyBoundary;
 /// about it: buoyancy and drag come out of the fluid, not a formula.
 ///
 /// One frame (`step`):
-///   1. the fluid world steps by dt; during its sub-steps every body moves rigidly with the
-///      velocity it had at the start (centre of mass along a line, turning at its angular
-///      velocity);
-///   2. the reports (`bodies`), splashes and contact events are made from the particles and
-///      the poses where step 1 left the bodies (start pose + velocity x dt);
-///   3. the fluid's force and torque on each body, averaged over the sub-steps, are applied
-///      to dynamic bodies (`b2Body::ApplyForce` at the centre of mass, `ApplyTorque`, waking
-///      the body), relaxed for added mass and drag (below);
-///   4. the `b2World` steps by dt.
+///   1. the `b2World` steps by dt, with the fluid's forces of the previous frame applied to its
+///      dynamic bodies (and whatever the game applied);
+///   2. the fluid world steps by dt; during its sub-steps every body sweeps rigidly from where
+///      the fluid last saw it to where Box2D has just put it (centre of mass along a line,
+///      turning at a constant rate), so the fluid ends the frame exactly around the bodies'
+///      poses; a body seen for the first time, or moved by hand (`b2Body::SetTransform`, a
+///      jump of more than two sample spacings beyond its velocity), comes in along its
+///      velocity instead of sweeping the fluid along the jump;
+///   3. the reports (`bodies`), splashes and contact events are made from the particles and
+///      the bodies' poses;
+///   4. the fluid's force and torque on each dynamic body, averaged over the sub-steps and
+///      relaxed (below), are applied (`b2Body::ApplyForce` at the centre of mass,
+///      `ApplyTorque`, waking the body): Box2D integrates them at the next frame's step 1.
 /// The order does not change with the number of fluid sub-steps. A game that steps Box2D
-/// itself calls `stepFluid(dt)` (steps 1 to 3) and then `b2World::Step(dt, ...)`.
+/// itself calls its own `b2World::Step(dt, ...)` and then `stepFluid(world, dt)` (steps 2-4);
+/// the forces wait in the bodies for its next `Step` (`b2World::SetAutoClearForces` must stay
+/// on, its default).
 ///
-/// Added mass and drag: the fluid solver holds the fluid incompressible, so it answers a
-/// body's change of velocity at once with a force that, for a light body (the fluid it pushes
-/// aside weighs more than it does), overshoots: the body and the fluid would trade ever larger
-/// kicks from frame to frame; a viscous fluid's drag, applied explicitly, overshoots the same
-/// way. The force applied is therefore relaxed: F_applied = w F + (1 - w) F_applied(previous
-/// step), w = m / (m + m_added + dt c), where c is the drag rate the fluid reports for the
-/// body's samples (N s/m) and m_added = the areal density of the material touched x the
-/// larger of the submerged area (a submerged disc's added mass in 2D potential flow) and
-/// pi/8 x the wet chord^2 (a plate entering a free surface); the torque likewise, with the
-/// moment of inertia. This is the implicit answer to "the fluid's reaction is proportional to
-/// the body's acceleration": a steady force (buoyancy at rest, steady drag) is applied
-/// unchanged, a dry body gets the force as is (w = 1), a crate hitting the water is stopped
-/// rather than bounced back, and a light body responds to a change over a few frames, as a
-/// ball held under water does.
+/// Relaxation: the fluid solver holds the fluid incompressible, so it answers a body's change
+/// of velocity at once with a force that, for a light body (the fluid it pushes aside weighs
+/// more than it does), overshoots: the body and the fluid would trade ever larger kicks from
+/// frame to frame; a viscous fluid's drag, applied explicitly, overshoots the same way. So:
+///   - the hydrostatic part, the areal density of the material touched x the submerged area
+///     x -gravity (Box2D's gravity x the body's gravity scale), is applied as measured;
+///   - the rest D is relaxed: D_applied = w D + (1 - w) D_applied(previous step),
+///     w = m / (m + m_added + dt c), c the drag rate the fluid reports for the body's samples
+///     (N s/m), m_added = the areal density x the larger of the submerged area (a submerged
+///     disc's added mass in 2D potential flow) and pi/8 x the wet chord^2 (a plate entering a
+///     free surface); the torque likewise with the moment of inertia, whole;
+///   - the fluid held the body's sweep velocity for the whole step, so it pushed back for the
+///     whole step: the part of D against the body's motion is capped at m |v| / dt, which
+///     stops the body in one frame but never throws it back.
+/// Steady forces (buoyancy at rest, steady drag) are applied unchanged; a dry body gets the
+/// force as is (w = 1).
 ///
 /// Submerged area: each circle and polygon fixture carries points along its outline at the
 /// world's sample spacing; a point is wet when a particle centre lies within 0.75 spacing of it.
@@ -188,11 +197,12 @@ public:
 
     /// One game frame (see the class comment): fluid step, forces to bodies, Box2D step, reports.
     /// `world` must be the world given to the constructor (it may have been moved since);
-    /// `dt` as `World::step` (unit: s; range (0, 1]). Throws `fluid::Error` for another world,
-    /// and what `World::step` throws (bodies are then left untouched).
+    /// `dt` as `World::step` (unit: s; range (0, 1]). Throws `fluid::Error` for another world or
+    /// a bad dt (before anything moves), and what `World::step` throws (Box2D has stepped by
+    /// then; the fluid is left unchanged).
     void step(World& world, float dt);
-    /// Steps 1 to 3 of `step` without stepping Box2D: for games that call
-    /// `b2World::Step(dt, ...)` themselves, right after this. Same arguments and errors.
+    /// Steps 2 to 4 of `step`, for games that call `b2World::Step(dt, ...)` themselves: call
+    /// it right after that. Same arguments and errors.
     void stepFluid(World& world, float dt);
 
     /// The settings.
@@ -230,6 +240,7 @@ private:
         double submergedArea = 0.0;
         glm::dvec2 appliedForce{0.0, 0.0};
         double appliedTorque = 0.0;
+        glm::dvec2 buoyancy{0.0, 0.0}; // the hydrostatic part of appliedForce (N)
     };
 
     b2World* m_physics;
@@ -241,7 +252,9 @@ private:
     std::vector<Previous> m_previous;
     std::vector<glm::dvec2> m_appliedForce; // per body of the step, in body order
     std::vector<double> m_appliedTorque;
-    std::vector<double> m_addedMass; // per body of the step (kg), for the relaxation
+    std::vector<double> m_addedMass;    // per body of the step (kg), for the relaxation
+    std::vector<double> m_displaced;    // fluid mass displaced (kg): submerged area x density
+    std::vector<glm::dvec2> m_buoyancy; // its weight against gravity (N), applied unrelaxed
 };
 
 } // namespace fluid::box2d
