@@ -5,8 +5,9 @@
 # Usage: bench/table.sh [path/to/fluid-bench] [all|crates]
 #   all     (default) the rows of the main table; about ten minutes on 2 cores.
 #   crates  the Box2D crates table: the 16k dam and the crates scene with and without coupling,
-#           1 and 2 threads (scene, particles, threads, ms per frame median / mean / p90,
-#           sub-steps, ns per particle per sub-step, peak memory, command); about 12 minutes.
+#           1 and 2 threads (scene, particles, threads, ms per frame median / mean / p90, CPU ms
+#           per frame, sub-steps, ns per particle per sub-step, largest compression, peak
+#           memory, command); about 6 minutes.
 # Run it on an otherwise idle machine.
 set -euo pipefail
 bench=${1:-build/release/bench/fluid-bench}
@@ -17,7 +18,8 @@ set=${2:-all}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-field() { grep -o "$1=[0-9.]*" "$tmp/out" | cut -d= -f2; }
+# A field of the machine-readable last line (matched whole: "ms_per_frame" is not "cpu_ms_per_frame").
+field() { tail -1 "$tmp/out" | grep -oE "(^| )$1=[0-9.]+" | cut -d= -f2; }
 
 # Runs fluid-bench with the given arguments into $tmp/out; sets rss (peak memory).
 measure() {
@@ -52,10 +54,11 @@ crates_row() {
     measure "$@"
     scene=$(grep -o -- '--scene [a-z]*' <<<"$args" | cut -d' ' -f2)
     if [[ "$args" == *--no-coupling* ]]; then scene="$scene, not coupled"; fi
-    printf '| %s | %s | %s | %s | %s | %s | %s | %s | %s | `fluid-bench %s` |\n' \
+    printf '| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s%% | %s | `fluid-bench %s` |\n' \
         "$scene" "$(field particles)" "$(field threads)" "$(field ms_per_frame)" \
-        "$(field ms_per_frame_mean)" "$(field ms_per_frame_p90)" "$(field substeps_per_frame)" \
-        "$(field ns_per_particle_substep)" "$rss" "$args"
+        "$(field ms_per_frame_mean)" "$(field ms_per_frame_p90)" "$(field cpu_ms_per_frame)" \
+        "$(field substeps_per_frame)" "$(field ns_per_particle_substep)" \
+        "$(awk -v e="$(field density_error_max)" 'BEGIN { printf "%.2f", 100 * e }')" "$rss" "$args"
 }
 
 if [[ "$set" == crates ]]; then
