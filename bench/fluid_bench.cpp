@@ -237,8 +237,10 @@ std::pair<float, float> verticalExtent(const b2Body& body) {
     return {lo, hi};
 }
 
-/// Water surface next to a body (unit: m): the highest particle in the strips three spacings
-/// wide either side of its AABB, averaged over the strips that hold water; -1 if neither does.
+/// Water surface next to a body (unit: m): half a spacing above the highest particle in the
+/// strips three spacings wide either side of its AABB (a particle stands for an s x s cell, so
+/// the free surface lies half a cell above the top centres), averaged over the strips that hold
+/// water; -1 if neither does.
 float surfaceBeside(const fluid::World& world, float s, const b2AABB& box) {
     const auto px = world.positionX();
     const auto py = world.positionY();
@@ -250,7 +252,11 @@ float surfaceBeside(const fluid::World& world, float s, const b2AABB& box) {
             right = std::max(right, py[i]);
         }
     }
-    return left < 0.0f ? right : right < 0.0f ? left : 0.5f * (left + right);
+    if (left < 0.0f && right < 0.0f) {
+        return -1.0f;
+    }
+    const float top = left < 0.0f ? right : right < 0.0f ? left : 0.5f * (left + right);
+    return top + 0.5f * s;
 }
 
 /// Share of a body's area below height `level` (unit: 1), sampled on a 32 x 32 grid over its
