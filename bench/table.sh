@@ -7,7 +7,7 @@
 #   crates  the Box2D crates table: the 16k dam and the crates scene with and without coupling,
 #           1 and 2 threads (scene, particles, threads, ms per frame median / mean / p90, CPU ms
 #           per frame, sub-steps, ns per particle per sub-step, largest compression, peak
-#           memory, command); about 6 minutes.
+#           memory, command); about two minutes.
 # Run it on an otherwise idle machine.
 set -euo pipefail
 bench=${1:-build/release/bench/fluid-bench}
