@@ -227,7 +227,7 @@ private:
                      "fixtures"});
         // An unnamed body is "body<k>": the name it has in Level::bodies, joints and fluid-run.
         const bool named = b.has("name");
-        const std::string name = named ? nonEmptyName(b, "body") : "body" + str(index);
+        const std::string name = named ? requiredName(b, "body") : "body" + str(index);
         m_bodyNames.add(m_doc, name, named ? b.pointer("name") : at, m_level.bodies.size());
 
         const std::string typeName = b.string("type", "dynamic");
@@ -473,7 +473,7 @@ private:
         j.allowOnly({"type", "name", "bodyA", "bodyB", "anchor", "collideConnected", "enableMotor",
                      "motorSpeed", "maxMotorTorque", "enableLimit", "lowerAngle", "upperAngle"});
         const bool named = j.has("name");
-        const std::string name = named ? nonEmptyName(j, "joint") : "joint" + str(index);
+        const std::string name = named ? requiredName(j, "joint") : "joint" + str(index);
         m_jointNames.add(m_doc, name, named ? j.pointer("name") : at, m_level.joints.size());
 
         const std::string nameA = j.requiredString("bodyA", "the name of a body");
@@ -499,15 +499,6 @@ private:
                                        formatNumber(def.upperAngle));
         }
         m_level.joints.emplace_back(name, m_level.physics->CreateJoint(&def));
-    }
-
-    std::string nonEmptyName(const ObjectReader& o, std::string_view what) const {
-        const std::string name =
-            o.requiredString("name", "the " + std::string(what) + "'s name (a string)");
-        if (name.empty()) {
-            o.failAt("name", "expected a non-empty name");
-        }
-        return name;
     }
 
     const JsonDocument& m_doc;

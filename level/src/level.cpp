@@ -225,7 +225,7 @@ private:
                 allowed.push_back(f.key);
             }
             m.allowOnly(allowed);
-            const std::string name = readName(m, "material");
+            const std::string name = requiredName(m, "material");
             const std::string preset = m.string("preset", "water");
             Material material;
             if (preset == "water") {
@@ -263,7 +263,7 @@ private:
                 p.failAt("type", "unknown plugin type '" + type + "'; known: " + joined(known));
             }
             const bool named = p.has("name");
-            const std::string name = named ? readName(p, "plugin") : type;
+            const std::string name = named ? requiredName(p, "plugin") : type;
             std::unique_ptr<ForcePlugin> force;
             std::unique_ptr<BoundaryPlugin> boundary;
             located(m_doc, at, [&] {
@@ -474,7 +474,7 @@ private:
             const ObjectReader e(m_doc, (*list)[i], at, "an emitter");
             e.allowOnly({"name", "material", "position", "direction", "speed", "width", "rate",
                          "maxCount", "lifetime", "jitter", "seed"});
-            const std::string name = readName(e, "emitter");
+            const std::string name = requiredName(e, "emitter");
             EmitterDef def;
             def.material =
                 m_materials.find(m_doc, e.requiredString("material", "the name of a material"),
@@ -504,7 +504,7 @@ private:
             const ObjectReader d(m_doc, (*list)[i], at, "a drain");
             DrainDef def;
             def.shape = readShape(d, {"name", "material"});
-            const std::string name = readName(d, "drain");
+            const std::string name = requiredName(d, "drain");
             if (d.has("material")) {
                 def.onlyMaterial = true;
                 def.material =
@@ -524,7 +524,7 @@ private:
             const ObjectReader s(m_doc, (*list)[i], at, "a sensor");
             SensorDef def;
             def.shape = readShape(s, {"name"});
-            const std::string name = readName(s, "sensor");
+            const std::string name = requiredName(s, "sensor");
             const SensorId id = located(m_doc, at, [&] { return m_level.world.addSensor(def); });
             m_sensorNames.add(m_doc, name, s.pointer("name"), id);
             m_level.sensors.emplace_back(name, id);
@@ -577,16 +577,6 @@ private:
         goal.timeLimit = g.number("timeLimit", kLifetime, 0.0);
         goal.description = g.string("description", "");
         goal.present = true;
-    }
-
-    // ---- names ---------------------------------------------------------------------------
-    std::string readName(const ObjectReader& o, std::string_view what) const {
-        const std::string name =
-            o.requiredString("name", "the " + std::string(what) + "'s name (a string)");
-        if (name.empty()) {
-            o.failAt("name", "expected a non-empty name");
-        }
-        return name;
     }
 
     const JsonDocument& m_doc;

@@ -13,6 +13,16 @@
 
 namespace fluid::detail {
 
+// The required, non-empty "name" of a block; `what` names the block in the message.
+inline std::string requiredName(const ObjectReader& o, std::string_view what) {
+    const std::string name =
+        o.requiredString("name", "the " + std::string(what) + "'s name (a string)");
+    if (name.empty()) {
+        o.failAt("name", "expected a non-empty name");
+    }
+    return name;
+}
+
 // "a, b, c" for messages; long lists are cut ("... and 40 more").
 inline std::string joined(const std::vector<std::string>& names) {
     constexpr std::size_t kShown = 20;
