@@ -71,7 +71,9 @@ void pbfConstraint(WorldState& s, const PbfConstants& c) {
             const float gradX = fluidX + wallX, gradY = fluidY + wallY;
             const float others = vi * vi * kG * kG * laneSum(sq);
             p.constraint[i] = constraint;
-            p.diagonal[i] = wm[i] * (gradX * gradX + gradY * gradY) + others + c.epsilon;
+            const float least = c.floorShare * s.constants[p.material[i]].diagonal;
+            p.diagonal[i] =
+                std::max(wm[i] * (gradX * gradX + gradY * gradY) + others, least) + c.epsilon;
             p.density[i] = p.restDensity[i] * number;
             p.invRho[i] = 1.0f / p.density[i];
         }

@@ -12,6 +12,7 @@ struct PbfConstants {
     float dt = 0;           // sub-step (s)
     float sampleVolume = 0; // V_w, area of a boundary sample (m^2)
     float epsilon = 0;      // regulariser of the multiplier's denominator (1/(kg m^2))
+    float floorShare = 0;   // least denominator, as a share of the material's lattice diagonal
     float artificial = 0;   // s_corr scale: 2 depth dt^2 (unit: m s^2, times Pa m^4 per pair)
     float invWdq = 0;       // 1 / ((1-dq)^4 (1+4 dq)): s_corr's kernel ratio at r = dq h
 };

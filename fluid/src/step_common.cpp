@@ -31,18 +31,24 @@ void refreshConstants(WorldState& s) {
         const double spacing = particleSpacing(mat, s.def.depth);
         const double h = mat.smoothingDistance;
         const int reach = static_cast<int>(std::ceil(h / spacing));
-        double sum = 0.0;
+        double sum = 0.0, gradients = 0.0;
         c.neighbours = 0.0f;
         for (int a = -reach; a <= reach; ++a) {
             for (int b = -reach; b <= reach; ++b) {
-                if ((a != 0 || b != 0) && spacing * std::sqrt(double(a * a + b * b)) < h) {
+                const double r = spacing * std::sqrt(double(a * a + b * b));
+                if ((a != 0 || b != 0) && r < h) {
                     c.neighbours += 1.0f;
+                    // |grad W|^2 = (kG / h^4 (1 - q)^3 r)^2, as pbfConstraint sums it.
+                    const double t = 1.0 - r / h;
+                    const double g = double(kG) * t * t * t * r / (h * h * h * h);
+                    gradients += g * g;
                 }
-                sum += double(
-                    kernel::wendland(float(spacing * std::sqrt(double(a * a + b * b))), float(h)));
+                sum += double(kernel::wendland(float(r), float(h)));
             }
         }
         c.lattice = float(sum * spacing * spacing);
+        const double volume = spacing * spacing / double(c.lattice);
+        c.diagonal = float(volume * volume * gradients / double(mat.mass));
     }
 }
 
