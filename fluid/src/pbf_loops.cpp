@@ -321,7 +321,68 @@ void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surf
     }
 }
 
-void pbfSampleForces(WorldState& s, const PbfConstants& c, float weight) {
+void pbfSamplePush(WorldState& s, const PbfConstants& c, std::span<const float> change,
+                   float omega, bool first) {
+    const Particles& p = s.particles;
+    Samples& w = s.samples;
+    const float* __restrict px = p.px.data();
+    const float* __restrict py = p.py.data();
+    const float* __restrict hs = p.h.data();
+    const float* __restrict il = p.invLattice.data();
+    const float* __restrict dl = change.data();
+    const auto count = static_cast<uint32_t>(w.reporting.size());
+    if (first) {
+        w.pushX.assign(count, 0.0f);
+        w.pushY.assign(count, 0.0f);
+        w.pushPrevX.assign(count, 0.0f);
+        w.pushPrevY.assign(count, 0.0f);
+    }
+    const float invDt2 = 1.0f / (c.dt * c.dt);
+    parallelFor(s.tasks, count, kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t r = b; r < e; ++r) {
+            const uint32_t k = w.reporting[r];
+            const float xw = w.px[k], yw = w.py[k];
+            float accX[kLanes] = {}, accY[kLanes] = {};
+            s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
+                lanes(jb, je, [&](size_t j, int l) {
+                    const float dx = px[j] - xw, dy = py[j] - yw;
+                    const float invH = 1.0f / hs[j];
+                    const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
+                    const float invH4 = (invH * invH) * (invH * invH);
+                    // pbfDisplace's wall term moves j by w_j kG dl_j V_w L_j h^-4 t^3 (x_j - x_w).
+                    const float f = -dl[j] * il[j] * kG * invH4 * (t * t * t);
+                    accX[l] += f * dx;
+                    accY[l] += f * dy;
+                });
+            });
+            const float fx = c.sampleVolume * invDt2 * laneSum(accX);
+            const float fy = c.sampleVolume * invDt2 * laneSum(accY);
+            if (first) {
+                w.pushX[r] = fx;
+                w.pushY[r] = fy;
+            } else {
+                // As the positions: x_k+1 = omega (x_k + d_k - x_k-1) + x_k-1.
+                const float x = omega * (w.pushX[r] + fx - w.pushPrevX[r]) + w.pushPrevX[r];
+                const float y = omega * (w.pushY[r] + fy - w.pushPrevY[r]) + w.pushPrevY[r];
+                w.pushPrevX[r] = w.pushX[r];
+                w.pushPrevY[r] = w.pushY[r];
+                w.pushX[r] = x;
+                w.pushY[r] = y;
+            }
+        }
+    });
+}
+
+void pbfDeliverPush(WorldState& s, float weight) {
+    Samples& w = s.samples;
+    for (uint32_t r = 0; r < w.pushX.size(); ++r) {
+        const uint32_t k = w.reporting[r];
+        w.fx[w.source[k]] += weight * w.pushX[r];
+        w.fy[w.source[k]] += weight * w.pushY[r];
+    }
+}
+
+void pbfSampleFriction(WorldState& s, const PbfConstants& c, float scale, float weight) {
     const Particles& p = s.particles;
     Samples& w = s.samples;
     const float* __restrict px = p.px.data();
@@ -329,13 +390,13 @@ void pbfSampleForces(WorldState& s, const PbfConstants& c, float weight) {
     const float* __restrict vx = p.vx.data();
     const float* __restrict vy = p.vy.data();
     const float* __restrict hs = p.h.data();
-    const float* __restrict lambda = p.lambdaTotal.data();
     const float* __restrict mu = p.viscosity.data();
     const float* __restrict vol = p.volume.data();
     const float depth = s.def.depth;
-    const float invDt2 = 1.0f / (c.dt * c.dt);
-    parallelFor(s.tasks, w.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
-        for (uint32_t k = b; k < e; ++k) {
+    const auto count = static_cast<uint32_t>(w.reporting.size());
+    parallelFor(s.tasks, count, kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t r = b; r < e; ++r) {
+            const uint32_t k = w.reporting[r];
             const float xw = w.px[k], yw = w.py[k];
             const float vxw = w.vx[k], vyw = w.vy[k], friction = w.friction[k];
             float accX[kLanes] = {}, accY[kLanes] = {}, accD[kLanes] = {};
@@ -345,18 +406,18 @@ void pbfSampleForces(WorldState& s, const PbfConstants& c, float weight) {
                     const float invH = 1.0f / hs[j];
                     const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
                     const float invH4 = (invH * invH) * (invH * invH);
-                    // The wall's push on particle j is lambda_j V_w grad W_jw / dt^2; its
-                    // friction is m_j mu_j/rho0_j f V_w L (v_w - v_j), m_j/rho0_j = V_j depth.
-                    const float fp = -lambda[j] * invDt2 * kG * invH4 * (t * t * t);
+                    // pbfViscosity's wall friction on j: m_j mu_j/rho0_j f V_w L (v_w - v_j),
+                    // m_j/rho0_j = V_j depth.
                     const float fv = depth * vol[j] * friction * mu[j] * kL * invH4 * t;
-                    accX[l] += fp * dx - fv * (vxw - vx[j]);
-                    accY[l] += fp * dy - fv * (vyw - vy[j]);
+                    accX[l] -= fv * (vxw - vx[j]);
+                    accY[l] -= fv * (vyw - vy[j]);
                     accD[l] += fv;
                 });
             });
-            w.fx[w.source[k]] += weight * c.sampleVolume * laneSum(accX);
-            w.fy[w.source[k]] += weight * c.sampleVolume * laneSum(accY);
-            w.drag[w.source[k]] += weight * c.sampleVolume * laneSum(accD);
+            const float share = weight * scale * c.sampleVolume;
+            w.fx[w.source[k]] += share * laneSum(accX);
+            w.fy[w.source[k]] += share * laneSum(accY);
+            w.drag[w.source[k]] += share * laneSum(accD);
         }
     });
 }

@@ -42,9 +42,22 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first)
 /// curvature [Akinci 2013], added to vx, vy over dt. Needs vorticity, normals and density.
 void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surfaceTension);
 
-/// The fluid's force on each boundary sample over the sub-step (N): the reaction to the
-/// constraint's wall term (lambda / dt^2) and to wall friction, times `weight`, added in
-/// concatenation order.
-void pbfSampleForces(WorldState& s, const PbfConstants& c, float weight);
+/// The reaction of each reporting sample (`Samples::reporting`) to one density sweep: the
+/// sweep's wall term moves particle j by w_j dl_j V_j... (see pbfDisplace) at the current
+/// positions, and the sample takes -m_j times that over dt^2 (N). Called right after
+/// `pbfDisplace` with the same multipliers `change`; the pushes follow the positions'
+/// Chebyshev recurrence with `omega` (`first`: the sub-step's first sweep starts them), so at
+/// the end of the solve they hold exactly the momentum the walls gave the particles.
+void pbfSamplePush(WorldState& s, const PbfConstants& c, std::span<const float> change,
+                   float omega, bool first);
+
+/// Adds the reporting samples' pushes of the sub-step, times `weight`, to their forces (in
+/// concatenation order).
+void pbfDeliverPush(WorldState& s, float weight);
+
+/// The reaction of each reporting sample to one viscosity pass's wall friction (N), with the
+/// velocities the pass reads (call it before `pbfViscosity` with the same `scale`), times
+/// `weight`, added to the sample's force and drag rate.
+void pbfSampleFriction(WorldState& s, const PbfConstants& c, float scale, float weight);
 
 } // namespace fluid::detail

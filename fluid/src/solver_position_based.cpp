@@ -114,7 +114,8 @@ void applyCorrections(WorldState& s) {
 // may take back a push, never pull), and moves the particles by the displacement of the
 // change. Positions are Chebyshev-accelerated between sweeps [Wang 2015]:
 // x_k+1 = omega_k+1 (x^_k+1 - x_k-1) + x_k-1.
-void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations, Profile& prof) {
+void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations, bool push,
+                  Profile& prof) {
     Particles& p = s.particles;
     std::vector<float>& change = p.dLambda;
     std::vector<float>& prevX = p.prevX;
@@ -153,6 +154,9 @@ void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations, Pro
             const float rho2 = kChebyshev * kChebyshev;
             omega =
                 it == 0 ? 1.0f : (it == 1 ? 2.0f / (2.0f - rho2) : 4.0f / (4.0f - rho2 * omega));
+            if (push) {
+                pbfSamplePush(s, c, change, omega, it == 0);
+            }
             if (it == 0) {
                 each(s, [&](uint32_t i) {
                     prevX[i] = 0.0f;
@@ -269,18 +273,26 @@ void stepPositionBased(WorldState& s, float frameDt) {
             placeSamples(s, endInStep, facts.maxSupport, moving || sub == 0);
         });
         timed(prof.density, [&] { pbfConstraint(s, c); });
-        solveDensity(s, c, settings.iterations, prof);
+        solveDensity(s, c, settings.iterations, facts.wantsForces, prof);
         timed(prof.integrate, [&] { updateVelocity(s, dt); });
         timed(prof.forces, [&] {
+            // Each force on a reporting sample is the reaction to what the solver did to the
+            // particles, with the positions and velocities it did it with: the fluid's
+            // momentum change is the bodies' (up to the correction limit, kMaxCorrection).
+            const float weight = dt / frameDt;
+            if (facts.wantsForces) {
+                pbfDeliverPush(s, weight);
+            }
+            const float passScale = 1.0f / float(viscosityPasses);
             for (uint32_t pass = 0; pass < viscosityPasses; ++pass) {
-                pbfViscosity(s, c, 1.0f / float(viscosityPasses), pass == 0);
+                if (facts.wantsForces) {
+                    pbfSampleFriction(s, c, passScale, weight);
+                }
+                pbfViscosity(s, c, passScale, pass == 0);
                 p.vx.swap(p.ax);
                 p.vy.swap(p.ay);
             }
             pbfSurface(s, c, settings.vorticity, facts.surfaceTension);
-            if (facts.wantsForces) {
-                pbfSampleForces(s, c, dt / frameDt);
-            }
         });
         timed(prof.boundaries, [&] {
             projectBoundaries(s, dt, endInStep, endInStep, facts.sampleSpacing, p.ox, p.oy);

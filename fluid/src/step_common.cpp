@@ -98,6 +98,14 @@ void placeSamples(WorldState& s, float t, float cellSize, bool rebuild) {
     out.friction.resize(total);
     out.pressure.assign(total, 0.0f);
     out.source.assign(order.begin(), order.end());
+    std::vector<uint8_t> wants(total, 0);
+    for (size_t p = 0; p < s.boundaries.size(); ++p) {
+        if (s.boundaries[p]->wantsForces()) {
+            std::fill(wants.begin() + out.pluginBegin[p], wants.begin() + out.pluginBegin[p + 1],
+                      uint8_t(1));
+        }
+    }
+    out.reporting.clear();
     for (uint32_t k = 0; k < total; ++k) {
         const uint32_t i = order[k];
         out.px[k] = x[i];
@@ -105,6 +113,9 @@ void placeSamples(WorldState& s, float t, float cellSize, bool rebuild) {
         out.vx[k] = vx[i];
         out.vy[k] = vy[i];
         out.friction[k] = friction[i];
+        if (wants[i] != 0) {
+            out.reporting.push_back(k);
+        }
     }
 }
 

@@ -82,6 +82,11 @@ struct Samples {
         fy; // force on each sample (N), in concatenation order, summed over sub-steps
     std::vector<float> drag; // d(force)/d(sample velocity) (N s/m), same order and weighting
     std::vector<uint32_t> pluginBegin; // first concatenated index of each plugin (+ total)
+    // Sorted indices of the samples whose plugin wants forces, and for each of them the
+    // position-based solver's push on it in the current sub-step (N), with the previous
+    // sweep's value for the Chebyshev recurrence.
+    std::vector<uint32_t> reporting;
+    std::vector<float> pushX, pushY, pushPrevX, pushPrevY;
     Grid grid;
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }
 };
