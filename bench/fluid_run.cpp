@@ -126,7 +126,8 @@ void writeRow(std::ostream& csv, uint32_t frame, const fluid::Level& level) {
         const double m = world.material(fluid::MaterialId{mat[i]}).mass;
         kinetic += 0.5 * m * (double(vx[i]) * vx[i] + double(vy[i]) * vy[i]);
     }
-    const fluid::Profile& prof = world.profile();
+    // A coupled level steps the world once per round of the frame: the coupling sums them.
+    const fluid::Profile& prof = level.coupling ? level.coupling->profile() : world.profile();
     csv << frame << ',' << world.time() << ',' << world.particleCount() << ',' << prof.substeps
         << ',' << kinetic << ',' << prof.densityErrorAvg << ',' << prof.densityErrorMax;
     for (const auto& [name, id] : level.materials) {

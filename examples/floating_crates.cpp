@@ -58,7 +58,7 @@ int main() {
     // Create the coupling after the tank's boundary: every fixture becomes a boundary.
     fluid::box2d::Coupling coupling(world, physics);
     for (int frame = 0; frame < 300; ++frame) {
-        coupling.step(world, 1.0f / 60.0f); // fluid, forces to bodies, Box2D
+        coupling.step(world, 1.0f / 60.0f); // per sub-step: Box2D, fluid, forces to bodies
         for (const fluid::box2d::SplashEvent& splash : coupling.splashes()) {
             std::printf("splash at (%.2f, %.2f), %.2f m/s\n", splash.position.x, splash.position.y,
                         splash.speed);

@@ -301,6 +301,7 @@ void layProbes(FixtureEntry& entry, double spacing, double cell) {
 } // namespace
 
 void BodyBoundary::prepare(const StepContext& context) {
+    m_kicks.clear();
     m_samples.clear();
     m_bodies.clear();
     m_colliders.clear();
@@ -471,6 +472,8 @@ void BodyBoundary::project(const ProjectContext& context, uint32_t begin, uint32
     // Each collider's sweep, worked out the first time a particle of this range comes near it.
     std::vector<KinematicShape::Sweep> sweeps(m_colliders.size());
     std::vector<uint8_t> ready(m_colliders.size(), 0);
+    std::vector<Kick> kicks;
+    const uint32_t second = context.prevTimeInStep == context.timeInStep ? 1 : 0;
     for (uint32_t i = begin; i < end; ++i) {
         const Box path{
             std::min(context.prevX[i], context.px[i]), std::min(context.prevY[i], context.py[i]),
@@ -481,8 +484,18 @@ void BodyBoundary::project(const ProjectContext& context, uint32_t begin, uint32
                 sweeps[k] = shape.sweep(context);
                 ready[k] = 1;
             }
+            const float vx = context.vx[i], vy = context.vy[i];
             shape.projectParticle(sweeps[k], context, i);
+            if (context.vx[i] != vx || context.vy[i] != vy) {
+                kicks.push_back({context.timeInStep, second, i, k, context.material[i],
+                                 context.vx[i] - vx, context.vy[i] - vy, context.px[i],
+                                 context.py[i]});
+            }
         });
+    }
+    if (!kicks.empty()) {
+        const std::lock_guard<std::mutex> lock(m_kickMutex);
+        m_kicks.insert(m_kicks.end(), kicks.begin(), kicks.end());
     }
 }
 
@@ -508,6 +521,35 @@ void BodyBoundary::receiveForces(std::span<const float> fx, std::span<const floa
         body.drag = linear;
         body.angularDrag = angular;
     }
+    // What the projections gave the particles, the bodies lose: a body that pushes into the
+    // fluid faster than its pressure can clear the way sets the particles in its path to its
+    // own velocity (KinematicShape::projectParticle), and pays for that momentum here, as a
+    // force averaged over the step. In (call, particle, collider) order: the same sums for
+    // any number of workers.
+    std::sort(m_kicks.begin(), m_kicks.end(), [](const Kick& a, const Kick& b) {
+        if (a.timeInStep != b.timeInStep) {
+            return a.timeInStep < b.timeInStep;
+        }
+        if (a.second != b.second) {
+            return a.second < b.second;
+        }
+        if (a.particle != b.particle) {
+            return a.particle < b.particle;
+        }
+        return a.collider < b.collider;
+    });
+    const double invDt = m_frameDt > 0.0 ? 1.0 / m_frameDt : 0.0;
+    for (const Kick& kick : m_kicks) {
+        BodyEntry& body = m_bodies[m_colliders[kick.collider].body];
+        const double mass = kick.material < m_masses.size() ? m_masses[kick.material] : 0.0;
+        const glm::dvec2 f = -mass * invDt * glm::dvec2(kick.dvx, kick.dvy);
+        // The lever arm from where the body's centre of mass was at that time.
+        const glm::dvec2 com = body.com + double(kick.timeInStep) * body.velocity;
+        const glm::dvec2 r = glm::dvec2(kick.x, kick.y) - com;
+        body.force += f;
+        body.torque += r.x * f.y - r.y * f.x;
+    }
+    m_kicks.clear();
 }
 
 } // namespace fluid::box2d

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <string_view>
 #include <unordered_map>
@@ -172,6 +173,9 @@ public:
     /// Frame time of the last `prepare` (unit: s): the bodies stood at com + velocity x
     /// frameDt, angle + omega x frameDt at the end of the fluid's step.
     double frameDt() const { return m_frameDt; }
+    /// The mass of each material of the world, by index (unit: kg): what a particle weighs
+    /// when a projection changes its velocity. Set before each step.
+    void setMaterialMasses(std::vector<double> masses) { m_masses = std::move(masses); }
 
 private:
     bool couples(const b2Fixture& fixture) const;
@@ -195,6 +199,21 @@ private:
         double angle = 0.0;
     };
     std::unordered_map<const b2Body*, LastPose> m_lastPose, m_nextPose;
+    // A particle's velocity change by one collider's projection, during the step: the body
+    // takes the opposite impulse (see receiveForces). Collected from the worker threads in
+    // any order, summed in (call, particle, collider) order.
+    struct Kick {
+        float timeInStep = 0.0f;
+        uint32_t second = 0; // 1 for a position-based sub-step's second call
+        uint32_t particle = 0;
+        uint32_t collider = 0;
+        uint16_t material = 0;
+        float dvx = 0.0f, dvy = 0.0f; // unit: m/s
+        float x = 0.0f, y = 0.0f;     // where the particle was put (unit: m)
+    };
+    std::vector<Kick> m_kicks;
+    std::mutex m_kickMutex;
+    std::vector<double> m_masses;
 };
 
 } // namespace fluid::box2d

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <sstream>
 #include <unordered_map>
@@ -197,13 +198,80 @@ void Coupling::step(World& world, float dt) {
     if (!(dt > 0.0f && dt <= 1.0f)) {
         world.step(dt); // throws World::step's own message, before Box2D moves anything
     }
-    m_physics->Step(dt, m_def.velocityIterations, m_def.positionIterations);
-    stepFluid(world, dt);
+    // One round per position-based sub-step, the world stepping one sub-step at a time (see
+    // the class comment): its settings are put back however the frame ends.
+    const PositionBasedDef settings = world.def().positionBased;
+    const uint32_t rounds = world.def().solver == Solver::PositionBased ? settings.substeps : 1;
+    struct Restore {
+        World& world;
+        PositionBasedDef settings;
+        bool changed = false;
+        ~Restore() {
+            if (changed) {
+                world.setPositionBased(settings);
+            }
+        }
+    } restore{world, settings};
+    if (rounds > 1) {
+        PositionBasedDef one = settings;
+        one.substeps = 1;
+        world.setPositionBased(one);
+        restore.changed = true;
+    }
+    m_splashes.clear();
+    m_contacts.clear();
+    m_profile = Profile{};
+    const float h = dt / float(rounds);
+    for (uint32_t round = 0; round < rounds; ++round) {
+        m_physics->Step(h, m_def.velocityIterations, m_def.positionIterations);
+        fluidRound(world, h);
+    }
 }
 
 void Coupling::stepFluid(World& world, float dt) {
     checkWorld(world, "stepFluid");
+    m_splashes.clear();
+    m_contacts.clear();
+    m_profile = Profile{};
+    fluidRound(world, dt);
+}
+
+const Profile& Coupling::profile() const {
+    return m_profile;
+}
+
+void Coupling::addProfile(const Profile& round) {
+    Profile& p = m_profile;
+    p.step += round.step;
+    p.sort += round.sort;
+    p.external += round.external;
+    p.density += round.density;
+    p.pressure += round.pressure;
+    p.forces += round.forces;
+    p.integrate += round.integrate;
+    p.boundaries += round.boundaries;
+    p.substeps += round.substeps;
+    p.speedClamped += round.speedClamped;
+    p.nonFiniteRepaired += round.nonFiniteRepaired;
+    p.emitted += round.emitted;
+    p.emitBlocked += round.emitBlocked;
+    p.removed += round.removed;
+    p.iterations = round.iterations;
+    p.cflDt = round.cflDt;
+    p.soundSpeed = round.soundSpeed;
+    p.densityErrorMax = round.densityErrorMax;
+    p.densityErrorAvg = round.densityErrorAvg;
+    p.particles = round.particles;
+}
+
+void Coupling::fluidRound(World& world, float dt) {
+    std::vector<double> masses(world.materialCount());
+    for (std::size_t k = 0; k < masses.size(); ++k) {
+        masses[k] = world.material(MaterialId{uint16_t(k)}).mass;
+    }
+    m_boundary->setMaterialMasses(std::move(masses));
     world.step(dt);
+    addProfile(world.profile());
     makeReports(world);
     applyForces(dt);
     remember();
@@ -215,17 +283,16 @@ void Coupling::applyForces(float dt) {
     for (const Previous& p : m_previous) {
         previous.emplace(p.body, &p);
     }
-    m_appliedForce.assign(bodies.size(), glm::dvec2(0.0, 0.0));
-    m_buoyancy.assign(bodies.size(), glm::dvec2(0.0, 0.0));
-    m_appliedTorque.assign(bodies.size(), 0.0);
+    m_debt.assign(bodies.size(), glm::dvec2(0.0, 0.0));
+    m_torqueDebt.assign(bodies.size(), 0.0);
+    const double h = dt;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         const BodyEntry& entry = bodies[b];
         if (entry.type != b2_dynamicBody) {
             continue;
         }
-        glm::dvec2 f = entry.force;
-        double torque = entry.torque;
-        if (!std::isfinite(f.x) || !std::isfinite(f.y) || !std::isfinite(torque)) {
+        if (!std::isfinite(entry.force.x) || !std::isfinite(entry.force.y) ||
+            !std::isfinite(entry.torque)) {
             continue; // never hand Box2D a NaN: it would spread through every contact
         }
         // The relaxation for added mass and drag (see the class comment).
@@ -235,40 +302,43 @@ void Coupling::applyForces(float dt) {
         const double inertia =
             entry.body->GetInertia() - mass * (center.x * center.x + center.y * center.y);
         const double added = m_addedMass[b];
-        const double w = mass / (mass + added + double(dt) * entry.drag);
+        const double w = mass / (mass + added + h * entry.drag);
         const double wr =
-            inertia > 0.0
-                ? inertia / (inertia * (1.0 + added / mass) + double(dt) * entry.angularDrag)
-                : 1.0;
+            inertia > 0.0 ? inertia / (inertia * (1.0 + added / mass) + h * entry.angularDrag)
+                          : 1.0;
         // Hydrostatic part, from this step's submerged area: it follows the body's position
         // at once (relaxing it too would delay the buoyancy spring and pump energy into a
-        // floating body's bobbing). The rest (added mass, drag, waves) is relaxed.
+        // floating body's bobbing).
         const b2Vec2 g2 = m_physics->GetGravity();
         const glm::dvec2 buoyancy =
             -m_displaced[b] * double(entry.body->GetGravityScale()) * glm::dvec2(g2.x, g2.y);
-        const glm::dvec2 previousForce = found != previous.end()
-                                             ? found->second->appliedForce - found->second->buoyancy
-                                             : glm::dvec2(0.0, 0.0);
-        const double previousTorque = found != previous.end() ? found->second->appliedTorque : 0.0;
-        f = buoyancy + w * (f - buoyancy) + (1.0 - w) * previousForce;
-        torque = wr * torque + (1.0 - wr) * previousTorque;
-        // The fluid held the body's sweep velocity for the whole step, so it pushed back for
-        // the whole step; what it does beyond the hydrostatic part may slow the body to rest in
-        // one frame, never throw it back (a crate slammed flat onto water would bounce off).
-        const double speed =
-            std::sqrt(entry.velocity.x * entry.velocity.x + entry.velocity.y * entry.velocity.y);
+        // The rest (added mass, drag, waves) joins what is owed from earlier steps, and a share
+        // w of the debt is paid now: what the fluid took, the body gives, however w changes
+        // from step to step.
+        glm::dvec2 owed = (found != previous.end() ? found->second->debt : glm::dvec2(0.0)) +
+                          h * (entry.force - buoyancy);
+        const double torqueOwed =
+            (found != previous.end() ? found->second->torqueDebt : 0.0) + h * entry.torque;
+        // But never more against the body's motion than its momentum: the fluid held the
+        // body's sweep velocity for the whole step (the body is as heavy as the world there),
+        // so a light body slammed into it has pushed more fluid than it could have; that
+        // excess would throw the body back out (a crate dropped onto water bounced off). It
+        // is dropped.
+        const b2Vec2 v2 = entry.body->GetLinearVelocity();
+        const glm::dvec2 v(v2.x, v2.y);
+        const double speed = std::sqrt(v.x * v.x + v.y * v.y);
         if (speed > 0.0) {
-            const glm::dvec2 u = entry.velocity / speed;
-            const glm::dvec2 dynamic = f - buoyancy;
-            const double against = -(dynamic.x * u.x + dynamic.y * u.y);
-            const double limit = mass * speed / double(dt);
-            if (against > limit) {
-                f += (against - limit) * u;
+            const glm::dvec2 u = v / speed;
+            const double against = -(owed.x * u.x + owed.y * u.y);
+            if (against > mass * speed) {
+                owed += (against - mass * speed) * u;
             }
         }
-        m_buoyancy[b] = buoyancy;
-        m_appliedForce[b] = f;
-        m_appliedTorque[b] = torque;
+        const glm::dvec2 dynamic = w * owed / h;
+        const double torque = wr * torqueOwed / h;
+        m_debt[b] = owed - h * dynamic;
+        m_torqueDebt[b] = torqueOwed - h * torque;
+        const glm::dvec2 f = buoyancy + dynamic;
         if (f.x != 0.0 || f.y != 0.0) {
             entry.body->ApplyForce(b2Vec2(float(f.x), float(f.y)), entry.body->GetWorldCenter(),
                                    true);
@@ -284,7 +354,7 @@ void Coupling::remember() {
     for (std::size_t b = 0; b < m_reports.size(); ++b) {
         const BodyReport& r = m_reports[b];
         m_previous.push_back({r.body, r.wetPoints > 0, r.material, double(r.submergedArea),
-                              m_appliedForce[b], m_appliedTorque[b], m_buoyancy[b]});
+                              m_debt[b], m_torqueDebt[b]});
     }
 }
 
@@ -414,8 +484,6 @@ void Coupling::makeReports(const World& world) {
     // Events: bodies that changed state since the previous step, in body order; then bodies
     // that were wet and are no longer coupled (still in the b2World: destroyed ones say
     // nothing, their address may already be another body's).
-    m_splashes.clear();
-    m_contacts.clear();
     std::unordered_map<const b2Body*, const Previous*> previous; // lookup only
     for (const Previous& p : m_previous) {
         previous.emplace(p.body, &p);

@@ -171,10 +171,6 @@ const char* shapeName(const Spec& s) {
 
 } // namespace
 
-// Open (issue 5): water boxes in these compartments rock and slosh instead of settling
-// (circles, and boxes in yoghurt, pass); built into fluid-tests-box2d-open, see
-// tests/box2d/CMakeLists.txt.
-#ifdef FLUID_BOX2D_OPEN
 TEST_CASE("Archimedes: boxes and circles at 0.25, 0.5, 0.75 of the fluid's density float at "
           "that submerged fraction",
           "[slow][box2d][archimedes]") {
@@ -218,9 +214,6 @@ TEST_CASE("Archimedes: boxes and circles at 0.25, 0.5, 0.75 of the fluid's densi
     }
 }
 
-#endif // FLUID_BOX2D_OPEN
-
-#ifndef FLUID_BOX2D_OPEN
 TEST_CASE("Archimedes: boxes and circles at twice the fluid's density sink and rest on the floor",
           "[slow][box2d][archimedes]") {
     const bool yoghurt = GENERATE(false, true);
@@ -251,4 +244,3 @@ TEST_CASE("Archimedes: boxes and circles at twice the fluid's density sink and r
     }
     CHECK(run.leaked == 0);
 }
-#endif // !FLUID_BOX2D_OPEN
