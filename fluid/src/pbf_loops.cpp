@@ -321,8 +321,8 @@ void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surf
     }
 }
 
-void pbfSamplePush(WorldState& s, const PbfConstants& c, std::span<const float> change,
-                   float omega, bool first) {
+void pbfSamplePush(WorldState& s, const PbfConstants& c, std::span<const float> change, float omega,
+                   bool first) {
     const Particles& p = s.particles;
     Samples& w = s.samples;
     const float* __restrict px = p.px.data();

@@ -48,8 +48,8 @@ void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surf
 /// `pbfDisplace` with the same multipliers `change`; the pushes follow the positions'
 /// Chebyshev recurrence with `omega` (`first`: the sub-step's first sweep starts them), so at
 /// the end of the solve they hold exactly the momentum the walls gave the particles.
-void pbfSamplePush(WorldState& s, const PbfConstants& c, std::span<const float> change,
-                   float omega, bool first);
+void pbfSamplePush(WorldState& s, const PbfConstants& c, std::span<const float> change, float omega,
+                   bool first);
 
 /// Adds the reporting samples' pushes of the sub-step, times `weight`, to their forces (in
 /// concatenation order).

@@ -68,7 +68,7 @@ struct MaterialConstants {
                                   // position-based, the artificial pressure of s_corr (Pa)
     float support = 0;            // h (m)
     float gamma = 0;              // surface tension (Akinci 2013)
-    float lattice = 0; // V sum W over the material's square lattice (1; 1.0042 for water)
+    float lattice = 0;    // V sum W over the material's square lattice (1; 1.0042 for water)
     float neighbours = 0; // lattice points within h of one (count; 29 water, 49 yoghurt)
     float diagonal = 0;   // position-based: the density constraint's denominator sum_j w_j
                           // |grad_j C|^2 for a particle inside the lattice (1/(kg m^2))

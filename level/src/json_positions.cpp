@@ -119,6 +119,17 @@ public:
         return p;
     }
 
+    // Past the value at p and the comma after it: true, p at the next element; false at the
+    // end of the object or array (no comma), p after the value.
+    bool nextElement(std::size_t& p) const {
+        p = skipSpace(skipValue(p));
+        if (at(p) != ',') {
+            return false;
+        }
+        p = skipSpace(p + 1);
+        return true;
+    }
+
 private:
     uint32_t readHex4(std::size_t& p) const {
         uint32_t v = 0;
@@ -385,11 +396,9 @@ std::size_t locate(std::string_view text, std::string_view pointer, bool key) {
                     found = true;
                     break;
                 }
-                p = scan.skipSpace(scan.skipValue(p));
-                if (scan.at(p) != ',') {
+                if (!scan.nextElement(p)) {
                     break;
                 }
-                p = scan.skipSpace(p + 1);
             }
         } else if (c == '[') {
             std::size_t index = 0;
@@ -401,11 +410,9 @@ std::size_t locate(std::string_view text, std::string_view pointer, bool key) {
                         found = true;
                         break;
                     }
-                    p = scan.skipSpace(scan.skipValue(p));
-                    if (scan.at(p) != ',') {
+                    if (!scan.nextElement(p)) {
                         break;
                     }
-                    p = scan.skipSpace(p + 1);
                 }
             }
         }
@@ -428,11 +435,9 @@ std::vector<std::string> memberNames(std::string_view text, std::string_view poi
         names.push_back(scan.readString(p));
         p = scan.skipSpace(p);
         p = scan.skipSpace(scan.at(p) == ':' ? p + 1 : p);
-        p = scan.skipSpace(scan.skipValue(p));
-        if (scan.at(p) != ',') {
+        if (!scan.nextElement(p)) {
             break;
         }
-        p = scan.skipSpace(p + 1);
     }
     return names;
 }

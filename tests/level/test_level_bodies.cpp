@@ -4,8 +4,9 @@
 // Columns are 1-based bytes; texts stay on one line so that columns can be counted.
 #include <catch2/catch.hpp>
 
+#include "level_support.h"
+
 #include <fluid/level.h>
-#include <fluid/plugins/builtin.h>
 
 #include <box2d/box2d.h>
 
@@ -15,26 +16,9 @@
 #include <utility>
 
 using namespace fluid;
+using namespace fluid::test;
 
 namespace {
-
-const Registry& builtins() {
-    static const Registry registry = [] {
-        Registry r;
-        registerBuiltinPlugins(r);
-        return r;
-    }();
-    return registry;
-}
-
-std::string errorOf(std::string_view text) {
-    try {
-        parseLevel(text, "t.json", builtins());
-    } catch (const LevelError& e) {
-        return e.what();
-    }
-    return "no error";
-}
 
 // A level with one material and the bodies `bodies` (the array's contents); `extra` follows the
 // array (starting with ", "). The bodies array opens at column 59, its first body at 60.
@@ -51,15 +35,6 @@ std::string withFixture(const std::string& fixture) {
 // A valid dynamic ball, for levels that need a body but test something else.
 const std::string kBall =
     R"({"name": "ball", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 1}]})";
-
-b2Body* bodyNamed(const Level& level, std::string_view name) {
-    for (const auto& [n, body] : level.bodies) {
-        if (n == name) {
-            return body;
-        }
-    }
-    return nullptr;
-}
 
 std::vector<const b2Fixture*> fixturesOf(const b2Body* body) {
     std::vector<const b2Fixture*> out;

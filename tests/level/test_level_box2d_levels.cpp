@@ -4,10 +4,10 @@
 // Short runs: fluid-tests-level is a fast executable.
 #include <catch2/catch.hpp>
 
-#include <fluid/level.h>
-#include <fluid/plugins/builtin.h>
-
+#include "level_support.h"
 #include "test_support.h"
+
+#include <fluid/level.h>
 
 #include <box2d/box2d.h>
 
@@ -19,17 +19,9 @@
 #include <string>
 
 using namespace fluid;
+using namespace fluid::test;
 
 namespace {
-
-const Registry& builtins() {
-    static const Registry registry = [] {
-        Registry r;
-        registerBuiltinPlugins(r);
-        return r;
-    }();
-    return registry;
-}
 
 std::string readLevel(const char* name) {
     std::ifstream in(std::string(FLUID_LEVELS_DIR) + "/" + name, std::ios::binary);
@@ -38,14 +30,13 @@ std::string readLevel(const char* name) {
     return s.str();
 }
 
-b2Body* bodyNamed(const Level& level, std::string_view name) {
-    for (const auto& [n, body] : level.bodies) {
-        if (n == name) {
-            return body;
-        }
+// The level's body named `name`; fails the test when there is none.
+b2Body* requireBody(const Level& level, std::string_view name) {
+    b2Body* body = bodyNamed(level, name);
+    if (body == nullptr) {
+        FAIL("no body " << name);
     }
-    FAIL("no body " << name);
-    return nullptr;
+    return body;
 }
 
 bool finite(const b2Body* body) {
@@ -81,9 +72,9 @@ TEST_CASE("paddle_wheel.json: the stream turns the wheel the way of the side it 
         Level level = parseLevel(side > 0 ? text : mirrored, "paddle_wheel.json", builtins());
         REQUIRE(level.bodies.size() == 2);
         REQUIRE(level.joints.size() == 1);
-        const b2Body* wheel = bodyNamed(level, "wheel");
+        const b2Body* wheel = requireBody(level, "wheel");
         CHECK(wheel->GetType() == b2_dynamicBody);
-        CHECK(bodyNamed(level, "axle")->GetType() == b2_staticBody);
+        CHECK(requireBody(level, "axle")->GetType() == b2_staticBody);
         // A balanced wheel: it stays put until the water arrives (about 10 frames).
         play(level, 6);
         CHECK(std::abs(wheel->GetAngle()) < 1e-3f);
@@ -111,15 +102,15 @@ TEST_CASE("crates.json: bodies as written; light crates float, heavy ones sink",
     REQUIRE(level.bodies.size() == 9);
     const double areal = box2d::arealDensity(level.world, level.materials[0].second);
     // The tank walls are Box2D's only (the fluid has its boundary.box): static and dry.
-    const b2Body* tank = bodyNamed(level, "tank");
+    const b2Body* tank = requireBody(level, "tank");
     CHECK(tank->GetType() == b2_staticBody);
     CHECK(tank->GetFixtureList()->GetFilterData().categoryBits == kDryFixtureCategory);
     // Masses from densityRatio: ratio x areal density x area.
-    CHECK(bodyNamed(level, "cork")->GetMass() == Approx(0.25 * areal * 0.1 * 0.08).epsilon(1e-5));
-    CHECK(bodyNamed(level, "brick")->GetMass() == Approx(2.0 * areal * 0.1 * 0.05).epsilon(1e-5));
-    CHECK(bodyNamed(level, "stone")->GetMass() ==
+    CHECK(requireBody(level, "cork")->GetMass() == Approx(0.25 * areal * 0.1 * 0.08).epsilon(1e-5));
+    CHECK(requireBody(level, "brick")->GetMass() == Approx(2.0 * areal * 0.1 * 0.05).epsilon(1e-5));
+    CHECK(requireBody(level, "stone")->GetMass() ==
           Approx(1.5 * areal * M_PI * 0.035 * 0.035).epsilon(1e-5));
-    CHECK(bodyNamed(level, "hull")->GetMass() ==
+    CHECK(requireBody(level, "hull")->GetMass() ==
           Approx(0.4 * areal * 0.5 * 0.14 * 0.08).epsilon(1e-5));
     CHECK(level.world.particleCount() < 3000);
 
@@ -141,12 +132,12 @@ TEST_CASE("crates.json: bodies as written; light crates float, heavy ones sink",
     // water; the wooden crates float, deeper the denser they are (Archimedes: the submerged
     // fraction of a floating box is its density ratio, 0.25, 0.5, 0.75).
     const auto submerged = [&](std::string_view name) {
-        const box2d::BodyReport* report = level.coupling->report(bodyNamed(level, name));
+        const box2d::BodyReport* report = level.coupling->report(requireBody(level, name));
         REQUIRE(report != nullptr);
         return report->submergedFraction;
     };
-    const float brick = bodyNamed(level, "brick")->GetPosition().y;
-    const float stone = bodyNamed(level, "stone")->GetPosition().y;
+    const float brick = requireBody(level, "brick")->GetPosition().y;
+    const float stone = requireBody(level, "stone")->GetPosition().y;
     CHECK(brick < 0.05f);
     CHECK(stone < 0.05f);
     CHECK(submerged("brick") > 0.9f);
@@ -156,7 +147,7 @@ TEST_CASE("crates.json: bodies as written; light crates float, heavy ones sink",
     CHECK(cork < pine);
     CHECK(pine < oak);
     CHECK(oak < 0.95f);
-    CHECK(bodyNamed(level, "cork")->GetPosition().y > bodyNamed(level, "oak")->GetPosition().y);
+    CHECK(requireBody(level, "cork")->GetPosition().y > requireBody(level, "oak")->GetPosition().y);
     std::printf("[measure] crates.json after 2 s: brick y %.3f m, stone y %.3f m; submerged "
                 "fraction cork %.2f (ratio 0.25), pine %.2f (0.5), oak %.2f (0.75); %u "
                 "particles, %.2f ms per frame\n",

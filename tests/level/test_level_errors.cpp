@@ -3,35 +3,18 @@
 // one line where the column matters, so that it can be counted by eye.
 #include <catch2/catch.hpp>
 
+#include "level_support.h"
+
 #include <fluid/level.h>
-#include <fluid/plugins/builtin.h>
 #include <fluid/plugins/gravity.h>
 
 #include <cstdio>
 #include <string>
 
 using namespace fluid;
+using namespace fluid::test;
 
 namespace {
-
-const Registry& builtins() {
-    static const Registry registry = [] {
-        Registry r;
-        registerBuiltinPlugins(r);
-        return r;
-    }();
-    return registry;
-}
-
-// The message of the LevelError that parsing `text` throws ("no error" when none).
-std::string errorOf(std::string_view text, const LevelOptions& options = {}) {
-    try {
-        parseLevel(text, "t.json", builtins(), options);
-    } catch (const LevelError& e) {
-        return e.what();
-    }
-    return "no error";
-}
 
 // A valid level with one material, `extra` spliced in after it (starting with ", ").
 std::string level(const std::string& extra) {

@@ -302,9 +302,9 @@ void Coupling::applyForces(float dt) {
             entry.body->GetInertia() - mass * (center.x * center.x + center.y * center.y);
         const double added = m_addedMass[b];
         const double w = mass / (mass + added + h * entry.drag);
-        const double wr =
-            inertia > 0.0 ? inertia / (inertia * (1.0 + added / mass) + h * entry.angularDrag)
-                          : 1.0;
+        const double wr = inertia > 0.0
+                              ? inertia / (inertia * (1.0 + added / mass) + h * entry.angularDrag)
+                              : 1.0;
         // Hydrostatic part, from this step's submerged area: it follows the body's position
         // at once (relaxing it too would delay the buoyancy spring and pump energy into a
         // floating body's bobbing).

@@ -271,7 +271,7 @@ private:
     std::vector<SplashEvent> m_splashes;
     std::vector<ContactEvent> m_contacts;
     std::vector<Previous> m_previous;
-    Profile m_profile; // summed over the rounds of the last frame
+    Profile m_profile;              // summed over the rounds of the last frame
     std::vector<glm::dvec2> m_debt; // per body of the step, in body order: see Previous
     std::vector<double> m_torqueDebt;
     std::vector<double> m_addedMass; // per body of the step (kg), for the relaxation

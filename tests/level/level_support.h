@@ -1,0 +1,45 @@
+// fluid tests — helpers the level tests share: the built-in registry, the message a level text
+// fails with, a body by its level name.
+#pragma once
+
+#include <fluid/level.h>
+#include <fluid/plugins/builtin.h>
+
+#include <string>
+#include <string_view>
+
+class b2Body;
+
+namespace fluid::test {
+
+/// The registry with every built-in plugin, made once.
+inline const Registry& builtins() {
+    static const Registry registry = [] {
+        Registry r;
+        registerBuiltinPlugins(r);
+        return r;
+    }();
+    return registry;
+}
+
+/// The message of the LevelError that parsing `text` as "t.json" throws ("no error" when none).
+inline std::string errorOf(std::string_view text, const LevelOptions& options = {}) {
+    try {
+        parseLevel(text, "t.json", builtins(), options);
+    } catch (const LevelError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+/// The level's body named `name`, nullptr when there is none.
+inline b2Body* bodyNamed(const Level& level, std::string_view name) {
+    for (const auto& [n, body] : level.bodies) {
+        if (n == name) {
+            return body;
+        }
+    }
+    return nullptr;
+}
+
+} // namespace fluid::test
