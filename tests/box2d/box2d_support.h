@@ -34,16 +34,15 @@ inline glm::dvec2 toD(b2Vec2 v) {
     return {v.x, v.y};
 }
 
-/// A body with one box fixture of half extents (hx, hy) (unit: m) and `density` (kg/m^2).
-inline b2Body* addBox(b2World& physics, b2BodyType type, glm::vec2 center, float hx, float hy,
-                      float density, float angle = 0.0f, uint16_t category = 0x0001) {
+/// A body of `type` at `center` turned by `angle` (unit: m, rad) with one fixture of `shape`,
+/// `density` (kg/m^2), friction 0.5 and collision category `category`.
+inline b2Body* addBody(b2World& physics, b2BodyType type, glm::vec2 center, float angle,
+                       const b2Shape& shape, float density, uint16_t category) {
     b2BodyDef bd;
     bd.type = type;
     bd.position = toB2(center);
     bd.angle = angle;
     b2Body* body = physics.CreateBody(&bd);
-    b2PolygonShape shape;
-    shape.SetAsBox(hx, hy);
     b2FixtureDef fd;
     fd.shape = &shape;
     fd.density = density;
@@ -53,22 +52,30 @@ inline b2Body* addBox(b2World& physics, b2BodyType type, glm::vec2 center, float
     return body;
 }
 
+/// A body with one box fixture of half extents (hx, hy) (unit: m) and `density` (kg/m^2).
+inline b2Body* addBox(b2World& physics, b2BodyType type, glm::vec2 center, float hx, float hy,
+                      float density, float angle = 0.0f, uint16_t category = 0x0001) {
+    b2PolygonShape shape;
+    shape.SetAsBox(hx, hy);
+    return addBody(physics, type, center, angle, shape, density, category);
+}
+
 /// A body with one circle fixture of `radius` (unit: m) and `density` (kg/m^2).
 inline b2Body* addCircle(b2World& physics, b2BodyType type, glm::vec2 center, float radius,
                          float density, uint16_t category = 0x0001) {
-    b2BodyDef bd;
-    bd.type = type;
-    bd.position = toB2(center);
-    b2Body* body = physics.CreateBody(&bd);
     b2CircleShape shape;
     shape.m_radius = radius;
-    b2FixtureDef fd;
-    fd.shape = &shape;
-    fd.density = density;
-    fd.friction = 0.5f;
-    fd.filter.categoryBits = category;
-    body->CreateFixture(&fd);
-    return body;
+    return addBody(physics, type, center, 0.0f, shape, density, category);
+}
+
+/// A tank of `material`: gravity -kG, a `boundary.box` from (0, 0) to (cols spacings, top)
+/// and a lattice block `cols` x `rows` filling its bottom. Returns the tank's width (unit: m).
+inline float fillTank(World& world, MaterialId material, uint32_t cols, uint32_t rows, float top) {
+    const float width = float(cols) * world.spacing(material);
+    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
+    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, width, top));
+    world.spawnBlob(latticeBlock(world, material, 0.0f, 0.0f, cols, rows));
+    return width;
 }
 
 /// Static Box2D walls (category kWallCategory) around the inner rectangle [x0, x1] x [y0, y1]:

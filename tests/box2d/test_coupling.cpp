@@ -27,11 +27,7 @@ struct Pool {
     float width = 60.0f * s;
     float top = 0.5f;
 
-    Pool() {
-        world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
-        world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, width, top));
-        world.spawnBlob(latticeBlock(world, water, 0.0f, 0.0f, 60, 15));
-    }
+    Pool() { fillTank(world, water, 60, 15, top); }
 };
 
 bool listed(const Coupling& coupling, uintptr_t body) {

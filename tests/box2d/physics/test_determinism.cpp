@@ -29,12 +29,8 @@ Hashes run(uint32_t workers) {
     wd.workerCount = workers;
     World world(wd);
     const MaterialId water = world.addMaterial(fluid::water());
-    const float s = world.spacing(water);
-    const uint32_t cols = 80, rows = 20;
-    const float width = float(cols) * s, top = 1.0f;
-    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
-    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, width, top));
-    world.spawnBlob(latticeBlock(world, water, 0.0f, 0.0f, cols, rows));
+    const float top = 1.0f;
+    const float width = fillTank(world, water, 80, 20, top);
 
     b2World physics(b2Vec2(0.0f, -kG));
     addTankWalls(physics, 0.0f, 0.0f, width, top, true);

@@ -15,14 +15,12 @@ TEST_CASE("explicit solver: a disc at half the water's density floats about half
     Stopwatch sw("explicit solver, floating disc");
     World world(physicsDef(Solver::Explicit));
     const MaterialId water = world.addMaterial(fluid::water());
-    const float s = world.spacing(water);
     // A pool 0.3 m wide and 0.12 m deep (360 particles: the explicit solver takes about 50
     // sub-steps a frame), a disc 0.06 m across laid on its surface.
-    const uint32_t cols = 30, rows = 12;
-    const float width = float(cols) * s, top = 0.5f, radius = 0.03f;
-    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
-    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, width, top));
-    world.spawnBlob(latticeBlock(world, water, 0.0f, 0.0f, cols, rows));
+    const uint32_t rows = 12;
+    const float top = 0.5f, radius = 0.03f;
+    const float width = fillTank(world, water, 30, rows, top);
+    const float s = world.spacing(water);
     b2World physics(b2Vec2(0.0f, -kG));
     addTankWalls(physics, 0.0f, 0.0f, width, top);
     const float rho = box2d::arealDensity(world, water);

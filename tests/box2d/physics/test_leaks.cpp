@@ -42,12 +42,8 @@ TEST_CASE("leaks: a crate dropped from 2 m, a spinning paddle and a 5 m/s pusher
     Stopwatch sw("Box2D leaks, 600 frames");
     World world(physicsDef());
     const MaterialId water = world.addMaterial(fluid::water());
-    const float s = world.spacing(water);
-    const uint32_t cols = 120, rows = 35;
-    const float width = float(cols) * s, top = 2.4f;
-    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
-    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, width, top));
-    world.spawnBlob(latticeBlock(world, water, 0.0f, 0.0f, cols, rows));
+    const float top = 2.4f;
+    const float width = fillTank(world, water, 120, 35, top);
     const uint32_t n = world.particleCount();
 
     b2World physics(b2Vec2(0.0f, -kG));
