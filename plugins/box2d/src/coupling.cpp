@@ -352,8 +352,7 @@ void Coupling::remember() {
     m_previous.clear();
     for (std::size_t b = 0; b < m_reports.size(); ++b) {
         const BodyReport& r = m_reports[b];
-        m_previous.push_back({r.body, r.wetPoints > 0, r.material, double(r.submergedArea),
-                              m_debt[b], m_torqueDebt[b]});
+        m_previous.push_back({r.body, r.wetPoints > 0, r.material, m_debt[b], m_torqueDebt[b]});
     }
 }
 

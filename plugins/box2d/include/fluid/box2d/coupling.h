@@ -253,13 +253,12 @@ private:
     void makeReports(const World& world);
     void remember();
 
-    // A body after the previous step: wet state for contact events; submerged area, material
-    // and the force and torque applied, for the added-mass relaxation.
+    // A body after the previous round: wet state and material for contact events, and what
+    // the relaxation still owes it.
     struct Previous {
         b2Body* body = nullptr;
         bool wet = false;
         uint16_t material = 0;
-        double submergedArea = 0.0;
         glm::dvec2 debt{0.0, 0.0}; // impulse measured but not applied yet (N s)
         double torqueDebt = 0.0;   // angular impulse likewise (N m s)
     };
