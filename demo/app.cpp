@@ -1,0 +1,485 @@
+// fluid-demo — the interactive game.
+#include <GL/glew.h> // before any other GL header
+
+#include "demo/app.h"
+
+#include "demo/frame_pacer.h"
+#include "demo/imgui_bridge.h"
+#include "demo/overlay.h"
+#include "demo/session.h"
+#include "demo/ui.h"
+
+#include <fluid/gl/renderer.h>
+
+#include <SFML/Graphics/Image.hpp>
+#include <SFML/Window.hpp>
+#include <box2d/box2d.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <exception>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+namespace fluid::demo {
+namespace {
+
+constexpr std::array<gl::View, 3> kViews{gl::View::Metaballs, gl::View::Pressure,
+                                         gl::View::Particles};
+
+// The body under a point (dynamic or kinematic; static ground is never grabbed).
+b2Body* bodyAt(b2World& world, glm::vec2 p) {
+    struct Query final : b2QueryCallback {
+        b2Vec2 point;
+        b2Body* found = nullptr;
+        bool ReportFixture(b2Fixture* fixture) override {
+            b2Body* body = fixture->GetBody();
+            if (body->GetType() != b2_staticBody && fixture->TestPoint(point)) {
+                found = body;
+                return false;
+            }
+            return true;
+        }
+    } query;
+    query.point = {p.x, p.y};
+    b2AABB box;
+    box.lowerBound = {p.x - 1e-3f, p.y - 1e-3f};
+    box.upperBound = {p.x + 1e-3f, p.y + 1e-3f};
+    world.QueryAABB(&query, box);
+    return query.found;
+}
+
+// A body held by the mouse (shift + drag): dynamic bodies follow a mouse joint, kinematic ones
+// (the planks of "Fill the cup") get the velocity that brings the grabbed point to the cursor
+// in one frame, capped, so the fluid sees them move instead of teleport.
+struct Grab {
+    b2Body* body = nullptr;
+    b2Body* ground = nullptr;
+    b2MouseJoint* joint = nullptr;
+    b2Vec2 localPoint{0.0f, 0.0f};
+    float spin = 0.0f; // Q / E: rad/s for kinematic bodies
+
+    void begin(b2World& world, b2Body* target, glm::vec2 p) {
+        body = target;
+        localPoint = body->GetLocalPoint({p.x, p.y});
+        if (body->GetType() == b2_dynamicBody) {
+            b2BodyDef groundDef;
+            ground = world.CreateBody(&groundDef);
+            b2MouseJointDef def;
+            def.bodyA = ground;
+            def.bodyB = body;
+            def.target = {p.x, p.y};
+            def.maxForce = 300.0f * body->GetMass();
+            b2LinearStiffness(def.stiffness, def.damping, 5.0f, 0.7f, def.bodyA, def.bodyB);
+            joint = static_cast<b2MouseJoint*>(world.CreateJoint(&def));
+        }
+        body->SetAwake(true);
+    }
+    void update(glm::vec2 p, float dt) {
+        if (body == nullptr) {
+            return;
+        }
+        if (joint != nullptr) {
+            joint->SetTarget({p.x, p.y});
+            return;
+        }
+        const b2Vec2 at = body->GetWorldPoint(localPoint);
+        b2Vec2 v{(p.x - at.x) / dt, (p.y - at.y) / dt};
+        const float speed = v.Length();
+        constexpr float kMaxSpeed = 3.0f; // m/s: fast enough to follow, slow enough not to splash
+        if (speed > kMaxSpeed) {
+            v *= kMaxSpeed / speed;
+        }
+        body->SetLinearVelocity(v);
+        body->SetAngularVelocity(spin);
+    }
+    void end(b2World* world) {
+        if (body != nullptr && body->GetType() == b2_kinematicBody) {
+            body->SetLinearVelocity({0.0f, 0.0f});
+            body->SetAngularVelocity(0.0f);
+        }
+        if (world != nullptr && ground != nullptr) {
+            world->DestroyBody(ground); // destroys the joint too
+        }
+        *this = Grab{};
+    }
+};
+
+class Game {
+public:
+    explicit Game(const GameOptions& options) : m_options(options), m_index(options.first) {}
+
+    int run() {
+        try {
+            createWindow(m_options.fullscreen);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "fluid-demo: %s\n", e.what());
+            return 1;
+        }
+        if (!loadLevel(m_index)) {
+            return 1;
+        }
+        sf::Clock clock;
+        while (m_window.isOpen() && !m_quit) {
+            sf::Event event;
+            while (m_window.pollEvent(event)) {
+                handleEvent(event);
+            }
+            if (!m_window.isOpen() || m_quit) {
+                break;
+            }
+            const double real = clock.restart().asSeconds();
+            m_fps = m_fps <= 0.0f ? 60.0f : 0.95f * m_fps + 0.05f * float(1.0 / std::max(real, 1e-4));
+            simulate(real);
+            render(float(real));
+        }
+        m_grab.end(nullptr);
+        m_session.reset();
+        m_imgui.reset();
+        m_renderer.reset();
+        return 0;
+    }
+
+private:
+    void createWindow(bool fullscreen) {
+        // GL objects of the old context go first (framebuffers and vertex arrays are not
+        // shared between contexts).
+        m_imgui.reset();
+        m_renderer.reset();
+        if (fullscreen) {
+            m_window.create(sf::VideoMode::getDesktopMode(), "fluid", sf::Style::Fullscreen,
+                            glContextSettings());
+        } else {
+            m_window.create(
+                sf::VideoMode(unsigned(m_options.size.x), unsigned(m_options.size.y)), "fluid",
+                sf::Style::Default, glContextSettings());
+            m_window.setPosition({0, 0}); // without a window manager SFML places it off-screen
+        }
+        m_fullscreen = fullscreen;
+        m_window.setVerticalSyncEnabled(true);
+        m_window.setKeyRepeatEnabled(false);
+        checkContext(m_window);
+        gl::loadFunctions();
+        m_renderer = std::make_unique<gl::Renderer>(windowSize());
+        m_imgui = std::make_unique<ImGuiBridge>();
+        if (m_session) {
+            m_renderer->setMaterials(m_session->styles());
+        }
+    }
+
+    glm::ivec2 windowSize() const {
+        const sf::Vector2u s = m_window.getSize();
+        return {std::max(1u, s.x), std::max(1u, s.y)};
+    }
+
+    gl::Camera camera() const {
+        return gl::Camera::fit(m_session->bounds().lo, m_session->bounds().hi,
+                               m_renderer->size());
+    }
+
+    glm::vec2 mouseWorld() const { return camera().pixelToWorld(m_mousePixel); }
+
+    bool loadLevel(int index) {
+        const int count = int(m_options.levels.size());
+        index = ((index % count) + count) % count;
+        try {
+            m_grab.end(m_session ? m_session->level().physics.get() : nullptr);
+            auto session = std::make_unique<Session>(m_options.levels[size_t(index)],
+                                                     m_options.workers);
+            m_session = std::move(session);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "fluid-demo: %s\n", e.what());
+            toast(e.what());
+            return m_session != nullptr; // keep playing the old level if there is one
+        }
+        m_index = index;
+        m_renderer->setMaterials(m_session->styles());
+        FramePacerDef def;
+        def.step = 1.0 / double(m_session->level().frameRate);
+        const bool paused = m_pacer && m_pacer->paused();
+        m_pacer = std::make_unique<FramePacer>(def);
+        m_pacer->setPaused(paused);
+        m_simMs = 0.0f;
+        return true;
+    }
+
+    void toast(std::string message) {
+        m_toast = std::move(message);
+        m_toastUntil = std::chrono::steady_clock::now() + std::chrono::seconds(4);
+    }
+
+    void screenshot() {
+        std::vector<uint8_t> rgba;
+        m_renderer->readPixels(rgba);
+        sf::Image image;
+        const glm::ivec2 size = m_renderer->size();
+        image.create(unsigned(size.x), unsigned(size.y), rgba.data());
+        char stamp[32];
+        const std::time_t now = std::time(nullptr);
+        std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+        const std::string path = (std::filesystem::path(m_options.screenshotDir) /
+                                  ("fluid-" + m_session->file().stem + "-" + stamp + ".png"))
+                                     .string();
+        toast(image.saveToFile(path) ? "Saved " + path : "Could not write " + path);
+    }
+
+    void handleKey(const sf::Event::KeyEvent& key) {
+        using K = sf::Keyboard;
+        switch (key.code) {
+        case K::S:
+            m_view = (m_view + 1) % kViews.size();
+            break;
+        case K::G:
+            m_session->toggleGravity();
+            break;
+        case K::M:
+            m_session->cycleDropMaterial();
+            break;
+        case K::Space:
+            try {
+                m_session->dropBlob(mouseWorld());
+            } catch (const std::exception& e) {
+                toast(e.what());
+            }
+            break;
+        case K::R:
+            loadLevel(m_index);
+            break;
+        case K::P:
+            m_pacer->setPaused(!m_pacer->paused());
+            break;
+        case K::Period:
+            m_pacer->setPaused(true);
+            m_pacer->requestSingleStep();
+            break;
+        case K::N:
+            loadLevel(m_index + 1);
+            break;
+        case K::B:
+            loadLevel(m_index - 1);
+            break;
+        case K::Tab:
+            m_showTuning = !m_showTuning;
+            break;
+        case K::F1:
+            m_showHelp = !m_showHelp;
+            break;
+        case K::F11:
+            createWindow(!m_fullscreen);
+            break;
+        case K::F12:
+            m_screenshotPending = true;
+            break;
+        case K::Escape:
+            m_showMenu = !m_showMenu;
+            break;
+        case K::Q:
+            m_grab.spin = 2.0f;
+            break;
+        case K::E:
+            m_grab.spin = -2.0f;
+            break;
+        default:
+            if (key.code >= K::Num1 && key.code <= K::Num9) {
+                const int index = int(key.code - K::Num1);
+                if (index < int(m_options.levels.size())) {
+                    loadLevel(index);
+                }
+            }
+            break;
+        }
+    }
+
+    void handleEvent(const sf::Event& event) {
+        m_imgui->processEvent(event);
+        switch (event.type) {
+        case sf::Event::Closed:
+            m_window.close();
+            break;
+        case sf::Event::Resized:
+            m_renderer->resize(windowSize());
+            break;
+        case sf::Event::LostFocus:
+            m_session->setPointer(mouseWorld(), 0.0f);
+            m_grab.end(m_session->level().physics.get());
+            break;
+        case sf::Event::KeyPressed:
+            if (!m_imgui->wantsKeyboard()) {
+                handleKey(event.key);
+            }
+            break;
+        case sf::Event::KeyReleased:
+            if (event.key.code == sf::Keyboard::Q || event.key.code == sf::Keyboard::E) {
+                m_grab.spin = 0.0f;
+            }
+            break;
+        case sf::Event::MouseMoved:
+            m_mousePixel = {float(event.mouseMove.x), float(event.mouseMove.y)};
+            break;
+        case sf::Event::MouseButtonPressed: {
+            if (m_imgui->wantsMouse()) {
+                break;
+            }
+            m_mousePixel = {float(event.mouseButton.x), float(event.mouseButton.y)};
+            const glm::vec2 p = mouseWorld();
+            const bool shift = sf::Keyboard::isKeyPressed(sf::Keyboard::LShift) ||
+                               sf::Keyboard::isKeyPressed(sf::Keyboard::RShift);
+            const bool ctrl = sf::Keyboard::isKeyPressed(sf::Keyboard::LControl) ||
+                              sf::Keyboard::isKeyPressed(sf::Keyboard::RControl);
+            b2World* physics = m_session->level().physics.get();
+            if (event.mouseButton.button == sf::Mouse::Left && ctrl) {
+                if (!m_session->dropCrate(p)) {
+                    toast("This level has no bodies: crates drop in levels with Box2D bodies");
+                }
+            } else if (event.mouseButton.button == sf::Mouse::Left && shift) {
+                if (physics != nullptr) {
+                    if (b2Body* body = bodyAt(*physics, p)) {
+                        m_grab.begin(*physics, body, p);
+                    }
+                }
+            } else if (event.mouseButton.button == sf::Mouse::Left) {
+                m_push = 1.0f;
+            } else if (event.mouseButton.button == sf::Mouse::Right) {
+                m_push = -1.0f;
+            }
+            break;
+        }
+        case sf::Event::MouseButtonReleased:
+            if (event.mouseButton.button == sf::Mouse::Left) {
+                m_grab.end(m_session->level().physics.get());
+            }
+            m_push = 0.0f;
+            break;
+        default:
+            break;
+        }
+    }
+
+    void simulate(double realSeconds) {
+        const uint32_t steps = m_pacer->advance(realSeconds);
+        if (steps == 0) {
+            return;
+        }
+        const float dt = 1.0f / m_session->level().frameRate;
+        double total = 0.0;
+        for (uint32_t i = 0; i < steps; ++i) {
+            const glm::vec2 p = mouseWorld();
+            m_session->setPointer(p, m_push);
+            m_grab.update(p, dt);
+            try {
+                m_session->step();
+            } catch (const std::exception& e) {
+                // A world that throws mid-step is not stepped again: pause and say why.
+                toast(e.what());
+                m_pacer->setPaused(true);
+                break;
+            }
+            total += m_session->lastStepMs();
+        }
+        m_pacer->reportStepCost(total / 1000.0 / steps);
+        m_simMs = m_simMs <= 0.0f ? float(total / steps)
+                                  : 0.9f * m_simMs + 0.1f * float(total / steps);
+    }
+
+    void render(float realSeconds) {
+        const gl::Camera cam = camera();
+        m_session->drawShapes(cam, true, m_under, m_over);
+        gl::RenderSettings settings;
+        settings.view = kViews[m_view];
+        m_renderer->render(cam, gl::particles(m_session->level().world), m_under, m_over,
+                           settings);
+        if (m_screenshotPending) {
+            // Before the overlay: the picture of the liquid, not of the HUD.
+            m_screenshotPending = false;
+            screenshot();
+        }
+
+        beginOverlay(*m_renderer);
+        m_imgui->newFrame(m_renderer->size(), std::max(realSeconds, 1e-4f));
+        const Level& level = m_session->level();
+        HudInfo hud{};
+        hud.fps = m_fps;
+        hud.particles = level.world.particleCount();
+        hud.simMsPerFrame = m_simMs;
+        hud.substeps =
+            level.coupling ? level.coupling->profile().substeps : level.world.profile().substeps;
+        hud.view = gl::viewName(kViews[m_view]);
+        hud.material = m_session->dropMaterialName();
+        hud.zeroG = !m_session->gravityOn();
+        hud.paused = m_pacer->paused();
+        hud.behind = m_pacer->behind();
+        hud.speed = m_pacer->speed();
+        hud.droppedSteps = m_pacer->droppedSteps();
+        drawHud(hud);
+        drawLevelBanner(bannerFor(level), m_imgui->bannerFont());
+        if (m_showHelp) {
+            drawHelp(&m_showHelp);
+        }
+        if (m_showTuning) {
+            drawTuningPanel(m_session->level(), &m_showTuning);
+        }
+        if (m_showMenu) {
+            std::vector<LevelEntry> entries;
+            for (const LevelFile& f : m_options.levels) {
+                entries.push_back({f.stem, f.title});
+            }
+            const int chosen = drawLevelMenu(entries, m_index, &m_showMenu);
+            if (chosen == -2) {
+                m_quit = true;
+            } else if (chosen >= 0) {
+                m_showMenu = false;
+                m_pendingLevel = chosen;
+            }
+        }
+        if (!m_toast.empty() && std::chrono::steady_clock::now() < m_toastUntil) {
+            drawToast(m_toast);
+        }
+        m_imgui->render();
+        m_renderer->present(windowSize());
+        m_window.display();
+        if (m_pendingLevel >= 0) {
+            // Switch after the frame: the menu was drawn from the old level's state.
+            const int index = m_pendingLevel;
+            m_pendingLevel = -1;
+            loadLevel(index);
+        }
+    }
+
+    GameOptions m_options;
+    int m_index = 0;
+    sf::Window m_window;
+    bool m_fullscreen = false;
+    std::unique_ptr<gl::Renderer> m_renderer;
+    std::unique_ptr<ImGuiBridge> m_imgui;
+    std::unique_ptr<Session> m_session;
+    std::unique_ptr<FramePacer> m_pacer;
+    gl::ShapeBatch m_under, m_over;
+    Grab m_grab;
+    glm::vec2 m_mousePixel{0.0f, 0.0f};
+    float m_push = 0.0f;
+    size_t m_view = 0;
+    float m_fps = 0.0f;
+    float m_simMs = 0.0f;
+    bool m_showHelp = false, m_showTuning = false, m_showMenu = false, m_quit = false;
+    bool m_screenshotPending = false;
+    int m_pendingLevel = -1;
+    std::string m_toast;
+    std::chrono::steady_clock::time_point m_toastUntil{};
+};
+
+} // namespace
+
+int runGame(const GameOptions& options) {
+    if (options.levels.empty()) {
+        std::fprintf(stderr, "fluid-demo: no levels to play\n");
+        return 1;
+    }
+    Game game(options);
+    return game.run();
+}
+
+} // namespace fluid::demo

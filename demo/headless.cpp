@@ -1,0 +1,170 @@
+// fluid-demo — headless runs.
+#include "demo/headless.h"
+
+#include "demo/imgui_bridge.h"
+#include "demo/overlay.h"
+#include "demo/session.h"
+#include "demo/ui.h"
+
+#include <fluid/gl/renderer.h>
+
+#include <SFML/Graphics/Image.hpp>
+#include <SFML/Window.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+namespace fluid::demo {
+namespace {
+
+// Saves the renderer's frame as a PNG; false (message on stderr) if it cannot be written.
+bool savePng(const gl::Renderer& renderer, const std::string& path) {
+    std::vector<uint8_t> rgba;
+    renderer.readPixels(rgba);
+    const glm::ivec2 size = renderer.size();
+    sf::Image image;
+    image.create(unsigned(size.x), unsigned(size.y), rgba.data());
+    if (!image.saveToFile(path)) {
+        std::fprintf(stderr, "fluid-demo: cannot write %s\n", path.c_str());
+        return false;
+    }
+    return true;
+}
+
+// HUD and banner as the game shows them, into the renderer's framebuffer.
+void drawOverlay(ImGuiBridge& imgui, const gl::Renderer& renderer, const Session& session,
+                 gl::View view) {
+    beginOverlay(renderer);
+    imgui.newFrame(renderer.size(), 1.0f / 60.0f);
+    const Level& level = session.level();
+    HudInfo hud{};
+    hud.fps = 60.0f;
+    hud.particles = level.world.particleCount();
+    hud.simMsPerFrame = float(session.lastStepMs());
+    hud.substeps = level.coupling ? level.coupling->profile().substeps
+                                  : level.world.profile().substeps;
+    hud.view = gl::viewName(view);
+    hud.material = session.dropMaterialName();
+    hud.zeroG = !session.gravityOn();
+    hud.speed = 1.0;
+    drawHud(hud);
+    drawLevelBanner(bannerFor(level), imgui.bannerFont());
+    imgui.render();
+}
+
+} // namespace
+
+int runHeadless(const HeadlessOptions& options) {
+    const bool oneFile = !options.screenshot.empty();
+    if (!options.screenshotDir.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(options.screenshotDir, ec);
+        if (ec) {
+            std::fprintf(stderr, "fluid-demo: cannot create %s: %s\n",
+                         options.screenshotDir.c_str(), ec.message().c_str());
+            return 1;
+        }
+    }
+    sf::Window window(sf::VideoMode(unsigned(options.size.x), unsigned(options.size.y)),
+                      "fluid-demo (headless)", sf::Style::Titlebar, glContextSettings());
+    window.setVisible(false);
+    std::unique_ptr<gl::Renderer> renderer;
+    std::unique_ptr<ImGuiBridge> imgui;
+    try {
+        checkContext(window);
+        gl::loadFunctions();
+        renderer = std::make_unique<gl::Renderer>(options.size);
+        if (options.hud) {
+            imgui = std::make_unique<ImGuiBridge>();
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "fluid-demo: %s\n", e.what());
+        return 1;
+    }
+
+    std::ostringstream summary;
+    uint32_t totalErrors = 0;
+    gl::ShapeBatch under, over;
+    for (const LevelFile& file : options.levels) {
+        std::unique_ptr<Session> session;
+        try {
+            session = std::make_unique<Session>(file, options.workers);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "fluid-demo: %s\n", e.what());
+            return 1;
+        }
+        renderer->setMaterials(session->styles());
+        const gl::Camera camera =
+            gl::Camera::fit(session->bounds().lo, session->bounds().hi, options.size);
+        gl::RenderSettings settings;
+        uint32_t levelErrors = 0;
+        try {
+            for (uint32_t frame = 1; frame <= options.frames; ++frame) {
+                session->step();
+                if (options.renderEvery > 0 && frame % options.renderEvery == 0 &&
+                    frame != options.frames) {
+                    session->drawShapes(camera, false, under, over);
+                    for (const gl::View view : options.views) {
+                        settings.view = view;
+                        levelErrors += renderer
+                                           ->render(camera, gl::particles(session->level().world),
+                                                    under, over, settings)
+                                           .glErrors;
+                    }
+                }
+            }
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "fluid-demo: %s: %s\n", file.stem.c_str(), e.what());
+            return 1;
+        }
+        session->drawShapes(camera, false, under, over);
+        for (const gl::View view : options.views) {
+            settings.view = view;
+            const gl::RenderStats stats = renderer->render(
+                camera, gl::particles(session->level().world), under, over, settings);
+            levelErrors += stats.glErrors;
+            if (imgui) {
+                drawOverlay(*imgui, *renderer, *session, view);
+                levelErrors += gl::drainErrors();
+            }
+            const std::string path =
+                oneFile ? options.screenshot
+                        : (std::filesystem::path(options.screenshotDir) /
+                           (file.stem + "-" + std::string(gl::viewName(view)) + ".png"))
+                              .string();
+            if (!savePng(*renderer, path)) {
+                return 1;
+            }
+            char line[512];
+            std::snprintf(line, sizeof line,
+                          "level=%s view=%s frames=%u particles=%u size=%dx%d px_per_m=%.6g "
+                          "center=%.6g,%.6g pressure_scale=%.6g gl_errors=%u file=%s",
+                          file.stem.c_str(), std::string(gl::viewName(view)).c_str(),
+                          options.frames, session->level().world.particleCount(),
+                          options.size.x, options.size.y, double(camera.pixelsPerMetre),
+                          double(camera.center.x), double(camera.center.y),
+                          double(stats.pressureScale), levelErrors, path.c_str());
+            std::printf("fluid-demo: %s\n", line);
+            summary << line << '\n';
+        }
+        std::fflush(stdout);
+        totalErrors += levelErrors;
+    }
+    if (!options.screenshotDir.empty()) {
+        std::ofstream(std::filesystem::path(options.screenshotDir) / "summary.txt")
+            << summary.str();
+    }
+    imgui.reset();
+    renderer.reset();
+    if (totalErrors > 0) {
+        std::fprintf(stderr, "fluid-demo: %u GL error(s) while rendering\n", totalErrors);
+        return 3;
+    }
+    return 0;
+}
+
+} // namespace fluid::demo

@@ -1,0 +1,33 @@
+// fluid-demo — what the renderer draws besides the liquid: walls and shapes of the boundary
+// plugins, sensors, drains and emitters of the level, and its Box2D bodies.
+#pragma once
+#include <fluid/gl/shapes.h>
+#include <fluid/level.h>
+
+#include <glm/vec2.hpp>
+
+namespace fluid::demo {
+
+/// The world rectangle a level is framed in (unit: m).
+struct ViewBounds {
+    /// Lower-left and upper-right corners (unit: m).
+    glm::vec2 lo{0.0f, 0.0f}, hi{1.0f, 1.0f};
+};
+
+/// The rectangle to frame `level` in: its first `boundary.box` tank when it has one, grown to
+/// hold the emitters, sensors and bodies; otherwise the extent of everything in the level
+/// (particles, shapes, bodies) with room around it for blobs to drift. Call once after loading,
+/// so the camera does not follow the liquid. Stepping thread.
+ViewBounds levelBounds(const Level& level);
+
+/// Walls, static shapes, drains and sensors (with their fill shown by `goalFill`, unit: 1 in
+/// [0, 1], for the goal's sensor), drawn under the liquid. Stepping thread (reads plugins and
+/// Box2D).
+void drawUnder(const Level& level, double goalFill, gl::ShapeBatch& batch);
+
+/// Box2D bodies (filled, outlined, shaded by density: light floats, dark sinks), kinematic
+/// plugin shapes and emitter nozzles, drawn over the liquid. `lineWidth` (unit: m) is the
+/// outline width, about 1.5 px. Stepping thread.
+void drawOver(const Level& level, float lineWidth, gl::ShapeBatch& batch);
+
+} // namespace fluid::demo

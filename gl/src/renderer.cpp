@@ -1,0 +1,760 @@
+// fluid::gl — the renderer: render targets, particle uploads and the passes of each view.
+//
+// Per frame (see docs/rendering.md):
+//   1. clear the RGBA8 composite target to the background, draw the `under` shapes;
+//   2. Metaballs: add every particle's kernel into a float field target (additive blending),
+//      then one full-screen triangle turns the field into a surface over the composite;
+//      Pressure: the same surface in black, then one red square per particle;
+//      Particles: one disc per particle;
+//   3. draw the `over` shapes.
+#include "gl_api.h"
+#include "program.h"
+
+#include <fluid/gl/renderer.h>
+
+#include <glm/common.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <string>
+
+namespace fluid::gl {
+
+namespace {
+
+constexpr int kMaxSize = 16384;
+constexpr size_t kMaxMaterials = 16;
+// The automatic pressure scale never goes below this (unit: Pa), so a frame without positive
+// pressure does not divide by zero.
+constexpr float kMinPressureScale = 1e-3f;
+// The field of a liquid's interior sums to this; the threshold's default 0.6 is half of it,
+// which puts the surface about half a spacing outside the outer particles' centres (where the
+// lattice cells of the outer row end). See docs/rendering.md.
+constexpr float kInteriorField = 1.2f;
+// Default of RenderSettings::threshold. A lone particle's summed field peaks at only
+// kInteriorField x 4 / (pi fieldRadius^2) (0.38 at radius 2): below the threshold, so spray
+// would vanish. The composite therefore also takes the largest single kernel, scaled so that
+// at the default threshold a lone particle shows as a disc of radius half a spacing (the
+// same half spacing a flat surface stands out by); inside the liquid the sum dominates.
+constexpr float kDefaultThreshold = 0.6f;
+
+// Vertex attribute locations, as the shaders declare them.
+enum Attribute : GLuint {
+    kCorner = 0,
+    kX = 1,
+    kY = 2,
+    kVx = 3,
+    kVy = 4,
+    kPressure = 5,
+    kMaterial = 6,
+    kShapePosition = 0,
+    kShapeColour = 1,
+};
+
+// Per-particle buffers, one per channel.
+enum Channel : size_t { kChX, kChY, kChVx, kChVy, kChPressure, kChMaterial, kChannelCount };
+constexpr std::array<GLuint, kChannelCount> kChannelAttribute{kX,  kY,        kVx,
+                                                              kVy, kPressure, kMaterial};
+
+std::string sizeText(glm::ivec2 size) {
+    return "(" + std::to_string(size.x) + ", " + std::to_string(size.y) + ")";
+}
+
+float finiteOr(float value, float fallback) {
+    return std::isfinite(value) ? value : fallback;
+}
+
+// Pixel rectangle (x, y, width, height; GL's y up) of a target of `size` covering the world
+// rectangle [lo, hi] under the column-major world-to-clip matrix `m`, grown by `margin` pixels
+// and clipped to the target. Width or height 0 when nothing of it shows.
+glm::ivec4 pixelRect(const float* m, glm::vec2 lo, glm::vec2 hi, glm::ivec2 size, int margin) {
+    const glm::vec2 clipLo(m[0] * lo.x + m[6], m[4] * lo.y + m[7]);
+    const glm::vec2 clipHi(m[0] * hi.x + m[6], m[4] * hi.y + m[7]);
+    const glm::vec2 a = (glm::min(clipLo, clipHi) * 0.5f + 0.5f) * glm::vec2(size);
+    const glm::vec2 b = (glm::max(clipLo, clipHi) * 0.5f + 0.5f) * glm::vec2(size);
+    // Clamp in float first: far-off liquid must not overflow the int conversion.
+    const glm::vec2 limit(size);
+    const glm::ivec2 x0(glm::clamp(glm::floor(a) - float(margin), glm::vec2(0.0f), limit));
+    const glm::ivec2 x1(glm::clamp(glm::ceil(b) + float(margin), glm::vec2(0.0f), limit));
+    return {x0.x, x0.y, std::max(x1.x - x0.x, 0), std::max(x1.y - x0.y, 0)};
+}
+
+// Locations of the uniforms one particle program uses (-1 when it has none of that name).
+struct ParticleUniforms {
+    GLint worldToClip = -1, spacing = -1, colour = -1, materialCount = -1;
+    void locate(const detail::Program& program) {
+        worldToClip = program.uniform("uWorldToClip");
+        spacing = program.uniform("uSpacing");
+        colour = program.uniform("uColour");
+        materialCount = program.uniform("uMaterialCount");
+    }
+};
+
+} // namespace
+
+namespace {
+// One metaball surface: the field pass and the composite pass.
+struct SurfacePass {
+    const float* worldToClip = nullptr; // column-major mat3, world (m) to clip
+    size_t particles = 0;
+    float fieldRadius = 2.0f;     // R over spacing (1)
+    float threshold = 0.6f;       // field level at the surface (1)
+    float rimWidth = 3.0f;        // rim band (target px)
+    bool dark = false;            // pressure view: black liquid, grey rim
+    glm::vec2 lo{0.0f}, hi{0.0f}; // every particle's kernel lies in [lo, hi] (m)
+};
+} // namespace
+
+struct Renderer::Impl {
+    glm::ivec2 size{0, 0};
+    glm::ivec2 fieldSize{0, 0};
+    GLint maxTextureSize = 0;
+
+    // Targets: the composite (what the host sees) and the metaball field.
+    GLuint compositeFbo = 0, compositeTexture = 0;
+    // The field has two attachments: colour (rgb = sum of colour x w, a = max of w) and weight
+    // (r = sum of w). The max lets a lone droplet show (see kDropletLevel).
+    GLuint fieldFbo = 0;
+    std::array<GLuint, 2> fieldTextures{};
+    bool fieldHalfFloat = true;
+
+    detail::Program shapeProgram, fieldProgram, compositeProgram, squareProgram, discProgram;
+    GLint shapeWorldToClip = -1;
+    ParticleUniforms fieldUniforms, squareUniforms, discUniforms;
+    GLint fieldRadius = -1, fieldWeight = -1;
+    GLint compositeThreshold = -1, compositeRimWidth = -1, compositeDark = -1, compositeField = -1,
+          compositeWeight = -1, compositeDropletLevel = -1, compositeKernelWeight = -1;
+    GLint squareInvScale = -1;
+    GLint discPixel = -1, discInvSpeedScale = -1;
+
+    GLuint shapeVao = 0, shapeVbo = 0;
+    GLuint particleVao = 0, quadVbo = 0;
+    std::array<GLuint, kChannelCount> channelVbo{};
+    GLuint emptyVao = 0;
+
+    // Material styles as uniform arrays (index 0 stands in for unknown indices).
+    std::array<float, kMaxMaterials> spacing{};
+    std::array<float, kMaxMaterials * 3> colour{};
+    GLint materialCount = 1;
+
+    // Reused every frame: positive pressures for the automatic scale.
+    std::vector<float> pressureScratch;
+
+    explicit Impl(glm::ivec2 targetSize);
+    ~Impl();
+    Impl(const Impl&) = delete;
+    Impl& operator=(const Impl&) = delete;
+
+    void allocateComposite();
+    void allocateField(glm::ivec2 newFieldSize);
+    void setStyles(std::span<const MaterialStyle> styles);
+    void uploadMaterials(const ParticleUniforms& uniforms) const;
+    void uploadChannel(Channel channel, const void* data, size_t bytes, bool present);
+    void drawShapes(GLint first, GLsizei count) const;
+    void drawSurface(const SurfacePass& pass);
+};
+
+namespace {
+
+void checkSize(glm::ivec2 size, GLint maxTextureSize, const char* function) {
+    if (size.x < 1 || size.y < 1 || size.x > kMaxSize || size.y > kMaxSize) {
+        throw Error(std::string("fluid::gl: ") + function + ": size " + sizeText(size) +
+                    " is out of range [1, " + std::to_string(kMaxSize) + "] (unit: px)");
+    }
+    if (maxTextureSize > 0 && (size.x > maxTextureSize || size.y > maxTextureSize)) {
+        throw Error(std::string("fluid::gl: ") + function + ": size " + sizeText(size) +
+                    " exceeds this context's GL_MAX_TEXTURE_SIZE " +
+                    std::to_string(maxTextureSize) + " (unit: px)");
+    }
+}
+
+void setTextureParameters(GLenum filter) {
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(filter));
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(filter));
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+} // namespace
+
+Renderer::Impl::Impl(glm::ivec2 targetSize) {
+    // GLEW's entry points past OpenGL 1.1 are null until loadFunctions() ran: calling one
+    // would crash instead of throwing.
+    if (glCreateShader == nullptr || glGenVertexArrays == nullptr ||
+        glDrawArraysInstanced == nullptr) {
+        throw Error("fluid::gl: Renderer: OpenGL entry points are not loaded; call "
+                    "fluid::gl::loadFunctions() with the context current first");
+    }
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
+    checkSize(targetSize, maxTextureSize, "Renderer");
+    size = targetSize;
+
+    shapeProgram = detail::Program("shape.vert", "shape.frag");
+    fieldProgram = detail::Program("metaball_field.vert", "metaball_field.frag");
+    compositeProgram = detail::Program("fullscreen.vert", "metaball_composite.frag");
+    squareProgram = detail::Program("pressure_square.vert", "pressure_square.frag");
+    discProgram = detail::Program("particle_disc.vert", "particle_disc.frag");
+
+    shapeWorldToClip = shapeProgram.uniform("uWorldToClip");
+    fieldUniforms.locate(fieldProgram);
+    squareUniforms.locate(squareProgram);
+    discUniforms.locate(discProgram);
+    fieldRadius = fieldProgram.uniform("uFieldRadius");
+    fieldWeight = fieldProgram.uniform("uWeight");
+    compositeThreshold = compositeProgram.uniform("uThreshold");
+    compositeRimWidth = compositeProgram.uniform("uRimWidth");
+    compositeDark = compositeProgram.uniform("uDark");
+    compositeField = compositeProgram.uniform("uField");
+    compositeWeight = compositeProgram.uniform("uWeight");
+    compositeDropletLevel = compositeProgram.uniform("uDropletLevel");
+    compositeKernelWeight = compositeProgram.uniform("uKernelWeight");
+    squareInvScale = squareProgram.uniform("uInvScale");
+    discPixel = discProgram.uniform("uPixel");
+    discInvSpeedScale = discProgram.uniform("uInvSpeedScale");
+    glUseProgram(compositeProgram.id());
+    glUniform1i(compositeField, 0);
+    glUniform1i(compositeWeight, 1);
+    glUseProgram(0);
+
+    // Shapes: interleaved position + colour, refilled every frame.
+    glGenVertexArrays(1, &shapeVao);
+    glGenBuffers(1, &shapeVbo);
+    glBindVertexArray(shapeVao);
+    glBindBuffer(GL_ARRAY_BUFFER, shapeVbo);
+    glEnableVertexAttribArray(kShapePosition);
+    glVertexAttribPointer(kShapePosition, 2, GL_FLOAT, GL_FALSE, sizeof(ShapeVertex),
+                          reinterpret_cast<const void*>(offsetof(ShapeVertex, position)));
+    glEnableVertexAttribArray(kShapeColour);
+    glVertexAttribPointer(kShapeColour, 4, GL_FLOAT, GL_FALSE, sizeof(ShapeVertex),
+                          reinterpret_cast<const void*>(offsetof(ShapeVertex, colour)));
+
+    // Particles: a unit quad per vertex, then one buffer per channel per instance (divisor 1),
+    // each filled straight from the world's spans (structure of arrays, no interleaving copy).
+    glGenVertexArrays(1, &particleVao);
+    glGenBuffers(1, &quadVbo);
+    glGenBuffers(static_cast<GLsizei>(channelVbo.size()), channelVbo.data());
+    glBindVertexArray(particleVao);
+    static constexpr float kQuad[8] = {-1.0f, -1.0f, 1.0f, -1.0f, -1.0f, 1.0f, 1.0f, 1.0f};
+    glBindBuffer(GL_ARRAY_BUFFER, quadVbo);
+    glBufferData(GL_ARRAY_BUFFER, sizeof kQuad, kQuad, GL_STATIC_DRAW);
+    glEnableVertexAttribArray(kCorner);
+    glVertexAttribPointer(kCorner, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+    for (size_t c = 0; c < kChannelCount; ++c) {
+        const GLuint location = kChannelAttribute[c];
+        glBindBuffer(GL_ARRAY_BUFFER, channelVbo[c]);
+        if (c == kChMaterial) {
+            // Integer attribute: the shader indexes the style arrays with it.
+            glVertexAttribIPointer(location, 1, GL_UNSIGNED_SHORT, 0, nullptr);
+        } else {
+            glVertexAttribPointer(location, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+        }
+        glVertexAttribDivisor(location, 1);
+    }
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+    // The full-screen triangle has no attributes, but core profile draws need a bound VAO.
+    glGenVertexArrays(1, &emptyVao);
+
+    glGenFramebuffers(1, &compositeFbo);
+    glGenTextures(1, &compositeTexture);
+    glGenFramebuffers(1, &fieldFbo);
+    glGenTextures(2, fieldTextures.data());
+    allocateComposite();
+    setStyles({});
+}
+
+Renderer::Impl::~Impl() {
+    glDeleteFramebuffers(1, &compositeFbo);
+    glDeleteFramebuffers(1, &fieldFbo);
+    glDeleteTextures(1, &compositeTexture);
+    glDeleteTextures(2, fieldTextures.data());
+    glDeleteVertexArrays(1, &shapeVao);
+    glDeleteVertexArrays(1, &particleVao);
+    glDeleteVertexArrays(1, &emptyVao);
+    glDeleteBuffers(1, &shapeVbo);
+    glDeleteBuffers(1, &quadVbo);
+    glDeleteBuffers(static_cast<GLsizei>(channelVbo.size()), channelVbo.data());
+}
+
+void Renderer::Impl::allocateComposite() {
+    // A pixel-unpack buffer the host left bound would turn the null pointer into an offset.
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    glBindTexture(GL_TEXTURE_2D, compositeTexture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, size.x, size.y, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    setTextureParameters(GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, compositeFbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, compositeTexture,
+                           0);
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        char hex[16];
+        std::snprintf(hex, sizeof hex, "0x%04X", static_cast<unsigned>(status));
+        throw Error("fluid::gl: Renderer: the GL_RGBA8 framebuffer of size " + sizeText(size) +
+                    " is incomplete (status " + hex + ")");
+    }
+    // The field follows the composite's size at the next render.
+    fieldSize = {0, 0};
+}
+
+void Renderer::Impl::allocateField(glm::ivec2 newFieldSize) {
+    fieldSize = newFieldSize;
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, fieldFbo);
+    // Half floats are enough for sums of a few dozen weights and half the bandwidth of 32-bit;
+    // 32-bit floats are the fallback for drivers that cannot render to 16-bit ones.
+    GLenum status = GL_FRAMEBUFFER_UNSUPPORTED;
+    for (const bool half : {fieldHalfFloat, true, false}) {
+        const std::array<GLenum, 2> formats = half ? std::array<GLenum, 2>{GL_RGBA16F, GL_R16F}
+                                                   : std::array<GLenum, 2>{GL_RGBA32F, GL_R32F};
+        for (size_t i = 0; i < 2; ++i) {
+            glBindTexture(GL_TEXTURE_2D, fieldTextures[i]);
+            glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(formats[i]), fieldSize.x, fieldSize.y,
+                         0, i == 0 ? GL_RGBA : GL_RED, GL_FLOAT, nullptr);
+            setTextureParameters(GL_LINEAR);
+            glFramebufferTexture2D(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + i), GL_TEXTURE_2D,
+                                   fieldTextures[i], 0);
+        }
+        status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+        if (status == GL_FRAMEBUFFER_COMPLETE) {
+            fieldHalfFloat = half;
+            break;
+        }
+    }
+    glBindTexture(GL_TEXTURE_2D, 0);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        char hex[16];
+        std::snprintf(hex, sizeof hex, "0x%04X", static_cast<unsigned>(status));
+        fieldSize = {0, 0};
+        throw Error("fluid::gl: Renderer: no float framebuffer is complete for the metaball "
+                    "field (tried GL_RGBA16F + GL_R16F and GL_RGBA32F + GL_R32F at " +
+                    sizeText(newFieldSize) + "; last status " + hex + ")");
+    }
+    static constexpr GLenum kDrawBuffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glDrawBuffers(2, kDrawBuffers);
+}
+
+void Renderer::Impl::setStyles(std::span<const MaterialStyle> styles) {
+    const MaterialStyle fallback{};
+    if (styles.empty()) {
+        styles = {&fallback, 1};
+    }
+    materialCount = static_cast<GLint>(styles.size());
+    for (size_t i = 0; i < kMaxMaterials; ++i) {
+        // Unused slots copy style 0; the shaders map unknown indices to it anyway.
+        const MaterialStyle& style = i < styles.size() ? styles[i] : styles[0];
+        spacing[i] = style.spacing;
+        colour[3 * i + 0] = style.colour.r;
+        colour[3 * i + 1] = style.colour.g;
+        colour[3 * i + 2] = style.colour.b;
+    }
+}
+
+void Renderer::Impl::uploadMaterials(const ParticleUniforms& uniforms) const {
+    glUniform1fv(uniforms.spacing, GLsizei(kMaxMaterials), spacing.data());
+    if (uniforms.colour >= 0) {
+        glUniform3fv(uniforms.colour, GLsizei(kMaxMaterials), colour.data());
+    }
+    glUniform1i(uniforms.materialCount, materialCount);
+}
+
+void Renderer::Impl::uploadChannel(Channel channel, const void* data, size_t bytes, bool present) {
+    const GLuint location = kChannelAttribute[channel];
+    if (!present) {
+        // An empty span: a constant 0 instead of an array (which the VAO must not read).
+        glDisableVertexAttribArray(location);
+        if (channel == kChMaterial) {
+            glVertexAttribI4ui(location, 0, 0, 0, 0);
+        } else {
+            glVertexAttrib1f(location, 0.0f);
+        }
+        return;
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, channelVbo[channel]);
+    // glBufferData with the data orphans last frame's storage: the driver hands out fresh
+    // memory instead of waiting for draws that still read the old one.
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(bytes), data, GL_STREAM_DRAW);
+    glEnableVertexAttribArray(location);
+}
+
+void Renderer::Impl::drawShapes(GLint first, GLsizei count) const {
+    if (count == 0) {
+        return;
+    }
+    glUseProgram(shapeProgram.id());
+    glBindVertexArray(shapeVao);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    // Straight alpha over an opaque target; the target's alpha stays 1.
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glDrawArrays(GL_TRIANGLES, first, count);
+}
+
+void Renderer::Impl::drawSurface(const SurfacePass& pass) {
+    // Both passes only touch the liquid's bounding rectangle (scissored): the composite is a
+    // full-screen pass otherwise, the largest cost on software renderers. Field margin: the
+    // composite's bilinear taps reach a texel past its own rectangle.
+    const glm::ivec4 fieldRect = pixelRect(pass.worldToClip, pass.lo, pass.hi, fieldSize, 2);
+    const glm::ivec4 targetRect = pixelRect(pass.worldToClip, pass.lo, pass.hi, size, 1);
+    if (fieldRect.z == 0 || fieldRect.w == 0 || targetRect.z == 0 || targetRect.w == 0) {
+        return; // the liquid is off screen
+    }
+    glEnable(GL_SCISSOR_TEST);
+
+    // Field pass: sum every particle's kernel into the float target.
+    glBindFramebuffer(GL_FRAMEBUFFER, fieldFbo);
+    glViewport(0, 0, fieldSize.x, fieldSize.y);
+    glScissor(fieldRect.x, fieldRect.y, fieldRect.z, fieldRect.w);
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glEnable(GL_BLEND);
+    // Sums (rgb of both attachments), except the colour attachment's alpha: a maximum.
+    glBlendEquationSeparate(GL_FUNC_ADD, GL_MAX);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glUseProgram(fieldProgram.id());
+    glUniformMatrix3fv(fieldUniforms.worldToClip, 1, GL_FALSE, pass.worldToClip);
+    uploadMaterials(fieldUniforms);
+    glUniform1f(fieldRadius, pass.fieldRadius);
+    // The kernel integrates to pi R^2 / 4 and a particle stands for spacing^2 of area, so
+    // this weight makes a filled lattice sum to kInteriorField whatever the radius.
+    const float kernelWeight =
+        kInteriorField * 4.0f / (std::numbers::pi_v<float> * pass.fieldRadius * pass.fieldRadius);
+    glUniform1f(fieldWeight, kernelWeight);
+    glBindVertexArray(particleVao);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(pass.particles));
+
+    // Composite pass: one full-screen triangle samples the field (bilinear) over the target.
+    glBindFramebuffer(GL_FRAMEBUFFER, compositeFbo);
+    glViewport(0, 0, size.x, size.y);
+    glScissor(targetRect.x, targetRect.y, targetRect.z, targetRect.w);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glUseProgram(compositeProgram.id());
+    glUniform1f(compositeThreshold, pass.threshold);
+    const float edge = 0.5f / pass.fieldRadius;
+    glUniform1f(compositeDropletLevel, kDefaultThreshold / std::pow(1.0f - edge * edge, 3.0f));
+    glUniform1f(compositeKernelWeight, kernelWeight);
+    glUniform1f(compositeRimWidth, pass.rimWidth);
+    glUniform1i(compositeDark, pass.dark ? 1 : 0);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, fieldTextures[1]);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, fieldTextures[0]);
+    glBindVertexArray(emptyVao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glActiveTexture(GL_TEXTURE0);
+    glDisable(GL_SCISSOR_TEST);
+}
+
+Renderer::Renderer(glm::ivec2 size) : m_impl(std::make_unique<Impl>(size)) {}
+Renderer::~Renderer() = default;
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+
+namespace {
+// A template so that it can take the private Impl type without naming it.
+template <class T> T& checked(const std::unique_ptr<T>& impl, const char* function) {
+    if (!impl) {
+        throw Error(std::string("fluid::gl: Renderer::") + function +
+                    ": the renderer was moved from");
+    }
+    return *impl;
+}
+} // namespace
+
+void Renderer::resize(glm::ivec2 size) {
+    Impl& m = checked(m_impl, "resize");
+    checkSize(size, m.maxTextureSize, "Renderer::resize");
+    if (size == m.size) {
+        return;
+    }
+    m.size = size;
+    m.allocateComposite();
+}
+
+glm::ivec2 Renderer::size() const {
+    return checked(m_impl, "size").size;
+}
+
+void Renderer::setMaterials(std::span<const MaterialStyle> styles) {
+    Impl& m = checked(m_impl, "setMaterials");
+    if (styles.size() > kMaxMaterials) {
+        throw Error("fluid::gl: Renderer::setMaterials: " + std::to_string(styles.size()) +
+                    " styles is out of range [0, " + std::to_string(kMaxMaterials) + "]");
+    }
+    for (size_t i = 0; i < styles.size(); ++i) {
+        const MaterialStyle& style = styles[i];
+        if (!(style.spacing > 0.0f) || !std::isfinite(style.spacing)) {
+            throw Error("fluid::gl: Renderer::setMaterials: style " + std::to_string(i) +
+                        ": spacing = " + std::to_string(style.spacing) +
+                        " is out of range (0, inf) (unit: m)");
+        }
+        if (!std::isfinite(style.colour.r) || !std::isfinite(style.colour.g) ||
+            !std::isfinite(style.colour.b)) {
+            throw Error("fluid::gl: Renderer::setMaterials: style " + std::to_string(i) +
+                        ": colour is not finite");
+        }
+    }
+    m.setStyles(styles);
+}
+
+RenderStats Renderer::render(const Camera& camera, const ParticleSpans& particles,
+                             const ShapeBatch& under, const ShapeBatch& over,
+                             const RenderSettings& settings) {
+    Impl& m = checked(m_impl, "render");
+
+    // ---- check the input before touching GL ----
+    const size_t n = particles.x.size();
+    auto checkSpan = [n](size_t count, const char* name, bool mayBeEmpty) {
+        if (count != n && !(mayBeEmpty && count == 0)) {
+            throw Error(std::string("fluid::gl: Renderer: particle spans disagree: x has ") +
+                        std::to_string(n) + " entries, " + name + " " + std::to_string(count));
+        }
+    };
+    checkSpan(particles.y.size(), "y", false);
+    checkSpan(particles.vx.size(), "vx", true);
+    checkSpan(particles.vy.size(), "vy", true);
+    checkSpan(particles.pressure.size(), "pressure", true);
+    checkSpan(particles.material.size(), "material", true);
+    if (n > size_t(1) << 30) {
+        throw Error("fluid::gl: Renderer: " + std::to_string(n) +
+                    " particles is out of range [0, 2^30]");
+    }
+    if (!(camera.pixelsPerMetre > 0.0f) || !std::isfinite(camera.pixelsPerMetre) ||
+        !std::isfinite(camera.center.x) || !std::isfinite(camera.center.y)) {
+        throw Error("fluid::gl: Renderer: camera.pixelsPerMetre = " +
+                    std::to_string(camera.pixelsPerMetre) +
+                    " is out of range (0, inf) (unit: px/m), or its center is not finite");
+    }
+    const size_t underCount = under.vertices().size();
+    const size_t overCount = over.vertices().size();
+    if (underCount + overCount > size_t(1) << 30) {
+        throw Error("fluid::gl: Renderer: " + std::to_string(underCount + overCount) +
+                    " shape vertices is out of range [0, 2^30]");
+    }
+
+    // ---- settings, clamped to their documented ranges ----
+    const float fieldRadius = std::clamp(finiteOr(settings.fieldRadius, 2.0f), 1.0f, 4.0f);
+    const float threshold = std::clamp(finiteOr(settings.threshold, 0.6f), 0.05f, 4.0f);
+    const float resolution = std::clamp(finiteOr(settings.fieldResolution, 0.5f), 0.25f, 1.0f);
+    const float speedScale = std::max(finiteOr(settings.speedScale, 2.0f), 1e-6f);
+    const float fixedPressureScale = std::max(finiteOr(settings.pressureScale, 0.0f), 0.0f);
+
+    RenderStats stats;
+    stats.particles = static_cast<uint32_t>(n);
+    // Errors the host left pending are not ours to count.
+    drainErrors();
+
+    // Camera to clip space: the camera's view rectangle fills the target (column-major mat3).
+    const glm::vec2 viewport = glm::max(glm::vec2(camera.viewport), glm::vec2(1.0f));
+    const float sx = 2.0f * camera.pixelsPerMetre / viewport.x;
+    const float sy = 2.0f * camera.pixelsPerMetre / viewport.y;
+    const float worldToClip[9] = {
+        sx, 0.0f, 0.0f, 0.0f, sy, 0.0f, -camera.center.x * sx, -camera.center.y * sy, 1.0f};
+    // Target pixels per metre along x (the camera's viewport may differ from the target).
+    const float targetPixelsPerMetre = camera.pixelsPerMetre * float(m.size.x) / viewport.x;
+
+    // ---- 1. background and the shapes under the liquid ----
+    // State the host (an ImGui pass, say) may have changed.
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_CULL_FACE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, m.compositeFbo);
+    glViewport(0, 0, m.size.x, m.size.y);
+    glClearColor(settings.background.r, settings.background.g, settings.background.b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+
+    if (underCount + overCount > 0) {
+        // Both batches in one buffer, one orphaning allocation per frame.
+        glBindBuffer(GL_ARRAY_BUFFER, m.shapeVbo);
+        glBufferData(GL_ARRAY_BUFFER,
+                     static_cast<GLsizeiptr>((underCount + overCount) * sizeof(ShapeVertex)),
+                     nullptr, GL_STREAM_DRAW);
+        if (underCount > 0) {
+            glBufferSubData(GL_ARRAY_BUFFER, 0,
+                            static_cast<GLsizeiptr>(underCount * sizeof(ShapeVertex)),
+                            under.vertices().data());
+        }
+        if (overCount > 0) {
+            glBufferSubData(
+                GL_ARRAY_BUFFER, static_cast<GLintptr>(underCount * sizeof(ShapeVertex)),
+                static_cast<GLsizeiptr>(overCount * sizeof(ShapeVertex)), over.vertices().data());
+        }
+        glUseProgram(m.shapeProgram.id());
+        glUniformMatrix3fv(m.shapeWorldToClip, 1, GL_FALSE, worldToClip);
+    }
+    m.drawShapes(0, static_cast<GLsizei>(underCount));
+
+    // ---- 2. the liquid ----
+    if (n > 0) {
+        const View view = settings.view;
+        const bool usePressure = view == View::Pressure && !particles.pressure.empty();
+        const bool useVelocity = view == View::Particles;
+        // Enabling and disabling attribute arrays is state of the bound vertex array.
+        glBindVertexArray(m.particleVao);
+        m.uploadChannel(kChX, particles.x.data(), n * sizeof(float), true);
+        m.uploadChannel(kChY, particles.y.data(), n * sizeof(float), true);
+        m.uploadChannel(kChVx, particles.vx.data(), n * sizeof(float),
+                        useVelocity && !particles.vx.empty());
+        m.uploadChannel(kChVy, particles.vy.data(), n * sizeof(float),
+                        useVelocity && !particles.vy.empty());
+        m.uploadChannel(kChPressure, particles.pressure.data(), n * sizeof(float), usePressure);
+        m.uploadChannel(kChMaterial, particles.material.data(), n * sizeof(uint16_t),
+                        !particles.material.empty());
+
+        // The rim band: about a third of a spacing of the first material, 1.5 to 12 px.
+        const float rimWidth = std::clamp(0.3f * m.spacing[0] * targetPixelsPerMetre, 1.5f, 12.0f);
+
+        if (view == View::Metaballs || view == View::Pressure) {
+            const glm::ivec2 wanted =
+                glm::max(glm::ivec2(glm::round(glm::vec2(m.size) * resolution)), glm::ivec2(1));
+            if (wanted != m.fieldSize) {
+                m.allocateField(wanted);
+            }
+            SurfacePass pass;
+            pass.worldToClip = worldToClip;
+            pass.particles = n;
+            pass.fieldRadius = fieldRadius;
+            pass.threshold = threshold;
+            pass.rimWidth = view == View::Pressure ? 1.5f : rimWidth;
+            pass.dark = view == View::Pressure;
+            // Bounding box of the particles (non-finite ones drop out of the comparisons),
+            // grown by the largest kernel radius.
+            glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+            for (size_t i = 0; i < n; ++i) {
+                const float x = particles.x[i], y = particles.y[i];
+                lo.x = x < lo.x ? x : lo.x;
+                hi.x = x > hi.x ? x : hi.x;
+                lo.y = y < lo.y ? y : lo.y;
+                hi.y = y > hi.y ? y : hi.y;
+            }
+            const float reach = fieldRadius * *std::max_element(m.spacing.begin(), m.spacing.end());
+            pass.lo = lo - reach;
+            pass.hi = hi + reach;
+            if (lo.x <= hi.x && lo.y <= hi.y) {
+                m.drawSurface(pass);
+            }
+        }
+
+        if (view == View::Pressure) {
+            float scale = fixedPressureScale;
+            if (scale == 0.0f) {
+                // Automatic: the 95th percentile of the positive pressures, so a few spikes
+                // at walls do not wash the rest of the liquid out.
+                std::vector<float>& positive = m.pressureScratch;
+                positive.clear();
+                for (const float p : particles.pressure) {
+                    if (p > 0.0f && std::isfinite(p)) {
+                        positive.push_back(p);
+                    }
+                }
+                if (!positive.empty()) {
+                    const size_t k = static_cast<size_t>(0.95 * double(positive.size() - 1));
+                    std::nth_element(positive.begin(),
+                                     positive.begin() + static_cast<std::ptrdiff_t>(k),
+                                     positive.end());
+                    scale = positive[k];
+                }
+            }
+            scale = std::max(scale, kMinPressureScale);
+            stats.pressureScale = scale;
+            glUseProgram(m.squareProgram.id());
+            glUniformMatrix3fv(m.squareUniforms.worldToClip, 1, GL_FALSE, worldToClip);
+            m.uploadMaterials(m.squareUniforms);
+            glUniform1f(m.squareInvScale, 1.0f / scale);
+            glBindVertexArray(m.particleVao);
+            glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE,
+                                GL_ONE_MINUS_SRC_ALPHA);
+            glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(n));
+        } else if (view == View::Particles) {
+            glEnable(GL_BLEND);
+            glBlendEquation(GL_FUNC_ADD);
+            glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE,
+                                GL_ONE_MINUS_SRC_ALPHA);
+            glUseProgram(m.discProgram.id());
+            glUniformMatrix3fv(m.discUniforms.worldToClip, 1, GL_FALSE, worldToClip);
+            m.uploadMaterials(m.discUniforms);
+            glUniform1f(m.discPixel, 1.0f / targetPixelsPerMetre);
+            glUniform1f(m.discInvSpeedScale, 1.0f / speedScale);
+            glBindVertexArray(m.particleVao);
+            glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(n));
+        }
+    }
+
+    // ---- 3. the shapes over the liquid ----
+    if (overCount > 0) {
+        glUseProgram(m.shapeProgram.id());
+        m.drawShapes(static_cast<GLint>(underCount), static_cast<GLsizei>(overCount));
+    }
+
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glDisable(GL_BLEND);
+    stats.glErrors = drainErrors();
+    return stats;
+}
+
+uint32_t Renderer::framebuffer() const {
+    return checked(m_impl, "framebuffer").compositeFbo;
+}
+
+void Renderer::present(glm::ivec2 windowSize) const {
+    const Impl& m = checked(m_impl, "present");
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (windowSize.x < 1 || windowSize.y < 1) {
+        return; // a minimised window
+    }
+    glDisable(GL_SCISSOR_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glViewport(0, 0, windowSize.x, windowSize.y);
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    // Letterbox: the largest copy with the target's aspect, centred.
+    const float scale =
+        std::min(float(windowSize.x) / float(m.size.x), float(windowSize.y) / float(m.size.y));
+    const int w = std::clamp(int(std::lround(float(m.size.x) * scale)), 1, windowSize.x);
+    const int h = std::clamp(int(std::lround(float(m.size.y) * scale)), 1, windowSize.y);
+    const int x0 = (windowSize.x - w) / 2;
+    const int y0 = (windowSize.y - h) / 2;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, m.compositeFbo);
+    glBlitFramebuffer(0, 0, m.size.x, m.size.y, x0, y0, x0 + w, y0 + h, GL_COLOR_BUFFER_BIT,
+                      (w == m.size.x && h == m.size.y) ? GL_NEAREST : GL_LINEAR);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void Renderer::readPixels(std::vector<uint8_t>& rgba) const {
+    const Impl& m = checked(m_impl, "readPixels");
+    const size_t rowBytes = size_t(m.size.x) * 4;
+    rgba.resize(rowBytes * size_t(m.size.y));
+    GLint previousRead = 0;
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previousRead);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, m.compositeFbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    // A pack buffer the host left bound would receive the pixels instead of `rgba`.
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+    glReadPixels(0, 0, m.size.x, m.size.y, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previousRead));
+    // GL rows go bottom to top; image files go top to bottom.
+    for (size_t top = 0, bottom = size_t(m.size.y) - 1; top < bottom; ++top, --bottom) {
+        std::swap_ranges(rgba.begin() + static_cast<std::ptrdiff_t>(top * rowBytes),
+                         rgba.begin() + static_cast<std::ptrdiff_t>((top + 1) * rowBytes),
+                         rgba.begin() + static_cast<std::ptrdiff_t>(bottom * rowBytes));
+    }
+}
+
+} // namespace fluid::gl

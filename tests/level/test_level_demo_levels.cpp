@@ -1,0 +1,403 @@
+// fluid tests — the levels written for fluid-demo and its playlist: levels/playlist.txt names
+// existing levels in the demo's order; yoghurt_vs_water.json shows the viscosity contrast;
+// zero_g_arena.json has no net force but its walls, and its blobs meet; cup_and_planks.json is
+// lost with the planks where the file puts them and won with them moved into a slide;
+// big_tank.json (the stress level) stays in its tank with a sane compression. Short runs:
+// fluid-tests-level is a fast executable (each case takes well under 5 s in Release).
+#include <catch2/catch.hpp>
+
+#include "level_support.h"
+#include "test_support.h"
+
+#include <fluid/level.h>
+
+#include <box2d/box2d.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+using namespace fluid;
+using namespace fluid::test;
+
+namespace {
+
+std::string levelPath(const std::string& stem) {
+    return std::string(FLUID_LEVELS_DIR) + "/" + stem + ".json";
+}
+
+// Plays `frames` frames; returns the wall time per frame (unit: ms).
+double play(Level& level, int frames) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int f = 0; f < frames; ++f) {
+        level.step();
+    }
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+               .count() /
+           std::max(frames, 1);
+}
+
+uint32_t countOf(const World& world, MaterialId material) {
+    const auto mat = world.materialIndex();
+    return uint32_t(std::count(mat.begin(), mat.end(), material.index));
+}
+
+// The level's material named `name`; fails the test when there is none.
+MaterialId requireMaterial(const Level& level, std::string_view name) {
+    for (const auto& [n, id] : level.materials) {
+        if (n == name) {
+            return id;
+        }
+    }
+    FAIL("no material " << name);
+    return {};
+}
+
+// The level's plugin named `name`; fails the test when there is none.
+const Level::PluginEntry& requirePlugin(const Level& level, std::string_view name) {
+    for (const Level::PluginEntry& p : level.plugins) {
+        if (p.name == name) {
+            return p;
+        }
+    }
+    FAIL("no plugin " << name);
+    return level.plugins.front();
+}
+
+// Mass-weighted centre of the particles (unit: m), in double.
+glm::dvec2 centreOfMass(const World& world) {
+    const auto px = world.positionX(), py = world.positionY();
+    const auto mat = world.materialIndex();
+    glm::dvec2 sum{0.0, 0.0};
+    double mass = 0.0;
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        const double m = world.material(MaterialId{mat[i]}).mass;
+        sum += m * glm::dvec2(px[i], py[i]);
+        mass += m;
+    }
+    return sum / mass;
+}
+
+// Smallest distance between a particle of material `a` and one of material `b` (unit: m).
+double closestPair(const World& world, MaterialId a, MaterialId b) {
+    const auto px = world.positionX(), py = world.positionY();
+    const auto mat = world.materialIndex();
+    std::vector<glm::dvec2> pa, pb;
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        if (mat[i] == a.index) {
+            pa.emplace_back(px[i], py[i]);
+        } else if (mat[i] == b.index) {
+            pb.emplace_back(px[i], py[i]);
+        }
+    }
+    double best = INFINITY;
+    for (const glm::dvec2& p : pa) {
+        for (const glm::dvec2& q : pb) {
+            best = std::min(best, std::hypot(p.x - q.x, p.y - q.y));
+        }
+    }
+    return best;
+}
+
+// The stems of levels/playlist.txt in order: '#' starts a comment, blank lines are skipped.
+std::vector<std::string> readPlaylist() {
+    std::ifstream in(std::string(FLUID_LEVELS_DIR) + "/playlist.txt");
+    REQUIRE(in);
+    std::vector<std::string> stems;
+    std::string line;
+    while (std::getline(in, line)) {
+        line = line.substr(0, line.find('#'));
+        const auto first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos) {
+            continue;
+        }
+        const auto last = line.find_last_not_of(" \t\r");
+        stems.push_back(line.substr(first, last - first + 1));
+    }
+    return stems;
+}
+
+} // namespace
+
+TEST_CASE("playlist.txt: the demo's levels exist, none twice, the first seven in order",
+          "[level][demo]") {
+    const std::vector<std::string> stems = readPlaylist();
+    const std::vector<std::string> first = {"dam_break", "yoghurt_vs_water", "zero_g_arena",
+                                            "crates",    "planetoid",        "cup_and_planks",
+                                            "big_tank"};
+    REQUIRE(stems.size() >= first.size());
+    CHECK(std::equal(first.begin(), first.end(), stems.begin()));
+    std::vector<std::string> sorted = stems;
+    std::sort(sorted.begin(), sorted.end());
+    CHECK(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end());
+    for (const std::string& stem : stems) {
+        INFO(stem);
+        CHECK(stem.find_first_of(" \t/.") == std::string::npos);
+        REQUIRE(std::filesystem::is_regular_file(levelPath(stem)));
+        // The demo shows the title and the text: each level has both.
+        const Level level = loadLevel(levelPath(stem), builtins());
+        CHECK_FALSE(level.name.empty());
+        CHECK_FALSE(level.description.empty());
+    }
+    std::printf("[measure] playlist.txt: %zu levels\n", stems.size());
+}
+
+TEST_CASE("yoghurt_vs_water.json: the water front runs ahead of the yoghurt's, each in its tank",
+          "[level][demo]") {
+    Level level = loadLevel(levelPath("yoghurt_vs_water"), builtins());
+    const MaterialId water = requireMaterial(level, "water");
+    const MaterialId yog = requireMaterial(level, "yoghurt");
+    CHECK(level.world.material(yog).viscosity > 5.0f * level.world.material(water).viscosity);
+    requirePlugin(level, "divider");
+    // Two equal columns, 0.15 m x 0.3 m, at the left wall of each half: water in [0, 0.75],
+    // yoghurt in [0.77, 1.52] (the divider fills [0.75, 0.77]).
+    const uint32_t nWater = countOf(level.world, water), nYog = countOf(level.world, yog);
+    CHECK(nWater > 300);
+    CHECK(nYog > 300);
+    const float waterWall = 0.75f, yogStart = 0.77f, yogWall = 1.52f;
+    const Bounds w0 = bounds(level.world, water.index);
+    const Bounds y0 = bounds(level.world, yog.index);
+    // The same column: the fronts start one column width from their wall.
+    CHECK(std::abs(w0.x1 - (y0.x1 - yogStart)) < 0.005f);
+
+    // Every frame for 2 s: nothing crosses the divider or leaves the tank. At 0.5 s the water
+    // front has crossed its 0.75 m floor; the yoghurt's is about two thirds of the way
+    // (measured 0.61 m vs 0.38 m of run with both presets).
+    const auto contained = [&] {
+        const Bounds w = bounds(level.world, water.index), y = bounds(level.world, yog.index);
+        return countOutside(level.world, -1e-3f, -1e-3f, 1.521f, 0.501f) == 0 &&
+               w.x1 <= waterWall + 1e-3f && y.x0 >= yogStart - 1e-3f;
+    };
+    double ms = 0.0;
+    for (int f = 0; f < 30; ++f) {
+        ms += play(level, 1);
+        REQUIRE(contained());
+    }
+    const Bounds w = bounds(level.world, water.index), y = bounds(level.world, yog.index);
+    const float waterRun = w.x1 - w0.x1, yogRun = y.x1 - y0.x1;
+    std::printf("[measure] yoghurt_vs_water after 0.5 s: water front %.3f m (ran %.3f m), "
+                "yoghurt front %.3f m from its wall (ran %.3f m); %u + %u particles, %.2f ms "
+                "per frame\n",
+                w.x1, waterRun, y.x1 - yogStart, yogRun, nWater, nYog, ms / 30);
+    CHECK(waterRun > yogRun + 0.1f);
+    CHECK(w.x1 > waterWall - 0.05f); // water reached its far wall
+    CHECK(y.x1 < yogWall - 0.1f);    // yoghurt is still on its way
+    for (int f = 30; f < 120; ++f) {
+        play(level, 1);
+        REQUIRE(contained());
+    }
+    CHECK(test::allFinite(level.world));
+    CHECK(countOf(level.world, water) == nWater);
+    CHECK(countOf(level.world, yog) == nYog);
+}
+
+TEST_CASE("zero_g_arena.json: no gravity, blobs of water and yoghurt meet, none leaves the "
+          "arena; turning gravity on pulls them down",
+          "[level][demo]") {
+    Level level = loadLevel(levelPath("zero_g_arena"), builtins());
+    const MaterialId water = requireMaterial(level, "water");
+    const MaterialId yog = requireMaterial(level, "yoghurt");
+    // world.gravity [0, 0]: the force.gravity plugin is there for the demo to turn on.
+    const Level::PluginEntry& gravity = requirePlugin(level, "gravity");
+    REQUIRE(gravity.kind == PluginKind::Force);
+    ForcePlugin& g = *level.world.forces()[gravity.index];
+    CHECK(g.type() == "force.gravity");
+    CHECK(g.param("gx") == 0.0);
+    CHECK(g.param("gy") == 0.0);
+    CHECK(level.physics == nullptr);
+    const float x0 = -0.5f, y0 = -0.35f, x1 = 0.5f, y1 = 0.35f; // the arena's walls
+    const float s = level.world.spacing(water);
+
+    const double mass = totalMass(level.world);
+    const glm::dvec2 p0 = momentum(level.world);
+    const glm::dvec2 c0 = centreOfMass(level.world);
+    const double gap0 = closestPair(level.world, water, yog);
+    CHECK(gap0 > 0.1);
+    int contactFrame = -1;
+    glm::dvec2 drift1{0.0, 0.0};
+    double ms = 0.0;
+    const int frames = 120; // 2 s
+    for (int f = 1; f <= frames; ++f) {
+        ms += play(level, 1);
+        REQUIRE(countOutside(level.world, x0, y0, x1, y1) == 0);
+        if (contactFrame < 0 && closestPair(level.world, water, yog) < 1.5 * s) {
+            contactFrame = f;
+        }
+        if (f == 90) {
+            // 1.5 s: no blob has reached a wall yet, so only internal forces have acted: the
+            // centre of mass has moved by the initial momentum alone (gravity would have
+            // dropped it by 11 m, i.e. onto the floor).
+            const glm::dvec2 expected = c0 + p0 / mass * level.world.time();
+            drift1 = centreOfMass(level.world) - expected;
+            const Bounds b = bounds(level.world);
+            CHECK(b.x0 > x0 + 0.1f);
+            CHECK(b.x1 < x1 - 0.1f);
+            CHECK(b.y0 > y0 + 0.05f);
+            CHECK(b.y1 < y1 - 0.05f);
+        }
+    }
+    CHECK(test::allFinite(level.world));
+    std::printf("[measure] zero_g_arena: %u particles, water-yoghurt gap %.3f m at 0 s; contact "
+                "(< 1.5 spacings) at frame %d (%.2f s); centre of mass off the momentum's line "
+                "by (%.1e, %.1e) m at 1.5 s; %.2f ms per frame\n",
+                level.world.particleCount(), gap0, contactFrame, contactFrame / 60.0, drift1.x,
+                drift1.y, ms / frames);
+    REQUIRE(contactFrame > 0);
+    CHECK(contactFrame <= 75); // within 1.25 s (measured about 0.9 s)
+    CHECK(std::abs(drift1.x) < 2e-3);
+    CHECK(std::abs(drift1.y) < 2e-3);
+
+    // The demo's G key: gravity on pulls the centre of mass down, the walls still hold.
+    const double cy = centreOfMass(level.world).y;
+    g.setParam("gy", -9.81);
+    play(level, 30);
+    const double fall = cy - centreOfMass(level.world).y;
+    std::printf("[measure] zero_g_arena with gravity on: centre of mass fell %.3f m in 0.5 s\n",
+                fall);
+    CHECK(fall > 0.1);
+    CHECK(countOutside(level.world, x0, y0, x1, y1) == 0);
+}
+
+namespace {
+
+// Plays a cup_and_planks level until the goal is decided (or `maxFrames`); counts what the
+// drain removed and the most particles the world held.
+struct CupRun {
+    int frames = 0;
+    uint32_t removed = 0;
+    uint32_t peak = 0;
+    double ms = 0.0;
+};
+
+CupRun playCup(Level& level, int maxFrames) {
+    CupRun r;
+    const auto t0 = std::chrono::steady_clock::now();
+    while (level.goalState() == GoalState::Pending && r.frames < maxFrames) {
+        level.step();
+        ++r.frames;
+        // With bodies a frame is several world steps (one per sub-step, see Coupling::step)
+        // and World::removedEvents holds the last one's only: the coupling's profile sums them.
+        r.removed +=
+            level.coupling ? level.coupling->profile().removed : level.world.profile().removed;
+        r.peak = std::max(r.peak, level.world.particleCount());
+    }
+    r.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() /
+        std::max(r.frames, 1);
+    return r;
+}
+
+} // namespace
+
+TEST_CASE("cup_and_planks.json: lost with the planks where they hang, won with a slide",
+          "[level][demo][bodies]") {
+    const Registry& registry = builtins();
+    const char* planks[] = {"plank1", "plank2", "plank3"};
+
+    SECTION("as loaded: the stream misses the cup, the minute runs out, the level is lost") {
+        Level level = loadLevel(levelPath("cup_and_planks"), registry);
+        REQUIRE(level.goal.present);
+        CHECK(level.goal.amount == 0.8);
+        CHECK(level.goal.timeLimit == 60.0);
+        CHECK(level.goal.description.find("shift") != std::string::npos);
+        REQUIRE(level.emitters.size() == 1);
+        REQUIRE(level.bodies.size() == 3);
+        for (const char* name : planks) {
+            INFO(name);
+            b2Body* body = bodyNamed(level, name);
+            REQUIRE(body != nullptr);
+            CHECK(body->GetType() == b2_kinematicBody);
+            // One 0.28 m x 0.02 m box (a kinematic body has no mass).
+            const b2Fixture* fixture = body->GetFixtureList();
+            REQUIRE(fixture != nullptr);
+            CHECK(fixture->GetNext() == nullptr);
+            REQUIRE(fixture->GetType() == b2Shape::e_polygon);
+            const auto* box = static_cast<const b2PolygonShape*>(fixture->GetShape());
+            float w = 0.0f, h = 0.0f;
+            for (int i = 0; i < box->m_count; ++i) {
+                w = std::max(w, 2.0f * std::abs(box->m_vertices[i].x));
+                h = std::max(h, 2.0f * std::abs(box->m_vertices[i].y));
+            }
+            CHECK(w == Approx(0.28f).margin(1e-5));
+            CHECK(h == Approx(0.02f).margin(1e-5));
+        }
+        const b2Vec2 plank1 = bodyNamed(level, "plank1")->GetPosition();
+        const CupRun r = playCup(level, 60 * 61);
+        const EmitterId faucet = level.emitters[0].second;
+        std::printf("[measure] cup_and_planks as loaded: goal %s at %.2f s (%d frames), cup "
+                    "%.1f%% full, %u emitted, %u drained, at most %u particles, %.2f ms per "
+                    "frame\n",
+                    level.goalState() == GoalState::Lost ? "lost" : "not lost", level.world.time(),
+                    r.frames, 100.0 * level.goalValue(), level.world.emittedCount(faucet),
+                    r.removed, r.peak, r.ms);
+        REQUIRE(level.goalState() == GoalState::Lost);
+        CHECK(level.world.time() == Approx(60.0).margin(1.0 / 60.0));
+        CHECK(level.goalValue() < 0.8);
+        // The drain keeps the count bounded: the stream in flight only.
+        CHECK(r.peak < 200);
+        CHECK(level.world.particleCount() + r.removed == level.world.emittedCount(faucet));
+        CHECK(level.world.emittedCount(faucet) > 4000); // 80 per second for a minute
+        // Kinematic planks nobody drags stay put.
+        CHECK(bodyNamed(level, "plank1")->GetPosition() == plank1);
+        CHECK(test::allFinite(level.world));
+    }
+
+    SECTION("the planks moved into a staircase slide: the cup fills before the time limit") {
+        Level level = loadLevel(levelPath("cup_and_planks"), registry);
+        // The slide a player would build: plank1 under the faucet (x = 0.1), each plank's low
+        // end over the next one's high end, plank3's low end over the cup (inner x in
+        // [0.77, 0.93]). The planks keep the file's tilt (-0.35 rad): the demo drags, it does
+        // not turn.
+        const float slide[3][2] = {{0.2f, 0.6f}, {0.44f, 0.5f}, {0.68f, 0.4f}};
+        for (int i = 0; i < 3; ++i) {
+            b2Body* body = bodyNamed(level, planks[i]);
+            REQUIRE(body != nullptr);
+            CHECK(body->GetAngle() == Approx(-0.35f));
+            body->SetTransform(b2Vec2(slide[i][0], slide[i][1]), body->GetAngle());
+        }
+        const CupRun r = playCup(level, 60 * 61);
+        std::printf("[measure] cup_and_planks with a slide: goal %s at %.2f s (%d frames), cup "
+                    "%.1f%% full, %u particles, %.2f ms per frame\n",
+                    level.goalState() == GoalState::Won ? "won" : "not won", level.world.time(),
+                    r.frames, 100.0 * level.goalValue(), level.world.particleCount(), r.ms);
+        REQUIRE(level.goalState() == GoalState::Won);
+        CHECK(level.goalValue() >= 0.8);
+        CHECK(level.world.time() < 15.0); // measured about 5.6 s: time to spare for the player
+        CHECK(test::allFinite(level.world));
+    }
+}
+
+TEST_CASE("big_tank.json: a few thousand particles stay in the tank with a sane compression",
+          "[level][demo]") {
+    LevelOptions options;
+    options.workerCount = physicsWorkers(); // results do not depend on it
+    Level level = loadLevel(levelPath("big_tank"), builtins(), options);
+    const uint32_t count = level.world.particleCount();
+    CHECK(count >= 2000);
+    CHECK(count <= 20000); // the fuzz target's cap
+    const Bounds before = bounds(level.world);
+    float worst = 0.0f;
+    double ms = 0.0;
+    const int frames = 60;
+    for (int f = 0; f < frames; ++f) {
+        ms += play(level, 1);
+        REQUIRE(countOutside(level.world, -1e-3f, -1e-3f, 2.401f, 1.201f) == 0);
+        worst = std::max(worst, level.world.profile().densityErrorMax);
+    }
+    CHECK(test::allFinite(level.world));
+    const Bounds after = bounds(level.world);
+    std::printf("[measure] big_tank: %u particles, %d frames with %u workers, %.2f ms per frame, "
+                "largest compression %.1f%%, extent x [%.2f, %.2f] -> [%.2f, %.2f] m\n",
+                count, frames, level.world.def().workerCount, ms / frames, 100.0 * worst, before.x0,
+                before.x1, after.x0, after.x1);
+    CHECK(level.world.particleCount() == count);
+    CHECK(worst < 0.15f);
+    // The column broke both ways: the surge reached both walls within the second.
+    CHECK(after.x0 < 0.05f);
+    CHECK(after.x1 > 2.3f);
+}
