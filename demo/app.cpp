@@ -133,7 +133,8 @@ public:
                 break;
             }
             const double real = clock.restart().asSeconds();
-            m_fps = m_fps <= 0.0f ? 60.0f : 0.95f * m_fps + 0.05f * float(1.0 / std::max(real, 1e-4));
+            m_fps =
+                m_fps <= 0.0f ? 60.0f : 0.95f * m_fps + 0.05f * float(1.0 / std::max(real, 1e-4));
             simulate(real);
             render(float(real));
         }
@@ -154,9 +155,8 @@ private:
             m_window.create(sf::VideoMode::getDesktopMode(), "fluid", sf::Style::Fullscreen,
                             glContextSettings());
         } else {
-            m_window.create(
-                sf::VideoMode(unsigned(m_options.size.x), unsigned(m_options.size.y)), "fluid",
-                sf::Style::Default, glContextSettings());
+            m_window.create(sf::VideoMode(unsigned(m_options.size.x), unsigned(m_options.size.y)),
+                            "fluid", sf::Style::Default, glContextSettings());
             m_window.setPosition({0, 0}); // without a window manager SFML places it off-screen
         }
         m_fullscreen = fullscreen;
@@ -176,10 +176,7 @@ private:
         return {std::max(1u, s.x), std::max(1u, s.y)};
     }
 
-    gl::Camera camera() const {
-        return gl::Camera::fit(m_session->bounds().lo, m_session->bounds().hi,
-                               m_renderer->size());
-    }
+    gl::Camera camera() const { return m_session->camera(m_renderer->size()); }
 
     glm::vec2 mouseWorld() const { return camera().pixelToWorld(m_mousePixel); }
 
@@ -188,8 +185,8 @@ private:
         index = ((index % count) + count) % count;
         try {
             m_grab.end(m_session ? m_session->level().physics.get() : nullptr);
-            auto session = std::make_unique<Session>(m_options.levels[size_t(index)],
-                                                     m_options.workers);
+            auto session =
+                std::make_unique<Session>(m_options.levels[size_t(index)], m_options.workers);
             m_session = std::move(session);
         } catch (const std::exception& e) {
             std::fprintf(stderr, "fluid-demo: %s\n", e.what());
@@ -200,6 +197,7 @@ private:
         m_renderer->setMaterials(m_session->styles());
         FramePacerDef def;
         def.step = 1.0 / double(m_session->level().frameRate);
+        def.maxFrameTime = std::max(def.maxFrameTime, def.step);
         const bool paused = m_pacer && m_pacer->paused();
         m_pacer = std::make_unique<FramePacer>(def);
         m_pacer->setPaused(paused);
@@ -381,8 +379,8 @@ private:
             total += m_session->lastStepMs();
         }
         m_pacer->reportStepCost(total / 1000.0 / steps);
-        m_simMs = m_simMs <= 0.0f ? float(total / steps)
-                                  : 0.9f * m_simMs + 0.1f * float(total / steps);
+        m_simMs =
+            m_simMs <= 0.0f ? float(total / steps) : 0.9f * m_simMs + 0.1f * float(total / steps);
     }
 
     void render(float realSeconds) {
@@ -390,8 +388,7 @@ private:
         m_session->drawShapes(cam, true, m_under, m_over);
         gl::RenderSettings settings;
         settings.view = kViews[m_view];
-        m_renderer->render(cam, gl::particles(m_session->level().world), m_under, m_over,
-                           settings);
+        m_renderer->render(cam, gl::particles(m_session->level().world), m_under, m_over, settings);
         if (m_screenshotPending) {
             // Before the overlay: the picture of the liquid, not of the HUD.
             m_screenshotPending = false;

@@ -35,24 +35,30 @@ bool savePng(const gl::Renderer& renderer, const std::string& path) {
     return true;
 }
 
-// HUD and banner as the game shows them, into the renderer's framebuffer.
+// HUD and banner as the game shows them, into the renderer's framebuffer. ImGui hides a window
+// in the frame it first appears (it measures it then), so a still picture draws two frames.
 void drawOverlay(ImGuiBridge& imgui, const gl::Renderer& renderer, const Session& session,
                  gl::View view) {
-    beginOverlay(renderer);
-    imgui.newFrame(renderer.size(), 1.0f / 60.0f);
     const Level& level = session.level();
     HudInfo hud{};
     hud.fps = 60.0f;
     hud.particles = level.world.particleCount();
     hud.simMsPerFrame = float(session.lastStepMs());
-    hud.substeps = level.coupling ? level.coupling->profile().substeps
-                                  : level.world.profile().substeps;
+    hud.substeps =
+        level.coupling ? level.coupling->profile().substeps : level.world.profile().substeps;
     hud.view = gl::viewName(view);
     hud.material = session.dropMaterialName();
     hud.zeroG = !session.gravityOn();
     hud.speed = 1.0;
-    drawHud(hud);
-    drawLevelBanner(bannerFor(level), imgui.bannerFont());
+    for (int pass = 0; pass < 2; ++pass) {
+        imgui.newFrame(renderer.size(), 1.0f / 60.0f);
+        drawHud(hud);
+        drawLevelBanner(bannerFor(level), imgui.bannerFont());
+        if (pass == 0) {
+            imgui.skipFrame();
+        }
+    }
+    beginOverlay(renderer);
     imgui.render();
 }
 
@@ -98,8 +104,7 @@ int runHeadless(const HeadlessOptions& options) {
             return 1;
         }
         renderer->setMaterials(session->styles());
-        const gl::Camera camera =
-            gl::Camera::fit(session->bounds().lo, session->bounds().hi, options.size);
+        const gl::Camera camera = session->camera(options.size);
         gl::RenderSettings settings;
         uint32_t levelErrors = 0;
         try {
@@ -144,10 +149,10 @@ int runHeadless(const HeadlessOptions& options) {
                           "level=%s view=%s frames=%u particles=%u size=%dx%d px_per_m=%.6g "
                           "center=%.6g,%.6g pressure_scale=%.6g gl_errors=%u file=%s",
                           file.stem.c_str(), std::string(gl::viewName(view)).c_str(),
-                          options.frames, session->level().world.particleCount(),
-                          options.size.x, options.size.y, double(camera.pixelsPerMetre),
-                          double(camera.center.x), double(camera.center.y),
-                          double(stats.pressureScale), levelErrors, path.c_str());
+                          options.frames, session->level().world.particleCount(), options.size.x,
+                          options.size.y, double(camera.pixelsPerMetre), double(camera.center.x),
+                          double(camera.center.y), double(stats.pressureScale), levelErrors,
+                          path.c_str());
             std::printf("fluid-demo: %s\n", line);
             summary << line << '\n';
         }

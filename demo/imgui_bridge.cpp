@@ -213,6 +213,10 @@ void ImGuiBridge::render() {
     }
 }
 
+void ImGuiBridge::skipFrame() {
+    ImGui::EndFrame();
+}
+
 bool ImGuiBridge::wantsKeyboard() const {
     return ImGui::GetIO().WantCaptureKeyboard;
 }

@@ -48,6 +48,11 @@ public:
     /// Ends the frame and draws it into the current framebuffer (viewport set by ImGui; the
     /// caller's blend, scissor and depth state is changed).
     void render();
+    /// Ends the frame without drawing it. ImGui measures a window during the frame it first
+    /// appears in and shows it from the next one, so a one-shot picture (a headless
+    /// screenshot) runs newFrame, the panels and skipFrame once, then newFrame, the same
+    /// panels and render.
+    void skipFrame();
     /// True when ImGui uses the keyboard (a text field or panel with focus).
     bool wantsKeyboard() const;
     /// True when ImGui uses the mouse (the cursor over a panel, or dragging a widget).

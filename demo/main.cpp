@@ -86,8 +86,7 @@ int main(int argc, char** argv) {
     char tail = 0;
     if (std::sscanf(size.c_str(), "%dx%d%c", &width, &height, &tail) != 2 || width < 16 ||
         height < 16 || width > 8192 || height > 8192) {
-        std::fprintf(stderr,
-                     "fluid-demo: --size '%s' is not WxH with each in [16, 8192] pixels\n",
+        std::fprintf(stderr, "fluid-demo: --size '%s' is not WxH with each in [16, 8192] pixels\n",
                      size.c_str());
         return 2;
     }
@@ -96,7 +95,8 @@ int main(int argc, char** argv) {
         frames = 120;
     }
     if (headless && screenshot.empty() && screenshotDir.empty()) {
-        std::fprintf(stderr, "fluid-demo: --frames needs --screenshot FILE or --screenshot-dir DIR\n");
+        std::fprintf(stderr,
+                     "fluid-demo: --frames needs --screenshot FILE or --screenshot-dir DIR\n");
         return 2;
     }
     if (!headless && (level == "all" || view == "all")) {
@@ -121,8 +121,8 @@ int main(int argc, char** argv) {
         if (first < 0 && std::filesystem::exists(level)) {
             // A file outside the levels directory: play it first, the playlist after it.
             const std::filesystem::path path(level);
-            levels.insert(levels.begin(), LevelFile{path.stem().string(), path.string(),
-                                                    path.stem().string()});
+            levels.insert(levels.begin(),
+                          LevelFile{path.stem().string(), path.string(), path.stem().string()});
             first = 0;
         }
         if (first < 0) {
@@ -161,11 +161,19 @@ int main(int argc, char** argv) {
         std::printf("fluid-demo: no display; playing every level headless under Xvfb. "
                     "Screenshots go to ./fluid-demo-shots/\n");
         std::fflush(stdout);
-        std::vector<std::string> args{"xvfb-run",     "-a",         "-s",
-                                      "-screen 0 1280x720x24",     self,
-                                      "--level",      "all",        "--levels-dir",
-                                      levelsDir,      "--frames",   "180",
-                                      "--screenshot-dir", "fluid-demo-shots"};
+        std::vector<std::string> args{"xvfb-run",
+                                      "-a",
+                                      "-s",
+                                      "-screen 0 1280x720x24",
+                                      self,
+                                      "--level",
+                                      "all",
+                                      "--levels-dir",
+                                      levelsDir,
+                                      "--frames",
+                                      "180",
+                                      "--screenshot-dir",
+                                      "fluid-demo-shots"};
         std::vector<char*> raw;
         for (std::string& a : args) {
             raw.push_back(a.data());

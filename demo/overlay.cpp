@@ -33,7 +33,7 @@ BannerInfo bannerFor(const Level& level) {
     BannerInfo banner{};
     banner.name = level.name;
     banner.text = level.goal.present && !level.goal.description.empty() ? level.goal.description
-                                                                         : level.description;
+                                                                        : level.description;
     banner.state = level.goalState();
     banner.goalValue = level.goalValue();
     banner.goalAmount = level.goal.amount;

@@ -40,7 +40,9 @@ struct Extent {
     bool empty() const { return lo.x > hi.x; }
 };
 
-glm::vec2 toGlm(const b2Vec2& v) { return {v.x, v.y}; }
+glm::vec2 toGlm(const b2Vec2& v) {
+    return {v.x, v.y};
+}
 
 // The world-space outline of a shape plugin's points at its current pose.
 std::vector<glm::vec2> placed(const KinematicShape& shape, std::span<const glm::vec2> local) {

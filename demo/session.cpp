@@ -93,6 +93,13 @@ Session::Session(const LevelFile& file, uint32_t workers) : m_file(file) {
         world.addForce(m_registry.createForce(PointerForce::kType, pointer)));
 }
 
+gl::Camera Session::camera(glm::ivec2 size) const {
+    // The banner covers about the top 100 px; a fifth of the level's height keeps it clear
+    // of the walls at the usual sizes.
+    const glm::vec2 room{0.0f, 0.2f * (m_bounds.hi.y - m_bounds.lo.y)};
+    return gl::Camera::fit(m_bounds.lo, m_bounds.hi + room, size);
+}
+
 float Session::lineWidth(const gl::Camera& camera) const {
     return 1.5f / std::max(camera.pixelsPerMetre, 1e-6f);
 }
@@ -128,7 +135,9 @@ void Session::toggleGravity() {
     }
 }
 
-const std::string& Session::dropMaterialName() const { return m_materialNames[m_drop]; }
+const std::string& Session::dropMaterialName() const {
+    return m_materialNames[m_drop];
+}
 
 uint32_t Session::dropBlob(glm::vec2 center) {
     BlobDef blob;
