@@ -124,7 +124,16 @@ public:
             return 1;
         }
         sf::Clock clock;
-        while (m_window.isOpen() && !m_quit) {
+        const bool scripted = m_options.frames > 0;
+        size_t next = 0; // next script action
+        for (uint32_t frame = 1; m_window.isOpen() && !m_quit; ++frame) {
+            if (scripted && frame > m_options.frames) {
+                break;
+            }
+            for (; next < m_options.script.size() && m_options.script[next].frame <= frame;
+                 ++next) {
+                play(m_options.script[next]);
+            }
             sf::Event event;
             while (m_window.pollEvent(event)) {
                 handleEvent(event);
@@ -132,20 +141,137 @@ public:
             if (!m_window.isOpen() || m_quit) {
                 break;
             }
-            const double real = clock.restart().asSeconds();
+            double real = clock.restart().asSeconds();
             m_fps =
                 m_fps <= 0.0f ? 60.0f : 0.95f * m_fps + 0.05f * float(1.0 / std::max(real, 1e-4));
+            if (scripted) {
+                real = 1.0 / double(m_session->level().frameRate); // exactly one step a frame
+            }
             simulate(real);
             render(float(real));
+        }
+        int status = 0;
+        if (scripted) {
+            status = finishScripted();
         }
         m_grab.end(nullptr);
         m_session.reset();
         m_imgui.reset();
         m_renderer.reset();
-        return 0;
+        return status;
     }
 
 private:
+    // Plays one scripted action as the SFML events a player would cause.
+    void play(const ScriptAction& action) {
+        const glm::vec2 pixel = camera().worldToPixel(action.position);
+        auto modifier = [&](sf::Event::EventType type, sf::Keyboard::Key key) {
+            sf::Event e{};
+            e.type = type;
+            e.key.code = key;
+            handleEvent(e);
+        };
+        sf::Event event{};
+        switch (action.kind) {
+        case ScriptAction::Kind::Key:
+            event.type = sf::Event::KeyPressed;
+            event.key.code = sf::Keyboard::Key(action.key);
+            handleEvent(event);
+            event.type = sf::Event::KeyReleased;
+            handleEvent(event);
+            break;
+        case ScriptAction::Kind::Move:
+        case ScriptAction::Kind::Press:
+            event.type = sf::Event::MouseMoved;
+            event.mouseMove.x = int(std::lround(pixel.x));
+            event.mouseMove.y = int(std::lround(pixel.y));
+            handleEvent(event);
+            if (action.kind == ScriptAction::Kind::Move) {
+                break;
+            }
+            if (action.shift) {
+                modifier(sf::Event::KeyPressed, sf::Keyboard::LShift);
+            }
+            if (action.ctrl) {
+                modifier(sf::Event::KeyPressed, sf::Keyboard::LControl);
+            }
+            event.type = sf::Event::MouseButtonPressed;
+            event.mouseButton.button = action.button == 0 ? sf::Mouse::Left : sf::Mouse::Right;
+            event.mouseButton.x = int(std::lround(pixel.x));
+            event.mouseButton.y = int(std::lround(pixel.y));
+            handleEvent(event);
+            break;
+        case ScriptAction::Kind::Release:
+            event.type = sf::Event::MouseButtonReleased;
+            event.mouseButton.button = action.button == 0 ? sf::Mouse::Left : sf::Mouse::Right;
+            event.mouseButton.x = int(std::lround(m_mousePixel.x));
+            event.mouseButton.y = int(std::lround(m_mousePixel.y));
+            handleEvent(event);
+            if (m_shift) {
+                modifier(sf::Event::KeyReleased, sf::Keyboard::LShift);
+            }
+            if (m_ctrl) {
+                modifier(sf::Event::KeyReleased, sf::Keyboard::LControl);
+            }
+            break;
+        }
+    }
+
+    // The end of a scripted run: the summary line, and the screenshot if asked.
+    int finishScripted() {
+        const Level& level = m_session->level();
+        const World& world = level.world;
+        std::string line = "level=" + m_session->file().stem;
+        char buffer[160];
+        std::snprintf(buffer, sizeof buffer, " frames=%u time=%.9g particles=%u", m_options.frames,
+                      world.time(), world.particleCount());
+        line += buffer;
+        const auto x = world.positionX(), y = world.positionY();
+        const auto material = world.materialIndex();
+        std::vector<uint32_t> counts(world.materialCount(), 0);
+        double cx = 0.0, cy = 0.0;
+        for (size_t i = 0; i < x.size(); ++i) {
+            ++counts[material[i]];
+            cx += x[i];
+            cy += y[i];
+        }
+        for (uint32_t m = 0; m < world.materialCount(); ++m) {
+            line += " m_" + world.material(MaterialId{uint16_t(m)}).name + "=" +
+                    std::to_string(counts[m]);
+        }
+        const double n = std::max<double>(1.0, double(x.size()));
+        std::snprintf(buffer, sizeof buffer, " cx=%.4f cy=%.4f", cx / n, cy / n);
+        line += buffer;
+        line += " view=" + std::string(gl::viewName(kViews[m_view]));
+        line += std::string(" gravity=") + (m_session->gravityOn() ? "on" : "off");
+        line += " material=" + m_session->dropMaterialName();
+        line += std::string(" paused=") + (m_pacer->paused() ? "1" : "0");
+        line += " bodies=" + std::to_string(level.physics ? level.physics->GetBodyCount() : 0);
+        constexpr const char* kGoal[] = {"none", "pending", "won", "lost"};
+        std::snprintf(buffer, sizeof buffer, " goal=%s goal_value=%.4f",
+                      kGoal[int(level.goalState())], level.goalValue());
+        line += buffer;
+        for (const auto& [name, body] : level.bodies) {
+            std::snprintf(buffer, sizeof buffer, " b_%s=%.4f,%.4f", name.c_str(),
+                          double(body->GetPosition().x), double(body->GetPosition().y));
+            line += buffer;
+        }
+        std::printf("fluid-demo: %s\n", line.c_str());
+        std::fflush(stdout);
+        if (!m_options.screenshot.empty()) {
+            std::vector<uint8_t> rgba;
+            m_renderer->readPixels(rgba);
+            sf::Image image;
+            image.create(unsigned(m_renderer->size().x), unsigned(m_renderer->size().y),
+                         rgba.data());
+            if (!image.saveToFile(m_options.screenshot)) {
+                std::fprintf(stderr, "fluid-demo: cannot write %s\n", m_options.screenshot.c_str());
+                return 1;
+            }
+        }
+        return 0;
+    }
+
     void createWindow(bool fullscreen) {
         // GL objects of the old context go first (framebuffers and vertex arrays are not
         // shared between contexts).
@@ -292,6 +418,14 @@ private:
         }
     }
 
+    void trackModifier(sf::Keyboard::Key key, bool down) {
+        if (key == sf::Keyboard::LShift || key == sf::Keyboard::RShift) {
+            m_shift = down;
+        } else if (key == sf::Keyboard::LControl || key == sf::Keyboard::RControl) {
+            m_ctrl = down;
+        }
+    }
+
     void handleEvent(const sf::Event& event) {
         m_imgui->processEvent(event);
         switch (event.type) {
@@ -302,15 +436,19 @@ private:
             m_renderer->resize(windowSize());
             break;
         case sf::Event::LostFocus:
+            m_shift = m_ctrl = false;
+            m_push = 0.0f;
             m_session->setPointer(mouseWorld(), 0.0f);
             m_grab.end(m_session->level().physics.get());
             break;
         case sf::Event::KeyPressed:
+            trackModifier(event.key.code, true);
             if (!m_imgui->wantsKeyboard()) {
                 handleKey(event.key);
             }
             break;
         case sf::Event::KeyReleased:
+            trackModifier(event.key.code, false);
             if (event.key.code == sf::Keyboard::Q || event.key.code == sf::Keyboard::E) {
                 m_grab.spin = 0.0f;
             }
@@ -324,9 +462,9 @@ private:
             }
             m_mousePixel = {float(event.mouseButton.x), float(event.mouseButton.y)};
             const glm::vec2 p = mouseWorld();
-            const bool shift = sf::Keyboard::isKeyPressed(sf::Keyboard::LShift) ||
+            const bool shift = m_shift || sf::Keyboard::isKeyPressed(sf::Keyboard::LShift) ||
                                sf::Keyboard::isKeyPressed(sf::Keyboard::RShift);
-            const bool ctrl = sf::Keyboard::isKeyPressed(sf::Keyboard::LControl) ||
+            const bool ctrl = m_ctrl || sf::Keyboard::isKeyPressed(sf::Keyboard::LControl) ||
                               sf::Keyboard::isKeyPressed(sf::Keyboard::RControl);
             b2World* physics = m_session->level().physics.get();
             if (event.mouseButton.button == sf::Mouse::Left && ctrl) {
@@ -458,6 +596,7 @@ private:
     Grab m_grab;
     glm::vec2 m_mousePixel{0.0f, 0.0f};
     float m_push = 0.0f;
+    bool m_shift = false, m_ctrl = false;
     size_t m_view = 0;
     float m_fps = 0.0f;
     float m_simMs = 0.0f;

@@ -1,6 +1,7 @@
 // fluid-demo — the interactive game: window, fixed-step loop, controls, HUD and panels.
 #pragma once
 #include "demo/level_list.h"
+#include "demo/script.h"
 
 #include <glm/vec2.hpp>
 
@@ -24,10 +25,20 @@ struct GameOptions {
     bool fullscreen = false;
     /// Where F12 saves screenshots.
     std::string screenshotDir = ".";
+    /// Scripted input (`readScript`), played at the frames it names.
+    std::vector<ScriptAction> script;
+    /// 0: play until the window closes. Otherwise run exactly this many frames of one step
+    /// each (no real-time pacing, so a script gives the same result on any machine), print a
+    /// summary line (level, time, particles per material, centre of mass, view, gravity, body
+    /// positions) and exit (unit: count).
+    uint32_t frames = 0;
+    /// With `frames`: save the last frame, HUD included, to this PNG.
+    std::string screenshot;
 };
 
-/// Opens the window and plays until it is closed or Quit is chosen. Returns the exit status:
-/// 0, or 1 when the window or OpenGL cannot be set up (message on stderr). Main thread.
+/// Opens the window and plays until it is closed or Quit is chosen (or `frames` ran). Returns
+/// the exit status: 0, or 1 when the window or OpenGL cannot be set up or the screenshot
+/// cannot be written (message on stderr). Main thread.
 int runGame(const GameOptions& options);
 
 } // namespace fluid::demo

@@ -8,6 +8,7 @@
 #include "demo/app.h"
 #include "demo/headless.h"
 #include "demo/level_list.h"
+#include "demo/script.h"
 
 #include <CLI/CLI.hpp>
 
@@ -17,6 +18,7 @@
 #include <filesystem>
 #include <string>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -58,6 +60,7 @@ int main(int argc, char** argv) {
     uint32_t threads = 2;
     uint32_t renderEvery = 0;
     bool noHud = false, fullscreen = false;
+    std::string scriptPath;
     app.add_option("--level", level,
                    "Level to play: a name from the levels directory (dam_break), a path to a "
                    "level file, or 'all' (headless only)");
@@ -80,6 +83,9 @@ int main(int argc, char** argv) {
                    "Headless: also render every K frames while stepping (0 = only at the end)");
     app.add_flag("--no-hud", noHud, "Headless: leave the HUD and level banner out of images");
     app.add_flag("--fullscreen", fullscreen, "Start in fullscreen (F11 toggles)");
+    app.add_option("--script", scriptPath,
+                   "Play the game with scripted input (docs/demo.md); with --frames N it runs N "
+                   "frames of one step each, prints a summary and exits");
     CLI11_PARSE(app, argc, argv);
 
     int width = 0, height = 0;
@@ -90,7 +96,23 @@ int main(int argc, char** argv) {
                      size.c_str());
         return 2;
     }
-    const bool headless = frames > 0 || !screenshot.empty() || !screenshotDir.empty();
+    const bool scripted = !scriptPath.empty();
+    const bool headless =
+        !scripted && (frames > 0 || !screenshot.empty() || !screenshotDir.empty());
+    std::vector<ScriptAction> script;
+    if (scripted) {
+        try {
+            script = readScript(scriptPath);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "fluid-demo: %s\n", e.what());
+            return 2;
+        }
+        if (!screenshotDir.empty() || level == "all" || view != "metaballs") {
+            std::fprintf(stderr, "fluid-demo: --script plays one level in the game: it takes "
+                                 "--level NAME, --frames and --screenshot FILE\n");
+            return 2;
+        }
+    }
     if (headless && frames == 0) {
         frames = 120;
     }
@@ -141,7 +163,7 @@ int main(int argc, char** argv) {
 
     const char* display = std::getenv("DISPLAY");
     const bool hasDisplay = display != nullptr && *display != '\0';
-    if (!hasDisplay && headless) {
+    if (!hasDisplay && (headless || scripted)) {
         std::fprintf(stderr,
                      "fluid-demo: no display (DISPLAY is not set); run it under Xvfb:\n"
                      "  xvfb-run -a -s \"-screen 0 1280x720x24\" %s ...\n",
@@ -216,5 +238,8 @@ int main(int argc, char** argv) {
     options.size = {width, height};
     options.workers = threads;
     options.fullscreen = fullscreen;
+    options.script = std::move(script);
+    options.frames = frames;
+    options.screenshot = screenshot;
     return runGame(options);
 }

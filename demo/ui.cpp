@@ -36,12 +36,13 @@ constexpr ImGuiWindowFlags kOverlayFlags =
     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
     ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoMove;
 
-constexpr std::array<ControlHelp, 18> kControls{{
+constexpr std::array<ControlHelp, 19> kControls{{
     {"S", "Cycle views: metaballs, pressure, particles"},
     {"G", "Gravity on / zero-g"},
     {"Left drag", "Push the fluid"},
     {"Right drag", "Pull the fluid"},
     {"Shift + left drag", "Grab a body"},
+    {"Q / E (grabbing)", "Turn a grabbed plank"},
     {"Space", "Drop a blob of the current material"},
     {"M", "Switch material (water / yoghurt)"},
     {"Ctrl + click", "Drop a crate (levels with bodies)"},

@@ -1,0 +1,126 @@
+// fluid-demo — scripted input.
+#include "demo/script.h"
+
+#include <fluid/error.h>
+
+#include <SFML/Window/Keyboard.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <utility>
+
+namespace fluid::demo {
+namespace {
+
+constexpr std::pair<const char*, sf::Keyboard::Key> kKeys[] = {
+    {"S", sf::Keyboard::S},           {"G", sf::Keyboard::G},
+    {"M", sf::Keyboard::M},           {"Space", sf::Keyboard::Space},
+    {"R", sf::Keyboard::R},           {"P", sf::Keyboard::P},
+    {"Period", sf::Keyboard::Period}, {"N", sf::Keyboard::N},
+    {"B", sf::Keyboard::B},           {"Tab", sf::Keyboard::Tab},
+    {"F1", sf::Keyboard::F1},         {"Escape", sf::Keyboard::Escape},
+    {"Q", sf::Keyboard::Q},           {"E", sf::Keyboard::E},
+    {"Num1", sf::Keyboard::Num1},     {"Num2", sf::Keyboard::Num2},
+    {"Num3", sf::Keyboard::Num3},     {"Num4", sf::Keyboard::Num4},
+    {"Num5", sf::Keyboard::Num5},     {"Num6", sf::Keyboard::Num6},
+    {"Num7", sf::Keyboard::Num7},     {"Num8", sf::Keyboard::Num8},
+    {"Num9", sf::Keyboard::Num9},
+};
+
+} // namespace
+
+std::vector<ScriptAction> readScript(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) {
+        throw Error(path + ": cannot read the script");
+    }
+    std::vector<ScriptAction> actions;
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+        const std::string where = path + ":" + std::to_string(number) + ": ";
+        std::istringstream words(line.substr(0, line.find('#')));
+        std::string frameWord;
+        if (!(words >> frameWord)) {
+            continue;
+        }
+        ScriptAction action;
+        try {
+            size_t used = 0;
+            const unsigned long frame = std::stoul(frameWord, &used);
+            if (used != frameWord.size() || frame < 1 || frame > 10000000) {
+                throw std::invalid_argument("frame");
+            }
+            action.frame = uint32_t(frame);
+        } catch (const std::exception&) {
+            throw Error(where + "'" + frameWord + "' is not a frame number (1 or more)");
+        }
+        if (!actions.empty() && action.frame < actions.back().frame) {
+            throw Error(where + "frame " + frameWord + " comes before the previous line's " +
+                        std::to_string(actions.back().frame));
+        }
+        std::string verb;
+        words >> verb;
+        auto readPoint = [&] {
+            float x = NAN, y = NAN;
+            if (!(words >> x >> y) || !std::isfinite(x) || !std::isfinite(y)) {
+                throw Error(where + "'" + verb + "' needs a position X Y in metres");
+            }
+            action.position = {x, y};
+        };
+        auto readButton = [&] {
+            std::string button;
+            words >> button;
+            if (button != "left" && button != "right") {
+                throw Error(where + "'" + verb + "' needs the button 'left' or 'right', not '" +
+                            button + "'");
+            }
+            action.button = button == "left" ? 0 : 1;
+        };
+        if (verb == "key") {
+            std::string name;
+            words >> name;
+            action.kind = ScriptAction::Kind::Key;
+            bool found = false;
+            for (const auto& [keyName, code] : kKeys) {
+                if (name == keyName) {
+                    action.key = int(code);
+                    found = true;
+                }
+            }
+            if (!found) {
+                throw Error(where + "unknown key '" + name + "'");
+            }
+        } else if (verb == "move") {
+            action.kind = ScriptAction::Kind::Move;
+            readPoint();
+        } else if (verb == "press") {
+            action.kind = ScriptAction::Kind::Press;
+            readButton();
+            readPoint();
+            std::string modifier;
+            if (words >> modifier) {
+                if (modifier != "shift" && modifier != "ctrl") {
+                    throw Error(where + "unknown modifier '" + modifier +
+                                "' (expected shift or ctrl)");
+                }
+                action.shift = modifier == "shift";
+                action.ctrl = modifier == "ctrl";
+            }
+        } else if (verb == "release") {
+            action.kind = ScriptAction::Kind::Release;
+            readButton();
+        } else {
+            throw Error(where + "unknown action '" + verb +
+                        "' (expected key, move, press or release)");
+        }
+        std::string extra;
+        if (words >> extra) {
+            throw Error(where + "unexpected '" + extra + "' at the end of the line");
+        }
+        actions.push_back(action);
+    }
+    return actions;
+}
+
+} // namespace fluid::demo

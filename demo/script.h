@@ -1,0 +1,51 @@
+// fluid-demo — scripted input: a timed list of key presses and mouse actions that the game
+// plays as if a player made them. Tests drive the interactive game with it; players can record
+// a sequence for a bug report.
+#pragma once
+#include <glm/vec2.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fluid::demo {
+
+/// One scripted input.
+struct ScriptAction {
+    /// What it does.
+    enum class Kind : uint8_t {
+        /// Press and release a key (`key`).
+        Key,
+        /// Move the mouse to `position`.
+        Move,
+        /// Move the mouse to `position` and press `button` (with `shift` or `ctrl` held).
+        Press,
+        /// Release `button` (and the modifiers `Press` held).
+        Release,
+    };
+    /// Frame at whose start it happens (unit: frame number, from 1).
+    uint32_t frame = 1;
+    /// See `Kind`.
+    Kind kind = Kind::Key;
+    /// SFML key code (`sf::Keyboard::Key`) for `Key`.
+    int key = 0;
+    /// 0 left, 1 right, for `Press` and `Release`.
+    int button = 0;
+    /// Modifiers held during a `Press` until its `Release`.
+    bool shift = false, ctrl = false;
+    /// Mouse position in the level (unit: m) for `Move` and `Press`.
+    glm::vec2 position{0.0f, 0.0f};
+};
+
+/// Reads a script: one action per line, `#` starts a comment, frames in non-decreasing order.
+///
+///     FRAME key NAME                      (S, G, M, Space, R, P, Period, N, B, Tab, F1,
+///                                          Escape, Q, E, Num1 ... Num9)
+///     FRAME move X Y                      (metres, in the level's coordinates)
+///     FRAME press left|right X Y [shift|ctrl]
+///     FRAME release left|right
+///
+/// Throws `fluid::Error` "FILE:LINE: MESSAGE" for anything else. Any thread.
+std::vector<ScriptAction> readScript(const std::string& path);
+
+} // namespace fluid::demo

@@ -1,0 +1,202 @@
+// The interactive game driven by scripted input (fluid-demo --script): every control does what
+// docs/demo.md says, measured from the summary line the game prints at the end. Each run plays
+// a fixed number of frames of one step each, so results do not depend on the machine's speed.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct Summary {
+    int status = -1;
+    std::string output;
+    std::map<std::string, std::string> fields;
+    double number(const std::string& key) const {
+        const auto it = fields.find(key);
+        if (it == fields.end()) {
+            FAIL("no '" << key << "' in the summary: " << output);
+        }
+        return std::stod(it->second);
+    }
+    std::string text(const std::string& key) const {
+        const auto it = fields.find(key);
+        if (it == fields.end()) {
+            FAIL("no '" << key << "' in the summary: " << output);
+        }
+        return it->second;
+    }
+    // "x,y" fields (body positions).
+    std::pair<double, double> point(const std::string& key) const {
+        const std::string v = text(key);
+        return {std::stod(v.substr(0, v.find(','))), std::stod(v.substr(v.find(',') + 1))};
+    }
+};
+
+// Plays `script` in `level` for `frames` frames and parses the summary line.
+Summary play(const std::string& name, const std::string& level, int frames,
+             const std::string& script) {
+    const std::string path = std::string(FLUID_DEMO_WORK_DIR) + "/" + name + ".script";
+    std::ofstream(path) << script;
+    const std::string command = "'" FLUID_DEMO_PATH "' --level " + level +
+                                " --size 480x270 --threads 1 --frames " + std::to_string(frames) +
+                                " --script '" + path + "' 2>&1";
+    Summary summary;
+    FILE* pipe = ::popen(command.c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    std::array<char, 4096> buffer{};
+    size_t n = 0;
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
+        summary.output.append(buffer.data(), n);
+    }
+    const int raw = ::pclose(pipe);
+    summary.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    const auto at = summary.output.rfind("fluid-demo: level=");
+    REQUIRE(at != std::string::npos);
+    std::istringstream words(summary.output.substr(at + 12));
+    std::string word;
+    while (words >> word) {
+        const auto eq = word.find('=');
+        if (eq != std::string::npos) {
+            summary.fields[word.substr(0, eq)] = word.substr(eq + 1);
+        }
+    }
+    INFO(summary.output);
+    REQUIRE(summary.status == 0);
+    return summary;
+}
+
+} // namespace
+
+TEST_CASE("game: G switches gravity on in the zero-g arena and the blobs fall", "[demo]") {
+    const Summary still = play("zero_g_still", "zero_g_arena", 60, "");
+    const Summary fall = play("zero_g_fall", "zero_g_arena", 60, "2 key G\n");
+    std::printf("[measure] zero-g arena after 1 s: centre of mass y %.3f without G, %.3f with\n",
+                still.number("cy"), fall.number("cy"));
+    CHECK(still.text("gravity") == "off");
+    CHECK(fall.text("gravity") == "on");
+    CHECK(fall.number("cy") < still.number("cy") - 0.1);
+    // G twice is zero-g again.
+    const Summary twice = play("zero_g_twice", "zero_g_arena", 10, "2 key G\n3 key G\n");
+    CHECK(twice.text("gravity") == "off");
+}
+
+TEST_CASE("game: Space drops a blob of the current material, M switches it", "[demo]") {
+    const Summary plain = play("drop_none", "dam_break", 10, "");
+    const Summary drops = play("drop_two", "dam_break", 10,
+                               "1 move 0.45 0.3\n2 key Space\n3 key M\n4 move 0.3 0.4\n"
+                               "5 key Space\n");
+    std::printf("[measure] drops: water %s -> %s, yoghurt %s -> %s\n",
+                plain.text("m_water").c_str(), drops.text("m_water").c_str(),
+                plain.text("m_yoghurt").c_str(), drops.text("m_yoghurt").c_str());
+    CHECK(drops.number("m_water") > plain.number("m_water") + 10);
+    CHECK(plain.number("m_yoghurt") == 0);
+    CHECK(drops.number("m_yoghurt") > 10);
+    CHECK(drops.text("material") == "yoghurt");
+}
+
+TEST_CASE("game: S cycles the views; P pauses and period steps one frame", "[demo]") {
+    CHECK(play("view1", "dam_break", 3, "1 key S\n").text("view") == "pressure");
+    CHECK(play("view2", "dam_break", 3, "1 key S\n2 key S\n").text("view") == "particles");
+    CHECK(play("view3", "dam_break", 4, "1 key S\n2 key S\n3 key S\n").text("view") == "metaballs");
+    const Summary paused = play("pause", "dam_break", 30, "1 key P\n");
+    CHECK(paused.text("paused") == "1");
+    CHECK(paused.number("time") == 0.0);
+    const Summary stepped = play("step", "dam_break", 30, "1 key P\n10 key Period\n");
+    CHECK(stepped.number("time") == Approx(1.0 / 60.0).epsilon(1e-5));
+    const Summary resumed = play("resume", "dam_break", 30, "1 key P\n11 key P\n");
+    CHECK(resumed.text("paused") == "0");
+    CHECK(resumed.number("time") == Approx(20.0 / 60.0).epsilon(1e-5));
+}
+
+TEST_CASE("game: N, B and the number keys change level; R restarts it", "[demo]") {
+    CHECK(play("next", "dam_break", 3, "1 key N\n").text("level") == "yoghurt_vs_water");
+    CHECK(play("jump", "dam_break", 3, "1 key Num3\n").text("level") == "zero_g_arena");
+    CHECK(play("back", "yoghurt_vs_water", 3, "1 key B\n").text("level") == "dam_break");
+    // R at frame 31: the level restarts, then frames 31..40 step it again.
+    const Summary reset = play("reset", "dam_break", 40, "31 key R\n");
+    CHECK(reset.text("level") == "dam_break");
+    CHECK(reset.number("time") == Approx(10.0 / 60.0).epsilon(1e-5));
+}
+
+TEST_CASE("game: the right button pulls liquid towards the pointer", "[demo]") {
+    // The arena's water blob starts at (-0.25, 0); pull from 0.1 m above it for half a second.
+    const Summary still = play("pull_none", "zero_g_arena", 30, "");
+    const Summary pulled = play("pull", "zero_g_arena", 30, "1 press right -0.25 0.1\n");
+    std::printf("[measure] pull: centre of mass y %.4f without, %.4f with the pull\n",
+                still.number("cy"), pulled.number("cy"));
+    CHECK(pulled.number("cy") > still.number("cy") + 0.002);
+    // The left button pushes the other way.
+    const Summary pushed = play("push", "zero_g_arena", 30, "1 press left -0.25 0.1\n");
+    CHECK(pushed.number("cy") < still.number("cy") - 0.002);
+}
+
+TEST_CASE("game: ctrl + click drops a crate in a level with bodies", "[demo]") {
+    const Summary plain = play("crate_none", "crates", 5, "");
+    const Summary crate = play("crate", "crates", 5, "1 press left 1.0 0.8 ctrl\n2 release left\n");
+    CHECK(crate.number("bodies") == plain.number("bodies") + 1);
+}
+
+TEST_CASE("game: fill the cup is won by dragging the three planks into a slide", "[demo]") {
+    // levels/cup_and_planks.json: planks at (0.55, 0.8), (0.55, 0.72), (0.55, 0.64); a slide
+    // from the faucet to the cup is (0.2, 0.6), (0.44, 0.5), (0.68, 0.4). Shift + drag each, in
+    // steps slower than the grab's 3 m/s cap, then let the water run.
+    std::ostringstream script;
+    int frame = 1;
+    auto drag = [&](double x0, double y0, double x1, double y1) {
+        script << frame << " press left " << x0 << " " << y0 << " shift\n";
+        constexpr int kSteps = 30;
+        for (int k = 1; k <= kSteps; ++k) {
+            const double t = double(k) / kSteps;
+            script << frame + k << " move " << x0 + t * (x1 - x0) << " " << y0 + t * (y1 - y0)
+                   << "\n";
+        }
+        frame += kSteps + 5; // let it arrive
+        script << frame << " release left\n";
+        ++frame;
+    };
+    drag(0.55, 0.8, 0.2, 0.6);
+    drag(0.55, 0.72, 0.44, 0.5);
+    drag(0.55, 0.64, 0.68, 0.4);
+    const Summary won = play("cup_won", "cup_and_planks", 720, script.str());
+    const auto [x1, y1] = won.point("b_plank1");
+    const auto [x2, y2] = won.point("b_plank2");
+    const auto [x3, y3] = won.point("b_plank3");
+    std::printf("[measure] planks at (%.3f, %.3f) (%.3f, %.3f) (%.3f, %.3f); goal %s at %.3f\n", x1,
+                y1, x2, y2, x3, y3, won.text("goal").c_str(), won.number("goal_value"));
+    CHECK(std::hypot(x1 - 0.2, y1 - 0.6) < 0.01);
+    CHECK(std::hypot(x2 - 0.44, y2 - 0.5) < 0.01);
+    CHECK(std::hypot(x3 - 0.68, y3 - 0.4) < 0.01);
+    CHECK(won.text("goal") == "won");
+    // Left alone, the planks stay put and the cup stays empty.
+    const Summary idle = play("cup_idle", "cup_and_planks", 120, "");
+    CHECK(idle.point("b_plank1") == std::pair<double, double>(0.55, 0.8));
+    CHECK(idle.text("goal") == "pending");
+    CHECK(idle.number("goal_value") == 0.0);
+}
+
+TEST_CASE("game: a bad script is refused with its file and line", "[demo]") {
+    const std::string path = std::string(FLUID_DEMO_WORK_DIR) + "/bad.script";
+    std::ofstream(path) << "# comment\n1 key S\n2 jump 0 0\n";
+    const std::string command =
+        "'" FLUID_DEMO_PATH "' --level dam_break --frames 3 --script '" + path + "' 2>&1";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    std::string output;
+    std::array<char, 1024> buffer{};
+    size_t n = 0;
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
+        output.append(buffer.data(), n);
+    }
+    const int raw = ::pclose(pipe);
+    CHECK(WEXITSTATUS(raw) == 2);
+    CHECK(output == "fluid-demo: " + path +
+                        ":3: unknown action 'jump' (expected key, move, press or release)\n");
+}
