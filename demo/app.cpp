@@ -136,7 +136,11 @@ public:
             }
             sf::Event event;
             while (m_window.pollEvent(event)) {
-                handleEvent(event);
+                // A scripted run plays its script only: the display's own pointer, focus and
+                // key events (another window, a desktop) must not change the result.
+                if (!scripted || event.type == sf::Event::Closed) {
+                    handleEvent(event);
+                }
             }
             if (!m_window.isOpen() || m_quit) {
                 break;

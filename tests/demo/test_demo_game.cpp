@@ -102,7 +102,7 @@ TEST_CASE("game: Space drops a blob of the current material, M switches it", "[d
     CHECK(drops.text("material") == "yoghurt");
 }
 
-TEST_CASE("game: S cycles the views; P pauses and period steps one frame", "[demo]") {
+TEST_CASE("game: S cycles the views, P pauses and period steps one frame", "[demo]") {
     CHECK(play("view1", "dam_break", 3, "1 key S\n").text("view") == "pressure");
     CHECK(play("view2", "dam_break", 3, "1 key S\n2 key S\n").text("view") == "particles");
     CHECK(play("view3", "dam_break", 4, "1 key S\n2 key S\n3 key S\n").text("view") == "metaballs");
@@ -116,7 +116,7 @@ TEST_CASE("game: S cycles the views; P pauses and period steps one frame", "[dem
     CHECK(resumed.number("time") == Approx(20.0 / 60.0).epsilon(1e-5));
 }
 
-TEST_CASE("game: N, B and the number keys change level; R restarts it", "[demo]") {
+TEST_CASE("game: N, B and the number keys change level, R restarts it", "[demo]") {
     CHECK(play("next", "dam_break", 3, "1 key N\n").text("level") == "yoghurt_vs_water");
     CHECK(play("jump", "dam_break", 3, "1 key Num3\n").text("level") == "zero_g_arena");
     CHECK(play("back", "yoghurt_vs_water", 3, "1 key B\n").text("level") == "dam_break");

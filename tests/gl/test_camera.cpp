@@ -53,7 +53,7 @@ TEST_CASE("Camera::fit widens a degenerate rectangle and clamps bad arguments", 
     CHECK(bad.pixelsPerMetre == Approx(1.0f));
 }
 
-TEST_CASE("Camera pixel <-> world round trip; y points down in pixels", "[gl][camera]") {
+TEST_CASE("Camera pixel <-> world round trip, y points down in pixels", "[gl][camera]") {
     Camera camera;
     camera.center = {0.25f, -0.5f};
     camera.pixelsPerMetre = 373.0f;

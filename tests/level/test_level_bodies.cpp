@@ -97,7 +97,7 @@ TEST_CASE("level bodies: errors in a body name the key, value and range", "[leve
         "'kinematic' (moved by its velocity) or 'dynamic'");
 }
 
-TEST_CASE("level bodies: names are unique; unnamed bodies are body<k>", "[level][bodies]") {
+TEST_CASE("level bodies: names are unique, unnamed bodies are body<k>", "[level][bodies]") {
     CHECK(errorOf(withBodies(kBall + ", " + kBall)) ==
           "t.json:1:152: at /bodies/1/name: duplicate body name 'ball' (first used at "
           "/bodies/0/name); names must be unique");
@@ -474,7 +474,7 @@ TEST_CASE("level bodies: without bodies there is no Box2D world and Level::step 
     }
 }
 
-TEST_CASE("level bodies: Level::step runs the coupling; a level with bodies moves and "
+TEST_CASE("level bodies: Level::step runs the coupling, a level with bodies moves and "
           "move-assigns",
           "[level][bodies]") {
     // A ball resting on water, a dry marker body that the fluid must not see.

@@ -96,7 +96,7 @@ TEST_CASE("paddle_wheel.json: the stream turns the wheel the way of the side it 
     }
 }
 
-TEST_CASE("crates.json: bodies as written; light crates float, heavy ones sink",
+TEST_CASE("crates.json: bodies as written, light crates float, heavy ones sink",
           "[level][bodies]") {
     Level level = parseLevel(readLevel("crates.json"), "crates.json", builtins());
     REQUIRE(level.bodies.size() == 9);

@@ -67,7 +67,7 @@ const Level::PluginEntry* plugin(const Level& level, std::string_view name) {
 // Levels with a test case of their own below (each runs 120 frames or more and checks for
 // NaN); any other level in levels/ is run here, so a new level is never left untested.
 // paddle_wheel.json and crates.json are played in test_level_box2d_levels.cpp; the demo's
-// levels in test_level_demo_levels.cpp (big_tank.json, 3,000 particles, for 60 frames).
+// levels in test_level_demo_levels.cpp (big_tank.json for 150 frames).
 constexpr std::string_view kLevelsWithOwnTest[] = {
     "dam_break.json",      "zero_g_blobs.json", "fill_the_cup.json",     "planetoid.json",
     "paddle_wheel.json",   "crates.json",       "yoghurt_vs_water.json", "zero_g_arena.json",

@@ -287,7 +287,7 @@ TEST_CASE("vortex: tangential Rankine drag, no radial part, optional pull", "[un
     }
 }
 
-TEST_CASE("vortex spins a ring with the sign of its speed; momentum stays ~0", "[unit][forces]") {
+TEST_CASE("vortex spins a ring with the sign of its speed, momentum stays ~0", "[unit][forces]") {
     const glm::vec2 c{0.1f, -0.2f};
     auto run = [&](float speed, std::vector<double>& lz, double& pWorst, double& vtMax) {
         Scene s;
@@ -376,7 +376,7 @@ TEST_CASE("wind: exact exponential drag towards the wind, region only", "[unit][
     CHECK(accelAt(w, {0.5f, -0.01f}) == glm::dvec2{0.0, 0.0});
 }
 
-TEST_CASE("wind: velocities relax to the wind as exp(-k t); terminal velocity under gravity",
+TEST_CASE("wind: velocities relax to the wind as exp(-k t), terminal velocity under gravity",
           "[unit][forces]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
     CAPTURE(solverName(solver));

@@ -136,7 +136,7 @@ TEST_CASE("emitter: bad definitions name the field", "[gameplay]") {
     CHECK(world.emitterCount() == 0);
 }
 
-TEST_CASE("lifetimes: particles expire and are reported; the rest live on", "[gameplay]") {
+TEST_CASE("lifetimes: particles expire and are reported, the rest live on", "[gameplay]") {
     World world = openWorld();
     EmitterDef def = faucet({0.0f, 0.0f});
     def.lifetime = 0.25f;
@@ -352,7 +352,7 @@ TEST_CASE("a plugin that throws from prepare leaves the world as it was, emitter
     CHECK(build(true) == build(false));
 }
 
-TEST_CASE("long lifetimes run down exactly; tiny and huge jet directions are fine", "[gameplay]") {
+TEST_CASE("long lifetimes run down exactly, tiny and huge jet directions are fine", "[gameplay]") {
     World world = openWorld();
     const ParticleHandle h = world.addParticle({0.0f, 0.0f}, {0.0f, 0.0f}, MaterialId{0});
     world.setLifetime(h, 1e6f);
@@ -383,7 +383,7 @@ TEST_CASE("shapes far from the origin keep their area and validity", "[gameplay]
     CHECK(area(cup) == Approx(0.06f).epsilon(0.01));
 }
 
-TEST_CASE("setMaterial keeps emitters valid; the registry refuses duplicate parameters",
+TEST_CASE("setMaterial keeps emitters valid, the registry refuses duplicate parameters",
           "[gameplay]") {
     World world = openWorld();
     world.addEmitter(faucet({0.0f, 0.0f})); // 600/s of 748 allowed at water's spacing

@@ -129,7 +129,7 @@ TEST_CASE("snapshot: a restored world continues bit-identically", "[snapshot]") 
     CHECK(copyTwoWorkers.def().workerCount == 2);
 }
 
-TEST_CASE("snapshot: files round-trip; a missing file names its path", "[snapshot]") {
+TEST_CASE("snapshot: files round-trip, a missing file names its path", "[snapshot]") {
     const Registry registry = builtins();
     World world = scene(Solver::PositionBased, 1);
     world.step(kFrame);
