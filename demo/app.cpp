@@ -11,7 +11,6 @@
 
 #include <fluid/gl/renderer.h>
 
-#include <SFML/Graphics/Image.hpp>
 #include <SFML/Window.hpp>
 #include <box2d/box2d.h>
 
@@ -263,12 +262,7 @@ private:
         std::printf("fluid-demo: %s\n", line.c_str());
         std::fflush(stdout);
         if (!m_options.screenshot.empty()) {
-            std::vector<uint8_t> rgba;
-            m_renderer->readPixels(rgba);
-            sf::Image image;
-            image.create(unsigned(m_renderer->size().x), unsigned(m_renderer->size().y),
-                         rgba.data());
-            if (!image.saveToFile(m_options.screenshot)) {
+            if (!savePng(*m_renderer, m_options.screenshot)) {
                 std::fprintf(stderr, "fluid-demo: cannot write %s\n", m_options.screenshot.c_str());
                 return 1;
             }
@@ -341,18 +335,13 @@ private:
     }
 
     void screenshot() {
-        std::vector<uint8_t> rgba;
-        m_renderer->readPixels(rgba);
-        sf::Image image;
-        const glm::ivec2 size = m_renderer->size();
-        image.create(unsigned(size.x), unsigned(size.y), rgba.data());
         char stamp[32];
         const std::time_t now = std::time(nullptr);
         std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
         const std::string path = (std::filesystem::path(m_options.screenshotDir) /
                                   ("fluid-" + m_session->file().stem + "-" + stamp + ".png"))
                                      .string();
-        toast(image.saveToFile(path) ? "Saved " + path : "Could not write " + path);
+        toast(savePng(*m_renderer, path) ? "Saved " + path : "Could not write " + path);
     }
 
     void handleKey(const sf::Event::KeyEvent& key) {
@@ -540,15 +529,9 @@ private:
         beginOverlay(*m_renderer);
         m_imgui->newFrame(m_renderer->size(), std::max(realSeconds, 1e-4f));
         const Level& level = m_session->level();
-        HudInfo hud{};
+        HudInfo hud = hudFor(*m_session, kViews[m_view]);
         hud.fps = m_fps;
-        hud.particles = level.world.particleCount();
-        hud.simMsPerFrame = m_simMs;
-        hud.substeps =
-            level.coupling ? level.coupling->profile().substeps : level.world.profile().substeps;
-        hud.view = gl::viewName(kViews[m_view]);
-        hud.material = m_session->dropMaterialName();
-        hud.zeroG = !m_session->gravityOn();
+        hud.simMsPerFrame = m_simMs; // smoothed over frames, not the last step
         hud.paused = m_pacer->paused();
         hud.behind = m_pacer->behind();
         hud.speed = m_pacer->speed();

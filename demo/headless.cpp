@@ -8,7 +8,6 @@
 
 #include <fluid/gl/renderer.h>
 
-#include <SFML/Graphics/Image.hpp>
 #include <SFML/Window.hpp>
 
 #include <cstdio>
@@ -21,34 +20,13 @@
 namespace fluid::demo {
 namespace {
 
-// Saves the renderer's frame as a PNG; false (message on stderr) if it cannot be written.
-bool savePng(const gl::Renderer& renderer, const std::string& path) {
-    std::vector<uint8_t> rgba;
-    renderer.readPixels(rgba);
-    const glm::ivec2 size = renderer.size();
-    sf::Image image;
-    image.create(unsigned(size.x), unsigned(size.y), rgba.data());
-    if (!image.saveToFile(path)) {
-        std::fprintf(stderr, "fluid-demo: cannot write %s\n", path.c_str());
-        return false;
-    }
-    return true;
-}
-
 // HUD and banner as the game shows them, into the renderer's framebuffer. ImGui hides a window
 // in the frame it first appears (it measures it then), so a still picture draws two frames.
 void drawOverlay(ImGuiBridge& imgui, const gl::Renderer& renderer, const Session& session,
                  gl::View view) {
     const Level& level = session.level();
-    HudInfo hud{};
+    HudInfo hud = hudFor(session, view);
     hud.fps = 60.0f;
-    hud.particles = level.world.particleCount();
-    hud.simMsPerFrame = float(session.lastStepMs());
-    hud.substeps =
-        level.coupling ? level.coupling->profile().substeps : level.world.profile().substeps;
-    hud.view = gl::viewName(view);
-    hud.material = session.dropMaterialName();
-    hud.zeroG = !session.gravityOn();
     hud.speed = 1.0;
     for (int pass = 0; pass < 2; ++pass) {
         imgui.newFrame(renderer.size(), 1.0f / 60.0f);
@@ -142,6 +120,7 @@ int runHeadless(const HeadlessOptions& options) {
                            (file.stem + "-" + std::string(gl::viewName(view)) + ".png"))
                               .string();
             if (!savePng(*renderer, path)) {
+                std::fprintf(stderr, "fluid-demo: cannot write %s\n", path.c_str());
                 return 1;
             }
             char line[512];

@@ -5,6 +5,8 @@
 
 #include <fluid/error.h>
 
+#include <SFML/Graphics/Image.hpp>
+
 #include <string>
 
 namespace fluid::demo {
@@ -41,6 +43,28 @@ BannerInfo bannerFor(const Level& level) {
     banner.time = level.world.time();
     banner.timeLimit = level.goal.timeLimit;
     return banner;
+}
+
+HudInfo hudFor(const Session& session, gl::View view) {
+    const Level& level = session.level();
+    HudInfo hud{};
+    hud.particles = level.world.particleCount();
+    hud.simMsPerFrame = float(session.lastStepMs());
+    hud.substeps =
+        level.coupling ? level.coupling->profile().substeps : level.world.profile().substeps;
+    hud.view = gl::viewName(view);
+    hud.material = session.dropMaterialName();
+    hud.zeroG = !session.gravityOn();
+    return hud;
+}
+
+bool savePng(const gl::Renderer& renderer, const std::string& path) {
+    std::vector<uint8_t> rgba;
+    renderer.readPixels(rgba);
+    const glm::ivec2 size = renderer.size();
+    sf::Image image;
+    image.create(unsigned(size.x), unsigned(size.y), rgba.data());
+    return image.saveToFile(path);
 }
 
 } // namespace fluid::demo

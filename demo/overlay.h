@@ -1,6 +1,7 @@
 // fluid-demo — the OpenGL context the game asks SFML for, and the glue between a level and
 // the ImGui overlay (HUD, banner) drawn on top of the renderer's frame.
 #pragma once
+#include "demo/session.h"
 #include "demo/ui.h"
 
 #include <fluid/gl/renderer.h>
@@ -25,5 +26,13 @@ void beginOverlay(const gl::Renderer& renderer);
 
 /// The banner of `level`: its name and goal text (or description), goal progress and time.
 BannerInfo bannerFor(const Level& level);
+
+/// The HUD fields the session knows (particles, simulation ms of the last step, sub-steps,
+/// view, material, gravity); the caller fills the frame rate and the pacer's fields.
+HudInfo hudFor(const Session& session, gl::View view);
+
+/// Saves the renderer's frame as a PNG file at `path`; false if it cannot be written. Main
+/// thread, context current.
+bool savePng(const gl::Renderer& renderer, const std::string& path);
 
 } // namespace fluid::demo

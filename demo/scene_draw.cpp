@@ -234,9 +234,7 @@ ViewBounds levelBounds(const Level& level) {
     return bounds;
 }
 
-void drawUnder(const Level& level, double goalFill, gl::ShapeBatch& batch) {
-    const ViewBounds bounds = levelBounds(level);
-    const float lineWidth = 0.004f * std::max(bounds.hi.x - bounds.lo.x, bounds.hi.y - bounds.lo.y);
+void drawUnder(const Level& level, double goalFill, float lineWidth, gl::ShapeBatch& batch) {
     const World& world = level.world;
     for (const auto& [name, id] : level.drains) {
         drawShape(world.drain(id).shape, kDrain, kDrain, lineWidth, batch);

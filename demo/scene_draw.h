@@ -21,9 +21,9 @@ struct ViewBounds {
 ViewBounds levelBounds(const Level& level);
 
 /// Walls, static shapes, drains and sensors (with their fill shown by `goalFill`, unit: 1 in
-/// [0, 1], for the goal's sensor), drawn under the liquid. Stepping thread (reads plugins and
-/// Box2D).
-void drawUnder(const Level& level, double goalFill, gl::ShapeBatch& batch);
+/// [0, 1], for the goal's sensor), drawn under the liquid with outlines `lineWidth` wide
+/// (unit: m). Stepping thread (reads plugins and Box2D).
+void drawUnder(const Level& level, double goalFill, float lineWidth, gl::ShapeBatch& batch);
 
 /// Box2D bodies (filled, outlined, shaded by density: light floats, dark sinks), kinematic
 /// plugin shapes and emitter nozzles, drawn over the liquid. `lineWidth` (unit: m) is the

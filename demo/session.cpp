@@ -178,7 +178,9 @@ void Session::drawShapes(const gl::Camera& camera, bool showPointer, gl::ShapeBa
     const double fill = m_level.goal.present && m_level.goal.amount > 0.0
                             ? m_level.goalValue() / m_level.goal.amount
                             : 0.0;
-    drawUnder(m_level, fill, under);
+    // Walls and sensors are outlined at 0.4% of the level's size (the bounds fixed at load).
+    const glm::vec2 size = m_bounds.hi - m_bounds.lo;
+    drawUnder(m_level, fill, 0.004f * std::max(size.x, size.y), under);
     const float width = lineWidth(camera);
     drawOver(m_level, width, over);
     if (showPointer) {

@@ -1,37 +1,9 @@
 // fluid-demo's command line: bad input gets a clear message and a distinct exit status
 // (2 command line, 1 level file, 77 no display), never a crash or a window.
-#include <catch2/catch.hpp>
+#include "demo_support.h"
 
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
-#include <string>
-
-namespace {
-
-struct Run {
-    int status = -1;
-    std::string output;
-};
-
-// Runs fluid-demo with `args` (shell words) and `env` prefix; captures stdout and stderr.
-Run runDemo(const std::string& args, const std::string& env = "") {
-    const std::string command = env + " '" FLUID_DEMO_PATH "' " + args + " 2>&1";
-    Run run;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::array<char, 4096> buffer{};
-    size_t n = 0;
-    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-        run.output.append(buffer.data(), n);
-    }
-    const int raw = ::pclose(pipe);
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    return run;
-}
-
-} // namespace
+using demo_test::Run;
+using demo_test::runDemo;
 
 TEST_CASE("fluid-demo: an unknown level is a command-line error listing the levels", "[demo]") {
     const Run run = runDemo("--level no_such_level --frames 1 --screenshot /dev/null");

@@ -1,9 +1,7 @@
 // The interactive game driven by scripted input (fluid-demo --script): every control does what
 // docs/demo.md says, measured from the summary line the game prints at the end. Each run plays
 // a fixed number of frames of one step each, so results do not depend on the machine's speed.
-#include <catch2/catch.hpp>
-
-#include <sys/wait.h>
+#include "demo_support.h"
 
 #include <array>
 #include <cmath>
@@ -45,19 +43,12 @@ Summary play(const std::string& name, const std::string& level, int frames,
              const std::string& script) {
     const std::string path = std::string(FLUID_DEMO_WORK_DIR) + "/" + name + ".script";
     std::ofstream(path) << script;
-    const std::string command = "'" FLUID_DEMO_PATH "' --level " + level +
-                                " --size 480x270 --threads 1 --frames " + std::to_string(frames) +
-                                " --script '" + path + "' 2>&1";
+    const demo_test::Run run =
+        demo_test::runDemo("--level " + level + " --size 480x270 --threads 1 --frames " +
+                           std::to_string(frames) + " --script '" + path + "'");
     Summary summary;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::array<char, 4096> buffer{};
-    size_t n = 0;
-    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-        summary.output.append(buffer.data(), n);
-    }
-    const int raw = ::pclose(pipe);
-    summary.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    summary.status = run.status;
+    summary.output = run.output;
     const auto at = summary.output.rfind("fluid-demo: level=");
     REQUIRE(at != std::string::npos);
     std::istringstream words(summary.output.substr(at + 12));
@@ -185,18 +176,9 @@ TEST_CASE("game: fill the cup is won by dragging the three planks into a slide",
 TEST_CASE("game: a bad script is refused with its file and line", "[demo]") {
     const std::string path = std::string(FLUID_DEMO_WORK_DIR) + "/bad.script";
     std::ofstream(path) << "# comment\n1 key S\n2 jump 0 0\n";
-    const std::string command =
-        "'" FLUID_DEMO_PATH "' --level dam_break --frames 3 --script '" + path + "' 2>&1";
-    FILE* pipe = ::popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::string output;
-    std::array<char, 1024> buffer{};
-    size_t n = 0;
-    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-        output.append(buffer.data(), n);
-    }
-    const int raw = ::pclose(pipe);
-    CHECK(WEXITSTATUS(raw) == 2);
-    CHECK(output == "fluid-demo: " + path +
-                        ":3: unknown action 'jump' (expected key, move, press or release)\n");
+    const demo_test::Run run =
+        demo_test::runDemo("--level dam_break --frames 3 --script '" + path + "'");
+    CHECK(run.status == 2);
+    CHECK(run.output == "fluid-demo: " + path +
+                            ":3: unknown action 'jump' (expected key, move, press or release)\n");
 }
