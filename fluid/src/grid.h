@@ -1,6 +1,8 @@
 // fluid — uniform neighbour grid (the seed's spatial subdivision), counting-sorted.
 #pragma once
 
+#include "simd/pair_view.h"
+
 #include <fluid/task.h>
 
 #include <algorithm>
@@ -29,6 +31,20 @@ public:
     uint32_t size() const { return static_cast<uint32_t>(m_order.size()); }
     /// True when the grid fell back to hashed buckets.
     bool hashed() const { return m_hashed; }
+    /// The grid as plain data for the pair passes (valid until the next build).
+    GridView view() const {
+        GridView v;
+        v.start = m_start.data();
+        v.ox = m_ox;
+        v.oy = m_oy;
+        v.nx = m_nx;
+        v.ny = m_ny;
+        v.mask = m_mask;
+        v.invCell = m_invCell;
+        v.count = size();
+        v.hashed = m_hashed;
+        return v;
+    }
 
     /// Calls `f(begin, end)` for each range of sorted positions in the cells around (x, y) that
     /// may hold points within one cell size. Ranges are visited in a fixed order.

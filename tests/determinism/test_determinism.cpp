@@ -5,6 +5,9 @@
 #include <catch2/catch.hpp>
 
 #include <cinttypes>
+#include <cstdio>
+#include <filesystem>
+#include <string>
 
 using namespace fluid;
 using namespace fluid::test;
@@ -108,4 +111,79 @@ TEST_CASE("bit-identical state for 1, 2 and 4 workers and a host task hook",
     // The hook was really used, with many ranges per task.
     CHECK(reverse.tasks > 1000);
     CHECK(reverse.ranges > 2 * reverse.tasks);
+}
+
+namespace {
+
+// A water dam (one support: the pair passes' fast path), and the same with a yoghurt block
+// beside it (two supports: their general path), 40 frames of the position-based solver each;
+// the hashes of the final states, combined.
+uint64_t runDams(bool mixed) {
+    World world(WorldDef{});
+    const MaterialId w = world.addMaterial(water());
+    const MaterialId y = world.addMaterial(yoghurt());
+    const float s = world.spacing(w);
+    const uint32_t cols = 30, rows = 40;
+    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
+    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 4.0f * cols * s, 2.0f * rows * s));
+    world.spawnBlob(latticeBlock(world, w, 0.0f, 0.0f, cols, rows));
+    if (mixed) {
+        world.spawnBlob(latticeBlock(world, y, 3.0f * cols * s, 0.0f, 20, 20));
+    }
+    for (int step = 0; step < 40; ++step) {
+        world.step(kFrame);
+    }
+    REQUIRE(allFinite(world));
+    return stateHash(world);
+}
+
+} // namespace
+
+// Run by the test below in a child process with FLUID_SIMD set: prints the instruction set the
+// pair passes used and the hashes.
+TEST_CASE("instruction-set hash (child of the test below)", "[.isa-hash]") {
+    std::printf("isa=%s hash=%016" PRIx64 "\n", instructionSet(),
+                runDams(false) * 31u + runDams(true));
+}
+
+TEST_CASE("bit-identical state on every instruction set the machine runs", "[slow][determinism]") {
+    struct Set {
+        const char* name;
+        bool runs;
+    };
+#if defined(__x86_64__)
+    const Set sets[] = {{"sse2", true},
+                        {"avx2", __builtin_cpu_supports("avx2") != 0},
+                        {"avx512", __builtin_cpu_supports("avx512f") != 0}};
+#else
+    const Set sets[] = {{"sse2", true}};
+#endif
+    const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+    std::string first;
+    for (const Set& set : sets) {
+        if (!set.runs) {
+            continue;
+        }
+        const std::string command =
+            std::string("FLUID_SIMD=") + set.name + " '" + self + "' '[.isa-hash]' 2>&1";
+        FILE* child = popen(command.c_str(), "r");
+        REQUIRE(child != nullptr);
+        std::string out;
+        char buffer[256];
+        while (std::fgets(buffer, sizeof buffer, child) != nullptr) {
+            out += buffer;
+        }
+        CHECK(pclose(child) == 0);
+        const size_t at = out.find("isa=");
+        REQUIRE(at != std::string::npos);
+        const std::string line = out.substr(at, out.find('\n', at) - at);
+        CAPTURE(set.name, line);
+        std::printf("[measure] %s\n", line.c_str());
+        CHECK(line.rfind(std::string("isa=") + set.name + " ", 0) == 0); // the set really ran
+        const std::string hash = line.substr(line.find("hash="));
+        if (first.empty()) {
+            first = hash;
+        }
+        CHECK(hash == first);
+    }
 }

@@ -168,6 +168,12 @@ struct Profile {
     uint32_t removed = 0;
 };
 
+/// The instruction set the position-based solver's pair passes run on: "avx512", "avx2" or
+/// "sse2" (plain C++ off x86). Chosen once per process, the widest the processor runs unless
+/// the environment variable FLUID_SIMD names a narrower one. Results are bit-identical on every
+/// set. Thread-safe.
+const char* instructionSet();
+
 namespace detail {
 struct WorldState;
 }

@@ -1,0 +1,317 @@
+// fluid — 16 float lanes for the pair passes, on one of three instruction sets.
+//
+// The including file defines exactly one of FLUID_SIMD_AVX512, FLUID_SIMD_AVX2 or neither (SSE2,
+// baseline x86-64; plain floats on other processors) and is compiled with the matching -m flags.
+// Every operation is one IEEE-exact per-lane operation (add, subtract, multiply, divide, sqrt, max,
+// select) and lanes are reduced in a fixed order, so the three builds give bit-identical results
+// (with -ffp-contract=off: no fused multiply-add). Everything here has internal linkage: the three
+// object files share no inline function that the linker could pick from the wrong instruction set.
+#pragma once
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+#include <cstdint>
+
+namespace {
+
+#if defined(FLUID_SIMD_AVX512)
+constexpr int kParts = 1;
+using Reg = __m512;
+using MReg = __mmask16;
+inline Reg regSet1(float x) {
+    return _mm512_set1_ps(x);
+}
+inline Reg regLoad(const float* p) {
+    return _mm512_loadu_ps(p);
+}
+inline void regStore(float* p, Reg a) {
+    _mm512_storeu_ps(p, a);
+}
+inline Reg regAdd(Reg a, Reg b) {
+    return _mm512_add_ps(a, b);
+}
+inline Reg regSub(Reg a, Reg b) {
+    return _mm512_sub_ps(a, b);
+}
+inline Reg regMul(Reg a, Reg b) {
+    return _mm512_mul_ps(a, b);
+}
+inline Reg regDiv(Reg a, Reg b) {
+    return _mm512_div_ps(a, b);
+}
+inline Reg regMax(Reg a, Reg b) {
+    return _mm512_max_ps(a, b);
+}
+inline Reg regSqrt(Reg a) {
+    return _mm512_sqrt_ps(a);
+}
+inline MReg regGreater(Reg a, Reg b) {
+    return _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ);
+}
+inline MReg regGreaterEq(Reg a, Reg b) {
+    return _mm512_cmp_ps_mask(a, b, _CMP_GE_OQ);
+}
+inline MReg regAnd(MReg a, MReg b) {
+    return MReg(a & b);
+}
+inline Reg regSelect(MReg m, Reg a, Reg b) {
+    return _mm512_mask_blend_ps(m, b, a);
+}
+#elif defined(FLUID_SIMD_AVX2)
+constexpr int kParts = 2;
+using Reg = __m256;
+using MReg = __m256;
+inline Reg regSet1(float x) {
+    return _mm256_set1_ps(x);
+}
+inline Reg regLoad(const float* p) {
+    return _mm256_loadu_ps(p);
+}
+inline void regStore(float* p, Reg a) {
+    _mm256_storeu_ps(p, a);
+}
+inline Reg regAdd(Reg a, Reg b) {
+    return _mm256_add_ps(a, b);
+}
+inline Reg regSub(Reg a, Reg b) {
+    return _mm256_sub_ps(a, b);
+}
+inline Reg regMul(Reg a, Reg b) {
+    return _mm256_mul_ps(a, b);
+}
+inline Reg regDiv(Reg a, Reg b) {
+    return _mm256_div_ps(a, b);
+}
+inline Reg regMax(Reg a, Reg b) {
+    return _mm256_max_ps(a, b);
+}
+inline Reg regSqrt(Reg a) {
+    return _mm256_sqrt_ps(a);
+}
+inline MReg regGreater(Reg a, Reg b) {
+    return _mm256_cmp_ps(a, b, _CMP_GT_OQ);
+}
+inline MReg regGreaterEq(Reg a, Reg b) {
+    return _mm256_cmp_ps(a, b, _CMP_GE_OQ);
+}
+inline MReg regAnd(MReg a, MReg b) {
+    return _mm256_and_ps(a, b);
+}
+inline Reg regSelect(MReg m, Reg a, Reg b) {
+    return _mm256_blendv_ps(b, a, m);
+}
+#elif defined(__SSE2__)
+constexpr int kParts = 4;
+using Reg = __m128;
+using MReg = __m128;
+inline Reg regSet1(float x) {
+    return _mm_set1_ps(x);
+}
+inline Reg regLoad(const float* p) {
+    return _mm_loadu_ps(p);
+}
+inline void regStore(float* p, Reg a) {
+    _mm_storeu_ps(p, a);
+}
+inline Reg regAdd(Reg a, Reg b) {
+    return _mm_add_ps(a, b);
+}
+inline Reg regSub(Reg a, Reg b) {
+    return _mm_sub_ps(a, b);
+}
+inline Reg regMul(Reg a, Reg b) {
+    return _mm_mul_ps(a, b);
+}
+inline Reg regDiv(Reg a, Reg b) {
+    return _mm_div_ps(a, b);
+}
+inline Reg regMax(Reg a, Reg b) {
+    return _mm_max_ps(a, b);
+}
+inline Reg regSqrt(Reg a) {
+    return _mm_sqrt_ps(a);
+}
+inline MReg regGreater(Reg a, Reg b) {
+    return _mm_cmpgt_ps(a, b);
+}
+inline MReg regGreaterEq(Reg a, Reg b) {
+    return _mm_cmpge_ps(a, b);
+}
+inline MReg regAnd(MReg a, MReg b) {
+    return _mm_and_ps(a, b);
+}
+inline Reg regSelect(MReg m, Reg a, Reg b) {
+    return _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b));
+}
+#else // portable: one float per register, the same semantics as the x86 instructions
+constexpr int kParts = 16;
+using Reg = float;
+using MReg = bool;
+inline Reg regSet1(float x) {
+    return x;
+}
+inline Reg regLoad(const float* p) {
+    return *p;
+}
+inline void regStore(float* p, Reg a) {
+    *p = a;
+}
+inline Reg regAdd(Reg a, Reg b) {
+    return a + b;
+}
+inline Reg regSub(Reg a, Reg b) {
+    return a - b;
+}
+inline Reg regMul(Reg a, Reg b) {
+    return a * b;
+}
+inline Reg regDiv(Reg a, Reg b) {
+    return a / b;
+}
+inline Reg regMax(Reg a, Reg b) {
+    return a > b ? a : b;
+}
+inline Reg regSqrt(Reg a) {
+    return __builtin_sqrtf(a);
+}
+inline MReg regGreater(Reg a, Reg b) {
+    return a > b;
+}
+inline MReg regGreaterEq(Reg a, Reg b) {
+    return a >= b;
+}
+inline MReg regAnd(MReg a, MReg b) {
+    return a && b;
+}
+inline Reg regSelect(MReg m, Reg a, Reg b) {
+    return m ? a : b;
+}
+#endif
+
+constexpr int kLanes16 = 16;
+constexpr int kWidth = kLanes16 / kParts; // floats per register
+
+/// 16 float lanes.
+struct F {
+    Reg v[kParts];
+};
+/// A per-lane condition.
+struct M {
+    MReg v[kParts];
+};
+
+inline F splat(float x) {
+    F r;
+    for (int k = 0; k < kParts; ++k) {
+        r.v[k] = regSet1(x);
+    }
+    return r;
+}
+/// 16 consecutive floats from p (no alignment needed).
+inline F load(const float* p) {
+    F r;
+    for (int k = 0; k < kParts; ++k) {
+        r.v[k] = regLoad(p + k * kWidth);
+    }
+    return r;
+}
+inline void store(float* p, F a) {
+    for (int k = 0; k < kParts; ++k) {
+        regStore(p + k * kWidth, a.v[k]);
+    }
+}
+
+#define FLUID_LANE_BINARY(op, fn)                                                                  \
+    inline F op(F a, F b) {                                                                        \
+        F r;                                                                                       \
+        for (int k = 0; k < kParts; ++k) {                                                         \
+            r.v[k] = fn(a.v[k], b.v[k]);                                                           \
+        }                                                                                          \
+        return r;                                                                                  \
+    }
+FLUID_LANE_BINARY(operator+, regAdd)
+FLUID_LANE_BINARY(operator-, regSub)
+FLUID_LANE_BINARY(operator*, regMul)
+FLUID_LANE_BINARY(operator/, regDiv)
+/// Per lane, a > b ? a : b (b when either is NaN), the same on every instruction set.
+FLUID_LANE_BINARY(vmax, regMax)
+#undef FLUID_LANE_BINARY
+
+inline F operator+(F a, float b) {
+    return a + splat(b);
+}
+inline F operator-(float a, F b) {
+    return splat(a) - b;
+}
+inline F operator*(F a, float b) {
+    return a * splat(b);
+}
+inline F operator*(float a, F b) {
+    return splat(a) * b;
+}
+inline F& operator+=(F& a, F b) {
+    return a = a + b;
+}
+inline F& operator-=(F& a, F b) {
+    return a = a - b;
+}
+
+inline F vsqrt(F a) {
+    F r;
+    for (int k = 0; k < kParts; ++k) {
+        r.v[k] = regSqrt(a.v[k]);
+    }
+    return r;
+}
+inline M operator>(F a, F b) {
+    M r;
+    for (int k = 0; k < kParts; ++k) {
+        r.v[k] = regGreater(a.v[k], b.v[k]);
+    }
+    return r;
+}
+inline M operator>=(F a, F b) {
+    M r;
+    for (int k = 0; k < kParts; ++k) {
+        r.v[k] = regGreaterEq(a.v[k], b.v[k]);
+    }
+    return r;
+}
+inline M operator&(M a, M b) {
+    M r;
+    for (int k = 0; k < kParts; ++k) {
+        r.v[k] = regAnd(a.v[k], b.v[k]);
+    }
+    return r;
+}
+/// Per lane, m ? a : b.
+inline F select(M m, F a, F b) {
+    F r;
+    for (int k = 0; k < kParts; ++k) {
+        r.v[k] = regSelect(m.v[k], a.v[k], b.v[k]);
+    }
+    return r;
+}
+
+alignas(64) constexpr float kIota[kLanes16] = {0, 1, 2,  3,  4,  5,  6,  7,
+                                               8, 9, 10, 11, 12, 13, 14, 15};
+/// Lanes lo <= l < hi.
+inline M laneRange(int lo, int hi) {
+    const F iota = load(kIota);
+    return (iota >= splat(float(lo))) & (splat(float(hi)) > iota);
+}
+
+/// Sum of the 16 lanes, in lane order (the same on every instruction set).
+inline float sum(F a) {
+    alignas(64) float lanes[kLanes16];
+    store(lanes, a);
+    float s = lanes[0];
+    for (int l = 1; l < kLanes16; ++l) {
+        s += lanes[l];
+    }
+    return s;
+}
+
+} // namespace
