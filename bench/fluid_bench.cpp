@@ -442,8 +442,9 @@ int run(const Options& opt) {
     const double m = median(frameMs);
     const double mean = std::accumulate(frameMs.begin(), frameMs.end(), 0.0) / frames;
     const double p = m * 1e6 / (double(n) * s);
-    std::printf("scene=%s solver=%s eos=%s sound_speed=%.2f m/s\n", opt.scene.c_str(),
-                opt.solver.c_str(), opt.eos.c_str(), double(world.profile().soundSpeed));
+    std::printf("scene=%s solver=%s eos=%s sound_speed=%.2f m/s isa=%s\n", opt.scene.c_str(),
+                opt.solver.c_str(), opt.eos.c_str(), double(world.profile().soundSpeed),
+                fluid::instructionSet());
     std::printf("stages (ms per frame, mean over timed frames):\n");
     const char* names[8] = {"sort",   "external",  "density",    "pressure",
                             "forces", "integrate", "boundaries", "step (total)"};

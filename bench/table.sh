@@ -8,11 +8,17 @@
 #           1 and 2 threads (scene, particles, threads, ms per frame median / mean / p90, CPU ms
 #           per frame, sub-steps, ns per particle per sub-step, largest compression, peak
 #           memory, command); about two minutes.
+#   scaling the performance table: the dam from 4,000 to 256,000 particles on 2 threads, 16,000
+#           on 1, and 16,000 on each instruction set the pair passes have (FLUID_SIMD); scene,
+#           particles, threads, instruction set, ms per frame, sub-steps, iterations, largest
+#           compression, ns per particle per sub-step, peak memory and bytes per particle (peak
+#           resident set over particles, the program's own 4 MB included), command; about two
+#           minutes.
 # Run it on an otherwise idle machine.
 set -euo pipefail
 bench=${1:-build/release/bench/fluid-bench}
 set=${2:-all}
-[[ "$set" == all || "$set" == crates ]] || { echo "bench/table.sh: unknown set '$set' (expected all or crates)" >&2; exit 2; }
+[[ "$set" == all || "$set" == crates || "$set" == scaling ]] || { echo "bench/table.sh: unknown set '$set' (expected all, crates or scaling)" >&2; exit 2; }
 [[ -x "$bench" ]] || { echo "bench/table.sh: no fluid-bench at $bench (build the release preset first)" >&2; exit 1; }
 
 tmp=$(mktemp -d)
@@ -60,6 +66,35 @@ crates_row() {
         "$(field substeps_per_frame)" "$(field ns_per_particle_substep)" \
         "$(awk -v e="$(field density_error_max)" 'BEGIN { printf "%.2f", 100 * e }')" "$rss" "$args"
 }
+
+# A row of the scaling table; FLUID_SIMD (if set) picks the instruction set.
+scaling_row() {
+    local args="$*" rss kb isa
+    measure "$@"
+    kb=$(cat "$tmp/rss" 2> /dev/null || echo 0)
+    isa=$(grep -o 'isa=[a-z0-9]*' "$tmp/out" | head -1 | cut -d= -f2)
+    printf '| %s | %s | %s | %s | %s | %s | %s | %s%% | %s | %s | %s | `%sfluid-bench %s` |\n' \
+        "$(grep -o -- '--scene [a-z]*' <<<"$args" | cut -d' ' -f2)" "$(field particles)" \
+        "$(field threads)" "$isa" "$(field ms_per_frame)" "$(field substeps_per_frame)" \
+        "$(field iterations)" \
+        "$(awk -v e="$(field density_error_max)" 'BEGIN { printf "%.2f", 100 * e }')" \
+        "$(field ns_per_particle_substep)" "$rss" \
+        "$(awk -v k="$kb" -v n="$(field particles)" 'BEGIN { printf "%.0f", k * 1024 / n }')" \
+        "${FLUID_SIMD:+FLUID_SIMD=$FLUID_SIMD }" "$args"
+}
+
+if [[ "$set" == scaling ]]; then
+    scaling_row --scene dam --particles 4000 --frames 60 --warmup 2 --threads 2
+    scaling_row --scene dam --particles 16000 --frames 30 --warmup 2 --threads 1
+    scaling_row --scene dam --particles 16000 --frames 30 --warmup 2 --threads 2
+    scaling_row --scene dam --particles 64000 --frames 10 --warmup 2 --threads 2
+    scaling_row --scene dam --particles 100000 --frames 5 --warmup 2 --threads 2
+    scaling_row --scene dam --particles 256000 --frames 3 --warmup 1 --threads 2
+    for isa in avx2 sse2; do
+        FLUID_SIMD=$isa scaling_row --scene dam --particles 16000 --frames 30 --warmup 2 --threads 2
+    done
+    exit 0
+fi
 
 if [[ "$set" == crates ]]; then
     for threads in 1 2; do
