@@ -94,15 +94,8 @@ public:
     }
 
 private:
-    int64_t cellCoord(float v) const {
-        // Clamped so that absurd coordinates cannot overflow; such points only lose neighbours.
-        const double c = std::floor(double(v) * double(m_invCell));
-        return int64_t(std::clamp(c, -1.0e15, 1.0e15));
-    }
-    uint32_t hashKey(int64_t cx, int64_t cy) const {
-        const uint64_t h = uint64_t(cx) * 73856093ull ^ uint64_t(cy) * 19349663ull;
-        return uint32_t((h ^ (h >> 29)) & m_mask);
-    }
+    int64_t cellCoord(float v) const { return gridCell(v, m_invCell); }
+    uint32_t hashKey(int64_t cx, int64_t cy) const { return gridHash(cx, cy, m_mask); }
 
     float m_invCell = 1.0f;
     bool m_hashed = false;

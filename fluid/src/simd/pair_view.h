@@ -22,6 +22,20 @@ struct GridView {
     bool hashed = false;
 };
 
+/// Cell coordinate of `v` in cells of 1/`invCell` (clamped, so absurd coordinates cannot
+/// overflow; such points only lose neighbours). Static: every instruction set's object file
+/// keeps its own copy (see the file comment), and grid.h sorts with the same one.
+static inline int64_t gridCell(float v, float invCell) {
+    const double c = __builtin_floor(double(v) * double(invCell));
+    return int64_t(c < -1.0e15 ? -1.0e15 : (c > 1.0e15 ? 1.0e15 : c));
+}
+
+/// Bucket of cell (cx, cy) in a hashed grid of mask + 1 buckets.
+static inline uint32_t gridHash(int64_t cx, int64_t cy, uint32_t mask) {
+    const uint64_t h = uint64_t(cx) * 73856093ull ^ uint64_t(cy) * 19349663ull;
+    return uint32_t((h ^ (h >> 29)) & mask);
+}
+
 /// Inputs and outputs of the position-based solver's pair passes, all in sorted order.
 struct PbfView {
     uint32_t n = 0; // particles
