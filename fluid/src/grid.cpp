@@ -7,15 +7,20 @@
 
 namespace fluid::detail {
 
-void Grid::build(std::span<const float> px, std::span<const float> py, float cellSize,
-                 const TaskHook& tasks) {
+void Grid::build(std::span<const float> px, std::span<const float> py, float radius,
+                 const TaskHook& tasks, size_t denseCells) {
     const auto count = static_cast<uint32_t>(px.size());
-    m_invCell = 1.0f / cellSize;
+    constexpr int sx = kGridSubX, sy = kGridSubY;
+    GridView& v = m_view;
+    v = GridView{};
+    v.invCellX = float(sx) / radius;
+    v.invCellY = float(sy) / radius;
     m_order.resize(count);
     m_keys.resize(count);
+    v.count = count;
     if (count == 0) {
         m_start.assign(1, 0);
-        m_nx = m_ny = 0;
+        v.start = m_start.data();
         return;
     }
 
@@ -29,8 +34,8 @@ void Grid::build(std::span<const float> px, std::span<const float> py, float cel
         [&](uint32_t b, uint32_t e) {
             Box r = init;
             for (uint32_t i = b; i < e; ++i) {
-                const int64_t cx = cellCoord(px[i]);
-                const int64_t cy = cellCoord(py[i]);
+                const int64_t cx = gridCell(px[i], v.invCellX);
+                const int64_t cy = gridCell(py[i], v.invCellY);
                 r.x0 = std::min(r.x0, cx);
                 r.y0 = std::min(r.y0, cy);
                 r.x1 = std::max(r.x1, cx);
@@ -45,30 +50,41 @@ void Grid::build(std::span<const float> px, std::span<const float> py, float cel
 
     const double nx = double(box.x1 - box.x0 + 1);
     const double ny = double(box.y1 - box.y0 + 1);
-    const double denseLimit = std::max(4096.0, 4.0 * double(count));
+    const double denseLimit = std::max({4096.0 * sx * sy, 8.0 * double(count), double(denseCells)});
     m_hashed = nx * ny > denseLimit;
+    v.hashed = m_hashed;
     size_t cells = 0;
     if (!m_hashed) {
-        m_ox = box.x0;
-        m_oy = box.y0;
-        m_nx = uint32_t(nx);
-        m_ny = uint32_t(ny);
-        cells = size_t(m_nx) * m_ny;
+        v.ox = box.x0;
+        v.oy = box.y0;
+        v.nx = uint32_t(nx);
+        v.ny = uint32_t(ny);
+        cells = size_t(v.nx) * v.ny;
+        // Row k's cells lie at least max(0, |k| - 1) R/sy away in y from any point of the
+        // query's row, so they can hold points within R only within R sqrt(1 - (that/R)^2) in
+        // x: max(0, |dx| - 1) R/sx below that.
+        v.rows = sy;
+        for (int k = 0; k <= sy; ++k) {
+            const double dy = double(std::max(0, k - 1)) / double(sy);
+            v.span[k] = int32_t(std::ceil(double(sx) * std::sqrt(1.0 - dy * dy)));
+        }
     } else {
+        // Sparse: cells of R, hashed, the 3x3 around a query.
+        v.invCellX = v.invCellY = 1.0f / radius;
         uint32_t table = 1024;
         while (table < 2 * count) {
             table <<= 1;
         }
-        m_mask = table - 1;
+        v.mask = table - 1;
         cells = table;
     }
 
     parallelFor(tasks, count, 4096, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
-            const int64_t cx = cellCoord(px[i]);
-            const int64_t cy = cellCoord(py[i]);
-            m_keys[i] =
-                m_hashed ? hashKey(cx, cy) : uint32_t((cy - m_oy) * int64_t(m_nx) + (cx - m_ox));
+            const int64_t cx = gridCell(px[i], v.invCellX);
+            const int64_t cy = gridCell(py[i], v.invCellY);
+            m_keys[i] = m_hashed ? gridHash(cx, cy, v.mask)
+                                 : uint32_t((cy - v.oy) * int64_t(v.nx) + (cx - v.ox));
         }
     });
 
@@ -84,6 +100,7 @@ void Grid::build(std::span<const float> px, std::span<const float> py, float cel
     for (uint32_t i = 0; i < count; ++i) {
         m_order[m_next[m_keys[i]]++] = i;
     }
+    v.start = m_start.data();
 }
 
 } // namespace fluid::detail

@@ -13,17 +13,28 @@
 
 namespace fluid::detail {
 
-/// Cells of one support radius over the bounding box of the points, with no fixed world extent.
-/// Points are counting-sorted by cell (stable, so deterministic); a query visits the 3x3 cells
-/// around a position as contiguous index ranges of the sorted points. When the box is sparse
-/// (far-flung points would need more than max(4096, 4N) cells) the grid hashes cells into
-/// 2N buckets instead, so memory stays O(N) for any spread.
+/// Cells across one query radius in x and in y (see Grid).
+inline constexpr int kGridSubX = 4;
+inline constexpr int kGridSubY = 2;
+static_assert(kGridSubX >= 1 && kGridSubY >= 1 && kGridSubY <= kGridMaxRows);
+
+/// A counting-sorted neighbour grid over the bounding box of the points, with no fixed world
+/// extent. A query returns every point within the query radius R (the `radius` of build) as
+/// contiguous index ranges of the sorted points. Cells are R/kGridSubX wide and R/kGridSubY
+/// high, sorted row by row, so a query is one range per row, clipped to the cells its circle
+/// can reach: about 40% fewer candidates than 3x3 cells of R, in as few ranges. Points are
+/// counting-sorted by cell (stable, so deterministic). When the box is sparse (more than
+/// max(4096 kGridSubX kGridSubY, 8N, denseCells) cells) the grid hashes cells of R into 2N
+/// buckets instead, so memory stays O(N) for any spread; a hashed query visits up to nine
+/// bucket ranges and costs about a third more.
 class Grid {
 public:
-    /// Sorts `count` points by cell. After it, `order()[k]` is the original index of the point
-    /// that sorts to position k; queries return ranges of sorted positions.
-    void build(std::span<const float> px, std::span<const float> py, float cellSize,
-               const TaskHook& tasks);
+    /// Sorts `count` points by cell for queries of `radius` (m, > 0). After it, `order()[k]` is
+    /// the original index of the point that sorts to position k; queries return ranges of sorted
+    /// positions. `denseCells` raises the number of cells allowed before the grid hashes (the
+    /// boundary samples: few points spread over the whole level, queried by every particle).
+    void build(std::span<const float> px, std::span<const float> py, float radius,
+               const TaskHook& tasks, size_t denseCells = 0);
 
     /// Original index of the point at sorted position k.
     std::span<const uint32_t> order() const { return m_order; }
@@ -32,76 +43,18 @@ public:
     /// True when the grid fell back to hashed buckets.
     bool hashed() const { return m_hashed; }
     /// The grid as plain data for the pair passes (valid until the next build).
-    GridView view() const {
-        GridView v;
-        v.start = m_start.data();
-        v.ox = m_ox;
-        v.oy = m_oy;
-        v.nx = m_nx;
-        v.ny = m_ny;
-        v.mask = m_mask;
-        v.invCell = m_invCell;
-        v.count = size();
-        v.hashed = m_hashed;
-        return v;
-    }
+    const GridView& view() const { return m_view; }
 
-    /// Calls `f(begin, end)` for each range of sorted positions in the cells around (x, y) that
-    /// may hold points within one cell size. Ranges are visited in a fixed order.
+    /// Calls `f(begin, end)` for each range of sorted positions that may hold points within the
+    /// query radius of (x, y) (gridRanges in simd/pair_view.h). Ranges are visited in a fixed
+    /// order.
     template <class F> void forEachRange(float x, float y, F&& f) const {
-        if (m_order.empty()) {
-            return;
-        }
-        const int64_t cx = cellCoord(x);
-        const int64_t cy = cellCoord(y);
-        if (!m_hashed) {
-            const int64_t x0 = std::max<int64_t>(cx - 1 - m_ox, 0);
-            const int64_t x1 = std::min<int64_t>(cx + 1 - m_ox, int64_t(m_nx) - 1);
-            if (x0 > x1) {
-                return;
-            }
-            for (int64_t row = cy - 1 - m_oy; row <= cy + 1 - m_oy; ++row) {
-                if (row < 0 || row >= int64_t(m_ny)) {
-                    continue;
-                }
-                const uint32_t b = m_start[size_t(row * int64_t(m_nx) + x0)];
-                const uint32_t e = m_start[size_t(row * int64_t(m_nx) + x1 + 1)];
-                if (b < e) {
-                    f(b, e);
-                }
-            }
-            return;
-        }
-        // Hashed: visit each distinct bucket of the 9 cells once, in bucket order.
-        uint32_t buckets[9];
-        int n = 0;
-        for (int64_t dy = -1; dy <= 1; ++dy) {
-            for (int64_t dx = -1; dx <= 1; ++dx) {
-                buckets[n++] = hashKey(cx + dx, cy + dy);
-            }
-        }
-        std::sort(buckets, buckets + n);
-        for (int k = 0; k < n; ++k) {
-            if (k > 0 && buckets[k] == buckets[k - 1]) {
-                continue;
-            }
-            const uint32_t b = m_start[buckets[k]];
-            const uint32_t e = m_start[buckets[k] + 1];
-            if (b < e) {
-                f(b, e);
-            }
-        }
+        gridRanges(m_view, x, y, f);
     }
 
 private:
-    int64_t cellCoord(float v) const { return gridCell(v, m_invCell); }
-    uint32_t hashKey(int64_t cx, int64_t cy) const { return gridHash(cx, cy, m_mask); }
-
-    float m_invCell = 1.0f;
+    GridView m_view;
     bool m_hashed = false;
-    int64_t m_ox = 0, m_oy = 0;
-    uint32_t m_nx = 0, m_ny = 0;
-    uint32_t m_mask = 0;
     std::vector<uint32_t> m_start; // cell -> first sorted position; size cells + 1
     std::vector<uint32_t> m_order;
     std::vector<uint32_t> m_keys;

@@ -16,13 +16,12 @@ inline constexpr float kG = -140.0f / kernel::kPi; // dW/dr / r = kG / h^4 (1-q)
 inline constexpr float kL = 40.0f / kernel::kPi;   // viscosity Laplacian = kL / h^4 (1-q)
 inline constexpr float kC = kernel::kCohesionNorm; // cohesion = kC / h^2 spline(q)
 
-/// Sum of the lane accumulators in a fixed order.
+/// Sum of the lane accumulators as a fixed tree (lanes l and l + 4, then l and l + 2, then the
+/// last two): the same result every run, without a chain of dependent adds.
 template <class T> T laneSum(const T (&acc)[kLanes]) {
-    T sum = acc[0];
-    for (int l = 1; l < kLanes; ++l) {
-        sum += acc[l];
-    }
-    return sum;
+    static_assert(kLanes == 8);
+    const T a = acc[0] + acc[4], b = acc[1] + acc[5], c = acc[2] + acc[6], d = acc[3] + acc[7];
+    return (a + c) + (b + d);
 }
 
 /// Runs body(j, lane) over [b, e) in blocks of kLanes (the tail uses the first lanes). The index

@@ -9,7 +9,14 @@
 
 #include <cstdint>
 
+// Forces inlining of the pair passes' per-range and per-block lambdas: a call per block would
+// keep the lane accumulators in memory (measured: half of a pass's time).
+#define FLUID_INLINE __attribute__((always_inline))
+
 namespace fluid::detail {
+
+/// Rows above and below a point's row that a grid query visits, at most.
+inline constexpr int kGridMaxRows = 4;
 
 /// A counting-sorted grid (grid.h) as plain data.
 struct GridView {
@@ -17,9 +24,15 @@ struct GridView {
     int64_t ox = 0, oy = 0;          // dense: cell coordinates of the first cell
     uint32_t nx = 0, ny = 0;         // dense: cells across and up
     uint32_t mask = 0;               // hashed: buckets - 1
-    float invCell = 1.0f;            // 1 / cell size (1/m)
+    float invCellX = 1.0f;           // 1 / cell width (1/m)
+    float invCellY = 1.0f;           // 1 / cell height (1/m)
     uint32_t count = 0;              // points sorted
     bool hashed = false;
+    // Dense: a query visits rows -rows..rows around the point's row, and in row k the cells
+    // -span[|k|]..span[|k|] around its column: every cell that can hold a point within the
+    // query radius of some point of the query's cell.
+    int32_t rows = 1;
+    int32_t span[kGridMaxRows + 1] = {1, 1, 0, 0, 0};
 };
 
 /// Cell coordinate of `v` in cells of 1/`invCell` (clamped, so absurd coordinates cannot
@@ -34,6 +47,63 @@ static inline int64_t gridCell(float v, float invCell) {
 static inline uint32_t gridHash(int64_t cx, int64_t cy, uint32_t mask) {
     const uint64_t h = uint64_t(cx) * 73856093ull ^ uint64_t(cy) * 19349663ull;
     return uint32_t((h ^ (h >> 29)) & mask);
+}
+
+/// f(b, e) for each range of sorted points that may hold a point within the grid's query
+/// radius of (x, y), in a fixed order: dense grids one range per row (a row's cells are
+/// contiguous in sorted order), bottom to top; hashed grids each distinct bucket of the 3x3
+/// cells once, in bucket order. Static for the same reason as gridCell.
+template <class Fn>
+FLUID_INLINE static inline void gridRanges(const GridView& g, float x, float y, Fn&& f) {
+    if (g.count == 0) {
+        return;
+    }
+    const int64_t cx = gridCell(x, g.invCellX);
+    const int64_t cy = gridCell(y, g.invCellY);
+    if (!g.hashed) {
+        const int64_t col = cx - g.ox, nx = int64_t(g.nx);
+        for (int64_t k = -g.rows; k <= g.rows; ++k) {
+            const int64_t row = cy - g.oy + k;
+            if (row < 0 || row >= int64_t(g.ny)) {
+                continue;
+            }
+            const int64_t w = g.span[k < 0 ? -k : k];
+            const int64_t x0 = col - w < 0 ? 0 : col - w;
+            const int64_t x1 = col + w > nx - 1 ? nx - 1 : col + w;
+            if (x0 > x1) {
+                continue;
+            }
+            const uint32_t b = g.start[row * nx + x0];
+            const uint32_t e = g.start[row * nx + x1 + 1];
+            if (b < e) {
+                f(b, e);
+            }
+        }
+        return;
+    }
+    uint32_t buckets[9];
+    int n = 0;
+    for (int64_t dy = -1; dy <= 1; ++dy) {
+        for (int64_t dx = -1; dx <= 1; ++dx) {
+            const uint32_t key = gridHash(cx + dx, cy + dy, g.mask);
+            int k = n++;
+            while (k > 0 && buckets[k - 1] > key) { // insertion sort: bucket order
+                buckets[k] = buckets[k - 1];
+                --k;
+            }
+            buckets[k] = key;
+        }
+    }
+    for (int k = 0; k < n; ++k) {
+        if (k > 0 && buckets[k] == buckets[k - 1]) {
+            continue;
+        }
+        const uint32_t b = g.start[buckets[k]];
+        const uint32_t e = g.start[buckets[k] + 1];
+        if (b < e) {
+            f(b, e);
+        }
+    }
 }
 
 /// Inputs and outputs of the position-based solver's pair passes, all in sorted order.
