@@ -8,9 +8,10 @@
 namespace fluid::detail {
 
 void Grid::build(std::span<const float> px, std::span<const float> py, float radius,
-                 const TaskHook& tasks, size_t denseCells) {
+                 const TaskHook& tasks, GridLayout layout) {
     const auto count = static_cast<uint32_t>(px.size());
-    constexpr int sx = kGridSubX, sy = kGridSubY;
+    const int sx = std::clamp(layout.subX, 1, 64), sy = std::clamp(layout.subY, 1, kGridMaxRows);
+    const size_t denseCells = layout.denseCells;
     GridView& v = m_view;
     v = GridView{};
     v.invCellX = float(sx) / radius;
@@ -96,10 +97,15 @@ void Grid::build(std::span<const float> px, std::span<const float> py, float rad
     for (size_t c = 0; c < cells; ++c) {
         m_start[c + 1] += m_start[c];
     }
-    m_next.assign(m_start.begin(), m_start.end() - 1);
+    // Each cell's start serves as its cursor: afterwards start[c] is where cell c + 1 begins,
+    // so one shift restores the starts (no second cells-sized array).
     for (uint32_t i = 0; i < count; ++i) {
-        m_order[m_next[m_keys[i]]++] = i;
+        m_order[m_start[m_keys[i]]++] = i;
     }
+    for (size_t c = cells; c > 0; --c) {
+        m_start[c] = m_start[c - 1];
+    }
+    m_start[0] = 0;
     v.start = m_start.data();
 }
 

@@ -13,28 +13,30 @@
 
 namespace fluid::detail {
 
-/// Cells across one query radius in x and in y (see Grid).
-inline constexpr int kGridSubX = 4;
-inline constexpr int kGridSubY = 2;
-static_assert(kGridSubX >= 1 && kGridSubY >= 1 && kGridSubY <= kGridMaxRows);
+/// How a Grid divides space: cells across one query radius in x and in y, and the most cells
+/// its dense mode may use (on top of max(4096 subX subY, 8N)).
+struct GridLayout {
+    int subX = 4;          // particles: cells R/4 wide ...
+    int subY = 2;          // ... and R/2 high (count, 1..kGridMaxRows)
+    size_t denseCells = 0; // count
+};
 
 /// A counting-sorted neighbour grid over the bounding box of the points, with no fixed world
 /// extent. A query returns every point within the query radius R (the `radius` of build) as
-/// contiguous index ranges of the sorted points. Cells are R/kGridSubX wide and R/kGridSubY
-/// high, sorted row by row, so a query is one range per row, clipped to the cells its circle
+/// contiguous index ranges of the sorted points. Cells are R/subX wide and R/subY high (the
+/// GridLayout), sorted row by row, so a query is one range per row, clipped to the cells its circle
 /// can reach: about 40% fewer candidates than 3x3 cells of R, in as few ranges. Points are
 /// counting-sorted by cell (stable, so deterministic). When the box is sparse (more than
-/// max(4096 kGridSubX kGridSubY, 8N, denseCells) cells) the grid hashes cells of R into 2N
+/// max(4096 subX subY, 8N, denseCells) cells) the grid hashes cells of R into 2N
 /// buckets instead, so memory stays O(N) for any spread; a hashed query visits up to nine
 /// bucket ranges and costs about a third more.
 class Grid {
 public:
     /// Sorts `count` points by cell for queries of `radius` (m, > 0). After it, `order()[k]` is
     /// the original index of the point that sorts to position k; queries return ranges of sorted
-    /// positions. `denseCells` raises the number of cells allowed before the grid hashes (the
-    /// boundary samples: few points spread over the whole level, queried by every particle).
+    /// positions.
     void build(std::span<const float> px, std::span<const float> py, float radius,
-               const TaskHook& tasks, size_t denseCells = 0);
+               const TaskHook& tasks, GridLayout layout = {});
 
     /// Original index of the point at sorted position k.
     std::span<const uint32_t> order() const { return m_order; }
@@ -58,7 +60,6 @@ private:
     std::vector<uint32_t> m_start; // cell -> first sorted position; size cells + 1
     std::vector<uint32_t> m_order;
     std::vector<uint32_t> m_keys;
-    std::vector<uint32_t> m_next;
 };
 
 } // namespace fluid::detail

@@ -39,9 +39,11 @@ PbfView makeView(const WorldState& s, const PbfConstants& c) {
     v.restDensity = p.restDensity.data();
     v.gamma = p.gamma.data();
     v.density = p.density.data();
-    v.vorticity = p.vorticity.data();
-    v.nx = p.nx.data();
-    v.ny = p.ny.data();
+    // After the density solve its scratch holds the viscosity pass's outputs for the surface
+    // pass: the vorticity in `diagonal`, the normals in `prevX`, `prevY` (see world_state.h).
+    v.vorticity = p.diagonal.data();
+    v.nx = p.prevX.data();
+    v.ny = p.prevY.data();
     v.material = p.material.data();
     v.grid = s.grid.view();
     v.samples = w.size();
@@ -108,9 +110,9 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first)
     PbfOut o;
     o.ax = p.ax.data();
     o.ay = p.ay.data();
-    o.vorticity = p.vorticity.data();
-    o.nx = p.nx.data();
-    o.ny = p.ny.data();
+    o.vorticity = p.diagonal.data(); // see makeView
+    o.nx = p.prevX.data();
+    o.ny = p.prevY.data();
     o.density = p.density.data();
     const PbfPairs& k = pbfPairs();
     pairs(s, [&](uint32_t b, uint32_t e) { k.viscosity(v, o, scale, first, b, e); });

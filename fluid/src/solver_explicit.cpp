@@ -282,7 +282,7 @@ void stepExplicit(WorldState& s, float frameDt) {
             placeSamples(s, inStep, maxSupport, moving || sub == 0);
         });
         timed(prof.external, [&] {
-            externalForces(s, h, t);
+            externalForces(s, h, t, p.ex, p.ey);
             if (last || (probe && sub == 0)) {
                 measureField(s);
                 s.fieldMeasured = true;
@@ -313,7 +313,8 @@ void stepExplicit(WorldState& s, float frameDt) {
         }
         IntegrateStats st;
         // The speed cap: half a support radius per sub-step.
-        timed(prof.integrate, [&] { st = integrate(s, p.ax, p.ay, h, 0.5f * minSupport / h); });
+        timed(prof.integrate,
+              [&] { st = integrate(s, p.ax, p.ay, h, 0.5f * minSupport / h, p.qx, p.qy); });
         prof.speedClamped += st.clamped;
         prof.nonFiniteRepaired += st.repaired;
         s.lastMaxAccel = std::sqrt(st.maxAccel2);

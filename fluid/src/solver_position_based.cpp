@@ -90,17 +90,24 @@ void setArtificialPressure(WorldState& s) {
 // sub-step's total correction (cx, cy); x* = predicted + total. The total is kept apart from the
 // position: far from the origin (16 m) a float position rounds a 1e-6 m correction away, and
 // the velocity update would turn that rounding into momentum.
+// The last pass's correction of particle i, at most kMaxCorrection h long (NaN: none).
+inline void correction(const Particles& p, uint32_t i, float& dx, float& dy) {
+    dx = p.ax[i];
+    dy = p.ay[i];
+    const float limit = kMaxCorrection * p.h[i];
+    const float len2 = dx * dx + dy * dy;
+    if (!(len2 <= limit * limit)) { // also catches NaN
+        const float scale = std::isfinite(len2) ? limit / std::sqrt(len2) : 0.0f;
+        dx = std::isfinite(len2) ? dx * scale : 0.0f;
+        dy = std::isfinite(len2) ? dy * scale : 0.0f;
+    }
+}
+
 void applyCorrections(WorldState& s) {
     Particles& p = s.particles;
     each(s, [&](uint32_t i) {
-        float dx = p.ax[i], dy = p.ay[i];
-        const float limit = kMaxCorrection * p.h[i];
-        const float len2 = dx * dx + dy * dy;
-        if (!(len2 <= limit * limit)) { // also catches NaN
-            const float scale = std::isfinite(len2) ? limit / std::sqrt(len2) : 0.0f;
-            dx = std::isfinite(len2) ? dx * scale : 0.0f;
-            dy = std::isfinite(len2) ? dy * scale : 0.0f;
-        }
+        float dx = 0.0f, dy = 0.0f;
+        correction(p, i, dx, dy);
         p.cx[i] += dx;
         p.cy[i] += dy;
         p.px[i] = p.ox[i] + p.cx[i];
@@ -117,7 +124,9 @@ void applyCorrections(WorldState& s) {
 void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations, bool push,
                   Profile& prof) {
     Particles& p = s.particles;
-    std::vector<float>& change = p.dLambda;
+    // The change shares the constraint's storage: the update reads C_i, then writes dl_i, and
+    // the next sweep's constraint pass comes after the last read of dl.
+    std::vector<float>& change = p.constraint;
     std::vector<float>& prevX = p.prevX;
     std::vector<float>& prevY = p.prevY;
     // The multiplier the accelerated positions stand for follows the same recurrence (the
@@ -167,15 +176,13 @@ void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations, boo
                 return;
             }
             each(s, [&](uint32_t i) {
-                p.nx[i] = p.cx[i]; // x_k's correction, kept while x^ is formed (normals come later)
-                p.ny[i] = p.cy[i];
-            });
-            applyCorrections(s);
-            each(s, [&](uint32_t i) {
-                const float x = omega * (p.cx[i] - prevX[i]) + prevX[i];
-                const float y = omega * (p.cy[i] - prevY[i]) + prevY[i];
-                prevX[i] = p.nx[i];
-                prevY[i] = p.ny[i];
+                // x^_k+1 = x_k + the corrections, accelerated from x_k-1 (prev).
+                float dx = 0.0f, dy = 0.0f;
+                correction(p, i, dx, dy);
+                const float x = omega * ((p.cx[i] + dx) - prevX[i]) + prevX[i];
+                const float y = omega * ((p.cy[i] + dy) - prevY[i]) + prevY[i];
+                prevX[i] = p.cx[i];
+                prevY[i] = p.cy[i];
                 p.cx[i] = x;
                 p.cy[i] = y;
                 p.px[i] = p.ox[i] + x;
@@ -210,9 +217,8 @@ void stepPositionBased(WorldState& s, float frameDt) {
     Particles& p = s.particles;
     const uint32_t n = p.size();
     for (auto* channel :
-         {&p.ax,    &p.ay,    &p.ex,          &p.ey,         &p.nx,       &p.ny,     &p.invRho,
-          &p.ox,    &p.oy,    &p.vorticity,   &p.constraint, &p.diagonal, &p.lambda, &p.dLambda,
-          &p.prevX, &p.prevY, &p.lambdaTotal, &p.lambdaPrev, &p.cx,       &p.cy}) {
+         {&p.ax, &p.ay, &p.invRho, &p.ox, &p.oy, &p.constraint, &p.diagonal, &p.lambda, &p.prevX,
+          &p.prevY, &p.lambdaTotal, &p.lambdaPrev, &p.cx, &p.cy}) {
         channel->resize(n);
     }
     const PositionBasedDef& settings = s.def.positionBased;
@@ -254,12 +260,14 @@ void stepPositionBased(WorldState& s, float frameDt) {
     for (uint32_t sub = 0; sub < substeps; ++sub) {
         const float inStep = float(sub) * dt;
         const float endInStep = sub + 1 == substeps ? frameDt : float(sub + 1) * dt;
-        timed(prof.external, [&] { externalForces(s, dt, s.time + double(inStep)); });
+        // Scratch that is free here: (ax, ay) takes the plugins' accelerations, (cx, cy) the
+        // positions before the prediction (solveDensity resets both).
+        timed(prof.external, [&] { externalForces(s, dt, s.time + double(inStep), p.ax, p.ay); });
         timed(prof.integrate, [&] {
-            const IntegrateStats st = integrate(s, p.ex, p.ey, dt, speedCap);
+            const IntegrateStats st = integrate(s, p.ax, p.ay, dt, speedCap, p.cx, p.cy);
             prof.nonFiniteRepaired += st.repaired;
             prof.speedClamped += st.clamped;
-            projectBoundaries(s, dt, inStep, endInStep, facts.sampleSpacing, p.qx, p.qy);
+            projectBoundaries(s, dt, inStep, endInStep, facts.sampleSpacing, p.cx, p.cy);
             // The admissible prediction: the velocity update adds only what the constraint
             // moves from here.
             each(s, [&](uint32_t i) {

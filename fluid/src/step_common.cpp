@@ -89,9 +89,10 @@ void placeSamples(WorldState& s, float t, float cellSize, bool rebuild) {
             friction[i] = f;
         }
     }
-    // Samples line the level's walls, so their box is sparse; hashing them would slow every
-    // particle's query (16k dam: 30% per frame), so they get as many cells as the particles.
-    out.grid.build(x, y, cellSize, s.tasks, 8 * size_t(s.particles.size()));
+    // Samples line the level's walls: cells of R (3x3 per query; clipping gains little along a
+    // thin wall), and dense up to 2 cells per particle, because a hashed grid would slow every
+    // particle's query (16k dam: 30% per frame).
+    out.grid.build(x, y, cellSize, s.tasks, GridLayout{1, 1, 2 * size_t(s.particles.size())});
     const std::span<const uint32_t> order = out.grid.order();
     out.px.resize(total);
     out.py.resize(total);
@@ -138,13 +139,15 @@ ParticleView particleView(const WorldState& s) {
     return ParticleView{p.px, p.py, p.vx, p.vy, p.material, s.materials, p.size()};
 }
 
-// Force plugins' accelerations into ex, ey (zeroed first).
-void externalForces(WorldState& s, float dt, double time) {
+void externalForces(WorldState& s, float dt, double time, std::vector<float>& ax,
+                    std::vector<float>& ay) {
     Particles& p = s.particles;
-    const ForceContext context{particleView(s), p.ex, p.ey, dt, time};
+    ax.resize(p.size());
+    ay.resize(p.size());
+    const ForceContext context{particleView(s), ax, ay, dt, time};
     parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
-        std::fill(p.ex.begin() + b, p.ex.begin() + e, 0.0f);
-        std::fill(p.ey.begin() + b, p.ey.begin() + e, 0.0f);
+        std::fill(ax.begin() + b, ax.begin() + e, 0.0f);
+        std::fill(ay.begin() + b, ay.begin() + e, 0.0f);
         for (const auto& plugin : s.forces) {
             plugin->apply(context, b, e);
         }
@@ -160,7 +163,11 @@ void sortParticles(WorldState& s, float cellSize,
     for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy}) {
         permute(*channel, order, s.sortScratch);
     }
-    permute(p.expiry, order, s.sortScratchD);
+    // Most worlds have no lifetimes: an all-infinite channel needs no permutation (and no
+    // scratch of 8 bytes per particle).
+    if (!std::all_of(p.expiry.begin(), p.expiry.end(), [](double t) { return std::isinf(t); })) {
+        permute(p.expiry, order, s.sortScratchD);
+    }
     for (auto* channel : extra) {
         permute(*channel, order, s.sortScratch);
     }
@@ -224,10 +231,11 @@ void densityError(WorldState& s) {
 }
 
 IntegrateStats integrate(WorldState& s, const std::vector<float>& ax, const std::vector<float>& ay,
-                         float dt, float speedCap) {
+                         float dt, float speedCap, std::vector<float>& prevX,
+                         std::vector<float>& prevY) {
     Particles& p = s.particles;
-    p.qx.resize(p.size());
-    p.qy.resize(p.size());
+    prevX.resize(p.size());
+    prevY.resize(p.size());
     return blockReduce<IntegrateStats>(
         s.tasks, p.size(), IntegrateStats{},
         [&](uint32_t b, uint32_t e) {
@@ -250,8 +258,8 @@ IntegrateStats integrate(WorldState& s, const std::vector<float>& ax, const std:
                 }
                 p.vx[i] = vx;
                 p.vy[i] = vy;
-                p.qx[i] = p.px[i];
-                p.qy[i] = p.py[i];
+                prevX[i] = p.px[i];
+                prevY[i] = p.py[i];
                 p.px[i] += dt * vx;
                 p.py[i] += dt * vy;
             }

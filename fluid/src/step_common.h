@@ -58,8 +58,11 @@ bool samplesMove(const WorldState& s);
 /// The particles as plugins see them.
 ParticleView particleView(const WorldState& s);
 
-/// Force plugins' accelerations into ex, ey (zeroed first), one apply per plugin.
-void externalForces(WorldState& s, float dt, double time);
+/// Force plugins' accelerations into (ax, ay) (resized to the particles and zeroed first), one
+/// apply per plugin. The explicit solver passes (ex, ey); the position-based one its (ax, ay)
+/// scratch, free at that point of its sub-step.
+void externalForces(WorldState& s, float dt, double time, std::vector<float>& ax,
+                    std::vector<float>& ay);
 
 /// Counting sort by grid cell (cell size `cellSize`); positions, velocities, material, slot and
 /// the `extra` channels follow; handles are remapped.
@@ -77,9 +80,11 @@ struct IntegrateStats {
 /// non-finite acceleration (a broken plugin) is zeroed instead of spreading NaN, and the speed
 /// is capped at `speedCap` (m/s) so that no particle can jump through a wall's sample layers.
 /// The explicit solver passes its total acceleration; the position-based one predicts with the
-/// plugins' (ex, ey). The positions before the move are kept in (qx, qy) for the boundaries.
+/// plugins'. The positions before the move are kept in (prevX, prevY) (resized) for the
+/// boundaries: (qx, qy) for the explicit solver, the free correction scratch for the other.
 IntegrateStats integrate(WorldState& s, const std::vector<float>& ax, const std::vector<float>& ay,
-                         float dt, float speedCap);
+                         float dt, float speedCap, std::vector<float>& prevX,
+                         std::vector<float>& prevY);
 
 /// Boundary plugins' projection over all particles (px, py, vx, vy as they are now); `prevX`,
 /// `prevY` are where the particles stood at `prevTimeInStep` (see `ProjectContext`).

@@ -27,18 +27,19 @@ struct Particles {
     std::vector<double> expiry;
     // Per sub-step scratch, in sorted order.
     std::vector<float> ax, ay;            // total acceleration
-    std::vector<float> ex, ey;            // external (plugin) acceleration
-    std::vector<float> nx, ny;            // surface normals [Akinci 2013]
+    std::vector<float> ex, ey;            // explicit: external (plugin) acceleration
+    std::vector<float> nx, ny;            // explicit: surface normals [Akinci 2013]
     std::vector<float> pOverRho2, invRho; // p/rho^2 and 1/rho, so pair loops do not divide
     std::vector<float> ox, oy;            // position-based: positions at the start of the sub-step
-    std::vector<float> qx, qy; // positions before the last integrate (boundaries' prevX/Y)
-    // Position-based: density constraint C and the diagonal D of its system, the accumulated
-    // multiplier (kg m^2, <= 0) and its change in the last sweep, the sub-step's total position
-    // correction and its value one sweep back, the multiplier the accelerated corrections stand
-    // for and its value one sweep back.
-    std::vector<float> constraint, diagonal, lambda, dLambda, cx, cy, prevX, prevY, lambdaTotal,
-        lambdaPrev;
-    std::vector<float> vorticity; // position-based: curl of the velocity (1/s)
+    std::vector<float> qx, qy; // explicit: positions before the last integrate (boundaries'
+                               // prevX/Y; the position-based solver uses cx, cy for them)
+    // Position-based: density constraint C (then, within a sweep, the multiplier's change: see
+    // solveDensity) and the diagonal D of its system, the accumulated multiplier (kg m^2, <= 0),
+    // the sub-step's total position correction and its value one sweep back, the multiplier
+    // the accelerated corrections stand for and its value one sweep back. The plugins'
+    // accelerations go to ax, ay; after the solve `diagonal` holds the vorticity and `prevX`,
+    // `prevY` the surface normals (pbf_loops.cpp), so no channel is kept for them.
+    std::vector<float> constraint, diagonal, lambda, cx, cy, prevX, prevY, lambdaTotal, lambdaPrev;
     // Material properties per particle (sorted order), so pair loops read contiguous arrays
     // instead of indexing the material table: support h, mass/depth, viscosity, mass, rest
     // density, surface tension, 1/mass, rest area V = m/(depth rho0), pair pressure.

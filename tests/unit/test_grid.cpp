@@ -180,7 +180,7 @@ TEST_CASE("grid cells are narrower than the query radius, and a query skips the 
           "[unit][grid]") {
     // On a 0.01 m lattice (the solver's spacing for a 0.04 m support: ~36 neighbours), a
     // query's ranges hold well under the 3x3 cells of one radius (~144 points): the rows are
-    // R / kGridSubY high and clipped to the circle. Every neighbour is still found (see the
+    // R / GridLayout::subY high and clipped to the circle. Every neighbour is still found (see the
     // brute-force tests above); this checks that the clipping does its job.
     const float cell = 0.04f;
     Points p;
