@@ -63,15 +63,16 @@ private:
     std::mutex m_mutex;
     std::condition_variable m_wake;
     std::condition_variable m_done;
-    // The running task (guarded by m_mutex, except the range counter, claimed atomically).
+    // The running task: written under m_mutex before m_generation is bumped (release), read by
+    // the workers after they see the new generation (acquire); ranges are claimed atomically.
     TaskCallback* m_callback = nullptr;
     void* m_context = nullptr;
     uint32_t m_itemCount = 0;
     uint32_t m_rangeSize = 1;
     std::atomic<uint32_t> m_nextBegin{0};
-    uint32_t m_busy = 0;
-    uint64_t m_generation = 0;
-    bool m_stop = false;
+    std::atomic<uint32_t> m_busy{0};       // workers still on the task
+    std::atomic<uint64_t> m_generation{0}; // tasks started
+    std::atomic<bool> m_stop{false};
 };
 
 } // namespace fluid

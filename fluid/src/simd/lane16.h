@@ -14,6 +14,10 @@
 
 #include <cstdint>
 
+// Every loop over a lane group's registers is unrolled: at -O2 g++ keeps a 4-register loop (SSE2)
+// as a loop over an array in memory, which made the SSE2 passes 2.5x slower.
+#define FLUID_UNROLL _Pragma("GCC unroll 16")
+
 namespace {
 
 #if defined(FLUID_SIMD_AVX512)
@@ -204,7 +208,7 @@ struct M {
 
 inline F splat(float x) {
     F r;
-    for (int k = 0; k < kParts; ++k) {
+    FLUID_UNROLL for (int k = 0; k < kParts; ++k) {
         r.v[k] = regSet1(x);
     }
     return r;
@@ -212,13 +216,13 @@ inline F splat(float x) {
 /// 16 consecutive floats from p (no alignment needed).
 inline F load(const float* p) {
     F r;
-    for (int k = 0; k < kParts; ++k) {
+    FLUID_UNROLL for (int k = 0; k < kParts; ++k) {
         r.v[k] = regLoad(p + k * kWidth);
     }
     return r;
 }
 inline void store(float* p, F a) {
-    for (int k = 0; k < kParts; ++k) {
+    FLUID_UNROLL for (int k = 0; k < kParts; ++k) {
         regStore(p + k * kWidth, a.v[k]);
     }
 }
@@ -226,7 +230,7 @@ inline void store(float* p, F a) {
 #define FLUID_LANE_BINARY(op, fn)                                                                  \
     inline F op(F a, F b) {                                                                        \
         F r;                                                                                       \
-        for (int k = 0; k < kParts; ++k) {                                                         \
+        FLUID_UNROLL for (int k = 0; k < kParts; ++k) {                                            \
             r.v[k] = fn(a.v[k], b.v[k]);                                                           \
         }                                                                                          \
         return r;                                                                                  \
@@ -260,28 +264,28 @@ inline F& operator-=(F& a, F b) {
 
 inline F vsqrt(F a) {
     F r;
-    for (int k = 0; k < kParts; ++k) {
+    FLUID_UNROLL for (int k = 0; k < kParts; ++k) {
         r.v[k] = regSqrt(a.v[k]);
     }
     return r;
 }
 inline M operator>(F a, F b) {
     M r;
-    for (int k = 0; k < kParts; ++k) {
+    FLUID_UNROLL for (int k = 0; k < kParts; ++k) {
         r.v[k] = regGreater(a.v[k], b.v[k]);
     }
     return r;
 }
 inline M operator>=(F a, F b) {
     M r;
-    for (int k = 0; k < kParts; ++k) {
+    FLUID_UNROLL for (int k = 0; k < kParts; ++k) {
         r.v[k] = regGreaterEq(a.v[k], b.v[k]);
     }
     return r;
 }
 inline M operator&(M a, M b) {
     M r;
-    for (int k = 0; k < kParts; ++k) {
+    FLUID_UNROLL for (int k = 0; k < kParts; ++k) {
         r.v[k] = regAnd(a.v[k], b.v[k]);
     }
     return r;
@@ -289,7 +293,7 @@ inline M operator&(M a, M b) {
 /// Per lane, m ? a : b.
 inline F select(M m, F a, F b) {
     F r;
-    for (int k = 0; k < kParts; ++k) {
+    FLUID_UNROLL for (int k = 0; k < kParts; ++k) {
         r.v[k] = regSelect(m.v[k], a.v[k], b.v[k]);
     }
     return r;
