@@ -66,6 +66,7 @@ PbfView makeView(const WorldState& s, const PbfConstants& c) {
         hi = m == 0 ? h : std::max(hi, h);
     }
     v.invSupport = lo == hi && lo > 0.0f ? 1.0f / lo : 0.0f;
+    v.oneMaterial = s.materials.size() == 1;
     return v;
 }
 
@@ -76,7 +77,7 @@ template <class F> void pairs(WorldState& s, F&& f) {
 
 } // namespace
 
-void pbfConstraint(WorldState& s, const PbfConstants& c) {
+void pbfConstraint(WorldState& s, const PbfConstants& c, const float* relaxation) {
     Particles& p = s.particles;
     PbfView v = makeView(s, c);
     std::vector<float> least(s.constants.size());
@@ -90,7 +91,18 @@ void pbfConstraint(WorldState& s, const PbfConstants& c) {
     o.density = p.density.data();
     o.invRho = p.invRho.data();
     const PbfPairs& k = pbfPairs();
-    pairs(s, [&](uint32_t b, uint32_t e) { k.constraint(v, o, b, e); });
+    pairs(s, [&](uint32_t b, uint32_t e) {
+        k.constraint(v, o, b, e);
+        if (relaxation == nullptr) {
+            return;
+        }
+        for (uint32_t i = b; i < e; ++i) {
+            const float updated = std::min(
+                p.lambda[i] - relaxation[p.material[i]] * p.constraint[i] / p.diagonal[i], 0.0f);
+            p.constraint[i] = updated - p.lambda[i];
+            p.lambda[i] = updated;
+        }
+    });
 }
 
 void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> multiplier,

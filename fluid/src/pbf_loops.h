@@ -22,7 +22,10 @@ struct PbfConstants {
 /// the material's own lattice, so the spawn lattice reads 0) into `constraint`, the diagonal of
 /// A = J W J^T, w_i |grad_i C_i|^2 + sum_j w_j |grad_j C_i|^2 + eps (w = 1/m), into `diagonal`,
 /// the density rho_i = rho0_i (C_i + 1) and 1/rho_i [Macklin & Mueller 2013].
-void pbfConstraint(WorldState& s, const PbfConstants& c);
+/// With `relaxation` (per material), each particle's multiplier is then updated in the same
+/// task: l_i <- min(l_i - relaxation C_i / D_i, 0), and `constraint` takes the change (one
+/// hand-over to the workers less per sweep).
+void pbfConstraint(WorldState& s, const PbfConstants& c, const float* relaxation = nullptr);
 
 /// The displacement W J^T lambda of multipliers `multiplier` into ax, ay (m), with V and V_w
 /// over the lattice sums L as in `pbfConstraint`:

@@ -148,17 +148,9 @@ void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations, boo
     }
     float omega = 1.0f;
     for (uint32_t it = 0; it < iterations; ++it) {
-        if (it > 0) {
-            timed(prof.density, [&] { pbfConstraint(s, c); }); // the first is the caller's
-        }
+        // C and D at the current positions, and the multipliers' update (change = C's storage).
+        timed(prof.density, [&] { pbfConstraint(s, c, relaxation.data()); });
         timed(prof.pressure, [&] {
-            each(s, [&](uint32_t i) {
-                const float relax = relaxation[p.material[i]];
-                const float updated =
-                    std::min(p.lambda[i] - relax * p.constraint[i] / p.diagonal[i], 0.0f);
-                change[i] = updated - p.lambda[i];
-                p.lambda[i] = updated;
-            });
             pbfDisplace(s, c, change, it == 0);
             const float rho2 = kChebyshev * kChebyshev;
             omega =
@@ -280,7 +272,6 @@ void stepPositionBased(WorldState& s, float frameDt) {
             fillMaterialChannels(s);
             placeSamples(s, endInStep, facts.maxSupport, moving || sub == 0);
         });
-        timed(prof.density, [&] { pbfConstraint(s, c); });
         solveDensity(s, c, settings.iterations, facts.wantsForces, prof);
         timed(prof.integrate, [&] { updateVelocity(s, dt); });
         timed(prof.forces, [&] {

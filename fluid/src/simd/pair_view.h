@@ -128,6 +128,8 @@ struct PbfView {
     GridView sampleGrid;
     // 1/h when every particle has the same support h (1/m), else 0.
     float invSupport = 0;
+    // True when the world has one material: every pair's material values are particle i's.
+    bool oneMaterial = false;
     // Constants of the sub-step (see PbfConstants).
     float dt = 0, sampleVolume = 0, epsilon = 0, artificial = 0, invWdq = 0;
 };
