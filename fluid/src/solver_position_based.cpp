@@ -86,10 +86,6 @@ void setArtificialPressure(WorldState& s) {
     }
 }
 
-// The corrections of the last pass (ax, ay), each at most kMaxCorrection h long, added to the
-// sub-step's total correction (cx, cy); x* = predicted + total. The total is kept apart from the
-// position: far from the origin (16 m) a float position rounds a 1e-6 m correction away, and
-// the velocity update would turn that rounding into momentum.
 // The last pass's correction of particle i, at most kMaxCorrection h long (NaN: none).
 inline void correction(const Particles& p, uint32_t i, float& dx, float& dy) {
     dx = p.ax[i];
@@ -103,6 +99,10 @@ inline void correction(const Particles& p, uint32_t i, float& dx, float& dy) {
     }
 }
 
+// The corrections of the last pass (ax, ay), each at most kMaxCorrection h long, added to the
+// sub-step's total correction (cx, cy); x* = predicted + total. The total is kept apart from the
+// position: far from the origin (16 m) a float position rounds a 1e-6 m correction away, and
+// the velocity update would turn that rounding into momentum.
 void applyCorrections(WorldState& s) {
     Particles& p = s.particles;
     each(s, [&](uint32_t i) {
