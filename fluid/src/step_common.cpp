@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace fluid::detail {
@@ -171,14 +172,23 @@ void sortParticles(WorldState& s, float cellSize,
     for (auto* channel : extra) {
         permute(*channel, order, s.sortScratch);
     }
-    s.sortScratchMaterial.resize(p.size());
-    s.sortScratchU.resize(p.size());
+    // Slots and materials pass through the float scratch as raw 32-bit patterns (memcpy, so no
+    // value is ever read as a float): no scratch array of their own.
+    std::vector<float>& raw = s.sortScratch;
+    raw.resize(p.size());
     for (size_t k = 0; k < order.size(); ++k) {
-        s.sortScratchMaterial[k] = p.material[order[k]];
-        s.sortScratchU[k] = p.slot[order[k]];
+        std::memcpy(&raw[k], &p.slot[order[k]], sizeof(uint32_t));
     }
-    p.material.swap(s.sortScratchMaterial);
-    p.slot.swap(s.sortScratchU);
+    std::memcpy(p.slot.data(), raw.data(), sizeof(uint32_t) * raw.size());
+    for (size_t k = 0; k < order.size(); ++k) {
+        const uint32_t m = p.material[order[k]];
+        std::memcpy(&raw[k], &m, sizeof(uint32_t));
+    }
+    for (size_t k = 0; k < order.size(); ++k) {
+        uint32_t m = 0;
+        std::memcpy(&m, &raw[k], sizeof(uint32_t));
+        p.material[k] = static_cast<uint16_t>(m);
+    }
     for (uint32_t k = 0; k < p.size(); ++k) {
         s.slotIndex[p.slot[k]] = k;
     }

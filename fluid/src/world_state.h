@@ -119,10 +119,8 @@ struct WorldState {
 
     Grid grid;
     Samples samples;
-    std::vector<float> sortScratch;
-    std::vector<uint32_t> sortScratchU;
-    std::vector<uint16_t> sortScratchMaterial;
-    std::vector<double> sortScratchD;
+    std::vector<float> sortScratch;   // also carries slots and materials (sortParticles)
+    std::vector<double> sortScratchD; // expiry, only when some particle has a lifetime
     uint64_t sorts = 0; // particle sorts so far (EmissionUndo: has this step reordered them?)
 
     std::vector<EmitterState> emitters;
