@@ -179,7 +179,9 @@ void sortParticles(WorldState& s, float cellSize,
     for (size_t k = 0; k < order.size(); ++k) {
         std::memcpy(&raw[k], &p.slot[order[k]], sizeof(uint32_t));
     }
-    std::memcpy(p.slot.data(), raw.data(), sizeof(uint32_t) * raw.size());
+    for (size_t k = 0; k < order.size(); ++k) { // (memcpy of an empty world's null data is UB)
+        std::memcpy(&p.slot[k], &raw[k], sizeof(uint32_t));
+    }
     for (size_t k = 0; k < order.size(); ++k) {
         const uint32_t m = p.material[order[k]];
         std::memcpy(&raw[k], &m, sizeof(uint32_t));
