@@ -52,10 +52,9 @@ void Grid::build(std::span<const float> px, std::span<const float> py, float rad
     const double nx = double(box.x1 - box.x0 + 1);
     const double ny = double(box.y1 - box.y0 + 1);
     const double denseLimit = std::max({4096.0 * sx * sy, 8.0 * double(count), double(denseCells)});
-    m_hashed = nx * ny > denseLimit;
-    v.hashed = m_hashed;
+    v.hashed = nx * ny > denseLimit;
     size_t cells = 0;
-    if (!m_hashed) {
+    if (!v.hashed) {
         v.ox = box.x0;
         v.oy = box.y0;
         v.nx = uint32_t(nx);
@@ -84,7 +83,7 @@ void Grid::build(std::span<const float> px, std::span<const float> py, float rad
         for (uint32_t i = b; i < e; ++i) {
             const int64_t cx = gridCell(px[i], v.invCellX);
             const int64_t cy = gridCell(py[i], v.invCellY);
-            m_keys[i] = m_hashed ? gridHash(cx, cy, v.mask)
+            m_keys[i] = v.hashed ? gridHash(cx, cy, v.mask)
                                  : uint32_t((cy - v.oy) * int64_t(v.nx) + (cx - v.ox));
         }
     });

@@ -43,7 +43,7 @@ public:
     /// Number of points sorted (unit: count).
     uint32_t size() const { return static_cast<uint32_t>(m_order.size()); }
     /// True when the grid fell back to hashed buckets.
-    bool hashed() const { return m_hashed; }
+    bool hashed() const { return m_view.hashed; }
     /// The grid as plain data for the pair passes (valid until the next build).
     const GridView& view() const { return m_view; }
 
@@ -56,7 +56,6 @@ public:
 
 private:
     GridView m_view;
-    bool m_hashed = false;
     std::vector<uint32_t> m_start; // cell -> first sorted position; size cells + 1
     std::vector<uint32_t> m_order;
     std::vector<uint32_t> m_keys;
