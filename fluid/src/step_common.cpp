@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 namespace fluid::detail {
@@ -172,25 +171,9 @@ void sortParticles(WorldState& s, float cellSize,
     for (auto* channel : extra) {
         permute(*channel, order, s.sortScratch);
     }
-    // Slots and materials pass through the float scratch as raw 32-bit patterns (memcpy, so no
-    // value is ever read as a float): no scratch array of their own.
-    std::vector<float>& raw = s.sortScratch;
-    raw.resize(p.size());
-    for (size_t k = 0; k < order.size(); ++k) {
-        std::memcpy(&raw[k], &p.slot[order[k]], sizeof(uint32_t));
-    }
-    for (size_t k = 0; k < order.size(); ++k) { // (memcpy of an empty world's null data is UB)
-        std::memcpy(&p.slot[k], &raw[k], sizeof(uint32_t));
-    }
-    for (size_t k = 0; k < order.size(); ++k) {
-        const uint32_t m = p.material[order[k]];
-        std::memcpy(&raw[k], &m, sizeof(uint32_t));
-    }
-    for (size_t k = 0; k < order.size(); ++k) {
-        uint32_t m = 0;
-        std::memcpy(&m, &raw[k], sizeof(uint32_t));
-        p.material[k] = static_cast<uint16_t>(m);
-    }
+    // Slots and materials pass through the float scratch too: no scratch array of their own.
+    permute(p.slot, order, s.sortScratch);
+    permute(p.material, order, s.sortScratch);
     for (uint32_t k = 0; k < p.size(); ++k) {
         s.slotIndex[p.slot[k]] = k;
     }

@@ -4,8 +4,11 @@
 #include "world_state.h"
 
 #include <chrono>
+#include <cstdint>
+#include <cstring>
 #include <initializer_list>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace fluid::detail {
@@ -40,6 +43,25 @@ void permute(std::vector<T>& channel, std::span<const uint32_t> order, std::vect
         tmp[k] = channel[order[k]];
     }
     channel.swap(tmp);
+}
+
+/// The same for an integer channel of at most 32 bits, through a float scratch that carries
+/// each value as a raw 32-bit pattern (memcpy, so none is ever read as a float): the sort needs
+/// no scratch array of the channel's own type.
+template <class T>
+void permute(std::vector<T>& channel, std::span<const uint32_t> order,
+             std::vector<float>& tmp) requires(std::is_integral_v<T> &&
+                                               sizeof(T) <= sizeof(uint32_t)) {
+    tmp.resize(channel.size());
+    for (size_t k = 0; k < order.size(); ++k) {
+        const auto value = static_cast<uint32_t>(channel[order[k]]);
+        std::memcpy(&tmp[k], &value, sizeof(uint32_t));
+    }
+    for (size_t k = 0; k < order.size(); ++k) { // element-wise: an empty channel's data() is null
+        uint32_t value = 0;
+        std::memcpy(&value, &tmp[k], sizeof(uint32_t));
+        channel[k] = static_cast<T>(value);
+    }
 }
 
 /// Per-material constants from the material table (equation-of-state fields left 0).
