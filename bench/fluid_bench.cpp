@@ -1,8 +1,8 @@
 // fluid-bench: times World::step on a standard scene and prints one summary line.
 //
 //   fluid-bench --scene dam --particles 16000 --frames 600 --threads 2 [--warmup N]
-//               [--solver position-based|explicit] [--substeps S] [--iterations I]
-//               [--eos tait|linear] [--no-coupling]
+//               [--solver position-based|explicit] [--quality game|precise] [--substeps S]
+//               [--iterations I] [--eos tait|linear] [--no-coupling] [--window A:B]
 //
 // Scenes (see bench/README.md):
 //   dam     a water block (width:height 1:2) standing in the left of a closed box four block
@@ -11,10 +11,20 @@
 //   crates  the dam with 20 Box2D crates (boxes and circles, 0.25 to 2 times water's areal
 //           density) in its path, coupled by fluid::box2d::Coupling::step; with --no-coupling
 //           the same bodies are stepped by Box2D but the fluid does not see them.
-// Every frame is 1/60 s. The last stdout line is machine-readable:
+//   tank    a resting water tank: nx by round(5 nx / 3) water particles (1500 by default: 30 x
+//           50, 0.30 x 0.50 m) filling the width of a closed box 1.595 water heights tall,
+//           gravity (0, -9.81) m/s^2; 300 frames (5 s, warm-up included) by default.
+// Every frame is 1/60 s. --quality picks the position-based preset (fluid::positionBasedPreset,
+// default game); --substeps and --iterations override it. After every frame, outside the timed
+// part, the bench measures each particle's compression from the positions alone (Wendland C2
+// density sum over h = 0.032 m against the same sum on the square lattice, clamped at 0);
+// --window A:B (1-based frames, warm-up included; default: the timed frames) picks the frames
+// the window_ fields cover. The last stdout line is machine-readable:
 //   solver=NAME particles=N frames=F threads=T substeps_per_frame=S iterations=I
 //   density_error_max=E ms_per_frame=M ns_per_particle_substep=P ms_per_frame_mean=A
-//   ms_per_frame_p90=Q cpu_ms_per_frame=C
+//   ms_per_frame_p90=Q cpu_ms_per_frame=C quality=NAME compression_mean=CM
+//   compression_p99=C99 compression_max=CX window=A:B window_compression_mean=WM
+//   window_compression_max=WX [tank: surface_change=D thrown=K ke_per_kg=KE]
 #include <fluid/fluid.h>
 
 #if FLUID_BENCH_BOX2D
@@ -25,6 +35,8 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <bit>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -34,6 +46,7 @@
 #include <memory>
 #include <numbers>
 #include <numeric>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -42,26 +55,40 @@ namespace {
 
 /// Command-line options (see the usage above).
 struct Options {
-    /// "dam", "blob" or "crates".
+    /// "dam", "blob", "crates" or "tank".
     std::string scene = "dam";
-    /// Wanted particle count (unit: count); the lattice gives about this many.
-    uint32_t particles = 16000;
-    /// Timed frames (unit: count).
-    uint32_t frames = 600;
+    /// Wanted particle count (unit: count); the lattice gives about this many. 0 = the scene's
+    /// default: 1500 for the tank, 16000 for the others.
+    uint32_t particles = 0;
+    /// Timed frames (unit: count). 0 = the scene's default: 600, for the tank 300 simulated
+    /// frames (5 s) less the warm-up.
+    uint32_t frames = 0;
     /// Frames stepped before timing starts (unit: count).
     uint32_t warmup = 2;
     /// WorldDef::workerCount (unit: count).
     uint32_t threads = 1;
     /// "position-based" or "explicit".
     std::string solver = "position-based";
-    /// PositionBasedDef::substeps (unit: count; 0 keeps the default).
+    /// Position-based preset the solver settings start from: "game" or "precise".
+    std::string quality = "game";
+    /// PositionBasedDef::substeps (unit: count; 0 keeps the quality preset's).
     uint32_t substeps = 0;
-    /// PositionBasedDef::iterations (unit: count; 0 keeps the default).
+    /// PositionBasedDef::iterations (unit: count; 0 keeps the quality preset's).
     uint32_t iterations = 0;
+    /// PositionBasedDef::viscosityInterval (unit: count; 0 keeps the quality preset's).
+    uint32_t viscosityInterval = 0;
     /// "tait" or "linear" (explicit solver).
     std::string eos = "tait";
     /// Crates scene: step Box2D next to the fluid without coupling them (the reference run).
     bool noCoupling = false;
+    /// "A:B" as given on the command line (empty: the timed frames); parsed into
+    /// `windowFirst` and `windowLast`.
+    std::string window;
+    /// First frame of the compression window (unit: 1-based frame number counting from the
+    /// first simulated frame, warm-up included).
+    uint32_t windowFirst = 0;
+    /// Last frame of the compression window, included (unit: as `windowFirst`).
+    uint32_t windowLast = 0;
 };
 
 /// What a scene builder made.
@@ -79,13 +106,11 @@ struct Scene {
     float boxHeight = 0.0f;
 };
 
-/// Fills `world` with the dam-break scene of about `n` water particles.
-Scene buildDam(fluid::World& world, uint32_t n) {
-    const fluid::MaterialId water = world.addMaterial(fluid::water());
+/// Spawns a block of `nx` columns by `ny` rows of `water` on its lattice (spacing `s`), lower
+/// left corner at the origin; returns its width and height (unit: m).
+std::pair<float, float> spawnBlock(fluid::World& world, fluid::MaterialId water, uint32_t nx,
+                                   uint32_t ny) {
     const float s = world.spacing(water); // lattice spacing (m): one particle per s^2
-    // nx columns by 2 nx rows hold 2 nx^2 ~ n particles.
-    const auto nx = std::max<uint32_t>(1, uint32_t(std::lround(std::sqrt(n / 2.0))));
-    const uint32_t ny = 2 * nx;
     const float width = float(nx) * s, height = float(ny) * s;
     fluid::BlobDef block;
     block.shape = fluid::BlobShape::Rectangle;
@@ -94,6 +119,16 @@ Scene buildDam(fluid::World& world, uint32_t n) {
     block.halfExtents = {0.5f * (width + 0.5f * s), 0.5f * (height + 0.5f * s)};
     block.material = water;
     world.spawnBlob(block);
+    return {width, height};
+}
+
+/// Fills `world` with the dam-break scene of about `n` water particles.
+Scene buildDam(fluid::World& world, uint32_t n) {
+    const fluid::MaterialId water = world.addMaterial(fluid::water());
+    // nx columns by 2 nx rows hold 2 nx^2 ~ n particles.
+    const auto nx = std::max<uint32_t>(1, uint32_t(std::lround(std::sqrt(n / 2.0))));
+    const uint32_t ny = 2 * nx;
+    const auto [width, height] = spawnBlock(world, water, nx, ny);
     world.addForce(std::make_unique<fluid::GravityForce>(0.0f, -9.81f));
     world.addBoundary(
         std::make_unique<fluid::BoxContainer>(0.0f, 0.0f, 4.0f * width, 1.5f * height));
@@ -101,6 +136,24 @@ Scene buildDam(fluid::World& world, uint32_t n) {
     std::snprintf(text, sizeof text, "dam: %u x %u block (%.3f x %.3f m) in a %.3f x %.3f m box",
                   nx, ny, width, height, 4.0f * width, 1.5f * height);
     return {text, water, width, 4.0f * width, 1.5f * height};
+}
+
+/// Fills `world` with the resting tank of about `n` water particles: nx = round(sqrt(3 n / 5))
+/// columns by ny = round(5 nx / 3) rows (nx ny ~ n), filling the width of a closed box 1.595
+/// water heights tall (0.3008 x 0.8 m for 30 x 50).
+Scene buildTank(fluid::World& world, uint32_t n) {
+    const fluid::MaterialId water = world.addMaterial(fluid::water());
+    const auto nx = std::max<uint32_t>(1, uint32_t(std::lround(std::sqrt(3.0 * n / 5.0))));
+    const auto ny = std::max<uint32_t>(1, uint32_t(std::lround(5.0 * nx / 3.0)));
+    const auto [width, height] = spawnBlock(world, water, nx, ny);
+    const float boxHeight = 1.595f * height;
+    world.addForce(std::make_unique<fluid::GravityForce>(0.0f, -9.81f));
+    world.addBoundary(std::make_unique<fluid::BoxContainer>(0.0f, 0.0f, width, boxHeight));
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "tank: %u x %u water (%.4f x %.4f m) resting in a %.4f x %.4f m box", nx, ny,
+                  width, height, width, boxHeight);
+    return {text, water, width, width, boxHeight};
 }
 
 /// Fills `world` with a zero-gravity round blob of about `n` water particles.
@@ -341,21 +394,183 @@ double quantile(std::vector<double> v, double q) {
     return v[std::min(v.size() - 1, rank > 0 ? rank - 1 : 0)];
 }
 
+/// The q-quantile (q in [0, 1]) of `v`, nearest rank, in linear time; reorders `v` (not empty).
+double nearestRank(std::vector<double>& v, double q) {
+    const auto rank = size_t(std::ceil(q * double(v.size())));
+    const size_t k = std::min(v.size() - 1, rank > 0 ? rank - 1 : 0);
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
+    return v[k];
+}
+
+/// Support radius of the bench's own density sum (unit: m): water's smoothing distance.
+constexpr double kCompressionSupport = 0.032;
+
+/// Wendland C2 (2D) kernel without its normalisation (unit: 1; 1 at r = 0, 0 from r = h on):
+/// (1 - q)^4 (1 + 4 q), q = r / h. The normalisation cancels in `CompressionMeter`'s ratio.
+double wendland(double r) {
+    const double q = r / kCompressionSupport;
+    if (q >= 1.0) {
+        return 0.0;
+    }
+    const double a = 1.0 - q;
+    return a * a * a * a * (1.0 + 4.0 * q);
+}
+
+/// Compression of one frame over its particles (unit: 1, fractions: 0.01 is 1%).
+struct Compression {
+    /// Mean over particles.
+    double mean = 0.0;
+    /// 99th percentile over particles (nearest rank).
+    double p99 = 0.0;
+    /// Largest over particles.
+    double max = 0.0;
+};
+
+/// The bench's own compression measure, from particle positions alone (no wall samples, so
+/// particles at walls and at the free surface read under-dense, i.e. 0): rho_i = sum_j W(r_ij)
+/// over every particle j within h = `kCompressionSupport` of i, itself included, divided by the
+/// same sum over an infinite square lattice of spacing s; compression_i = max(rho_i / lattice
+/// - 1, 0). Neighbours come from a hashed uniform grid of cells h wide (counting sort), so a
+/// measurement is O(N) however far particles fly.
+class CompressionMeter {
+public:
+    /// A meter for particles on a lattice of `spacing` (unit: m; > 0).
+    explicit CompressionMeter(double spacing) {
+        // Every lattice point (a s, b s) closer than h has |a|, |b| <= ceil(h / s).
+        const auto reach = int(std::ceil(kCompressionSupport / spacing));
+        for (int a = -reach; a <= reach; ++a) {
+            for (int b = -reach; b <= reach; ++b) {
+                const double r = spacing * std::sqrt(double(a * a + b * b));
+                if (r < kCompressionSupport) {
+                    m_lattice += wendland(r);
+                }
+            }
+        }
+    }
+
+    /// Measures the particles at `x`, `y` (unit: m; same length).
+    Compression measure(std::span<const float> x, std::span<const float> y) {
+        const size_t n = x.size();
+        if (n == 0) {
+            return {};
+        }
+        const float minX = *std::min_element(x.begin(), x.end());
+        const float minY = *std::min_element(y.begin(), y.end());
+        // Hash table of a power of two >= 2 n buckets; a bucket may hold several cells, so a
+        // walk keeps only the particles of the cell it asked for.
+        const size_t buckets = std::bit_ceil(std::max<size_t>(16, 2 * n));
+        const auto cellOf = [&](float v, float lo) {
+            return int64_t(std::floor((double(v) - double(lo)) / kCompressionSupport));
+        };
+        const auto bucketOf = [&](int64_t cx, int64_t cy) {
+            const uint64_t key = (uint64_t(cx) * 0x9E3779B97F4A7C15ull) ^ uint64_t(cy);
+            return size_t((key * 0xBF58476D1CE4E5B9ull) >> 32) & (buckets - 1);
+        };
+        m_cellX.resize(n);
+        m_cellY.resize(n);
+        m_bucket.resize(n);
+        m_start.assign(buckets + 1, 0);
+        for (size_t i = 0; i < n; ++i) {
+            m_cellX[i] = cellOf(x[i], minX);
+            m_cellY[i] = cellOf(y[i], minY);
+            m_bucket[i] = bucketOf(m_cellX[i], m_cellY[i]);
+            ++m_start[m_bucket[i] + 1];
+        }
+        std::partial_sum(m_start.begin(), m_start.end(), m_start.begin());
+        // Counting sort: particle data in bucket order.
+        m_sx.resize(n);
+        m_sy.resize(n);
+        m_scx.resize(n);
+        m_scy.resize(n);
+        m_fill.assign(m_start.begin(), m_start.end() - 1);
+        for (size_t i = 0; i < n; ++i) {
+            const size_t k = m_fill[m_bucket[i]]++;
+            m_sx[k] = x[i];
+            m_sy[k] = y[i];
+            m_scx[k] = m_cellX[i];
+            m_scy[k] = m_cellY[i];
+        }
+        const double h2 = kCompressionSupport * kCompressionSupport;
+        m_value.resize(n);
+        double sum = 0.0, largest = 0.0;
+        for (size_t i = 0; i < n; ++i) {
+            double rho = 0.0;
+            for (int64_t cy = m_scy[i] - 1; cy <= m_scy[i] + 1; ++cy) {
+                for (int64_t cx = m_scx[i] - 1; cx <= m_scx[i] + 1; ++cx) {
+                    const size_t b = bucketOf(cx, cy);
+                    for (size_t j = m_start[b]; j < m_start[b + 1]; ++j) {
+                        if (m_scx[j] != cx || m_scy[j] != cy) {
+                            continue;
+                        }
+                        const double dx = double(m_sx[j]) - double(m_sx[i]);
+                        const double dy = double(m_sy[j]) - double(m_sy[i]);
+                        const double r2 = dx * dx + dy * dy;
+                        if (r2 < h2) {
+                            rho += wendland(std::sqrt(r2));
+                        }
+                    }
+                }
+            }
+            const double c = std::max(rho / m_lattice - 1.0, 0.0);
+            m_value[i] = c;
+            sum += c;
+            largest = std::max(largest, c);
+        }
+        Compression result;
+        result.mean = sum / double(n);
+        result.max = largest;
+        result.p99 = nearestRank(m_value, 0.99);
+        return result;
+    }
+
+private:
+    /// The kernel sum over the infinite lattice (unit: 1).
+    double m_lattice = 0.0;
+    /// Per particle, in input order: grid cell (unit: cells of h from the lowest particle) and
+    /// hash bucket (unit: index).
+    std::vector<int64_t> m_cellX, m_cellY;
+    /// See `m_cellX`.
+    std::vector<size_t> m_bucket;
+    /// First sorted slot of each bucket, and one past the last (unit: index).
+    std::vector<size_t> m_start;
+    /// Next free sorted slot per bucket during the sort (unit: index).
+    std::vector<size_t> m_fill;
+    /// Positions (unit: m) and cells in bucket order.
+    std::vector<float> m_sx, m_sy;
+    /// See `m_sx`.
+    std::vector<int64_t> m_scx, m_scy;
+    /// Compression per particle in bucket order (unit: 1).
+    std::vector<double> m_value;
+};
+
+/// The tank's water level (unit: m): the 95th percentile (nearest rank) of particle y plus half
+/// a spacing `s` (a particle stands for an s x s cell). `scratch` is reused.
+double surfaceLevel(std::span<const float> y, double s, std::vector<double>& scratch) {
+    scratch.assign(y.begin(), y.end());
+    return scratch.empty() ? 0.0 : nearestRank(scratch, 0.95) + 0.5 * s;
+}
+
 int run(const Options& opt) {
     fluid::WorldDef def;
     def.workerCount = opt.threads;
     def.solver = opt.solver == "explicit" ? fluid::Solver::Explicit : fluid::Solver::PositionBased;
+    def.positionBased = fluid::positionBasedPreset(
+        opt.quality == "precise" ? fluid::Quality::Precise : fluid::Quality::Game);
     if (opt.substeps > 0) {
         def.positionBased.substeps = opt.substeps;
     }
     if (opt.iterations > 0) {
         def.positionBased.iterations = opt.iterations;
     }
+    if (opt.viscosityInterval > 0) {
+        def.positionBased.viscosityInterval = opt.viscosityInterval;
+    }
     def.equationOfState =
         opt.eos == "linear" ? fluid::EquationOfState::Linear : fluid::EquationOfState::Tait;
     fluid::World world(def);
-    const Scene scene =
-        opt.scene == "blob" ? buildBlob(world, opt.particles) : buildDam(world, opt.particles);
+    const Scene scene = opt.scene == "blob"   ? buildBlob(world, opt.particles)
+                        : opt.scene == "tank" ? buildTank(world, opt.particles)
+                                              : buildDam(world, opt.particles);
     std::string what = scene.text;
 
     // One frame of the scene: World::step alone, or (crates) the coupled frame or the uncoupled
@@ -395,15 +610,25 @@ int run(const Options& opt) {
 #endif
 
     const uint32_t n = world.particleCount();
+    const bool tank = opt.scene == "tank";
+    const double spacing = world.spacing(scene.water); // lattice spacing (m)
+    CompressionMeter meter(spacing);
+    std::vector<double> scratch;
+    // The start (frame 0): compression on the lattice (~0), the tank's level and highest
+    // particle.
+    const Compression start = meter.measure(world.positionX(), world.positionY());
+    const double surface0 = surfaceLevel(world.positionY(), spacing, scratch);
+    const float top0 =
+        n > 0 ? *std::max_element(world.positionY().begin(), world.positionY().end()) : 0.0f;
     std::fprintf(stderr,
-                 "fluid-bench: %s; %u particles, threads=%u, solver=%s, eos=%s, %u warm-up + %u "
-                 "timed frames\n",
-                 what.c_str(), n, opt.threads, opt.solver.c_str(), opt.eos.c_str(), opt.warmup,
-                 opt.frames);
+                 "fluid-bench: %s; %u particles, threads=%u, solver=%s, quality=%s (%u x %u), "
+                 "eos=%s, %u warm-up + %u timed frames, compression window frames %u-%u\n",
+                 what.c_str(), n, opt.threads, opt.solver.c_str(), opt.quality.c_str(),
+                 world.def().positionBased.substeps, world.def().positionBased.iterations,
+                 opt.eos.c_str(), opt.warmup, opt.frames, opt.windowFirst, opt.windowLast);
+    std::fprintf(stderr, "  frame 0: compression mean %.2f%%, max %.2f%% (positions)\n",
+                 100.0 * start.mean, 100.0 * start.max);
 
-    for (uint32_t f = 0; f < opt.warmup; ++f) {
-        frame();
-    }
     std::vector<double> frameMs;
     frameMs.reserve(opt.frames);
     // Stage sums over the timed frames (unit: ms): sort, external, density, pressure, forces,
@@ -412,32 +637,63 @@ int run(const Options& opt) {
     uint64_t substeps = 0;
     float worstError = 0.0f;
     const uint32_t report = std::max<uint32_t>(1, opt.frames / 5);
-    // Process CPU time (all threads; the pool's idle workers block, they do not spin) over the
-    // timed frames: the work a frame costs, much less sensitive than wall time to other
-    // processes on a busy machine.
-    const std::clock_t cpu0 = std::clock();
-    for (uint32_t f = 0; f < opt.frames; ++f) {
-        const auto t0 = std::chrono::steady_clock::now();
-        frame();
-        const auto t1 = std::chrono::steady_clock::now();
-        frameMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-        const fluid::Profile& p = profile();
-        const float parts[8] = {p.sort,   p.external,  p.density,    p.pressure,
-                                p.forces, p.integrate, p.boundaries, p.step};
-        for (int k = 0; k < 8; ++k) {
-            stage[k] += parts[k];
+    // Process CPU time (all threads; the pool's idle workers block, they do not spin) of the
+    // timed frames' frame() calls, summed (unit: clock ticks): the work a frame costs, much
+    // less sensitive than wall time to other processes on a busy machine.
+    std::clock_t cpuTicks = 0;
+    // The bench's compression after the last frame, and over the window: the sum of the
+    // frames' means (unit: 1) and the largest max (unit: 1).
+    Compression last = start;
+    double windowMeanSum = 0.0, windowMax = 0.0;
+    // Tank: the most particles above top0 + h in any frame (unit: count).
+    uint32_t thrown = 0;
+    const uint32_t total = opt.warmup + opt.frames; // simulated frames (unit: count)
+    for (uint32_t f = 1; f <= total; ++f) {
+        if (f <= opt.warmup) {
+            frame();
+        } else {
+            const std::clock_t c0 = std::clock();
+            const auto t0 = std::chrono::steady_clock::now();
+            frame();
+            const auto t1 = std::chrono::steady_clock::now();
+            cpuTicks += std::clock() - c0;
+            frameMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+            const fluid::Profile& p = profile();
+            const float parts[8] = {p.sort,   p.external,  p.density,    p.pressure,
+                                    p.forces, p.integrate, p.boundaries, p.step};
+            for (int k = 0; k < 8; ++k) {
+                stage[k] += parts[k];
+            }
+            substeps += p.substeps;
+            worstError = std::max(worstError, p.densityErrorMax);
         }
-        substeps += p.substeps;
-        worstError = std::max(worstError, p.densityErrorMax);
-        if ((f + 1) % report == 0 || f + 1 == opt.frames) {
-            std::fprintf(stderr, "  frame %u/%u: %.1f ms, %u sub-steps, max compression %.2f%%\n",
-                         f + 1, opt.frames, frameMs.back(), p.substeps, 100.0 * p.densityErrorMax);
+        // Not timed: the bench's own measurements.
+        const auto px = world.positionX();
+        const auto py = world.positionY();
+        last = meter.measure(px, py);
+        if (f >= opt.windowFirst && f <= opt.windowLast) {
+            windowMeanSum += last.mean;
+            windowMax = std::max(windowMax, last.max);
+        }
+        if (tank) {
+            const auto above = std::count_if(py.begin(), py.end(), [&](float y) {
+                return double(y) > double(top0) + kCompressionSupport;
+            });
+            thrown = std::max(thrown, uint32_t(above));
+        }
+        const uint32_t timed = f > opt.warmup ? f - opt.warmup : 0;
+        if (timed > 0 && (timed % report == 0 || timed == opt.frames)) {
+            const fluid::Profile& p = profile();
+            std::fprintf(stderr,
+                         "  frame %u/%u: %.1f ms, %u sub-steps, max compression %.2f%% (solver); "
+                         "positions: mean %.2f%%, max %.2f%%\n",
+                         timed, opt.frames, frameMs.back(), p.substeps, 100.0 * p.densityErrorMax,
+                         100.0 * last.mean, 100.0 * last.max);
         }
     }
 
-    const std::clock_t cpu1 = std::clock();
     const double frames = opt.frames;
-    const double cpuMs = 1e3 * double(cpu1 - cpu0) / double(CLOCKS_PER_SEC) / frames;
+    const double cpuMs = 1e3 * double(cpuTicks) / double(CLOCKS_PER_SEC) / frames;
     const double s = double(substeps) / frames;
     const double m = median(frameMs);
     const double mean = std::accumulate(frameMs.begin(), frameMs.end(), 0.0) / frames;
@@ -463,12 +719,57 @@ int run(const Options& opt) {
         printCrates(world, scene, crates, coupling.get());
     }
 #endif
+    const double windowMean = windowMeanSum / double(opt.windowLast - opt.windowFirst + 1);
+    std::printf("compression: mean %.2f%%, p99 %.2f%%, max %.2f%% (after frame %u, from positions: "
+                "Wendland C2 sum over h = %.3f m against the lattice's)\n",
+                100.0 * last.mean, 100.0 * last.p99, 100.0 * last.max, total, kCompressionSupport);
+    std::printf("compression over frames %u-%u: mean of the frames' means %.2f%%, largest %.2f%%\n",
+                opt.windowFirst, opt.windowLast, 100.0 * windowMean, 100.0 * windowMax);
+    // Tank: level, splashes and kinetic energy at the end.
+    double surfaceChange = 0.0, kePerKg = 0.0;
+    if (tank) {
+        const double surface = surfaceLevel(world.positionY(), spacing, scratch);
+        surfaceChange = surface / surface0 - 1.0;
+        const auto vx = world.velocityX();
+        const auto vy = world.velocityY();
+        double ke = 0.0;
+        for (size_t i = 0; i < vx.size(); ++i) {
+            ke += 0.5 * (double(vx[i]) * double(vx[i]) + double(vy[i]) * double(vy[i]));
+        }
+        kePerKg = vx.empty() ? 0.0 : ke / double(vx.size());
+        std::printf("surface: %.4f m at the start, %.4f m now (%+.2f%%; 95th percentile of y + "
+                    "s/2); thrown: at most %u particles above the start's top + h; kinetic "
+                    "energy %.3g J/kg\n",
+                    surface0, surface, 100.0 * surfaceChange, thrown, kePerKg);
+    }
+    char window[32];
+    std::snprintf(window, sizeof window, "%u:%u", opt.windowFirst, opt.windowLast);
     std::printf("solver=%s particles=%u frames=%u threads=%u substeps_per_frame=%.2f iterations=%u "
                 "density_error_max=%.4f ms_per_frame=%.3f ns_per_particle_substep=%.1f "
-                "ms_per_frame_mean=%.3f ms_per_frame_p90=%.3f cpu_ms_per_frame=%.3f\n",
+                "ms_per_frame_mean=%.3f ms_per_frame_p90=%.3f cpu_ms_per_frame=%.3f quality=%s "
+                "compression_mean=%.4f compression_p99=%.4f compression_max=%.4f window=%s "
+                "window_compression_mean=%.4f window_compression_max=%.4f",
                 opt.solver.c_str(), n, opt.frames, opt.threads, s, world.profile().iterations,
-                double(worstError), m, p, mean, quantile(frameMs, 0.9), cpuMs);
+                double(worstError), m, p, mean, quantile(frameMs, 0.9), cpuMs, opt.quality.c_str(),
+                last.mean, last.p99, last.max, window, windowMean, windowMax);
+    if (tank) {
+        std::printf(" surface_change=%.4f thrown=%u ke_per_kg=%.4g", surfaceChange, thrown,
+                    kePerKg);
+    }
+    std::printf("\n");
     return 0;
+}
+
+/// Parses "A:B" (two unsigned decimal numbers) into `first` and `last`; false if malformed.
+bool parseWindow(const std::string& text, uint32_t& first, uint32_t& last) {
+    const char* begin = text.data();
+    const char* end = begin + text.size();
+    const auto a = std::from_chars(begin, end, first);
+    if (a.ec != std::errc() || a.ptr == begin || a.ptr == end || *a.ptr != ':') {
+        return false;
+    }
+    const auto b = std::from_chars(a.ptr + 1, end, last);
+    return b.ec == std::errc() && b.ptr != a.ptr + 1 && b.ptr == end;
 }
 
 } // namespace
@@ -477,25 +778,39 @@ int main(int argc, char** argv) {
     Options opt;
     CLI::App app{"fluid-bench: times fluid::World::step on a standard scene"};
     app.add_option("--scene", opt.scene,
-                   "Scene: dam (dam break in a box), blob (zero-g blob) or crates (the dam with "
-                   "20 Box2D crates)");
-    app.add_option("--particles", opt.particles, "About this many particles")
+                   "Scene: dam (dam break in a box), blob (zero-g blob), crates (the dam with "
+                   "20 Box2D crates) or tank (resting water tank)");
+    app.add_option("--particles", opt.particles,
+                   "About this many particles (default 16000, the tank 1500)")
         ->check(CLI::Range(1u, 1u << 26));
-    app.add_option("--frames", opt.frames, "Timed frames of 1/60 s")
+    app.add_option("--frames", opt.frames,
+                   "Timed frames of 1/60 s (default 600; the tank 300 simulated frames, 5 s, "
+                   "warm-up included)")
         ->check(CLI::Range(1u, 1u << 30));
     app.add_option("--warmup", opt.warmup, "Untimed frames before timing")
         ->check(CLI::Range(0u, 1u << 30));
     app.add_option("--threads", opt.threads, "Worker threads (WorldDef::workerCount)")
         ->check(CLI::Range(1u, 256u));
     app.add_option("--solver", opt.solver, "Solver: position-based (the default) or explicit");
-    app.add_option("--substeps", opt.substeps, "Position-based sub-steps per frame (0: default)")
+    app.add_option("--quality", opt.quality,
+                   "Position-based preset the solver settings start from: game (the default) "
+                   "or precise; --substeps and --iterations override it");
+    app.add_option("--substeps", opt.substeps,
+                   "Position-based sub-steps per frame (0: the preset's)")
+        ->check(CLI::Range(0u, 64u));
+    app.add_option("--viscosity-interval", opt.viscosityInterval,
+                   "Position-based sub-steps between viscosity and surface tension runs (0: the "
+                   "preset's)")
         ->check(CLI::Range(0u, 64u));
     app.add_option("--iterations", opt.iterations,
-                   "Position-based constraint iterations per sub-step (0: default)")
+                   "Position-based constraint iterations per sub-step (0: the preset's)")
         ->check(CLI::Range(0u, 100u));
     app.add_option("--eos", opt.eos, "Equation of state of the explicit solver: tait or linear");
     app.add_flag("--no-coupling", opt.noCoupling,
                  "Crates scene: step the Box2D crates without coupling them to the fluid");
+    app.add_option("--window", opt.window,
+                   "A:B: frames (1-based, counted from the first simulated frame, warm-up "
+                   "included) the window_compression fields cover (default: the timed frames)");
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -504,8 +819,9 @@ int main(int argc, char** argv) {
         app.exit(e); // prints the message and the usage hint
         return 2;
     }
-    if (opt.scene != "dam" && opt.scene != "blob" && opt.scene != "crates") {
-        std::fprintf(stderr, "fluid-bench: unknown scene '%s' (expected dam, blob or crates)\n",
+    if (opt.scene != "dam" && opt.scene != "blob" && opt.scene != "crates" && opt.scene != "tank") {
+        std::fprintf(stderr,
+                     "fluid-bench: unknown scene '%s' (expected dam, blob, crates or tank)\n",
                      opt.scene.c_str());
         return 2;
     }
@@ -529,10 +845,35 @@ int main(int argc, char** argv) {
                      opt.solver.c_str());
         return 2;
     }
+    if (opt.quality != "game" && opt.quality != "precise") {
+        std::fprintf(stderr, "fluid-bench: unknown quality '%s' (expected game or precise)\n",
+                     opt.quality.c_str());
+        return 2;
+    }
     if (opt.eos != "tait" && opt.eos != "linear") {
         std::fprintf(stderr,
                      "fluid-bench: unknown equation of state '%s' (expected tait or linear)\n",
                      opt.eos.c_str());
+        return 2;
+    }
+    // Scene defaults: the tank runs 1500 particles for 300 simulated frames (5 s) in all.
+    const bool tank = opt.scene == "tank";
+    if (opt.particles == 0) {
+        opt.particles = tank ? 1500 : 16000;
+    }
+    if (opt.frames == 0) {
+        opt.frames = !tank ? 600 : opt.warmup < 300 ? 300 - opt.warmup : 1;
+    }
+    const uint32_t total = opt.warmup + opt.frames; // simulated frames
+    opt.windowFirst = opt.warmup + 1;
+    opt.windowLast = total;
+    if (!opt.window.empty() &&
+        (!parseWindow(opt.window, opt.windowFirst, opt.windowLast) || opt.windowFirst < 1 ||
+         opt.windowFirst > opt.windowLast || opt.windowLast > total)) {
+        std::fprintf(stderr,
+                     "fluid-bench: bad window '%s' (expected A:B with 1 <= A <= B <= %u, the "
+                     "simulated frames: %u warm-up + %u timed)\n",
+                     opt.window.c_str(), total, opt.warmup, opt.frames);
         return 2;
     }
     try {

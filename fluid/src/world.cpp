@@ -47,6 +47,8 @@ void validatePositionBased(const PositionBasedDef& pb, const char* prefix) {
     const std::string field = prefix;
     checkRange<uint32_t>((field + "substeps").c_str(), pb.substeps, 1, 64, "count", "");
     checkRange<uint32_t>((field + "iterations").c_str(), pb.iterations, 1, 100, "count", "");
+    checkRange<uint32_t>((field + "viscosityInterval").c_str(), pb.viscosityInterval, 1, 64,
+                         "count", "");
     checkRange((field + "vorticity").c_str(), pb.vorticity, 0.0f, 10.0f, "1", "");
 }
 
@@ -537,6 +539,15 @@ std::span<const SensorReading> World::sensorReading(SensorId id) const {
 
 std::span<const RemovedEvent> World::removedEvents() const {
     return m_state->removed;
+}
+
+PositionBasedDef positionBasedPreset(Quality quality) {
+    PositionBasedDef pb;
+    if (quality == Quality::Precise) {
+        pb.substeps = 4;
+        pb.iterations = 8;
+    }
+    return pb;
 }
 
 void World::setPositionBased(const PositionBasedDef& settings) {

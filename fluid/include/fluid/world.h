@@ -56,10 +56,27 @@ struct PositionBasedDef {
     /// Density-constraint iterations (Jacobi sweeps) per sub-step (unit: count; range
     /// [1, 100]). Default 8.
     uint32_t iterations = 8;
+    /// Sub-steps between runs of viscosity, vorticity confinement and surface tension (unit:
+    /// count; range [1, 64]); each run covers the time since the last one, and the frame's last
+    /// sub-step always runs them. 1 (every sub-step) is the most accurate; more saves two
+    /// neighbour passes per skipped sub-step, which pays with many short sub-steps.
+    uint32_t viscosityInterval = 1;
     /// Vorticity confinement strength epsilon (unit: 1; range [0, 10]): the share of a vortex's
     /// rotation speed at one support radius given back per radian turned. 0 turns it off.
     float vorticity = 0.0f;
 };
+
+/// Named accuracy presets of the position-based solver (`positionBasedPreset`,
+/// docs/position_based.md "Presets" has their measured compression and cost).
+enum class Quality : uint8_t {
+    /// The default: a game's trade of accuracy for speed (water compresses a few percent).
+    Game,
+    /// Few tenths of a percent of compression in a resting tank, at about three times the cost.
+    Precise,
+};
+
+/// The position-based settings of a named preset (pure function; any thread).
+PositionBasedDef positionBasedPreset(Quality quality);
 
 /// Everything a world is created from. Every field has a usable default.
 struct WorldDef {
