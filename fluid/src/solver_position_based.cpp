@@ -62,9 +62,11 @@ constexpr float kChebyshev = 0.8f;
 // not yet the slow modes the recurrence assumes, and accelerating them overshoots. With 2-4
 // sweeps per sub-step, accelerating from the first one boiled a resting tank (2 x 4: 156 of
 // 1,500 particles thrown above the water, max compression 52%); from the second one it rests
-// (2 x 4: 7.9% / 42%; 4 x 4: 1.6% / 9.8% mean / max, against 2.5% / 16% with no acceleration);
-// 4 x 8 reads 0.71% / 2.4% (0.68% / 2.3% from the first sweep).
+// (2 x 4: 7.9% / 42%; 4 x 4: 1.6% / 9.8% mean / max, against 2.5% / 16% with no acceleration).
+// With 8 sweeps or more, starting from the first one is a little more accurate (4 x 8: 0.68% /
+// 2.3%, against 0.71% / 2.4% from the second) and stays calm, so those keep it.
 constexpr uint32_t kChebyshevStart = 1;
+constexpr uint32_t kChebyshevEarly = 8;
 // Least denominator of a multiplier, as a share of the material's lattice value (the least
 // in a resting tank is 0.35 of it for water, 0.27 for yoghurt). A particle squeezed between
 // two solids, or between a solid and one neighbour, has pushes that cancel: its gradient sum
@@ -166,10 +168,10 @@ void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations, boo
         timed(prof.pressure, [&] {
             pbfDisplace(s, c, change, it == 0);
             const float rho2 = kChebyshev * kChebyshev;
-            omega = it <= kChebyshevStart
+            const uint32_t start = iterations >= kChebyshevEarly ? 0 : kChebyshevStart;
+            omega = it <= start
                         ? 1.0f
-                        : (it == kChebyshevStart + 1 ? 2.0f / (2.0f - rho2)
-                                                     : 4.0f / (4.0f - rho2 * omega));
+                        : (it == start + 1 ? 2.0f / (2.0f - rho2) : 4.0f / (4.0f - rho2 * omega));
             if (push) {
                 pbfSamplePush(s, c, change, omega, it == 0);
             }
@@ -261,8 +263,9 @@ void stepPositionBased(WorldState& s, float frameDt) {
     // Viscosity, vorticity and surface tension run every `interval` sub-steps, each time over
     // the time since the last run (the frame's last sub-step closes a shorter run).
     const uint32_t interval = std::min(settings.viscosityInterval, substeps);
-    const float viscosityFactor = dt * float(interval) * facts.maxNu * std::max(1.0f, facts.maxFriction) *
-                                  (40.0f / 3.0f) / (facts.minSupport * facts.minSupport);
+    const float viscosityFactor = dt * float(interval) * facts.maxNu *
+                                  std::max(1.0f, facts.maxFriction) * (40.0f / 3.0f) /
+                                  (facts.minSupport * facts.minSupport);
     const auto spanPasses = [&](uint32_t span) {
         return static_cast<uint32_t>(std::clamp(
             std::ceil(viscosityFactor * float(span) / float(interval) / kViscosityFactor), 1.0f,

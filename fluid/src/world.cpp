@@ -542,10 +542,11 @@ std::span<const RemovedEvent> World::removedEvents() const {
 }
 
 PositionBasedDef positionBasedPreset(Quality quality) {
-    PositionBasedDef pb;
-    if (quality == Quality::Precise) {
-        pb.substeps = 4;
-        pb.iterations = 8;
+    PositionBasedDef pb; // the precise preset
+    if (quality == Quality::Game) {
+        pb.substeps = 6;
+        pb.iterations = 3;
+        pb.viscosityInterval = 2;
     }
     return pb;
 }

@@ -125,9 +125,9 @@ private:
         std::string gravityPointer;
         if (const Json* value = root.find("world")) {
             const ObjectReader w(m_doc, *value, root.pointer("world"), "the world settings");
-            w.allowOnly({"gravity", "frameRate", "solver", "substeps", "iterations", "vorticity",
-                         "equationOfState", "soundSpeed", "courant", "maxSubsteps", "maxParticles",
-                         "workers", "depth"});
+            w.allowOnly({"gravity", "frameRate", "solver", "quality", "substeps", "iterations",
+                         "viscosityInterval", "vorticity", "equationOfState", "soundSpeed",
+                         "courant", "maxSubsteps", "maxParticles", "workers", "depth"});
             if (w.has("gravity")) {
                 gravityPointer = w.pointer("gravity");
                 gravity = readGravity(w);
@@ -140,10 +140,22 @@ private:
                 w.failAt("solver",
                          "unknown solver '" + solver + "'; known: position_based, explicit");
             }
+            // A named preset first; explicit substeps, iterations and viscosityInterval
+            // override its fields.
+            const std::string quality = w.string("quality", "");
+            if (quality == "game") {
+                def.positionBased = positionBasedPreset(Quality::Game);
+            } else if (quality == "precise") {
+                def.positionBased = positionBasedPreset(Quality::Precise);
+            } else if (!quality.empty()) {
+                w.failAt("quality", "unknown quality '" + quality + "'; known: game, precise");
+            }
             def.positionBased.substeps =
                 uint32_t(w.integer("substeps", {1, 64, "count"}, def.positionBased.substeps));
             def.positionBased.iterations =
                 uint32_t(w.integer("iterations", {1, 100, "count"}, def.positionBased.iterations));
+            def.positionBased.viscosityInterval = uint32_t(w.integer(
+                "viscosityInterval", {1, 64, "count"}, def.positionBased.viscosityInterval));
             def.positionBased.vorticity = float(w.number("vorticity", {0, 10, "1"}, 0.0));
             const std::string eos = w.string("equationOfState", "tait");
             if (eos == "linear") {

@@ -301,6 +301,9 @@ TEST_CASE("the fuzz seed with every key of the format loads as written", "[level
     const WorldDef& def = level.world.def();
     CHECK(def.solver == Solver::Explicit);
     CHECK(def.positionBased.vorticity == 0.1f);
+    CHECK(def.positionBased.substeps == 4);
+    CHECK(def.positionBased.iterations == 8);
+    CHECK(def.positionBased.viscosityInterval == 2);
     CHECK(def.maxParticles == 5000);
     CHECK(def.depth == 0.1293f);
     REQUIRE(level.materials.size() == 2);
@@ -357,4 +360,33 @@ TEST_CASE("LevelOptions override the file's workers and cap its particles", "[le
         CHECK(e.message() == "the blob spans about 406 lattice points (spacing 0.010026513 m); "
                              "the world holds at most 300 particles (world.maxParticles)");
     }
+}
+
+TEST_CASE("a level names its quality preset, and explicit settings override its fields",
+          "[level]") {
+    const auto worldOf = [](const std::string& world) {
+        return parseLevel(R"({"version": 1, "materials": [{"name": "w", "preset": "water"}], )"
+                          R"("world": )" +
+                              world + "}",
+                          "t.json", builtins())
+            .world.def()
+            .positionBased;
+    };
+    const PositionBasedDef game = positionBasedPreset(Quality::Game);
+    const PositionBasedDef precise = positionBasedPreset(Quality::Precise);
+    const PositionBasedDef none = worldOf("{}");
+    CHECK(none.substeps == WorldDef{}.positionBased.substeps);
+    CHECK(none.iterations == WorldDef{}.positionBased.iterations);
+    const PositionBasedDef g = worldOf(R"({"quality": "game"})");
+    CHECK(g.substeps == game.substeps);
+    CHECK(g.iterations == game.iterations);
+    CHECK(g.viscosityInterval == game.viscosityInterval);
+    const PositionBasedDef p = worldOf(R"({"quality": "precise"})");
+    CHECK(p.substeps == precise.substeps);
+    CHECK(p.iterations == precise.iterations);
+    CHECK(p.viscosityInterval == precise.viscosityInterval);
+    const PositionBasedDef o = worldOf(R"({"quality": "game", "iterations": 5})");
+    CHECK(o.substeps == game.substeps);
+    CHECK(o.iterations == 5);
+    CHECK(o.viscosityInterval == game.viscosityInterval);
 }
