@@ -13,7 +13,8 @@
 //                 (density pass), then the position corrections (pressure pass; s_corr in the
 //                 first), Chebyshev-accelerated [Wang 2015]
 //     velocity    v = (x* - x) / dt, as v + (corrections) / dt
-//     viscosity   seed eq. 2.6 as an explicit velocity update, split into as many passes as
+//     viscosity   (every PositionBasedDef::viscosityInterval sub-steps, over their time)
+//                 seed eq. 2.6 as an explicit velocity update, split into as many passes as
 //                 its stability asks; vorticity, normals and density at x* on the way
 //     surface     vorticity confinement and surface tension [Akinci 2013] into v
 //     boundaries  boundary plugins project out of solids (safety net)
