@@ -79,6 +79,8 @@ struct Options {
     uint32_t iterations = 0;
     /// PositionBasedDef::viscosityInterval (unit: count; 0 keeps the quality preset's).
     uint32_t viscosityInterval = 0;
+    /// PositionBasedDef::coarseCorrection (unit: 1; negative keeps the quality preset's).
+    float coarse = -1.0f;
     /// "tait" or "linear" (explicit solver).
     std::string eos = "tait";
     /// Crates scene: step Box2D next to the fluid without coupling them (the reference run).
@@ -416,6 +418,9 @@ int run(const Options& opt) {
     if (opt.viscosityInterval > 0) {
         def.positionBased.viscosityInterval = opt.viscosityInterval;
     }
+    if (opt.coarse >= 0.0f) {
+        def.positionBased.coarseCorrection = opt.coarse;
+    }
     def.equationOfState =
         opt.eos == "linear" ? fluid::EquationOfState::Linear : fluid::EquationOfState::Tait;
     fluid::World world(def);
@@ -653,6 +658,9 @@ int main(int argc, char** argv) {
                    "Position-based sub-steps between viscosity and surface tension runs (0: the "
                    "preset's)")
         ->check(CLI::Range(0u, 64u));
+    app.add_option("--coarse", opt.coarse,
+                   "Position-based coarse-grid correction share, 0 to 1 (default: the preset's)")
+        ->check(CLI::Range(0.0f, 1.0f));
     app.add_option("--iterations", opt.iterations,
                    "Position-based constraint iterations per sub-step (0: the preset's)")
         ->check(CLI::Range(0u, 100u));

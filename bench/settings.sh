@@ -4,14 +4,15 @@
 # the other. Prints a markdown table (compression at the end, surface change, particles thrown
 # off the surface, ms per frame) and plots mean and largest compression against ms per frame
 # into a PNG.
-# Usage: bench/settings.sh FLUID_BENCH [out.png] [viscosity-interval]
+# Usage: bench/settings.sh FLUID_BENCH [out.png] [viscosity-interval] [coarse]
 #   e.g. bash bench/settings.sh build/release/bench/fluid-bench docs/settings.png
 # Needs gnuplot for the plot (Debian package gnuplot-nox; installed here when missing and run as
 # root). Nothing in the build or the tests uses it.
 set -euo pipefail
-bench=${1:?usage: bench/settings.sh FLUID_BENCH [out.png] [viscosity-interval]}
+bench=${1:?usage: bench/settings.sh FLUID_BENCH [out.png] [viscosity-interval] [coarse]}
 out=${2:-docs/settings.png}
 interval=${3:-1}
+coarse=${4:-0}
 [[ -x "$bench" ]] || { echo "bench/settings.sh: '$bench' is not an executable" >&2; exit 1; }
 
 tmp=$(mktemp -d)
@@ -23,7 +24,7 @@ echo "|---|---:|---:|---:|---:|---:|---:|"
 for substeps in 1 2 3 4 6 8; do
     for sweeps in 1 2 3 4 8; do
         line=$("$bench" --scene tank --threads 1 --substeps "$substeps" --iterations "$sweeps" \
-            --viscosity-interval "$interval" 2> /dev/null | tail -1)
+            --viscosity-interval "$interval" --coarse "$coarse" 2> /dev/null | tail -1)
         mean=$(echo "$line" | field compression_mean)
         p99=$(echo "$line" | field compression_p99)
         max=$(echo "$line" | field compression_max)
@@ -53,7 +54,7 @@ touch "$tmp/coherent.dat" "$tmp/broken.dat"
 gnuplot <<EOF
 set terminal pngcairo size 1000,640 font ",11"
 set output "$out"
-set title "Resting 0.5 m tank, 5 s: compression against cost per sub-steps x sweeps (viscosity every $interval)"
+set title "Resting 0.5 m tank, 5 s: compression against cost per sub-steps x sweeps (viscosity every $interval, coarse $coarse)"
 set xlabel "ms per frame, 1,500 particles, one thread"
 set ylabel "compression at 5 s (fraction)"
 set logscale y

@@ -63,4 +63,12 @@ void pbfDeliverPush(WorldState& s, float weight);
 /// `weight`, added to the sample's force and drag rate.
 void pbfSampleFriction(WorldState& s, const PbfConstants& c, float scale, float weight);
 
+/// The coarse-level density correction (pbf_coarse.cpp): moves the predicted positions (px,
+/// py = ox, oy + cx, cy, writing cx, cy) by `share` of the displacement that removes the
+/// compression above `tolerance` on a grid of `cellSize` (m), with at most `maxIterations`
+/// conjugate-gradient iterations. Returns false (nothing moved) when nothing is compressed or
+/// the world is too wide for the grid.
+bool pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize, float tolerance,
+               uint32_t maxIterations);
+
 } // namespace fluid::detail

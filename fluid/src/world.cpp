@@ -49,6 +49,7 @@ void validatePositionBased(const PositionBasedDef& pb, const char* prefix) {
     checkRange<uint32_t>((field + "iterations").c_str(), pb.iterations, 1, 100, "count", "");
     checkRange<uint32_t>((field + "viscosityInterval").c_str(), pb.viscosityInterval, 1, 64,
                          "count", "");
+    checkRange((field + "coarseCorrection").c_str(), pb.coarseCorrection, 0.0f, 1.0f, "1", "");
     checkRange((field + "vorticity").c_str(), pb.vorticity, 0.0f, 10.0f, "1", "");
 }
 
@@ -544,9 +545,10 @@ std::span<const RemovedEvent> World::removedEvents() const {
 PositionBasedDef positionBasedPreset(Quality quality) {
     PositionBasedDef pb; // the precise preset
     if (quality == Quality::Game) {
-        pb.substeps = 6;
-        pb.iterations = 3;
+        pb.substeps = 4;
+        pb.iterations = 1;
         pb.viscosityInterval = 2;
+        pb.coarseCorrection = 0.4f;
     }
     return pb;
 }

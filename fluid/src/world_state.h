@@ -100,6 +100,18 @@ struct EmitterState {
     uint64_t random = 0;  // splitmix64 state, seeded from def.seed
 };
 
+/// The position-based solver's coarse grid (pbf_coarse.cpp), kept between sub-steps so that
+/// its arrays are allocated once.
+struct CoarseGrid {
+    std::vector<float> fluid, solid;      // fill of the node by particles and by samples (1: full)
+    std::vector<uint8_t> type;            // 0 air, 1 fluid, 2 solid
+    std::vector<float> psi, rhs, r, d, q; // potential and conjugate-gradient vectors
+    std::vector<uint32_t> active;         // the fluid nodes, in order (the unknowns)
+    std::vector<int32_t> slot;            // per node: its unknown, -1 for air and solid
+    std::vector<float> diagonal;          // per unknown: the operator's diagonal
+    std::vector<int32_t> neighbours;      // per unknown: 4 neighbouring unknowns, -1 for none
+};
+
 struct WorldState {
     WorldDef def;
     std::unique_ptr<ThreadPool> pool; // own pool when the host gave no hook
@@ -119,6 +131,7 @@ struct WorldState {
 
     Grid grid;
     Samples samples;
+    CoarseGrid coarse;
     std::vector<float> sortScratch;   // also carries slots and materials (sortParticles)
     std::vector<double> sortScratchD; // expiry, only when some particle has a lifetime
     uint64_t sorts = 0; // particle sorts so far (EmissionUndo: has this step reordered them?)

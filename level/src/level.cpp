@@ -126,8 +126,9 @@ private:
         if (const Json* value = root.find("world")) {
             const ObjectReader w(m_doc, *value, root.pointer("world"), "the world settings");
             w.allowOnly({"gravity", "frameRate", "solver", "quality", "substeps", "iterations",
-                         "viscosityInterval", "vorticity", "equationOfState", "soundSpeed",
-                         "courant", "maxSubsteps", "maxParticles", "workers", "depth"});
+                         "viscosityInterval", "coarseCorrection", "vorticity", "equationOfState",
+                         "soundSpeed", "courant", "maxSubsteps", "maxParticles", "workers",
+                         "depth"});
             if (w.has("gravity")) {
                 gravityPointer = w.pointer("gravity");
                 gravity = readGravity(w);
@@ -156,6 +157,8 @@ private:
                 uint32_t(w.integer("iterations", {1, 100, "count"}, def.positionBased.iterations));
             def.positionBased.viscosityInterval = uint32_t(w.integer(
                 "viscosityInterval", {1, 64, "count"}, def.positionBased.viscosityInterval));
+            def.positionBased.coarseCorrection = float(w.number(
+                "coarseCorrection", {0, 1, "1"}, double(def.positionBased.coarseCorrection)));
             def.positionBased.vorticity = float(w.number("vorticity", {0, 10, "1"}, 0.0));
             const std::string eos = w.string("equationOfState", "tait");
             if (eos == "linear") {

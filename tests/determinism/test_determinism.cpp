@@ -141,6 +141,23 @@ uint64_t runDams(bool mixed) {
 
 // Run by the test below in a child process with FLUID_SIMD set: prints the instruction set the
 // pair passes used and the hashes.
+TEST_CASE("the game preset (coarse correction) is bit-identical for 1, 2 and 4 workers",
+          "[slow][determinism]") {
+    Stopwatch sw("determinism, game preset, 3 runs");
+    WorldDef def;
+    def.positionBased = positionBasedPreset(Quality::Game);
+    def.workerCount = 1;
+    const uint64_t serial = runDam(def);
+    def.workerCount = 2;
+    const uint64_t two = runDam(def);
+    def.workerCount = 4;
+    const uint64_t four = runDam(def);
+    INFO("hashes: serial " << std::hex << serial << ", 2 workers " << two << ", 4 workers "
+                           << four);
+    CHECK(two == serial);
+    CHECK(four == serial);
+}
+
 TEST_CASE("instruction-set hash (child of the test below)", "[.isa-hash]") {
     std::printf("isa=%s hash=%016" PRIx64 "\n", instructionSet(),
                 runDams(false) * 31u + runDams(true));

@@ -75,8 +75,8 @@ TEST_CASE("level errors: unknown keys are named with the allowed ones", "[level]
     // The first unknown key in text order (nlohmann keeps members sorted by name).
     CHECK(errorOf(level(R"(, "world": {"zz": 1, "frameRate": 60, "aa": 2})")) ==
           "t.json:1:60: at /world/zz: unknown key 'zz'; allowed: gravity, frameRate, solver, "
-          "quality, substeps, iterations, viscosityInterval, vorticity, equationOfState, "
-          "soundSpeed, courant, maxSubsteps, maxParticles, workers, depth");
+          "quality, substeps, iterations, viscosityInterval, coarseCorrection, vorticity, "
+          "equationOfState, soundSpeed, courant, maxSubsteps, maxParticles, workers, depth");
     // Keys that belong to another shape are unknown too.
     CHECK(
         errorOf(level(
@@ -179,6 +179,8 @@ TEST_CASE("level errors: unknown plugin types, presets, solvers and shapes list 
           "t.json:1:71: at /world/quality: unknown quality 'fast'; known: game, precise");
     CHECK(errorOf(level(R"(, "world": {"viscosityInterval": 0})")) ==
           "t.json:1:81: at /world/viscosityInterval: 0 is out of range [1, 64] (unit: count)");
+    CHECK(errorOf(level(R"(, "world": {"coarseCorrection": 1.5})")) ==
+          "t.json:1:80: at /world/coarseCorrection: 1.5 is out of range [0, 1] (unit: 1)");
     CHECK(errorOf(level(R"(, "sensors": [{"name": "s", "shape": "star"}])")) ==
           "t.json:1:85: at /sensors/0/shape: unknown shape 'star'; known: box, circle, polygon");
 }

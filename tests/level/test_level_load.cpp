@@ -304,6 +304,7 @@ TEST_CASE("the fuzz seed with every key of the format loads as written", "[level
     CHECK(def.positionBased.substeps == 4);
     CHECK(def.positionBased.iterations == 8);
     CHECK(def.positionBased.viscosityInterval == 2);
+    CHECK(def.positionBased.coarseCorrection == 0.4f);
     CHECK(def.maxParticles == 5000);
     CHECK(def.depth == 0.1293f);
     REQUIRE(level.materials.size() == 2);
@@ -381,6 +382,7 @@ TEST_CASE("a level names its quality preset, and explicit settings override its 
     CHECK(g.substeps == game.substeps);
     CHECK(g.iterations == game.iterations);
     CHECK(g.viscosityInterval == game.viscosityInterval);
+    CHECK(g.coarseCorrection == game.coarseCorrection);
     const PositionBasedDef p = worldOf(R"({"quality": "precise"})");
     CHECK(p.substeps == precise.substeps);
     CHECK(p.iterations == precise.iterations);

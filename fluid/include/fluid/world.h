@@ -48,10 +48,10 @@ enum class EquationOfState : uint8_t {
 /// between steps with `World::setPositionBased` (stepping thread).
 struct PositionBasedDef {
     /// Sub-steps per `World::step` (unit: count; range [1, 64]). Default 4, the
-    /// `Quality::Precise` preset's (`Quality::Game`: 6 x 3 iterations). Fewer are faster and
+    /// `Quality::Precise` preset's (`Quality::Game`: 4 x 1 iteration). Fewer are faster and
     /// more compressible; a particle moves at most two support radii per sub-step (faster ones
-    /// are slowed and counted in `Profile::speedClamped`). Below 3 sub-steps x 3 iterations,
-    /// 4 x 2 or 6 x 1 a deep tank boils (docs/position_based.md, "Settings").
+    /// are slowed and counted in `Profile::speedClamped`). Without the coarse correction, below
+    /// 3 x 3, 6 x 2 or 8 x 1 a deep tank boils (docs/position_based.md, "Settings").
     uint32_t substeps = 4;
     /// Density-constraint iterations (Jacobi sweeps) per sub-step (unit: count; range
     /// [1, 100]). Default 8 (`Quality::Precise`).
@@ -61,6 +61,12 @@ struct PositionBasedDef {
     /// sub-step always runs them. Default 1 (every sub-step, `Quality::Precise`); the game
     /// preset's 2 saves two neighbour passes per skipped sub-step.
     uint32_t viscosityInterval = 1;
+    /// Share of the coarse-grid density correction applied before the sweeps of each sub-step
+    /// (unit: 1; range [0, 1]; 0 turns it off). The sweeps carry pressure about one support
+    /// radius each, so a deep tank needs many of them; the coarse correction removes the
+    /// large-scale compression (above 5%) in one grid solve, which lets few sweeps hold deep
+    /// water (docs/position_based.md, "Coarse correction"). Default 0 (`Quality::Precise`).
+    float coarseCorrection = 0.0f;
     /// Vorticity confinement strength epsilon (unit: 1; range [0, 10]): the share of a vortex's
     /// rotation speed at one support radius given back per radian turned. 0 turns it off.
     float vorticity = 0.0f;
@@ -69,9 +75,9 @@ struct PositionBasedDef {
 /// Named accuracy presets of the position-based solver (`positionBasedPreset`;
 /// docs/position_based.md, "Presets", has their measured compression and cost).
 enum class Quality : uint8_t {
-    /// 6 sub-steps x 3 iterations, viscosity every second sub-step. A resting 0.5 m water
-    /// tank: 1% mean, 6% largest compression, surface 1.7% low; 1.4-1.6x faster than
-    /// `Precise`.
+    /// 4 sub-steps x 1 iteration with the coarse correction (0.4), viscosity every second
+    /// sub-step. A resting 0.5 m water tank: 1.7% mean, 6.5% largest compression, surface 2.1%
+    /// low; about 3x faster than `Precise`.
     Game,
     /// The default (`PositionBasedDef{}`): 4 sub-steps x 8 iterations, viscosity every
     /// sub-step: 0.7% mean, 2.3% largest compression in the same tank.

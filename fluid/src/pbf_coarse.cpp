@@ -1,0 +1,254 @@
+// fluid — the position-based solver's coarse-level density correction.
+//
+// A Jacobi sweep of the density constraint carries pressure about one support radius, so the
+// deep, slow compression modes (a tank's hydrostatic column) need many sweeps. Before the sweeps
+// of a sub-step, this pass removes the large-scale part of the compression on a coarse grid
+// [Kugelstadt et al. 2019 project densities on a grid in the same way]:
+//   fill      each node's fill F = sum V_i N(x_i) / H^2 of particles (rest areas V, bilinear
+//             weights N) plus the same of boundary samples; 1 is the rest lattice
+//   types     air (F < 1/2: the potential is 0 there, a free surface), solid (samples fill more
+//             than particles: no flux through it), fluid (the unknowns)
+//   solve     -lap psi = max(F - 1 - tolerance, 0) H^2 on the fluid nodes, conjugate gradients
+//   move      each particle by -share grad psi (bilinear), at most kMaxMove of its support
+// The displacement divergence -div u = lap psi removes the compression to first order. It runs
+// serially in a fixed order, so results do not depend on the number of workers.
+#include "pbf_loops.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fluid::detail {
+
+namespace {
+
+constexpr uint8_t kAir = 0, kFluid = 1, kSolid = 2;
+// Longest coarse move, in supports of the particle.
+constexpr float kMaxMove = 0.25f;
+// Most nodes the grid may have; a world spread wider skips the pass that sub-step.
+constexpr size_t kMaxNodes = size_t(1) << 22;
+// Diagonal shift of the coarse operator (a closed container full of fluid has no free surface
+// to anchor the potential), and the residual, relative to the start, that ends the solve.
+constexpr float kShift = 1e-3f;
+constexpr float kResidual = 1e-4f;
+
+struct Layout {
+    float x0 = 0, y0 = 0, invH = 0;
+    int nx = 0, ny = 0;
+    // Cell of a point and its bilinear fractions.
+    void cell(float x, float y, int& i, int& j, float& fx, float& fy) const {
+        const float gx = (x - x0) * invH, gy = (y - y0) * invH;
+        i = std::clamp(int(std::floor(gx)), 0, nx - 2);
+        j = std::clamp(int(std::floor(gy)), 0, ny - 2);
+        fx = std::clamp(gx - float(i), 0.0f, 1.0f);
+        fy = std::clamp(gy - float(j), 0.0f, 1.0f);
+    }
+};
+
+void splat(std::vector<float>& fill, const Layout& g, float x, float y, float amount) {
+    int i = 0, j = 0;
+    float fx = 0, fy = 0;
+    g.cell(x, y, i, j, fx, fy);
+    const size_t k = size_t(j) * size_t(g.nx) + size_t(i);
+    fill[k] += amount * (1.0f - fx) * (1.0f - fy);
+    fill[k + 1] += amount * fx * (1.0f - fy);
+    fill[k + size_t(g.nx)] += amount * (1.0f - fx) * fy;
+    fill[k + size_t(g.nx) + 1] += amount * fx * fy;
+}
+
+} // namespace
+
+bool pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize, float tolerance,
+               uint32_t maxIterations) {
+    Particles& p = s.particles;
+    const uint32_t n = p.size();
+    if (n == 0 || !(share > 0.0f)) {
+        return false;
+    }
+    float lx = p.px[0], hx = lx, ly = p.py[0], hy = ly;
+    for (uint32_t i = 1; i < n; ++i) {
+        lx = std::min(lx, p.px[i]);
+        hx = std::max(hx, p.px[i]);
+        ly = std::min(ly, p.py[i]);
+        hy = std::max(hy, p.py[i]);
+    }
+    Layout g;
+    g.invH = 1.0f / cellSize;
+    g.x0 = lx - cellSize;
+    g.y0 = ly - cellSize;
+    const double spanX = double(hx - lx) / cellSize + 3.0, spanY = double(hy - ly) / cellSize + 3.0;
+    if (!(spanX * spanY < double(kMaxNodes))) {
+        return false;
+    }
+    g.nx = int(spanX);
+    g.ny = int(spanY);
+    const size_t nodes = size_t(g.nx) * size_t(g.ny);
+    CoarseGrid& cg = s.coarse;
+    cg.fluid.assign(nodes, 0.0f);
+    cg.solid.assign(nodes, 0.0f);
+    const float invArea = g.invH * g.invH;
+    for (uint32_t i = 0; i < n; ++i) {
+        splat(cg.fluid, g, p.px[i], p.py[i], p.volume[i] * invArea);
+    }
+    const Samples& w = s.samples;
+    const float gx1 = g.x0 + float(g.nx - 1) * cellSize, gy1 = g.y0 + float(g.ny - 1) * cellSize;
+    for (size_t k = 0; k < w.px.size(); ++k) {
+        const float x = w.px[k], y = w.py[k];
+        if (x >= g.x0 && x <= gx1 && y >= g.y0 && y <= gy1) {
+            splat(cg.solid, g, x, y, c.sampleVolume * invArea);
+        }
+    }
+    cg.type.assign(nodes, kAir);
+    cg.rhs.assign(nodes, 0.0f);
+    bool any = false;
+    const float h2 = cellSize * cellSize;
+    for (size_t k = 0; k < nodes; ++k) {
+        const float f = cg.fluid[k], sf = cg.solid[k];
+        if (sf > f && sf >= 0.25f) {
+            cg.type[k] = kSolid;
+        } else if (f + sf >= 0.5f) {
+            cg.type[k] = kFluid;
+            const float e = f + sf - 1.0f - tolerance;
+            if (e > 0.0f) {
+                cg.rhs[k] = e * h2;
+                any = true;
+            }
+        }
+    }
+    if (!any) {
+        return false;
+    }
+    // Conjugate gradients on A psi = rhs over the fluid nodes, A psi_k = sum over the non-solid
+    // neighbours of (psi_k - psi_nb) (air and outside the grid hold 0), plus a small shift so
+    // that a closed container full of fluid stays solvable.
+    const int nx = g.nx, ny = g.ny;
+    // The unknowns in compact order (cg.active: their nodes), each with its diagonal and its
+    // fluid neighbours' compact indices (-1: none).
+    cg.active.clear();
+    cg.slot.assign(nodes, -1);
+    for (size_t k = 0; k < nodes; ++k) {
+        if (cg.type[k] == kFluid) {
+            cg.slot[k] = int32_t(cg.active.size());
+            cg.active.push_back(uint32_t(k));
+        }
+    }
+    const size_t count = cg.active.size();
+    cg.diagonal.assign(count, kShift);
+    cg.neighbours.assign(4 * count, -1);
+    for (size_t a = 0; a < count; ++a) {
+        const uint32_t k = cg.active[a];
+        const int i = int(k % uint32_t(nx)), j = int(k / uint32_t(nx));
+        const int di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
+        for (int e = 0; e < 4; ++e) {
+            const int ii = i + di[e], jj = j + dj[e];
+            if (ii < 0 || jj < 0 || ii >= nx || jj >= ny) {
+                cg.diagonal[a] += 1.0f; // outside the grid: air
+                continue;
+            }
+            const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
+            if (cg.type[m] != kSolid) { // no flux through solids
+                cg.diagonal[a] += 1.0f;
+                cg.neighbours[4 * a + size_t(e)] = cg.slot[m];
+            }
+        }
+    }
+    // Conjugate gradients on A psi = rhs: (A psi)_a = diagonal_a psi_a - sum of the fluid
+    // neighbours' psi (air holds 0); the diagonal's small shift keeps a closed container full
+    // of fluid solvable.
+    const auto apply = [&](const std::vector<float>& x, std::vector<float>& out) {
+        for (size_t a = 0; a < count; ++a) {
+            float acc = cg.diagonal[a] * x[a];
+            for (int e = 0; e < 4; ++e) {
+                const int32_t m = cg.neighbours[4 * a + size_t(e)];
+                acc -= m >= 0 ? x[size_t(m)] : 0.0f;
+            }
+            out[a] = acc;
+        }
+    };
+    const auto dot = [&](const std::vector<float>& u, const std::vector<float>& v) {
+        double sum = 0.0;
+        for (size_t a = 0; a < count; ++a) {
+            sum += double(u[a]) * double(v[a]);
+        }
+        return sum;
+    };
+    cg.psi.assign(count, 0.0f);
+    cg.r.resize(count);
+    for (size_t a = 0; a < count; ++a) {
+        cg.r[a] = cg.rhs[cg.active[a]];
+    }
+    cg.d = cg.r;
+    cg.q.assign(count, 0.0f);
+    double rr = dot(cg.r, cg.r);
+    const double stop = rr * double(kResidual) * double(kResidual);
+    for (uint32_t it = 0; it < maxIterations && rr > stop; ++it) {
+        apply(cg.d, cg.q);
+        const double dq = dot(cg.d, cg.q);
+        if (!(dq > 0.0)) {
+            break;
+        }
+        const auto alpha = float(rr / dq);
+        for (size_t a = 0; a < count; ++a) {
+            cg.psi[a] += alpha * cg.d[a];
+            cg.r[a] -= alpha * cg.q[a];
+        }
+        const double next = dot(cg.r, cg.r);
+        const auto beta = float(next / rr);
+        rr = next;
+        for (size_t a = 0; a < count; ++a) {
+            cg.d[a] = cg.r[a] + beta * cg.d[a];
+        }
+    }
+    // Node values for the gradient: fluid nodes their potential, solid nodes the mean of their
+    // fluid neighbours' (no flux through solids), air 0.
+    std::vector<float>& value = cg.rhs; // free now
+    for (int j = 0; j < ny; ++j) {
+        for (int i = 0; i < nx; ++i) {
+            const size_t k = size_t(j) * size_t(nx) + size_t(i);
+            if (cg.type[k] == kFluid) {
+                value[k] = cg.psi[size_t(cg.slot[k])];
+                continue;
+            }
+            float sum = 0.0f;
+            int fluidNeighbours = 0;
+            if (cg.type[k] == kSolid) {
+                const int di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
+                for (int e = 0; e < 4; ++e) {
+                    const int ii = i + di[e], jj = j + dj[e];
+                    if (ii < 0 || jj < 0 || ii >= nx || jj >= ny) {
+                        continue;
+                    }
+                    const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
+                    if (cg.type[m] == kFluid) {
+                        sum += cg.psi[size_t(cg.slot[m])];
+                        ++fluidNeighbours;
+                    }
+                }
+            }
+            value[k] = fluidNeighbours > 0 ? sum / float(fluidNeighbours) : 0.0f;
+        }
+    }
+    for (uint32_t i = 0; i < n; ++i) {
+        int ci = 0, cj = 0;
+        float fx = 0, fy = 0;
+        g.cell(p.px[i], p.py[i], ci, cj, fx, fy);
+        const size_t k = size_t(cj) * size_t(nx) + size_t(ci);
+        const float v00 = value[k], v10 = value[k + 1];
+        const float v01 = value[k + size_t(nx)], v11 = value[k + size_t(nx) + 1];
+        float ux = -share * ((1.0f - fy) * (v10 - v00) + fy * (v11 - v01)) * g.invH;
+        float uy = -share * ((1.0f - fx) * (v01 - v00) + fx * (v11 - v10)) * g.invH;
+        const float limit = kMaxMove * p.h[i];
+        const float len2 = ux * ux + uy * uy;
+        if (!(len2 <= limit * limit)) {
+            const float scale = std::isfinite(len2) ? limit / std::sqrt(len2) : 0.0f;
+            ux = std::isfinite(len2) ? ux * scale : 0.0f;
+            uy = std::isfinite(len2) ? uy * scale : 0.0f;
+        }
+        p.cx[i] = ux;
+        p.cy[i] = uy;
+        p.px[i] = p.ox[i] + ux;
+        p.py[i] = p.oy[i] + uy;
+    }
+    return true;
+}
+
+} // namespace fluid::detail
