@@ -57,12 +57,12 @@ void splat(std::vector<float>& fill, const Layout& g, float x, float y, float am
 
 } // namespace
 
-bool pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize, float tolerance,
+void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize, float tolerance,
                uint32_t maxIterations) {
     Particles& p = s.particles;
     const uint32_t n = p.size();
     if (n == 0 || !(share > 0.0f)) {
-        return false;
+        return;
     }
     float lx = p.px[0], hx = lx, ly = p.py[0], hy = ly;
     for (uint32_t i = 1; i < n; ++i) {
@@ -77,7 +77,7 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
     g.y0 = ly - cellSize;
     const double spanX = double(hx - lx) / cellSize + 3.0, spanY = double(hy - ly) / cellSize + 3.0;
     if (!(spanX * spanY < double(kMaxNodes))) {
-        return false;
+        return;
     }
     g.nx = int(spanX);
     g.ny = int(spanY);
@@ -115,11 +115,8 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
         }
     }
     if (!any) {
-        return false;
+        return;
     }
-    // Conjugate gradients on A psi = rhs over the fluid nodes, A psi_k = sum over the non-solid
-    // neighbours of (psi_k - psi_nb) (air and outside the grid hold 0), plus a small shift so
-    // that a closed container full of fluid stays solvable.
     const int nx = g.nx, ny = g.ny;
     // The unknowns in compact order (cg.active: their nodes), each with its diagonal and its
     // fluid neighbours' compact indices (-1: none).
@@ -248,7 +245,6 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
         p.px[i] = p.ox[i] + ux;
         p.py[i] = p.oy[i] + uy;
     }
-    return true;
 }
 
 } // namespace fluid::detail

@@ -66,9 +66,10 @@ void pbfSampleFriction(WorldState& s, const PbfConstants& c, float scale, float 
 /// The coarse-level density correction (pbf_coarse.cpp): moves the predicted positions (px,
 /// py = ox, oy + cx, cy, writing cx, cy) by `share` of the displacement that removes the
 /// compression above `tolerance` on a grid of `cellSize` (m), with at most `maxIterations`
-/// conjugate-gradient iterations. Returns false (nothing moved) when nothing is compressed or
-/// the world is too wide for the grid.
-bool pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize, float tolerance,
+/// conjugate-gradient iterations. Moves nothing when nothing is compressed or the world is too
+/// wide for the grid. Boundary samples take no reaction from it (rigid bodies coupled through
+/// fluid::box2d refuse it).
+void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize, float tolerance,
                uint32_t maxIterations);
 
 } // namespace fluid::detail

@@ -353,3 +353,22 @@ TEST_CASE("the category mask, the filter and sensors keep fixtures out of the fl
         CHECK(beyond == world.particleCount());
     }
 }
+
+TEST_CASE("a world with the coarse correction (the game preset) is refused with bodies",
+          "[box2d]") {
+    Pool pool;
+    addBox(pool.physics, b2_dynamicBody, {0.3f, 0.3f}, 0.03f, 0.03f, 1.0f);
+    Coupling coupling(pool.world, pool.physics, CouplingDef{});
+    pool.world.setPositionBased(positionBasedPreset(Quality::Game));
+    const std::string message =
+        "PositionBasedDef::coarseCorrection must be 0 with rigid bodies (it gives them no "
+        "reaction yet); use Quality::Precise or set it to 0";
+    CHECK_THROWS_WITH(coupling.step(pool.world, kFrame),
+                      "fluid::box2d::Coupling::step: " + message);
+    CHECK_THROWS_WITH(coupling.stepFluid(pool.world, kFrame),
+                      "fluid::box2d::Coupling::stepFluid: " + message);
+    // The precise preset steps.
+    pool.world.setPositionBased(positionBasedPreset(Quality::Precise));
+    coupling.step(pool.world, kFrame);
+    CHECK(allFinite(pool.world));
+}
