@@ -291,20 +291,50 @@ void solverSection(Level& level, FieldErrors& errors) {
         const uint32_t maxIterations = 100;
         const float zero = 0.0f;
         const float maxVorticity = 10.0f;
+        const float oneF = 1.0f;
         const ImGuiSliderFlags flags = kFieldFlags;
-        bool changed = ImGui::DragScalar("sub-steps", ImGuiDataType_U32, &pb.substeps, 0.05f, &one,
-                                         &maxSubsteps, "%u per frame", flags);
+        bool changed = false;
+        // The named presets; a level with Box2D bodies stays precise (the coupling refuses the
+        // game preset's coarse correction).
+        if (ImGui::Button("game")) {
+            pb = positionBasedPreset(Quality::Game);
+            pb.vorticity = def.positionBased.vorticity;
+            changed = true;
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("precise")) {
+            pb = positionBasedPreset(Quality::Precise);
+            pb.vorticity = def.positionBased.vorticity;
+            changed = true;
+        }
+        ImGui::SameLine();
+        ImGui::TextDisabled("quality presets");
+        changed |= ImGui::DragScalar("sub-steps", ImGuiDataType_U32, &pb.substeps, 0.05f, &one,
+                                     &maxSubsteps, "%u per frame", flags);
         rangeTooltip("Sub-steps per frame: more hold the water denser and cost more.", "count", 1,
                      64);
         changed |= ImGui::DragScalar("iterations", ImGuiDataType_U32, &pb.iterations, 0.05f, &one,
                                      &maxIterations, "%u per sub-step", flags);
         rangeTooltip("Density-constraint (Jacobi) iterations per sub-step.", "count", 1, 100);
+        changed |= ImGui::DragScalar("viscosity every", ImGuiDataType_U32, &pb.viscosityInterval,
+                                     0.05f, &one, &maxSubsteps, "%u sub-steps", flags);
+        rangeTooltip("Sub-steps between viscosity and surface tension runs.", "count", 1, 64);
+        changed |= ImGui::DragScalar("coarse", ImGuiDataType_Float, &pb.coarseCorrection, 0.002f,
+                                     &zero, &oneF, "%.3f", flags);
+        rangeTooltip("Share of the coarse-grid density correction per sub-step; 0 is off.", "1", 0,
+                     1);
         changed |= ImGui::DragScalar("vorticity", ImGuiDataType_Float, &pb.vorticity, 0.002f, &zero,
                                      &maxVorticity, "%.3f", flags);
         rangeTooltip("Vorticity confinement: gives back the swirl that damping takes; 0 is off.",
                      "1", 0, 10);
         if (changed) {
-            applyField(errors, id, [&] { world.setPositionBased(pb); });
+            applyField(errors, id, [&] {
+                if (level.coupling && pb.coarseCorrection > 0.0f) {
+                    throw Error("with Box2D bodies the coarse correction must be 0 (it gives "
+                                "them no reaction yet): keep the precise preset");
+                }
+                world.setPositionBased(pb);
+            });
         }
         showFieldError(errors, id);
     } else {

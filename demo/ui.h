@@ -91,7 +91,8 @@ struct LevelEntry {
 int drawLevelMenu(std::span<const LevelEntry> levels, int current, bool* open);
 
 /// Draws the Tab panel on the right, built from what the level's world declares:
-/// - Solver: the position-based solver's sub-steps, iterations and vorticity
+/// - Solver: the quality presets (game, precise) and the position-based solver's sub-steps,
+///   iterations, viscosity interval, coarse correction and vorticity
 ///   (`World::setPositionBased`), and the last step's density error.
 /// - Every plugin of `world.forces()` and `world.boundaries()`: a header with its name in the
 ///   level file and its type; every number parameter as a drag field within its declared range
