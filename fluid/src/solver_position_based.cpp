@@ -156,7 +156,7 @@ void applyCorrections(WorldState& s) {
 // change. Positions are Chebyshev-accelerated between sweeps [Wang 2015]:
 // x_k+1 = omega_k+1 (x^_k+1 - x_k-1) + x_k-1.
 void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations, float coarse,
-                  bool push, Profile& prof) {
+                  float coarseCell, bool push, Profile& prof) {
     Particles& p = s.particles;
     // The change shares the constraint's storage: the update reads C_i, then writes dl_i, and
     // the next sweep's constraint pass comes after the last read of dl.
@@ -180,14 +180,9 @@ void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations, flo
             std::min(1.0f, kRelaxNeighbours / std::max(s.constants[m].neighbours, 1.0f));
         relaxation[m] = (iterations == 1 ? kRelaxSingle : kRelax) * ratio * ratio;
     }
-    if (coarse > 0.0f && p.size() > 0) {
-        timed(prof.density, [&] {
-            float support = s.constants.empty() ? 0.0f : s.constants[0].support;
-            for (const MaterialConstants& m : s.constants) {
-                support = std::min(support, m.support);
-            }
-            pbfCoarse(s, c, coarse, kCoarseCell * support, kCoarseTolerance, kCoarseIterations);
-        });
+    if (coarse > 0.0f) {
+        timed(prof.density,
+              [&] { pbfCoarse(s, c, coarse, coarseCell, kCoarseTolerance, kCoarseIterations); });
     }
     float omega = 1.0f;
     for (uint32_t it = 0; it < iterations; ++it) {
@@ -300,7 +295,6 @@ void stepPositionBased(WorldState& s, float frameDt) {
             std::ceil(viscosityFactor * float(span) / float(interval) / kViscosityFactor), 1.0f,
             64.0f));
     };
-    const uint32_t intervalPasses = spanPasses(interval);
     const float speedCap = kMaxMove * facts.minSupport / dt;
     // The coarse correction's share per sub-step: the setting, but at most kCoarseFrame over a
     // frame's sub-steps together.
@@ -330,7 +324,8 @@ void stepPositionBased(WorldState& s, float frameDt) {
             fillMaterialChannels(s);
             placeSamples(s, endInStep, facts.maxSupport, moving || sub == 0);
         });
-        solveDensity(s, c, settings.iterations, coarseShare, facts.wantsForces, prof);
+        solveDensity(s, c, settings.iterations, coarseShare, kCoarseCell * facts.minSupport,
+                     facts.wantsForces, prof);
         timed(prof.integrate, [&] { updateVelocity(s, dt); });
         timed(prof.forces, [&] {
             // Each force on a reporting sample is the reaction to what the solver did to the
@@ -347,7 +342,7 @@ void stepPositionBased(WorldState& s, float frameDt) {
             PbfConstants spanned = c;
             spanned.dt = dt * float(span);
             const float weight = spanned.dt / frameDt;
-            const uint32_t viscosityPasses = span == interval ? intervalPasses : spanPasses(span);
+            const uint32_t viscosityPasses = spanPasses(span);
             const float passScale = 1.0f / float(viscosityPasses);
             for (uint32_t pass = 0; pass < viscosityPasses; ++pass) {
                 if (facts.wantsForces) {
