@@ -24,7 +24,11 @@
 //   density_error_max=E ms_per_frame=M ns_per_particle_substep=P ms_per_frame_mean=A
 //   ms_per_frame_p90=Q cpu_ms_per_frame=C quality=NAME compression_mean=CM
 //   compression_p99=C99 compression_max=CX window=A:B window_compression_mean=WM
-//   window_compression_max=WX [tank: surface_change=D thrown=K ke_per_kg=KE]
+//   window_compression_max=WX stacked=K0 [tank: surface_change=D thrown=K ke_per_kg=KE
+//   surface_change_last_second=DL]
+// stacked: particles at exactly the position of another after the last frame (pair terms have
+// no direction to part them). surface_change_last_second: the surface change averaged over the
+// last 60 frames.
 #include <fluid/fluid.h>
 
 #if FLUID_BENCH_BOX2D
@@ -124,6 +128,26 @@ std::pair<float, float> spawnBlock(fluid::World& world, fluid::MaterialId water,
     block.material = water;
     world.spawnBlob(block);
     return {width, height};
+}
+
+/// How many particles sit at exactly the position of another (unit: count; each one of a
+/// stack of k counts, so k).
+uint32_t stackedParticles(std::span<const float> x, std::span<const float> y) {
+    std::vector<std::pair<float, float>> points(x.size());
+    for (size_t i = 0; i < x.size(); ++i) {
+        points[i] = {x[i], y[i]};
+    }
+    std::sort(points.begin(), points.end());
+    uint32_t count = 0;
+    for (size_t i = 0; i < points.size();) {
+        size_t j = i + 1;
+        while (j < points.size() && points[j] == points[i]) {
+            ++j;
+        }
+        count += j - i > 1 ? uint32_t(j - i) : 0u;
+        i = j;
+    }
+    return count;
 }
 
 /// Fills `world` with the dam-break scene of about `n` water particles.
@@ -501,8 +525,13 @@ int run(const Options& opt) {
     // frames' means (unit: 1) and the largest max (unit: 1).
     Compression last = start;
     double windowMeanSum = 0.0, windowMax = 0.0;
-    // Tank: the most particles above top0 + h in any frame (unit: count).
+    // Tank: the most particles above top0 + h in any frame (unit: count), and the surface change
+    // over the last second of frames (the tank sloshes: one frame's reading moves by about half
+    // a percent from frame to frame), summed with its extremes (unit: 1).
     uint32_t thrown = 0;
+    const uint32_t lastSecond = 60;
+    double lastSurfaceSum = 0.0, lastSurfaceLow = 0.0, lastSurfaceHigh = 0.0;
+    uint32_t lastSurfaceFrames = 0;
     const uint32_t total = opt.warmup + opt.frames; // simulated frames (unit: count)
     for (uint32_t f = 1; f <= total; ++f) {
         if (f <= opt.warmup) {
@@ -536,6 +565,13 @@ int run(const Options& opt) {
                 return double(y) > double(top0) + kCompressionSupport;
             });
             thrown = std::max(thrown, uint32_t(above));
+            if (f + lastSecond > total) {
+                const double change = surfaceLevel(py, spacing, scratch) / surface0 - 1.0;
+                lastSurfaceLow = lastSurfaceFrames == 0 ? change : std::min(lastSurfaceLow, change);
+                lastSurfaceHigh = lastSurfaceFrames == 0 ? change : std::max(lastSurfaceHigh, change);
+                lastSurfaceSum += change;
+                ++lastSurfaceFrames;
+            }
         }
         const uint32_t timed = f > opt.warmup ? f - opt.warmup : 0;
         if (timed > 0 && (timed % report == 0 || timed == opt.frames)) {
@@ -597,7 +633,12 @@ int run(const Options& opt) {
                     "s/2); thrown: at most %u particles above the start's top + h; kinetic "
                     "energy %.3g J/kg\n",
                     surface0, surface, 100.0 * surfaceChange, thrown, kePerKg);
+        std::printf("surface over the last %u frames: mean %+.2f%%, from %+.2f%% to %+.2f%%\n",
+                    lastSurfaceFrames, 100.0 * lastSurfaceSum / double(lastSurfaceFrames),
+                    100.0 * lastSurfaceLow, 100.0 * lastSurfaceHigh);
     }
+    const uint32_t stacked = stackedParticles(world.positionX(), world.positionY());
+    std::printf("stacked: %u particles share their exact position with another\n", stacked);
     char window[32];
     std::snprintf(window, sizeof window, "%u:%u", opt.windowFirst, opt.windowLast);
     std::printf("solver=%s particles=%u frames=%u threads=%u substeps_per_frame=%.2f iterations=%u "
@@ -608,9 +649,11 @@ int run(const Options& opt) {
                 opt.solver.c_str(), n, opt.frames, opt.threads, s, world.profile().iterations,
                 double(worstError), m, p, mean, quantile(frameMs, 0.9), cpuMs, opt.quality.c_str(),
                 last.mean, last.p99, last.max, window, windowMean, windowMax);
+    std::printf(" stacked=%u", stacked);
     if (tank) {
-        std::printf(" surface_change=%.4f thrown=%u ke_per_kg=%.4g", surfaceChange, thrown,
-                    kePerKg);
+        std::printf(" surface_change=%.4f thrown=%u ke_per_kg=%.4g surface_change_last_second=%.4f",
+                    surfaceChange, thrown, kePerKg,
+                    lastSurfaceSum / double(std::max(lastSurfaceFrames, 1u)));
     }
     std::printf("\n");
     return 0;

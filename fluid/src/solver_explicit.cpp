@@ -278,6 +278,7 @@ void stepExplicit(WorldState& s, float frameDt) {
         const double t = s.time + elapsed;
         timed(prof.sort, [&] {
             sortParticles(s, maxSupport);
+            prof.separated += separateStacked(s, maxSupport);
             fillMaterialChannels(s);
             placeSamples(s, inStep, maxSupport, moving || sub == 0);
         });

@@ -321,6 +321,7 @@ void stepPositionBased(WorldState& s, float frameDt) {
         });
         timed(prof.sort, [&] {
             sortParticles(s, facts.maxSupport, {&p.ox, &p.oy});
+            prof.separated += separateStacked(s, facts.maxSupport, &p.ox, &p.oy);
             fillMaterialChannels(s);
             placeSamples(s, endInStep, facts.maxSupport, moving || sub == 0);
         });

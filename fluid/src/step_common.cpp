@@ -12,6 +12,15 @@
 
 namespace fluid::detail {
 
+namespace {
+
+// separateStacked: how far a particle found exactly on another is moved (unit: cell sizes, the
+// largest support), and the angle between successive slots' directions (rad).
+constexpr float kStackedNudge = 1.0f / 64.0f;
+constexpr float kGoldenAngle = 2.39996323f;
+
+} // namespace
+
 void refreshConstants(WorldState& s) {
     const size_t m = s.materials.size();
     s.constants.resize(m);
@@ -177,6 +186,42 @@ void sortParticles(WorldState& s, float cellSize,
     for (uint32_t k = 0; k < p.size(); ++k) {
         s.slotIndex[p.slot[k]] = k;
     }
+}
+
+uint32_t separateStacked(WorldState& s, float cellSize, std::vector<float>* alsoX,
+                         std::vector<float>* alsoY) {
+    Particles& p = s.particles;
+    const GridView& g = s.grid.view();
+    const size_t ranges = g.hashed ? size_t(g.mask) + 1 : size_t(g.nx) * size_t(g.ny);
+    const float reach = kStackedNudge * cellSize;
+    uint32_t moved = 0;
+    // Cell by cell (bucket by bucket in a hashed grid): only cells of two or more can stack.
+    for (size_t c = 0; c < ranges; ++c) {
+        const uint32_t b = g.start[c], e = g.start[c + 1];
+        if (e - b < 2) {
+            continue;
+        }
+        for (uint32_t i = b; i + 1 < e; ++i) {
+            for (uint32_t j = i + 1; j < e; ++j) {
+                if (p.px[j] != p.px[i] || p.py[j] != p.py[i]) {
+                    continue;
+                }
+                // j sits exactly on i: the pair terms have no direction to part them. Move it
+                // a little, the way its slot picks (golden-angle steps), with the channels that
+                // hold where it stands (the velocity does not change).
+                const float angle = kGoldenAngle * float(p.slot[j] % 4096u);
+                const float dx = reach * std::cos(angle), dy = reach * std::sin(angle);
+                p.px[j] += dx;
+                p.py[j] += dy;
+                if (alsoX != nullptr && alsoY != nullptr) {
+                    (*alsoX)[j] += dx;
+                    (*alsoY)[j] += dy;
+                }
+                ++moved;
+            }
+        }
+    }
+    return moved;
 }
 
 void projectBoundaries(WorldState& s, float dt, float prevTimeInStep, float timeInStep,

@@ -91,6 +91,15 @@ void externalForces(WorldState& s, float dt, double time, std::vector<float>& ax
 void sortParticles(WorldState& s, float cellSize,
                    std::initializer_list<std::vector<float>*> extra = {});
 
+/// After `sortParticles`: every particle at exactly the position of another one of its cell is
+/// moved 1/64 of `cellSize` the way its slot picks (a golden-angle step per slot), together
+/// with (alsoX, alsoY) when given (the position-based solver's admissible prediction, so that
+/// the velocity does not change). Such stacks come from projections onto a wall's corner; the
+/// pair terms have no direction to part them. Serial, in sorted order (deterministic). Returns
+/// how many particles it moved.
+uint32_t separateStacked(WorldState& s, float cellSize, std::vector<float>* alsoX = nullptr,
+                         std::vector<float>* alsoY = nullptr);
+
 /// Counters of one `integrate` call.
 struct IntegrateStats {
     uint32_t clamped = 0;   // particles whose speed hit the cap

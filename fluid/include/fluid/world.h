@@ -184,6 +184,10 @@ struct Profile {
     uint32_t speedClamped = 0;
     /// Particles whose acceleration was non-finite and was zeroed (unit: count; should be 0).
     uint32_t nonFiniteRepaired = 0;
+    /// Particles found at exactly the position of another (projected onto the same wall
+    /// corner, or spawned there) and moved 1/64 support off it (unit: count, summed over
+    /// sub-steps).
+    uint32_t separated = 0;
     /// Particles in the world at the end of the step (unit: count).
     uint32_t particles = 0;
     /// Particles emitters added at the start of the step (unit: count).
