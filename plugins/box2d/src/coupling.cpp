@@ -261,6 +261,7 @@ void Coupling::addProfile(const Profile& round) {
     p.substeps += round.substeps;
     p.speedClamped += round.speedClamped;
     p.nonFiniteRepaired += round.nonFiniteRepaired;
+    p.separated += round.separated;
     p.emitted += round.emitted;
     p.emitBlocked += round.emitBlocked;
     p.removed += round.removed;
