@@ -7,6 +7,7 @@
 #include "parallel.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -18,6 +19,8 @@ namespace {
 // largest support), and the angle between successive slots' directions (rad).
 constexpr float kStackedNudge = 1.0f / 64.0f;
 constexpr float kGoldenAngle = 2.39996323f;
+// Cells per task of separateStacked (most hold one particle or none).
+constexpr uint32_t kStackedGrain = 8192;
 
 } // namespace
 
@@ -194,34 +197,39 @@ uint32_t separateStacked(WorldState& s, float cellSize, std::vector<float>* also
     const GridView& g = s.grid.view();
     const size_t ranges = g.hashed ? size_t(g.mask) + 1 : size_t(g.nx) * size_t(g.ny);
     const float reach = kStackedNudge * cellSize;
-    uint32_t moved = 0;
     // Cell by cell (bucket by bucket in a hashed grid): only cells of two or more can stack.
-    for (size_t c = 0; c < ranges; ++c) {
-        const uint32_t b = g.start[c], e = g.start[c + 1];
-        if (e - b < 2) {
-            continue;
-        }
-        for (uint32_t i = b; i + 1 < e; ++i) {
-            for (uint32_t j = i + 1; j < e; ++j) {
-                if (p.px[j] != p.px[i] || p.py[j] != p.py[i]) {
-                    continue;
+    // Each cell's particles are its own, so the cells split over the workers freely.
+    std::atomic<uint32_t> moved{0};
+    parallelFor(s.tasks, uint32_t(ranges), kStackedGrain, [&](uint32_t c0, uint32_t c1, uint32_t) {
+        uint32_t count = 0;
+        for (size_t c = c0; c < c1; ++c) {
+            const uint32_t b = g.start[c], e = g.start[c + 1];
+            if (e - b < 2) {
+                continue;
+            }
+            for (uint32_t i = b; i + 1 < e; ++i) {
+                for (uint32_t j = i + 1; j < e; ++j) {
+                    if (p.px[j] != p.px[i] || p.py[j] != p.py[i]) {
+                        continue;
+                    }
+                    // j sits exactly on i: the pair terms have no direction to part them. Move
+                    // it a little, the way its slot picks (golden-angle steps), with the
+                    // channels that hold where it stands (the velocity does not change).
+                    const float angle = kGoldenAngle * float(p.slot[j] % 4096u);
+                    const float dx = reach * std::cos(angle), dy = reach * std::sin(angle);
+                    p.px[j] += dx;
+                    p.py[j] += dy;
+                    if (alsoX != nullptr && alsoY != nullptr) {
+                        (*alsoX)[j] += dx;
+                        (*alsoY)[j] += dy;
+                    }
+                    ++count;
                 }
-                // j sits exactly on i: the pair terms have no direction to part them. Move it
-                // a little, the way its slot picks (golden-angle steps), with the channels that
-                // hold where it stands (the velocity does not change).
-                const float angle = kGoldenAngle * float(p.slot[j] % 4096u);
-                const float dx = reach * std::cos(angle), dy = reach * std::sin(angle);
-                p.px[j] += dx;
-                p.py[j] += dy;
-                if (alsoX != nullptr && alsoY != nullptr) {
-                    (*alsoX)[j] += dx;
-                    (*alsoY)[j] += dy;
-                }
-                ++moved;
             }
         }
-    }
-    return moved;
+        moved += count;
+    });
+    return moved.load();
 }
 
 void projectBoundaries(WorldState& s, float dt, float prevTimeInStep, float timeInStep,

@@ -95,8 +95,8 @@ void sortParticles(WorldState& s, float cellSize,
 /// moved 1/64 of `cellSize` the way its slot picks (a golden-angle step per slot), together
 /// with (alsoX, alsoY) when given (the position-based solver's admissible prediction, so that
 /// the velocity does not change). Such stacks come from projections onto a wall's corner; the
-/// pair terms have no direction to part them. Serial, in sorted order (deterministic). Returns
-/// how many particles it moved.
+/// pair terms have no direction to part them. Cells are independent, so the result does not
+/// depend on the workers. Returns how many particles it moved.
 uint32_t separateStacked(WorldState& s, float cellSize, std::vector<float>* alsoX = nullptr,
                          std::vector<float>* alsoY = nullptr);
 
