@@ -195,6 +195,9 @@ uint32_t separateStacked(WorldState& s, float cellSize, std::vector<float>* also
                          std::vector<float>* alsoY) {
     Particles& p = s.particles;
     const GridView& g = s.grid.view();
+    if (p.size() < 2 || g.count != p.size()) {
+        return 0; // nothing to stack (and a grid of no points keeps no cells)
+    }
     const size_t ranges = g.hashed ? size_t(g.mask) + 1 : size_t(g.nx) * size_t(g.ny);
     const float reach = kStackedNudge * cellSize;
     // Cell by cell (bucket by bucket in a hashed grid): only cells of two or more can stack.

@@ -200,5 +200,15 @@ TEST_CASE("particles stacked on one point are parted, by either solver, the same
             CHECK(at == last); // bit-identical for 1 and 3 workers
         }
         last = at;
+        // Emptied, stepped, then one particle again: nothing to part, nothing read out of range.
+        for (const ParticleHandle h : handles) {
+            world.removeParticle(h);
+        }
+        world.step(kFrame);
+        CHECK(world.profile().separated == 0);
+        const ParticleHandle alone = world.addParticle({0.1f, 0.2f}, {0.0f, 0.0f}, w);
+        world.step(kFrame);
+        CHECK(world.profile().separated == 0);
+        CHECK(world.position(alone) == glm::vec2(0.1f, 0.2f));
     }
 }
