@@ -10,9 +10,12 @@
 //             than particles: no flux through it), fluid (the unknowns)
 //   solve     -lap psi = max(F - 1 - tolerance, 0) H^2 on the fluid nodes, conjugate gradients
 //   move      each particle by -share grad psi (bilinear), at most kMaxMove of its support
-// The displacement divergence -div u = lap psi removes the compression to first order. It runs
-// serially in a fixed order, so results do not depend on the number of workers.
+// The displacement divergence -div u = lap psi removes the compression to first order. The grid
+// work runs serially in a fixed order and the particles' moves are independent of each other,
+// so results do not depend on the number of workers.
 #include "pbf_loops.h"
+
+#include "parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -30,6 +33,8 @@ constexpr size_t kMaxNodes = size_t(1) << 22;
 // to anchor the potential), and the residual, relative to the start, that ends the solve.
 constexpr float kShift = 1e-3f;
 constexpr float kResidual = 1e-4f;
+// Particles per task of the move.
+constexpr uint32_t kMoveGrain = 2048;
 
 struct Layout {
     float x0 = 0, y0 = 0, invH = 0;
@@ -53,6 +58,30 @@ void splat(std::vector<float>& fill, const Layout& g, float x, float y, float am
     fill[k + 1] += amount * fx * (1.0f - fy);
     fill[k + size_t(g.nx)] += amount * (1.0f - fx) * fy;
     fill[k + size_t(g.nx) + 1] += amount * fx * fy;
+}
+
+// Particle i's coarse move: share times minus the bilinear gradient of the node values, at most
+// kMaxMove of its support, into (cx, cy) and onto its position.
+void moveParticle(Particles& p, const Layout& g, const float* value, float share, uint32_t i) {
+    int ci = 0, cj = 0;
+    float fx = 0, fy = 0;
+    g.cell(p.px[i], p.py[i], ci, cj, fx, fy);
+    const size_t k = size_t(cj) * size_t(g.nx) + size_t(ci);
+    const float v00 = value[k], v10 = value[k + 1];
+    const float v01 = value[k + size_t(g.nx)], v11 = value[k + size_t(g.nx) + 1];
+    float ux = -share * ((1.0f - fy) * (v10 - v00) + fy * (v11 - v01)) * g.invH;
+    float uy = -share * ((1.0f - fx) * (v01 - v00) + fx * (v11 - v10)) * g.invH;
+    const float limit = kMaxMove * p.h[i];
+    const float len2 = ux * ux + uy * uy;
+    if (!(len2 <= limit * limit)) {
+        const float scale = std::isfinite(len2) ? limit / std::sqrt(len2) : 0.0f;
+        ux = std::isfinite(len2) ? ux * scale : 0.0f;
+        uy = std::isfinite(len2) ? uy * scale : 0.0f;
+    }
+    p.cx[i] = ux;
+    p.cy[i] = uy;
+    p.px[i] = p.ox[i] + ux;
+    p.py[i] = p.oy[i] + uy;
 }
 
 } // namespace
@@ -119,7 +148,7 @@ void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
     }
     const int nx = g.nx, ny = g.ny;
     // The unknowns in compact order (cg.active: their nodes), each with its diagonal and its
-    // fluid neighbours' compact indices (-1: none).
+    // fluid neighbours' compact indices (count: none, see below).
     cg.active.clear();
     cg.slot.assign(nodes, -1);
     for (size_t k = 0; k < nodes; ++k) {
@@ -129,8 +158,11 @@ void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
         }
     }
     const size_t count = cg.active.size();
+    // A missing neighbour points at slot `count`, which the vectors the operator reads keep at 0
+    // (the same sums as skipping it, without a branch).
+    const auto none = int32_t(count);
     cg.diagonal.assign(count, kShift);
-    cg.neighbours.assign(4 * count, -1);
+    cg.neighbours.assign(4 * count, none);
     for (size_t a = 0; a < count; ++a) {
         const uint32_t k = cg.active[a];
         const int i = int(k % uint32_t(nx)), j = int(k / uint32_t(nx));
@@ -144,51 +176,52 @@ void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
             const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
             if (cg.type[m] != kSolid) { // no flux through solids
                 cg.diagonal[a] += 1.0f;
-                cg.neighbours[4 * a + size_t(e)] = cg.slot[m];
+                if (cg.slot[m] >= 0) {
+                    cg.neighbours[4 * a + size_t(e)] = cg.slot[m];
+                }
             }
         }
     }
     // Conjugate gradients on A psi = rhs: (A psi)_a = diagonal_a psi_a - sum of the fluid
     // neighbours' psi (air holds 0); the diagonal's small shift keeps a closed container full
-    // of fluid solvable.
-    const auto apply = [&](const std::vector<float>& x, std::vector<float>& out) {
-        for (size_t a = 0; a < count; ++a) {
-            float acc = cg.diagonal[a] * x[a];
-            for (int e = 0; e < 4; ++e) {
-                const int32_t m = cg.neighbours[4 * a + size_t(e)];
-                acc -= m >= 0 ? x[size_t(m)] : 0.0f;
-            }
-            out[a] = acc;
-        }
-    };
-    const auto dot = [&](const std::vector<float>& u, const std::vector<float>& v) {
-        double sum = 0.0;
-        for (size_t a = 0; a < count; ++a) {
-            sum += double(u[a]) * double(v[a]);
-        }
-        return sum;
-    };
+    // of fluid solvable. Each loop also sums the dot product the next step needs, in the same
+    // order as a separate pass would (double, index order), so the fusion changes no bit.
     cg.psi.assign(count, 0.0f);
     cg.r.resize(count);
+    double rr = 0.0;
     for (size_t a = 0; a < count; ++a) {
         cg.r[a] = cg.rhs[cg.active[a]];
+        rr += double(cg.r[a]) * double(cg.r[a]);
     }
-    cg.d = cg.r;
+    cg.d.assign(cg.r.begin(), cg.r.end());
+    cg.d.push_back(0.0f); // slot `count`: the missing neighbour
     cg.q.assign(count, 0.0f);
-    double rr = dot(cg.r, cg.r);
     const double stop = rr * double(kResidual) * double(kResidual);
+    const int32_t* nb = cg.neighbours.data();
     for (uint32_t it = 0; it < maxIterations && rr > stop; ++it) {
-        apply(cg.d, cg.q);
-        const double dq = dot(cg.d, cg.q);
+        // q = A d, and d.q.
+        double dq = 0.0;
+        for (size_t a = 0; a < count; ++a) {
+            const int32_t* n4 = nb + 4 * a;
+            float acc = cg.diagonal[a] * cg.d[a];
+            acc -= cg.d[size_t(n4[0])];
+            acc -= cg.d[size_t(n4[1])];
+            acc -= cg.d[size_t(n4[2])];
+            acc -= cg.d[size_t(n4[3])];
+            cg.q[a] = acc;
+            dq += double(cg.d[a]) * double(acc);
+        }
         if (!(dq > 0.0)) {
             break;
         }
+        // psi += alpha d, r -= alpha q, and r.r.
         const auto alpha = float(rr / dq);
+        double next = 0.0;
         for (size_t a = 0; a < count; ++a) {
             cg.psi[a] += alpha * cg.d[a];
             cg.r[a] -= alpha * cg.q[a];
+            next += double(cg.r[a]) * double(cg.r[a]);
         }
-        const double next = dot(cg.r, cg.r);
         const auto beta = float(next / rr);
         rr = next;
         for (size_t a = 0; a < count; ++a) {
@@ -224,27 +257,12 @@ void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
             value[k] = fluidNeighbours > 0 ? sum / float(fluidNeighbours) : 0.0f;
         }
     }
-    for (uint32_t i = 0; i < n; ++i) {
-        int ci = 0, cj = 0;
-        float fx = 0, fy = 0;
-        g.cell(p.px[i], p.py[i], ci, cj, fx, fy);
-        const size_t k = size_t(cj) * size_t(nx) + size_t(ci);
-        const float v00 = value[k], v10 = value[k + 1];
-        const float v01 = value[k + size_t(nx)], v11 = value[k + size_t(nx) + 1];
-        float ux = -share * ((1.0f - fy) * (v10 - v00) + fy * (v11 - v01)) * g.invH;
-        float uy = -share * ((1.0f - fx) * (v01 - v00) + fx * (v11 - v10)) * g.invH;
-        const float limit = kMaxMove * p.h[i];
-        const float len2 = ux * ux + uy * uy;
-        if (!(len2 <= limit * limit)) {
-            const float scale = std::isfinite(len2) ? limit / std::sqrt(len2) : 0.0f;
-            ux = std::isfinite(len2) ? ux * scale : 0.0f;
-            uy = std::isfinite(len2) ? uy * scale : 0.0f;
+    // Each particle's move reads only the node values: the particles split over the workers.
+    parallelFor(s.tasks, n, kMoveGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t i = b; i < e; ++i) {
+            moveParticle(p, g, value.data(), share, i);
         }
-        p.cx[i] = ux;
-        p.cy[i] = uy;
-        p.px[i] = p.ox[i] + ux;
-        p.py[i] = p.oy[i] + uy;
-    }
+    });
 }
 
 } // namespace fluid::detail

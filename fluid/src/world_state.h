@@ -109,7 +109,8 @@ struct CoarseGrid {
     std::vector<uint32_t> active;         // the fluid nodes, in order (the unknowns)
     std::vector<int32_t> slot;            // per node: its unknown, -1 for air and solid
     std::vector<float> diagonal;          // per unknown: the operator's diagonal
-    std::vector<int32_t> neighbours;      // per unknown: 4 neighbouring unknowns, -1 for none
+    std::vector<int32_t> neighbours;      // per unknown: 4 neighbouring unknowns (the unknowns'
+                                          // count for none: d keeps a 0 there)
 };
 
 struct WorldState {
