@@ -170,4 +170,28 @@ inline double surfaceLevel(std::span<const float> y, double s, std::vector<doubl
     return scratch.empty() ? 0.0 : nearestRank(scratch, 0.95) + 0.5 * s;
 }
 
+/// Indices of the particles at exactly the position of another (unit: indices into x and y,
+/// ascending; a stack of k particles gives k of them). The pair terms have no direction
+/// between particles on one point, so a stack that outlives a sub-step is a solver fault.
+inline std::vector<uint32_t> stackedIndices(std::span<const float> x, std::span<const float> y) {
+    std::vector<uint32_t> order(x.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(),
+              [&](uint32_t a, uint32_t b) { return x[a] < x[b] || (x[a] == x[b] && y[a] < y[b]); });
+    std::vector<uint32_t> out;
+    for (size_t i = 0; i < order.size();) {
+        size_t j = i + 1;
+        while (j < order.size() && x[order[j]] == x[order[i]] && y[order[j]] == y[order[i]]) {
+            ++j;
+        }
+        if (j - i > 1) {
+            out.insert(out.end(), order.begin() + std::ptrdiff_t(i),
+                       order.begin() + std::ptrdiff_t(j));
+        }
+        i = j;
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
 } // namespace fluid::bench

@@ -130,26 +130,6 @@ std::pair<float, float> spawnBlock(fluid::World& world, fluid::MaterialId water,
     return {width, height};
 }
 
-/// How many particles sit at exactly the position of another (unit: count; each one of a
-/// stack of k counts, so k).
-uint32_t stackedParticles(std::span<const float> x, std::span<const float> y) {
-    std::vector<std::pair<float, float>> points(x.size());
-    for (size_t i = 0; i < x.size(); ++i) {
-        points[i] = {x[i], y[i]};
-    }
-    std::sort(points.begin(), points.end());
-    uint32_t count = 0;
-    for (size_t i = 0; i < points.size();) {
-        size_t j = i + 1;
-        while (j < points.size() && points[j] == points[i]) {
-            ++j;
-        }
-        count += j - i > 1 ? uint32_t(j - i) : 0u;
-        i = j;
-    }
-    return count;
-}
-
 /// Fills `world` with the dam-break scene of about `n` water particles.
 Scene buildDam(fluid::World& world, uint32_t n) {
     const fluid::MaterialId water = world.addMaterial(fluid::water());
@@ -425,6 +405,7 @@ double quantile(std::vector<double> v, double q) {
 using fluid::bench::Compression;
 using fluid::bench::CompressionMeter;
 using fluid::bench::kCompressionSupport;
+using fluid::bench::stackedIndices;
 using fluid::bench::surfaceLevel;
 
 int run(const Options& opt) {
@@ -568,7 +549,8 @@ int run(const Options& opt) {
             if (f + lastSecond > total) {
                 const double change = surfaceLevel(py, spacing, scratch) / surface0 - 1.0;
                 lastSurfaceLow = lastSurfaceFrames == 0 ? change : std::min(lastSurfaceLow, change);
-                lastSurfaceHigh = lastSurfaceFrames == 0 ? change : std::max(lastSurfaceHigh, change);
+                lastSurfaceHigh =
+                    lastSurfaceFrames == 0 ? change : std::max(lastSurfaceHigh, change);
                 lastSurfaceSum += change;
                 ++lastSurfaceFrames;
             }
@@ -637,7 +619,7 @@ int run(const Options& opt) {
                     lastSurfaceFrames, 100.0 * lastSurfaceSum / double(lastSurfaceFrames),
                     100.0 * lastSurfaceLow, 100.0 * lastSurfaceHigh);
     }
-    const uint32_t stacked = stackedParticles(world.positionX(), world.positionY());
+    const auto stacked = uint32_t(stackedIndices(world.positionX(), world.positionY()).size());
     std::printf("stacked: %u particles share their exact position with another\n", stacked);
     char window[32];
     std::snprintf(window, sizeof window, "%u:%u", opt.windowFirst, opt.windowLast);

@@ -14,8 +14,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <iterator>
 #include <cmath>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -176,28 +176,13 @@ uint64_t handleKey(ParticleHandle h) {
     return (uint64_t(h.slot) << 32) | h.generation;
 }
 
-/// Handles of the particles that share their exact position with another (unit: handles,
-/// sorted).
+/// Handles of the particles that share their exact position with another (sorted).
 std::vector<uint64_t> stacked(const World& world) {
-    const auto px = world.positionX();
-    const auto py = world.positionY();
-    std::vector<uint32_t> order(px.size());
-    for (uint32_t i = 0; i < order.size(); ++i) {
-        order[i] = i;
-    }
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-        return px[a] < px[b] || (px[a] == px[b] && py[a] < py[b]);
-    });
     std::vector<uint64_t> out;
-    for (size_t u = 0; u + 1 < order.size(); ++u) {
-        const uint32_t a = order[u], b = order[u + 1];
-        if (px[a] == px[b] && py[a] == py[b]) {
-            out.push_back(handleKey(world.handleAt(a)));
-            out.push_back(handleKey(world.handleAt(b)));
-        }
+    for (const uint32_t i : bench::stackedIndices(world.positionX(), world.positionY())) {
+        out.push_back(handleKey(world.handleAt(i)));
     }
     std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
 }
 
@@ -220,8 +205,8 @@ TEST_CASE("the game preset's dam: the front hits the far corner and stacks no pa
     const uint32_t nx = 45, ny = 90;
     world.spawnBlob(latticeBlock(world, w, 0.0f, 0.0f, nx, ny));
     world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
-    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 4.0f * float(nx) * s,
-                                                     1.5f * float(ny) * s));
+    world.addBoundary(
+        std::make_unique<BoxContainer>(0.0f, 0.0f, 4.0f * float(nx) * s, 1.5f * float(ny) * s));
     bench::CompressionMeter meter(s);
     std::vector<uint64_t> before;
     size_t most = 0, persisted = 0;
