@@ -36,6 +36,26 @@ constexpr float kResidual = 1e-4f;
 // Particles per task of the move.
 constexpr uint32_t kMoveGrain = 2048;
 
+// Interleaved partial sums of the coarse solve's dot products (count; see the solve).
+constexpr size_t kDotLanes = 8;
+
+// The partial sums combined pairwise in a fixed order.
+double combineLanes(const double (&lanes)[kDotLanes]) {
+    return ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) +
+           ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
+}
+
+// x.y over `count` (a multiple of kDotLanes) floats, in double, in kDotLanes partial sums.
+double laneDot(const float* x, const float* y, size_t count) {
+    double lanes[kDotLanes] = {};
+    for (size_t a0 = 0; a0 < count; a0 += kDotLanes) {
+        for (size_t l = 0; l < kDotLanes; ++l) {
+            lanes[l] += double(x[a0 + l]) * double(y[a0 + l]);
+        }
+    }
+    return combineLanes(lanes);
+}
+
 struct Layout {
     float x0 = 0, y0 = 0, invH = 0;
     int nx = 0, ny = 0;
@@ -184,48 +204,67 @@ void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
     }
     // Conjugate gradients on A psi = rhs: (A psi)_a = diagonal_a psi_a - sum of the fluid
     // neighbours' psi (air holds 0); the diagonal's small shift keeps a closed container full
-    // of fluid solvable. Each loop also sums the dot product the next step needs, in the same
-    // order as a separate pass would (double, index order), so the fusion changes no bit.
-    cg.psi.assign(count, 0.0f);
-    cg.r.resize(count);
-    double rr = 0.0;
+    // of fluid solvable. The dot products sum in double over kDotLanes interleaved partial sums
+    // (unknown a into partial a mod kDotLanes), combined in a fixed order at the end: the same
+    // result on every build and worker count, and independent chains of additions instead of
+    // one that waits on the previous addition's latency (the solve ran at that latency).
+    // Each loop also sums the dot product the next step needs.
+    const size_t padded = (count + kDotLanes - 1) / kDotLanes * kDotLanes;
+    cg.psi.assign(padded, 0.0f);
+    cg.r.assign(padded, 0.0f);
+    cg.q.assign(padded, 0.0f);
     for (size_t a = 0; a < count; ++a) {
         cg.r[a] = cg.rhs[cg.active[a]];
-        rr += double(cg.r[a]) * double(cg.r[a]);
     }
-    cg.d.assign(cg.r.begin(), cg.r.end());
-    cg.d.push_back(0.0f); // slot `count`: the missing neighbour
-    cg.q.assign(count, 0.0f);
+    // d keeps slot `count` at 0 for the missing neighbour, and zeros up to the padding.
+    cg.d.assign(std::max(padded, count + 1), 0.0f);
+    std::copy(cg.r.begin(), cg.r.begin() + std::ptrdiff_t(count), cg.d.begin());
+    cg.diagonal.resize(padded, 0.0f);
+    cg.neighbours.resize(4 * padded, none);
+    double rr = laneDot(cg.r.data(), cg.r.data(), padded);
     const double stop = rr * double(kResidual) * double(kResidual);
     const int32_t* nb = cg.neighbours.data();
+    float* psi = cg.psi.data();
+    float* r = cg.r.data();
+    float* d = cg.d.data();
+    float* q = cg.q.data();
+    const float* diagonal = cg.diagonal.data();
     for (uint32_t it = 0; it < maxIterations && rr > stop; ++it) {
-        // q = A d, and d.q.
-        double dq = 0.0;
-        for (size_t a = 0; a < count; ++a) {
-            const int32_t* n4 = nb + 4 * a;
-            float acc = cg.diagonal[a] * cg.d[a];
-            acc -= cg.d[size_t(n4[0])];
-            acc -= cg.d[size_t(n4[1])];
-            acc -= cg.d[size_t(n4[2])];
-            acc -= cg.d[size_t(n4[3])];
-            cg.q[a] = acc;
-            dq += double(cg.d[a]) * double(acc);
+        // q = A d, and d.q (padding slots: diagonal 0 and d 0, so q 0).
+        double dqLanes[kDotLanes] = {};
+        for (size_t a0 = 0; a0 < padded; a0 += kDotLanes) {
+            for (size_t l = 0; l < kDotLanes; ++l) {
+                const size_t a = a0 + l;
+                const int32_t* n4 = nb + 4 * a;
+                float acc = diagonal[a] * d[a];
+                acc -= d[size_t(n4[0])];
+                acc -= d[size_t(n4[1])];
+                acc -= d[size_t(n4[2])];
+                acc -= d[size_t(n4[3])];
+                q[a] = acc;
+                dqLanes[l] += double(d[a]) * double(acc);
+            }
         }
+        const double dq = combineLanes(dqLanes);
         if (!(dq > 0.0)) {
             break;
         }
         // psi += alpha d, r -= alpha q, and r.r.
         const auto alpha = float(rr / dq);
-        double next = 0.0;
-        for (size_t a = 0; a < count; ++a) {
-            cg.psi[a] += alpha * cg.d[a];
-            cg.r[a] -= alpha * cg.q[a];
-            next += double(cg.r[a]) * double(cg.r[a]);
+        double nextLanes[kDotLanes] = {};
+        for (size_t a0 = 0; a0 < padded; a0 += kDotLanes) {
+            for (size_t l = 0; l < kDotLanes; ++l) {
+                const size_t a = a0 + l;
+                psi[a] += alpha * d[a];
+                r[a] -= alpha * q[a];
+                nextLanes[l] += double(r[a]) * double(r[a]);
+            }
         }
+        const double next = combineLanes(nextLanes);
         const auto beta = float(next / rr);
         rr = next;
-        for (size_t a = 0; a < count; ++a) {
-            cg.d[a] = cg.r[a] + beta * cg.d[a];
+        for (size_t a = 0; a < padded; ++a) {
+            d[a] = r[a] + beta * d[a];
         }
     }
     // Node values for the gradient: fluid nodes their potential, solid nodes the mean of their

@@ -173,22 +173,24 @@ void sortParticles(WorldState& s, float cellSize,
     s.grid.build(p.px, p.py, cellSize, s.tasks);
     const std::span<const uint32_t> order = s.grid.order();
     for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy}) {
-        permute(*channel, order, s.sortScratch);
+        permute(*channel, order, s.sortScratch, s.tasks);
     }
     // Most worlds have no lifetimes: an all-infinite channel needs no permutation (and no
     // scratch of 8 bytes per particle).
     if (!std::all_of(p.expiry.begin(), p.expiry.end(), [](double t) { return std::isinf(t); })) {
-        permute(p.expiry, order, s.sortScratchD);
+        permute(p.expiry, order, s.sortScratchD, s.tasks);
     }
     for (auto* channel : extra) {
-        permute(*channel, order, s.sortScratch);
+        permute(*channel, order, s.sortScratch, s.tasks);
     }
     // Slots and materials pass through the float scratch too: no scratch array of their own.
-    permute(p.slot, order, s.sortScratch);
-    permute(p.material, order, s.sortScratch);
-    for (uint32_t k = 0; k < p.size(); ++k) {
-        s.slotIndex[p.slot[k]] = k;
-    }
+    permute(p.slot, order, s.sortScratch, s.tasks);
+    permute(p.material, order, s.sortScratch, s.tasks);
+    parallelFor(s.tasks, p.size(), kPermuteGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t k = b; k < e; ++k) {
+            s.slotIndex[p.slot[k]] = k; // slots are distinct: one write each
+        }
+    });
 }
 
 uint32_t separateStacked(WorldState& s, float cellSize, std::vector<float>* alsoX,

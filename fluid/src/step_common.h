@@ -1,6 +1,7 @@
 // fluid — the parts of a step both solvers share (step_common.cpp).
 #pragma once
 
+#include "parallel.h"
 #include "world_state.h"
 
 #include <chrono>
@@ -35,13 +36,20 @@ struct SceneFacts {
 };
 SceneFacts sceneFacts(const WorldState& s);
 
-/// channel[k] = channel[order[k]], through `tmp`.
+/// Particles per task of a permutation (each slot is written once, so any split gives the same
+/// channel).
+inline constexpr uint32_t kPermuteGrain = 4096;
+
+/// channel[k] = channel[order[k]], through `tmp`, split over the workers.
 template <class T>
-void permute(std::vector<T>& channel, std::span<const uint32_t> order, std::vector<T>& tmp) {
+void permute(std::vector<T>& channel, std::span<const uint32_t> order, std::vector<T>& tmp,
+             const TaskHook& tasks) {
     tmp.resize(channel.size());
-    for (size_t k = 0; k < order.size(); ++k) {
-        tmp[k] = channel[order[k]];
-    }
+    parallelFor(tasks, uint32_t(order.size()), kPermuteGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t k = b; k < e; ++k) {
+            tmp[k] = channel[order[k]];
+        }
+    });
     channel.swap(tmp);
 }
 
@@ -49,19 +57,24 @@ void permute(std::vector<T>& channel, std::span<const uint32_t> order, std::vect
 /// each value as a raw 32-bit pattern (memcpy, so none is ever read as a float): the sort needs
 /// no scratch array of the channel's own type.
 template <class T>
-void permute(std::vector<T>& channel, std::span<const uint32_t> order,
-             std::vector<float>& tmp) requires(std::is_integral_v<T> &&
-                                               sizeof(T) <= sizeof(uint32_t)) {
+void permute(std::vector<T>& channel, std::span<const uint32_t> order, std::vector<float>& tmp,
+             const TaskHook& tasks) requires(std::is_integral_v<T> &&
+                                             sizeof(T) <= sizeof(uint32_t)) {
     tmp.resize(channel.size());
-    for (size_t k = 0; k < order.size(); ++k) {
-        const auto value = static_cast<uint32_t>(channel[order[k]]);
-        std::memcpy(&tmp[k], &value, sizeof(uint32_t));
-    }
-    for (size_t k = 0; k < order.size(); ++k) { // element-wise: an empty channel's data() is null
-        uint32_t value = 0;
-        std::memcpy(&value, &tmp[k], sizeof(uint32_t));
-        channel[k] = static_cast<T>(value);
-    }
+    parallelFor(tasks, uint32_t(order.size()), kPermuteGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t k = b; k < e; ++k) {
+            const auto value = static_cast<uint32_t>(channel[order[k]]);
+            std::memcpy(&tmp[k], &value, sizeof(uint32_t));
+        }
+    });
+    // Element-wise (an empty channel's data() is null), after every read of the old order.
+    parallelFor(tasks, uint32_t(order.size()), kPermuteGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t k = b; k < e; ++k) {
+            uint32_t value = 0;
+            std::memcpy(&value, &tmp[k], sizeof(uint32_t));
+            channel[k] = static_cast<T>(value);
+        }
+    });
 }
 
 /// Per-material constants from the material table (equation-of-state fields left 0).
