@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace fluid::detail {
 
@@ -80,13 +81,13 @@ void splat(std::vector<float>& fill, const Layout& g, float x, float y, float am
     fill[k + size_t(g.nx) + 1] += amount * fx * fy;
 }
 
-// Particle i's coarse move: share times minus the bilinear gradient of the node values, at most
-// kMaxMove of its support, into (cx, cy) and onto its position.
-void moveParticle(Particles& p, const Layout& g, const float* value, float share, uint32_t i) {
-    int ci = 0, cj = 0;
-    float fx = 0, fy = 0;
-    g.cell(p.px[i], p.py[i], ci, cj, fx, fy);
-    const size_t k = size_t(cj) * size_t(g.nx) + size_t(ci);
+// Particle i's coarse move: share times minus the bilinear gradient of the node values (in its
+// cell, with its fractions, as the fill found them), at most kMaxMove of its support, into
+// (cx, cy) and onto its position.
+void moveParticle(Particles& p, const CoarseGrid& cg, const Layout& g, const float* value,
+                  float share, uint32_t i) {
+    const float fx = cg.fx[i], fy = cg.fy[i];
+    const size_t k = cg.cell[i];
     const float v00 = value[k], v10 = value[k + 1];
     const float v01 = value[k + size_t(g.nx)], v11 = value[k + size_t(g.nx) + 1];
     float ux = -share * ((1.0f - fy) * (v10 - v00) + fy * (v11 - v01)) * g.invH;
@@ -113,13 +114,27 @@ void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
     if (n == 0 || !(share > 0.0f)) {
         return;
     }
-    float lx = p.px[0], hx = lx, ly = p.py[0], hy = ly;
-    for (uint32_t i = 1; i < n; ++i) {
-        lx = std::min(lx, p.px[i]);
-        hx = std::max(hx, p.px[i]);
-        ly = std::min(ly, p.py[i]);
-        hy = std::max(hy, p.py[i]);
-    }
+    struct Bounds {
+        float lx, hx, ly, hy;
+    };
+    const float inf = std::numeric_limits<float>::infinity();
+    const Bounds bounds = blockReduce<Bounds>(
+        s.tasks, n, Bounds{inf, -inf, inf, -inf},
+        [&](uint32_t b, uint32_t e) {
+            Bounds r{inf, -inf, inf, -inf};
+            for (uint32_t i = b; i < e; ++i) {
+                r.lx = std::min(r.lx, p.px[i]);
+                r.hx = std::max(r.hx, p.px[i]);
+                r.ly = std::min(r.ly, p.py[i]);
+                r.hy = std::max(r.hy, p.py[i]);
+            }
+            return r;
+        },
+        [](Bounds a, const Bounds& b) {
+            return Bounds{std::min(a.lx, b.lx), std::max(a.hx, b.hx), std::min(a.ly, b.ly),
+                          std::max(a.hy, b.hy)};
+        });
+    const float lx = bounds.lx, hx = bounds.hx, ly = bounds.ly, hy = bounds.hy;
     Layout g;
     g.invH = 1.0f / cellSize;
     g.x0 = lx - cellSize;
@@ -135,9 +150,43 @@ void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
     cg.fluid.assign(nodes, 0.0f);
     cg.solid.assign(nodes, 0.0f);
     const float invArea = g.invH * g.invH;
-    for (uint32_t i = 0; i < n; ++i) {
-        splat(cg.fluid, g, p.px[i], p.py[i], p.volume[i] * invArea);
-    }
+    // Each particle's cell and bilinear fractions (the move below reads them too: the positions
+    // do not change in between), then the fill band by band of node rows: a band adds the
+    // particles that reach its rows in index order, so each node sums in the same order
+    // whatever the bands.
+    cg.cell.resize(n);
+    cg.fx.resize(n);
+    cg.fy.resize(n);
+    parallelFor(s.tasks, n, kMoveGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t i = b; i < e; ++i) {
+            int ci = 0, cj = 0;
+            g.cell(p.px[i], p.py[i], ci, cj, cg.fx[i], cg.fy[i]);
+            cg.cell[i] = uint32_t(cj) * uint32_t(g.nx) + uint32_t(ci);
+        }
+    });
+    const uint32_t bands = std::clamp(s.tasks.workerCount, 1u, uint32_t(g.ny));
+    parallelFor(s.tasks, bands, 1, [&](uint32_t b0, uint32_t b1, uint32_t) {
+        for (uint32_t band = b0; band < b1; ++band) {
+            const size_t lo = size_t(g.ny) * band / bands * size_t(g.nx);
+            const size_t hi = size_t(g.ny) * (band + 1) / bands * size_t(g.nx);
+            for (uint32_t i = 0; i < n; ++i) {
+                const size_t k = cg.cell[i];
+                if (k + size_t(g.nx) + 1 < lo || k >= hi) {
+                    continue;
+                }
+                const float amount = p.volume[i] * invArea, fx = cg.fx[i], fy = cg.fy[i];
+                const size_t corner[4] = {k, k + 1, k + size_t(g.nx), k + size_t(g.nx) + 1};
+                const float weight[4] = {amount * (1.0f - fx) * (1.0f - fy),
+                                         amount * fx * (1.0f - fy), amount * (1.0f - fx) * fy,
+                                         amount * fx * fy};
+                for (int c4 = 0; c4 < 4; ++c4) {
+                    if (corner[c4] >= lo && corner[c4] < hi) {
+                        cg.fluid[corner[c4]] += weight[c4];
+                    }
+                }
+            }
+        }
+    });
     const Samples& w = s.samples;
     const float gx1 = g.x0 + float(g.nx - 1) * cellSize, gy1 = g.y0 + float(g.ny - 1) * cellSize;
     for (size_t k = 0; k < w.px.size(); ++k) {
@@ -299,7 +348,7 @@ void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
     // Each particle's move reads only the node values: the particles split over the workers.
     parallelFor(s.tasks, n, kMoveGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
-            moveParticle(p, g, value.data(), share, i);
+            moveParticle(p, cg, g, value.data(), share, i);
         }
     });
 }

@@ -116,7 +116,7 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
     pairs(s, [&](uint32_t b, uint32_t e) { k.displace(v, o, multiplier.data(), sCorr, b, e); });
 }
 
-void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first) {
+void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first, bool curl) {
     Particles& p = s.particles;
     const PbfView v = makeView(s, c);
     PbfOut o;
@@ -127,7 +127,7 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first)
     o.ny = p.prevY.data();
     o.density = p.density.data();
     const PbfPairs& k = pbfPairs();
-    pairs(s, [&](uint32_t b, uint32_t e) { k.viscosity(v, o, scale, first, b, e); });
+    pairs(s, [&](uint32_t b, uint32_t e) { k.viscosity(v, o, scale, first, curl, b, e); });
 }
 
 void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surfaceTension) {

@@ -37,9 +37,10 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
 
 /// Viscosity, seed eq. 2.6 with rest volumes, as an explicit velocity update over dt * `scale`
 /// into ax, ay (wall friction from the boundary samples). When `first`, also each particle's
-/// vorticity, Akinci surface normals (from invRho of the last constraint sweep) and density at
-/// the current positions (over the lattice sum, as the constraint reads it).
-void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first);
+/// Akinci surface normals (from invRho of the last constraint sweep) and density at the current
+/// positions (over the lattice sum, as the constraint reads it), and with `curl` its vorticity
+/// (for vorticity confinement; without it the vorticity is left unwritten).
+void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first, bool curl);
 
 /// Vorticity confinement (strength `vorticity`) and, when `surfaceTension`, cohesion and
 /// curvature [Akinci 2013], added to vx, vy over dt. Needs vorticity, normals and density.

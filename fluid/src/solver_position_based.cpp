@@ -349,7 +349,7 @@ void stepPositionBased(WorldState& s, float frameDt) {
                 if (facts.wantsForces) {
                     pbfSampleFriction(s, spanned, passScale, weight);
                 }
-                pbfViscosity(s, spanned, passScale, pass == 0);
+                pbfViscosity(s, spanned, passScale, pass == 0, settings.vorticity > 0.0f);
                 p.vx.swap(p.ax);
                 p.vy.swap(p.ay);
             }

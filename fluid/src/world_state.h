@@ -104,6 +104,8 @@ struct EmitterState {
 /// its arrays are allocated once.
 struct CoarseGrid {
     std::vector<float> fluid, solid;      // fill of the node by particles and by samples (1: full)
+    std::vector<uint32_t> cell;           // per particle: its cell's lower-left node
+    std::vector<float> fx, fy;            // per particle: its bilinear fractions in the cell
     std::vector<uint8_t> type;            // 0 air, 1 fluid, 2 solid
     std::vector<float> psi, rhs, r, d, q; // potential and conjugate-gradient vectors
     std::vector<uint32_t> active;         // the fluid nodes, in order (the unknowns)

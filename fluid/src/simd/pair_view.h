@@ -148,7 +148,7 @@ struct PbfPairs {
     void (*constraint)(const PbfView&, const PbfOut&, uint32_t b, uint32_t e);
     void (*displace)(const PbfView&, const PbfOut&, const float* multiplier, bool sCorr, uint32_t b,
                      uint32_t e);
-    void (*viscosity)(const PbfView&, const PbfOut&, float scale, bool first, uint32_t b,
+    void (*viscosity)(const PbfView&, const PbfOut&, float scale, bool first, bool curl, uint32_t b,
                       uint32_t e);
     void (*surface)(const PbfView&, const PbfOut&, float vorticity, bool surfaceTension, uint32_t b,
                     uint32_t e);
