@@ -14,11 +14,19 @@
 #           compression, ns per particle per sub-step, peak memory and bytes per particle (peak
 #           resident set over particles, the program's own 4 MB included), command; about two
 #           minutes.
+#   liquidfun
+#           the side-by-side table with LiquidFun (bench/README.md, "Cheaper passes"): for the
+#           968, 4,050, 15,842 and 64,082 dams, LiquidFun's lf_dam (its path: third argument,
+#           default ../shared/anchors/liquidfun/lf_dam) and fluid-bench's game and precise
+#           presets on 1 and 2 threads, 30 warm-up and 120 timed frames (64k: 10 and 20), each
+#           run three times in turn (LiquidFun, then each fluid setting, then again) and the
+#           median kept; particles, LiquidFun ms, then ms and ratio to LiquidFun for game 1
+#           thread, game 2 threads, precise 1 thread, precise 2 threads; about eight minutes.
 # Run it on an otherwise idle machine.
 set -euo pipefail
 bench=${1:-build/release/bench/fluid-bench}
 set=${2:-all}
-[[ "$set" == all || "$set" == crates || "$set" == scaling ]] || { echo "bench/table.sh: unknown set '$set' (expected all, crates or scaling)" >&2; exit 2; }
+[[ "$set" == all || "$set" == crates || "$set" == scaling || "$set" == liquidfun ]] || { echo "bench/table.sh: unknown set '$set' (expected all, crates, scaling or liquidfun)" >&2; exit 2; }
 [[ -x "$bench" ]] || { echo "bench/table.sh: no fluid-bench at $bench (build the release preset first)" >&2; exit 1; }
 
 tmp=$(mktemp -d)
@@ -82,6 +90,39 @@ scaling_row() {
         "$(awk -v k="$kb" -v n="$(field particles)" 'BEGIN { printf "%.0f", k * 1024 / n }')" \
         "${FLUID_SIMD:+FLUID_SIMD=$FLUID_SIMD }" "$args"
 }
+
+if [[ "$set" == liquidfun ]]; then
+    lf=${3:-../shared/anchors/liquidfun/lf_dam}
+    [[ -x "$lf" ]] || { echo "bench/table.sh: no lf_dam at $lf" >&2; exit 1; }
+    median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
+    ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2fx", a / b }'; }
+    # particles, lattice columns and rows (lf_dam), warm-up and timed frames
+    for spec in "968 22 44 30 120" "4050 45 90 30 120" "15842 89 178 30 120" \
+                "64082 179 358 10 20"; do
+        read -r n nx ny warm frames <<<"$spec"
+        settings=("game 1" "game 2" "precise 1" "precise 2")
+        : > "$tmp/lf"
+        for s in "${settings[@]}"; do : > "$tmp/${s// /_}"; done
+        for round in 1 2 3; do
+            "$lf" "$nx" "$ny" "$warm" "$frames" - 2> /dev/null | grep -oE 'median_ms=[0-9.]+' |
+                cut -d= -f2 >> "$tmp/lf"
+            for s in "${settings[@]}"; do
+                read -r quality threads <<<"$s"
+                "$bench" --scene dam --particles "$n" --threads "$threads" --warmup "$warm" \
+                    --frames "$frames" --quality "$quality" > "$tmp/out" 2> /dev/null
+                field ms_per_frame >> "$tmp/${s// /_}"
+            done
+        done
+        lfms=$(median < "$tmp/lf")
+        line="| $(printf "%'d" "$n") | $lfms ms"
+        for s in "${settings[@]}"; do
+            ms=$(median < "$tmp/${s// /_}")
+            line="$line | $ms ms | $(ratio "$ms" "$lfms")"
+        done
+        echo "$line |"
+    done
+    exit 0
+fi
 
 if [[ "$set" == scaling ]]; then
     scaling_row --scene dam --particles 4000 --frames 60 --warmup 2 --threads 2
