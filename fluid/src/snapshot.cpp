@@ -306,13 +306,21 @@ void World::save(std::ostream& out) const {
     }
     o.array(s.sensorReadings); // the last step's removal events are not kept: they describe it
 
-    // Solver state carried from step to step, and the last profile.
+    // Solver state carried from step to step, and the last profile's counts and figures. Its
+    // stage times are wall-clock readings, not state: they are saved as 0, so two saves of the
+    // same state give the same bytes.
     o.put(s.time);
     o.put(s.soundSpeed);
     o.put(s.fieldGH);
     o.put(uint8_t(s.fieldMeasured));
     o.put(s.lastMaxAccel);
-    o.put(s.profile);
+    Profile figures = s.profile;
+    for (float* time : {&figures.step, &figures.sort, &figures.external, &figures.density,
+                        &figures.pressure, &figures.forces, &figures.integrate,
+                        &figures.boundaries}) {
+        *time = 0.0f;
+    }
+    o.put(figures);
 
     out.write(kMagic, sizeof(kMagic));
     const uint32_t version = kVersion;

@@ -299,7 +299,9 @@ public:
     /// parameters and state, emitters with their clocks and random state, drains, sensors,
     /// solver state, the last step's sensor readings and profile) to `out` in fluid's binary
     /// snapshot format. A world loaded from it continues bit-identically. Not saved: the task
-    /// hook and the last step's `removedEvents`. Throws `fluid::Error` if the stream fails.
+    /// hook, the last step's `removedEvents` and the profile's stage times (wall-clock
+    /// readings: a loaded world reads 0 for them), so two saves of the same state give the same
+    /// bytes. Throws `fluid::Error` if the stream fails.
     void save(std::ostream& out) const;
     /// `save` into the file `path` (replaced); throws `fluid::Error` naming the file.
     void saveFile(const std::string& path) const;
