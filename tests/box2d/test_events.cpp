@@ -5,6 +5,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <set>
+#include <utility>
 #include <vector>
 
 using namespace fluid;
@@ -172,4 +174,49 @@ TEST_CASE("the force on a static floor under a resting tank is the fluid's weigh
     CHECK(std::fabs(torque) < 0.01 * weight * 0.5 * width);
     CHECK(b.y0 > 0.0f);
     CHECK(b.y0 < s);
+}
+
+TEST_CASE("a coupled frame reports every drained particle once, whatever its rounds",
+          "[box2d][events]") {
+    // A pool drained through its floor while a box floats in it: the coupling steps the fluid
+    // in four rounds per frame, and a drain removes particles in each of them.
+    World world(physicsDef());
+    const MaterialId water = world.addMaterial(fluid::water());
+    const float s = world.spacing(water);
+    const uint32_t cols = 40, rows = 20;
+    const float width = float(cols) * s;
+    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
+    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, width, 0.6f));
+    world.spawnBlob(latticeBlock(world, water, 0.0f, 0.0f, cols, rows));
+    DrainDef drain;
+    drain.shape = Shape::box({0.3f * width, -0.01f}, {0.7f * width, 0.03f});
+    world.addDrain(drain);
+    b2World physics(b2Vec2(0.0f, -kG));
+    addTankWalls(physics, 0.0f, 0.0f, width, 0.6f, true);
+    addBox(physics, b2_dynamicBody, {0.5f * width, float(rows) * s + 0.05f}, 0.04f, 0.03f,
+           0.5f * box2d::arealDensity(world, water));
+    box2d::CouplingDef def;
+    def.categoryMask = kFluidMask;
+    Coupling coupling(world, physics, def);
+    REQUIRE(world.def().positionBased.substeps == 4);
+
+    std::set<std::pair<uint32_t, uint32_t>> removed; // every removed handle, once
+    uint32_t total = 0, lastRoundOnly = 0;
+    for (int f = 0; f < 60; ++f) {
+        const uint32_t before = world.particleCount();
+        coupling.step(world, kFrame);
+        const uint32_t lost = before - world.particleCount();
+        INFO("frame " << f);
+        REQUIRE(coupling.removedEvents().size() == lost);
+        CHECK(coupling.profile().removed == lost);
+        for (const RemovedEvent& e : coupling.removedEvents()) {
+            CHECK(e.cause == RemovalCause::Drain);
+            CHECK(removed.insert({e.particle.slot, e.particle.generation}).second);
+        }
+        total += lost;
+        lastRoundOnly += uint32_t(world.removedEvents().size());
+    }
+    // Drained in every round, not only the frame's last: the world alone reports fewer.
+    CHECK(total > 100);
+    CHECK(lastRoundOnly < total);
 }

@@ -228,6 +228,7 @@ void Coupling::step(World& world, float dt) {
     }
     m_splashes.clear();
     m_contacts.clear();
+    m_removed.clear();
     m_profile = Profile{};
     const float h = dt / float(rounds);
     for (uint32_t round = 0; round < rounds; ++round) {
@@ -240,8 +241,13 @@ void Coupling::stepFluid(World& world, float dt) {
     checkWorld(world, "stepFluid");
     m_splashes.clear();
     m_contacts.clear();
+    m_removed.clear();
     m_profile = Profile{};
     fluidRound(world, dt);
+}
+
+std::span<const RemovedEvent> Coupling::removedEvents() const {
+    return m_removed;
 }
 
 const Profile& Coupling::profile() const {
@@ -281,6 +287,8 @@ void Coupling::fluidRound(World& world, float dt) {
     m_boundary->setMaterialMasses(std::move(masses));
     world.step(dt);
     addProfile(world.profile());
+    const std::span<const RemovedEvent> removed = world.removedEvents();
+    m_removed.insert(m_removed.end(), removed.begin(), removed.end());
     makeReports(world);
     applyForces(dt);
     remember();

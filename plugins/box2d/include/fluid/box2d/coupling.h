@@ -209,7 +209,8 @@ public:
 
     /// One game frame (see the class comment): per round, Box2D step, fluid step, reports,
     /// forces to bodies. The `b2World` steps once per round (its contact listeners fire each
-    /// time), and `World::profile()` afterwards describes the last round.
+    /// time), and `World::profile()` and `World::removedEvents()` afterwards describe the last
+    /// round: read the frame's from `profile()` and `removedEvents()` here.
     /// `world` must be the world given to the constructor (it may have been moved since);
     /// `dt` as `World::step` (unit: s; range (0, 1]). Throws `fluid::Error` for another world or
     /// a bad dt (before anything moves), and what `World::step` throws (Box2D has stepped by
@@ -235,6 +236,12 @@ public:
     /// Contact begin and end events of the last step, in body order (ends of bodies no longer
     /// coupled last). Valid until the next step.
     std::span<const ContactEvent> contacts() const;
+
+    /// Particles drains and lifetimes removed during the last `step` or `stepFluid`, over all
+    /// its rounds: each removal once, rounds in order, each round's events as
+    /// `World::removedEvents` orders them (which after a coupled step holds only the last
+    /// round's). Valid until the next step.
+    std::span<const RemovedEvent> removedEvents() const;
 
     /// The fluid's profile of the last `step` or `stepFluid`, over all its rounds: times,
     /// sub-steps and counters summed; compression, particle count, iterations and sound speed
@@ -271,6 +278,7 @@ private:
     std::vector<ContactEvent> m_contacts;
     std::vector<Previous> m_previous;
     Profile m_profile;              // summed over the rounds of the last frame
+    std::vector<RemovedEvent> m_removed; // the rounds' removals of the last frame, in order
     std::vector<glm::dvec2> m_debt; // per body of the step, in body order: see Previous
     std::vector<double> m_torqueDebt;
     std::vector<double> m_addedMass; // per body of the step (kg), for the relaxation
