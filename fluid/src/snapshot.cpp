@@ -27,7 +27,7 @@ namespace fluid {
 namespace {
 
 constexpr char kMagic[8] = {'F', 'L', 'U', 'I', 'D', 'S', 'N', 'P'};
-constexpr uint32_t kVersion = 2;
+constexpr uint32_t kVersion = 3;
 
 uint64_t fnv1a(const std::byte* data, size_t size) {
     uint64_t h = 0xcbf29ce484222325ull;

@@ -157,13 +157,45 @@ void externalForces(WorldState& s, float dt, double time, std::vector<float>& ax
     ax.resize(p.size());
     ay.resize(p.size());
     const ForceContext context{particleView(s), ax, ay, dt, time};
+    const size_t plugins = s.forces.size();
+    // Per plugin: the particles whose acceleration it made non-finite.
+    std::vector<std::atomic<uint32_t>> dropped(plugins);
     parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         std::fill(ax.begin() + b, ax.begin() + e, 0.0f);
         std::fill(ay.begin() + b, ay.begin() + e, 0.0f);
-        for (const auto& plugin : s.forces) {
-            plugin->apply(context, b, e);
+        std::vector<float> keepX, keepY; // the sums before the plugin (none before the first)
+        for (size_t k = 0; k < plugins; ++k) {
+            if (k > 0) {
+                keepX.assign(ax.begin() + b, ax.begin() + e);
+                keepY.assign(ay.begin() + b, ay.begin() + e);
+            }
+            s.forces[k]->apply(context, b, e);
+            // A non-finite result drops this plugin's contribution to the particle only.
+            uint32_t bad = 0;
+            for (uint32_t i = b; i < e; ++i) {
+                if (std::isfinite(ax[i]) && std::isfinite(ay[i])) {
+                    continue;
+                }
+                ax[i] = k > 0 ? keepX[i - b] : 0.0f;
+                ay[i] = k > 0 ? keepY[i - b] : 0.0f;
+                ++bad;
+            }
+            if (bad > 0) {
+                dropped[k].fetch_add(bad, std::memory_order_relaxed);
+            }
         }
     });
+    Profile& prof = s.profile;
+    for (size_t k = 0; k < plugins; ++k) {
+        const uint32_t count = dropped[k].load(std::memory_order_relaxed);
+        if (count == 0) {
+            continue;
+        }
+        prof.forceDropped += count;
+        if (prof.forceDroppedPlugin < 0) {
+            prof.forceDroppedPlugin = int32_t(k);
+        }
+    }
 }
 
 void sortParticles(WorldState& s, float cellSize,

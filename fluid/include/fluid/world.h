@@ -184,6 +184,13 @@ struct Profile {
     uint32_t speedClamped = 0;
     /// Particles whose acceleration was non-finite and was zeroed (unit: count; should be 0).
     uint32_t nonFiniteRepaired = 0;
+    /// Particles to which a force plugin gave a non-finite acceleration: that plugin's
+    /// contribution to them was dropped, the other plugins' kept (unit: count, summed over
+    /// sub-steps and plugins; should be 0).
+    uint32_t forceDropped = 0;
+    /// The first force plugin, by its index in `World::forces()`, whose contribution was
+    /// dropped during the step (unit: index; -1 for none).
+    int32_t forceDroppedPlugin = -1;
     /// Particles found at exactly the position of another (projected onto the same wall
     /// corner, or spawned there) and moved 1/64 support off it (unit: count, summed over
     /// sub-steps).

@@ -267,6 +267,10 @@ void Coupling::addProfile(const Profile& round) {
     p.substeps += round.substeps;
     p.speedClamped += round.speedClamped;
     p.nonFiniteRepaired += round.nonFiniteRepaired;
+    p.forceDropped += round.forceDropped;
+    if (p.forceDroppedPlugin < 0) {
+        p.forceDroppedPlugin = round.forceDroppedPlugin;
+    }
     p.separated += round.separated;
     p.emitted += round.emitted;
     p.emitBlocked += round.emitBlocked;
