@@ -207,6 +207,9 @@ int main(int argc, char** argv) {
         fluid::LevelOptions options;
         options.workerCount = threads;
         fluid::Level level = fluid::loadLevel(levelPath, registry, options);
+        for (const std::string& warning : level.warnings) {
+            std::cerr << "fluid-run: warning: " << warning << '\n';
+        }
 
         std::ofstream csv;
         if (!csvPath.empty()) {

@@ -312,6 +312,9 @@ private:
             auto session =
                 std::make_unique<Session>(m_options.levels[size_t(index)], m_options.workers);
             m_session = std::move(session);
+            for (const std::string& warning : m_session->level().warnings) {
+                std::fprintf(stderr, "fluid-demo: warning: %s\n", warning.c_str());
+            }
         } catch (const std::exception& e) {
             std::fprintf(stderr, "fluid-demo: %s\n", e.what());
             toast(e.what());

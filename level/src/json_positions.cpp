@@ -579,6 +579,11 @@ void JsonDocument::fail(std::string_view pointer, const std::string& message) co
     throw LevelError(m_file, pos.line, pos.column, std::string(pointer), message);
 }
 
+std::string JsonDocument::locatedText(std::string_view pointer, const std::string& message) const {
+    const TextPosition pos = positionOf(m_text, locate(m_text, pointer, false));
+    return LevelError(m_file, pos.line, pos.column, std::string(pointer), message).what();
+}
+
 void JsonDocument::failAtKey(std::string_view pointer, const std::string& message) const {
     const TextPosition pos = positionOf(m_text, locate(m_text, pointer, true));
     throw LevelError(m_file, pos.line, pos.column, std::string(pointer), message);

@@ -105,6 +105,8 @@ public:
 
     /// Throws LevelError at the value at `pointer`.
     [[noreturn]] void fail(std::string_view pointer, const std::string& message) const;
+    /// The text a LevelError at the value at `pointer` would carry, for a warning.
+    std::string locatedText(std::string_view pointer, const std::string& message) const;
     /// Throws LevelError at the member name that leads to `pointer`.
     [[noreturn]] void failAtKey(std::string_view pointer, const std::string& message) const;
     /// Member names of the object at `pointer`, in text order.

@@ -93,6 +93,7 @@ TEST_CASE("every shipped level loads, and levels without a test of their own run
         INFO(file.string());
         Level level = loadLevel(file.string(), registry);
         CHECK(level.file == file.string());
+        CHECK(level.warnings.empty()); // no blob overlaps another
         CHECK_FALSE(level.name.empty());
         CHECK(level.world.particleCount() + level.world.emitterCount() > 0);
         const std::string name = file.filename().string();
@@ -391,4 +392,56 @@ TEST_CASE("a level names its quality preset, and explicit settings override its 
     CHECK(o.substeps == game.substeps);
     CHECK(o.iterations == 5);
     CHECK(o.viscosityInterval == game.viscosityInterval);
+}
+
+TEST_CASE("blobs that overlap load with a warning naming the blob, the file, line and column",
+          "[level]") {
+    const std::string text = R"({
+  "version": 1,
+  "materials": [ { "name": "water", "preset": "water" } ],
+  "blobs": [
+    { "material": "water", "shape": "box", "min": [0, 0], "max": [0.1, 0.1] },
+    { "material": "water", "shape": "box", "min": [0.2, 0], "max": [0.3, 0.1] },
+    { "material": "water", "shape": "box", "min": [0.05, 0], "max": [0.25, 0.1] }
+  ]
+})";
+    const Level level = parseLevel(text, "t.json", builtins());
+    const float s = level.world.spacing(MaterialId{0});
+    INFO("spacing " << s);
+    // The third blob covers half of each of the others.
+    REQUIRE(level.warnings.size() == 2);
+    CHECK_THAT(level.warnings[0],
+               Catch::StartsWith("t.json:7:5: at /blobs/2: ") &&
+                   Catch::Contains("particles lie inside blob 0 (closer than 0.8 lattice spacings "
+                                   "to its particles): the liquid there starts at about twice its "
+                                   "rest density and bursts apart; move or shrink one of them"));
+    CHECK_THAT(level.warnings[1], Catch::StartsWith("t.json:7:5: at /blobs/2: ") &&
+                                      Catch::Contains("inside blob 1 ("));
+    // A circle over a box's edge, on a lattice offset from the box's: its particles inside
+    // the box are counted, those outside are not.
+    const std::string circle = R"({
+  "version": 1,
+  "materials": [ { "name": "water", "preset": "water" } ],
+  "blobs": [
+    { "material": "water", "shape": "box", "min": [0, 0], "max": [0.1, 0.1] },
+    { "material": "water", "shape": "circle", "center": [0.1, 0.05], "radius": 0.04 }
+  ]
+})";
+    const Level overlapping = parseLevel(circle, "t.json", builtins());
+    REQUIRE(overlapping.warnings.size() == 1);
+    CHECK_THAT(overlapping.warnings[0], Catch::StartsWith("t.json:6:5: at /blobs/1: ") &&
+                                            Catch::Contains(" of the blob's 45 particles"));
+    // Blobs side by side, touching or a spacing apart, warn of nothing.
+    for (const char* second : {"[0.1, 0]", "[0.11, 0]"}) {
+        INFO(second);
+        const std::string apart = std::string(R"({
+  "version": 1,
+  "materials": [ { "name": "water", "preset": "water" } ],
+  "blobs": [
+    { "material": "water", "shape": "box", "min": [0, 0], "max": [0.1, 0.1] },
+    { "material": "water", "shape": "box", "min": )") + second + R"(, "max": [0.2, 0.1] }
+  ]
+})";
+        CHECK(parseLevel(apart, "t.json", builtins()).warnings.empty());
+    }
 }

@@ -150,6 +150,10 @@ struct Level {
     std::vector<std::pair<std::string, b2Body*>> bodies;
     /// Joints by name, in file order (an unnamed joint is `joint<k>`). Owned by `physics`.
     std::vector<std::pair<std::string, b2Joint*>> joints;
+    /// What the loader accepted but a level author should hear about, each as
+    /// "file:line:column: at /pointer: message" (for now: blobs that overlap, whose liquid
+    /// starts at about twice its rest density and bursts apart). Empty for a clean file.
+    std::vector<std::string> warnings;
 
     /// An empty level (no material; `loadLevel` and `parseLevel` make real ones).
     Level() = default;
