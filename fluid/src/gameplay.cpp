@@ -1,4 +1,6 @@
 // fluid — emitters, drains, lifetimes and sensors: what happens around the solver's step.
+#include "kernels.h"
+#include "step_common.h"
 #include "world_state.h"
 
 #include <fluid/shape.h>
@@ -27,10 +29,75 @@ float symmetricUnit(uint64_t& state) {
     return float(nextRandom(state) >> 40) * (2.0f / 16777216.0f) - 1.0f;
 }
 
+// Where the liquid already stands at its rest density an emitter adds nothing: a full cup
+// takes no more water, and a faucet in a closed box stops when the box is full instead of
+// crushing the liquid. The fill at a point is the constraint's density, (sum_j V_j W + V_w
+// sum_w W) / L, over the particles as they stand before the step and the boundary samples of
+// the last step (1 inside the material's resting lattice); a new particle is placed only if
+// the fill with its own term stays at or below 1. (Placing it wherever the fill without it is
+// below 1 let a faucet's rows pile into a closed box: 3,582 particles in room for 820, 830%
+// mean compression.) The particles' grid is built at the first question.
+class Room {
+public:
+    explicit Room(WorldState& s) : m_s(s) {}
+
+    bool fits(glm::vec2 x, uint16_t material) {
+        const Particles& p = m_s.particles;
+        if (p.size() == 0 && m_s.samples.size() == 0) {
+            return true;
+        }
+        if (!m_ready) {
+            refreshConstants(m_s);
+            m_support = 0.0f;
+            for (const MaterialConstants& c : m_s.constants) {
+                m_support = std::max(m_support, c.support);
+            }
+            m_grid.build(p.px, p.py, m_support, TaskHook{});
+            m_areas.resize(m_s.materials.size());
+            for (size_t m = 0; m < m_areas.size(); ++m) {
+                m_areas[m] = particleArea(m_s.materials[m], m_s.def.depth);
+            }
+            const float spacing = particleSpacing(m_s.materials[0], m_s.def.depth);
+            m_sampleArea = spacing * spacing; // samples lie at material 0's spacing
+            m_ready = true;
+        }
+        const MaterialConstants& c = m_s.constants[material];
+        const float h = c.support;
+        double sum = double(m_areas[material]) * kernel::wendland(0.0f, h); // its own term
+        const std::span<const uint32_t> order = m_grid.order();
+        m_grid.forEachRange(x.x, x.y, [&](uint32_t b, uint32_t e) {
+            for (uint32_t k = b; k < e; ++k) {
+                const uint32_t j = order[k];
+                const float r = glm::length(glm::vec2(p.px[j], p.py[j]) - x);
+                sum += double(m_areas[p.material[j]]) * kernel::wendland(r, h);
+            }
+        });
+        const Samples& w = m_s.samples;
+        if (w.size() > 0 && w.grid.size() == w.size()) {
+            w.grid.forEachRange(x.x, x.y, [&](uint32_t b, uint32_t e) {
+                for (uint32_t k = b; k < e; ++k) {
+                    const float r = glm::length(glm::vec2(w.px[k], w.py[k]) - x);
+                    sum += double(m_sampleArea) * kernel::wendland(r, h);
+                }
+            });
+        }
+        return sum / double(c.lattice) <= 1.0;
+    }
+
+private:
+    WorldState& m_s;
+    bool m_ready = false;
+    Grid m_grid;
+    float m_support = 0.0f;
+    std::vector<float> m_areas;
+    float m_sampleArea = 0.0f;
+};
+
 } // namespace
 
-uint32_t emitParticles(WorldState& s, float frameDt, uint32_t& blocked) {
+uint32_t emitParticles(WorldState& s, float frameDt, uint32_t& blocked, uint32_t& skipped) {
     uint32_t total = 0;
+    Room room(s);
     for (EmitterState& e : s.emitters) {
         const EmitterDef& d = e.def;
         if (d.rate <= 0.0f || (d.maxCount > 0 && e.emitted >= d.maxCount)) {
@@ -60,6 +127,10 @@ uint32_t emitParticles(WorldState& s, float frameDt, uint32_t& blocked) {
                 }
                 if (s.particles.size() >= s.def.maxParticles) {
                     ++blocked;
+                    continue;
+                }
+                if (!room.fits(centre + across * lateral, d.material.index)) {
+                    ++skipped; // the liquid there is at rest density already
                     continue;
                 }
                 // It left the nozzle `age` ago: its lifetime started then.

@@ -378,10 +378,10 @@ void World::step(float frameDt) {
     // A plugin's prepare hook may throw (a bad shape, a user plugin's own check) after the
     // emitters ran: keep what emission changes, so that the world can be put back.
     const detail::EmissionUndo undo(s);
-    uint32_t blocked = 0;
+    uint32_t blocked = 0, skipped = 0;
     uint32_t emitted = 0;
     try {
-        emitted = detail::emitParticles(s, frameDt, blocked);
+        emitted = detail::emitParticles(s, frameDt, blocked, skipped);
         switch (s.def.solver) {
         case Solver::PositionBased:
             detail::stepPositionBased(s, frameDt);
@@ -397,6 +397,7 @@ void World::step(float frameDt) {
     s.profile.removed = detail::finishGameplay(s);
     s.profile.emitted = emitted;
     s.profile.emitBlocked = blocked;
+    s.profile.emitSkipped = skipped;
     s.profile.particles = s.particles.size();
 }
 

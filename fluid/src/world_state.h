@@ -189,7 +189,9 @@ inline double expiryTime(double now, float lifetime) {
 }
 
 /// Emitters' particles for a step of `frameDt` (start of `World::step`); returns the count.
-uint32_t emitParticles(WorldState& s, float frameDt, uint32_t& blocked);
+/// `blocked` counts those the particle limit refused, `skipped` those not placed because the
+/// liquid at their place stands at rest density already.
+uint32_t emitParticles(WorldState& s, float frameDt, uint32_t& blocked, uint32_t& skipped);
 
 /// After a step (time already advanced): drains and expired lifetimes remove particles (into
 /// `removed`), sensors measure. Returns the count removed.

@@ -201,6 +201,9 @@ struct Profile {
     uint32_t emitted = 0;
     /// Particles emitters could not add because the world was full (unit: count).
     uint32_t emitBlocked = 0;
+    /// Particles emitters did not place because the liquid at their place already stood at
+    /// its rest density (a full cup, a submerged nozzle) (unit: count).
+    uint32_t emitSkipped = 0;
     /// Particles drains and lifetimes removed at the end of the step (unit: count).
     uint32_t removed = 0;
 };

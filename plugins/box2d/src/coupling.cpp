@@ -274,6 +274,7 @@ void Coupling::addProfile(const Profile& round) {
     p.separated += round.separated;
     p.emitted += round.emitted;
     p.emitBlocked += round.emitBlocked;
+    p.emitSkipped += round.emitSkipped;
     p.removed += round.removed;
     p.iterations = round.iterations;
     p.cflDt = round.cflDt;
