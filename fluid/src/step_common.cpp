@@ -275,9 +275,16 @@ void projectBoundaries(WorldState& s, float dt, float prevTimeInStep, float time
     Particles& p = s.particles;
     const ProjectContext context{p.px,       p.py, prevX,      prevY,          p.vx,   p.vy,
                                  p.material, dt,   timeInStep, prevTimeInStep, spacing};
-    for (const auto& plugin : s.boundaries) {
-        parallelFor(s.tasks, p.size(), 1024,
-                    [&](uint32_t b, uint32_t e, uint32_t) { plugin->project(context, b, e); });
+    // Solids, then walls, then containers (BoundaryPlugin::role), each in the order added.
+    for (const BoundaryRole role :
+         {BoundaryRole::Solid, BoundaryRole::Wall, BoundaryRole::Container}) {
+        for (const auto& plugin : s.boundaries) {
+            if (plugin->role() != role) {
+                continue;
+            }
+            parallelFor(s.tasks, p.size(), 1024,
+                        [&](uint32_t b, uint32_t e, uint32_t) { plugin->project(context, b, e); });
+        }
     }
 }
 

@@ -277,6 +277,16 @@ struct ProjectContext {
 };
 
 /// A solid the fluid cannot enter (container, polygon, moving paddle, rigid body...).
+/// What a boundary's `project` keeps, which decides when it projects (see `BoundaryPlugin::role`).
+enum class BoundaryRole : uint8_t {
+    /// Keeps particles out of a solid (a disc, a polygon, a Box2D body).
+    Solid,
+    /// Keeps particles on their side of a wall they cannot cross (a chain of segments).
+    Wall,
+    /// Keeps particles inside the region the liquid lives in (a tank: `boundary.box`).
+    Container,
+};
+
 /// Thread rule: `prepare` and `receiveForces` run on the stepping thread; `project` runs on
 /// worker threads in parallel over disjoint ranges and writes only slots [begin, end).
 class BoundaryPlugin : public Plugin {
@@ -291,6 +301,12 @@ public:
     virtual void project(const ProjectContext& context, uint32_t begin, uint32_t end) = 0;
     /// True to have the fluid's force on each sample reported through `receiveForces`.
     virtual bool wantsForces() const { return false; }
+    /// What `project` keeps (stepping thread; constant for the plugin's life). The step
+    /// projects solids first, then walls, then containers, each group in the order added: where
+    /// a moving solid pushes a particle against a tank's wall, the tank has the last word and
+    /// the particle stays in the liquid's domain (the next projection pushes it out of the
+    /// solid). Default: `BoundaryRole::Solid`.
+    virtual BoundaryRole role() const { return BoundaryRole::Solid; }
     /// After the step: the fluid's force on each sample, averaged over the step's sub-steps
     /// (unit: N), and how fast its viscous part grows with the sample's velocity against the
     /// fluid's, `drag` = -dF/dv_sample >= 0 (unit: N s/m; a host integrating a body explicitly

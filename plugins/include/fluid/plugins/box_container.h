@@ -39,6 +39,8 @@ public:
     void project(const ProjectContext& context, uint32_t begin, uint32_t end) override;
     /// The `friction` parameter.
     float friction() const override { return static_cast<float>(value(kFriction)); }
+    /// A container: it projects after every solid and wall.
+    BoundaryRole role() const override { return BoundaryRole::Container; }
 
 private:
     void onParamChanged(std::size_t index) override;

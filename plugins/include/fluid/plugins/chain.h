@@ -46,6 +46,8 @@ public:
     explicit ChainBoundary(std::span<const glm::vec2> points, bool closed = false);
     /// Destroyed by its owner, not while a step runs.
     ~ChainBoundary() override;
+    /// A wall: it projects after the solids, before the containers.
+    BoundaryRole role() const override { return BoundaryRole::Wall; }
 
     /// The segments in the local frame, as last built (unit: m). Valid after the first `prepare`.
     std::span<const ShapeSegment> segments() const;
