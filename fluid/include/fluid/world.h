@@ -47,8 +47,11 @@ enum class EquationOfState : uint8_t {
 /// Settings of `Solver::PositionBased`. Read them with `World::def().positionBased`; change them
 /// between steps with `World::setPositionBased` (stepping thread).
 struct PositionBasedDef {
-    /// Sub-steps per `World::step` (unit: count; range [1, 64]). Default 4, the
-    /// `Quality::Precise` preset's (`Quality::Game`: 4 x 1 iteration). Fewer are faster and
+    /// Sub-steps per `World::step` of 1/60 s (unit: count; range [1, 64]); a frame more than
+    /// a tenth longer takes proportionally more (a 1 s frame at 4: 240), so the settings hold
+    /// at any frame rate at the same cost per simulated second (`Profile::substeps` reports the
+    /// count taken). Default 4, the `Quality::Precise` preset's (`Quality::Game`: 4 x 1
+    /// iteration). Fewer are faster and
     /// more compressible; a particle moves at most two support radii per sub-step (faster ones
     /// are slowed and counted in `Profile::speedClamped`). Without the coarse correction, below
     /// 3 x 3, 6 x 2 or 8 x 1 a deep tank boils (docs/position_based.md, "Settings").
