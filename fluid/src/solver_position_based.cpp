@@ -113,7 +113,8 @@ constexpr float kViscosityFactor = 0.5f;
 // sub-steps takes 240; before, its 0.25 s sub-steps crushed a 0.3 m column by 760%).
 uint32_t frameSubsteps(uint32_t setting, float frameDt) {
     const double needed = double(frameDt) / kTunedFrame * double(setting);
-    return std::max(setting, uint32_t(std::ceil(needed - kLongFrameSlack * double(setting))));
+    const double more = std::ceil(needed - kLongFrameSlack * double(setting));
+    return more > double(setting) ? uint32_t(more) : setting; // frameDt <= 1 s: <= 66 x setting
 }
 
 template <class F> void each(WorldState& s, F&& f) {
