@@ -345,9 +345,25 @@ int main(int argc, char** argv) {
                 for (b2Fixture* f = bodies[b]->GetFixtureList(); f != nullptr; f = f->GetNext()) {
                     const float depth = depthInside(f, b2Vec2(px[i], py[i]));
                     if (depth > bodyDeep[b]) {
+                        // The same depth in the body's frame moved back by its motion over a
+                        // round: what it would read against the pose the fluid used.
+                        const b2Body* body = bodies[b];
+                        const float h = kFrame / float(rounds);
+                        const b2Vec2 c = body->GetWorldCenter();
+                        const float turn = -body->GetAngularVelocity() * h;
+                        const b2Vec2 d = b2Vec2(px[i], py[i]) - c;
+                        const b2Vec2 back = c + b2Vec2(std::cos(turn) * d.x - std::sin(turn) * d.y,
+                                                       std::sin(turn) * d.x + std::cos(turn) * d.y) -
+                                            h * body->GetLinearVelocity();
                         fail("particle " + std::to_string(i) + " " + std::to_string(depth) +
                              " m inside body " + std::to_string(b) + " (allowed " +
-                             std::to_string(bodyDeep[b]) + " m)");
+                             std::to_string(bodyDeep[b]) + " m; body at " +
+                             std::to_string(body->GetLinearVelocity().Length()) + " m/s, " +
+                             std::to_string(body->GetAngularVelocity()) + " rad/s; particle at " +
+                             std::to_string(std::hypot(vx[i], vy[i])) + " m/s, " +
+                             std::to_string(std::hypot(px[i] - c.x, py[i] - c.y)) +
+                             " m from its centre; against the pose a round ahead " +
+                             std::to_string(depthInside(f, back)) + " m)");
                     }
                 }
             }
