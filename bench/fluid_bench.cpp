@@ -460,7 +460,7 @@ int run(const Options& opt) {
                 physics->Step(frameDt, cdef.velocityIterations, cdef.positionIterations);
             };
         } else {
-            // After the dam's boundary.box: the container has the last word (see Coupling).
+            // The bodies are solids: the dam's boundary.box, a container, projects after them.
             coupling = std::make_unique<fluid::box2d::Coupling>(world, *physics, cdef);
             frame = [&] { coupling->step(world, frameDt); };
             profile = [&]() -> const fluid::Profile& { return coupling->profile(); };

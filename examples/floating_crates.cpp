@@ -55,7 +55,8 @@ int main() {
         bodies[k]->CreateFixture(&fixture);
     }
 
-    // Create the coupling after the tank's boundary: every fixture becomes a boundary.
+    // The coupling: every fixture becomes a boundary (a solid; the tank, a container, projects
+    // after the solids whatever the order they were added in).
     fluid::box2d::Coupling coupling(world, physics);
     for (int frame = 0; frame < 300; ++frame) {
         coupling.step(world, 1.0f / 60.0f); // per sub-step: Box2D, fluid, forces to bodies

@@ -64,8 +64,8 @@ ChainRun runChain(Solver solver, uint32_t frames, uint32_t perFrame, uint32_t ca
     World world(physicsDef(solver));
     const MaterialId water = world.addMaterial(fluid::water());
     world.addForce(std::make_unique<GravityForce>());
-    // The tank first: a later boundary's projection has the last word, and the splitter must
-    // have it (the tank's clamp is then part of the path the splitter checks).
+    // The splitter (a wall) projects before the tank (a container) whatever the order added:
+    // it puts crossing particles back on their side, then the tank keeps them inside.
     world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 0.8f, 0.6f));
     world.addBoundary(std::make_unique<ChainBoundary>(kSplitter));
     Lcg rng;

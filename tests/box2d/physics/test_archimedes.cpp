@@ -68,8 +68,8 @@ TankRun runTank(const Material& preset, const std::vector<Spec>& specs, float co
     const auto rows = uint32_t(std::lround(depth / s));
     const float surface = float(rows) * s;
     world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
-    // The fluid's tank first (a later boundary has the last word), then Box2D's floor and walls
-    // in the same place for the bodies, kept out of the fluid by the coupling's mask.
+    // The fluid's tank (a container: it projects after the bodies), then Box2D's floor and
+    // walls in the same place for the bodies, kept out of the fluid by the coupling's mask.
     world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, width, top));
     b2World physics(b2Vec2(0.0f, -kG));
     b2Body* floor = addTankWalls(physics, 0.0f, 0.0f, width, top);

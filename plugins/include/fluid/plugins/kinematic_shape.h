@@ -50,9 +50,10 @@ struct ShapeSegment {
 /// `project` follows each particle's path from where it stood (at `prevTimeInStep`, in the pose
 /// of that time) to where it is (at `timeInStep`) in the shape's frame, so that fast particles
 /// cannot tunnel through thin parts, and removes the velocity into the wall relative to the
-/// wall's own velocity there. Where solids touch or overlap (a splitter standing in a tank),
-/// the boundary added last has the last word in every projection: add containers first and the
-/// shapes inside them after. Thread rule: see `BoundaryPlugin`; parameters only between steps.
+/// wall's own velocity there. Where solids touch or overlap, solids project before walls and
+/// walls before containers (`BoundaryPlugin::role`), each group in the order added: a tank keeps
+/// what a shape pushes against its wall. Thread rule: see `BoundaryPlugin`; parameters only
+/// between steps.
 class KinematicShape : public BoundaryPlugin {
 public:
     /// Indices of the parameters every shape declares first, in this order.
