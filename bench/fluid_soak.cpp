@@ -337,8 +337,31 @@ int main(int argc, char** argv) {
                      std::to_string(px[i]) + ", " + std::to_string(py[i]) + ")");
             }
             for (size_t k = 0; k < plankPolys.size(); ++k) {
-                if (depthInside(plankPolys[k], glm::dvec2(px[i], py[i])) > deep) {
-                    fail("particle " + std::to_string(i) + " inside plank " + std::to_string(k));
+                const float depth = depthInside(plankPolys[k], glm::dvec2(px[i], py[i]));
+                if (depth > deep) {
+                    // Whether a body presses it there: the nearest body fixture's depth (< 0:
+                    // that far outside it).
+                    float nearest = -1e30f;
+                    size_t nearestBody = 0;
+                    for (size_t b = 0; b < bodies.size(); ++b) {
+                        for (b2Fixture* f = bodies[b]->GetFixtureList(); f != nullptr;
+                             f = f->GetNext()) {
+                            const float d = depthInside(f, b2Vec2(px[i], py[i]));
+                            if (d > nearest) {
+                                nearest = d;
+                                nearestBody = b;
+                            }
+                        }
+                    }
+                    fail("particle " + std::to_string(i) + " " + std::to_string(depth) +
+                         " m inside plank " + std::to_string(k) + " (allowed " +
+                         std::to_string(deep) + " m; plank at " +
+                         std::to_string(planks[k].plugin->pose().velocity.x) +
+                         " m/s; particle at (" + std::to_string(px[i]) + ", " +
+                         std::to_string(py[i]) + "), (" + std::to_string(vx[i]) + ", " +
+                         std::to_string(vy[i]) + ") m/s; nearest body " +
+                         std::to_string(nearestBody) + " at depth " + std::to_string(nearest) +
+                         " m)");
                 }
             }
             for (size_t b = 0; b < bodies.size(); ++b) {

@@ -730,6 +730,7 @@ Level& Level::operator=(Level&& other) noexcept {
     bodies.clear();
     physics.reset();
     file = std::move(other.file);
+    source = std::move(other.source);
     name = std::move(other.name);
     description = std::move(other.description);
     version = other.version;
@@ -745,6 +746,7 @@ Level& Level::operator=(Level&& other) noexcept {
     coupling = std::move(other.coupling);
     bodies = std::move(other.bodies);
     joints = std::move(other.joints);
+    warnings = std::move(other.warnings);
     m_goalState = other.m_goalState;
     return *this;
 }
@@ -764,6 +766,7 @@ Level parseLevel(std::string_view text, std::string_view file, const Registry& r
     const detail::JsonDocument doc(text, file);
     Level level;
     level.file = std::string(file);
+    level.source = std::string(text);
     LevelReader(doc, registry, options, level).read();
     return level;
 }

@@ -123,19 +123,8 @@ KinematicShape::Sweep KinematicShape::sweep(const ProjectContext& context) const
     return w;
 }
 
-void KinematicShape::projectParticle(const Sweep& w, const ProjectContext& context,
-                                     uint32_t i) const {
-    const glm::dvec2 p = w.before.toLocal({context.prevX[i], context.prevY[i]});
-    const glm::dvec2 c = w.now.toLocal({context.px[i], context.py[i]});
-    // Early out: the path's box misses the shape's.
-    if (std::max(p.x, c.x) < w.lo.x || std::min(p.x, c.x) > w.hi.x || std::max(p.y, c.y) < w.lo.y ||
-        std::min(p.y, c.y) > w.hi.y) {
-        return;
-    }
-    Contact contact;
-    if (!collide(p, c, w.spacing, w.eps, contact)) {
-        return;
-    }
+void KinematicShape::place(const Sweep& w, const ProjectContext& context, uint32_t i,
+                           const Contact& contact) const {
     const glm::dvec2 x = w.now.toWorld(contact.point);
     context.px[i] = static_cast<float>(x.x);
     context.py[i] = static_cast<float>(x.y);
@@ -148,6 +137,36 @@ void KinematicShape::projectParticle(const Sweep& w, const ProjectContext& conte
         context.vx[i] = static_cast<float>(context.vx[i] + (wallN - vn) * n.x);
         context.vy[i] = static_cast<float>(context.vy[i] + (wallN - vn) * n.y);
     }
+}
+
+void KinematicShape::projectParticle(const Sweep& w, const ProjectContext& context,
+                                     uint32_t i) const {
+    const glm::dvec2 p = w.before.toLocal({context.prevX[i], context.prevY[i]});
+    const glm::dvec2 c = w.now.toLocal({context.px[i], context.py[i]});
+    // Early out: the path's box misses the shape's.
+    if (std::max(p.x, c.x) < w.lo.x || std::min(p.x, c.x) > w.hi.x || std::max(p.y, c.y) < w.lo.y ||
+        std::min(p.y, c.y) > w.hi.y) {
+        return;
+    }
+    Contact contact;
+    if (collide(p, c, w.spacing, w.eps, contact)) {
+        place(w, context, i, contact);
+    }
+}
+
+bool KinematicShape::pushOutParticle(const Sweep& w, const ProjectContext& context,
+                                     uint32_t i) const {
+    const glm::dvec2 c = w.now.toLocal({context.px[i], context.py[i]});
+    if (c.x < w.lo.x || c.x > w.hi.x || c.y < w.lo.y || c.y > w.hi.y) {
+        return false;
+    }
+    // A path that starts where it ends: a particle inside goes to the nearest surface point.
+    Contact contact;
+    if (!collide(c, c, w.spacing, w.eps, contact)) {
+        return false;
+    }
+    place(w, context, i, contact);
+    return true;
 }
 
 void KinematicShape::project(const ProjectContext& context, uint32_t begin, uint32_t end) {

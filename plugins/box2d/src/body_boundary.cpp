@@ -465,6 +465,27 @@ void BodyBoundary::prepare(const StepContext& context) {
     m_lastPose.swap(m_nextPose);
 }
 
+std::vector<BodyBoundary::SeenPose> BodyBoundary::seenPoses() const {
+    std::vector<SeenPose> out;
+    if (m_physics == nullptr) {
+        return out;
+    }
+    for (const b2Body* body = m_physics->GetBodyList(); body != nullptr; body = body->GetNext()) {
+        const auto found = m_lastPose.find(body);
+        if (found != m_lastPose.end()) {
+            out.push_back({body, found->second.com, found->second.angle});
+        }
+    }
+    return out;
+}
+
+void BodyBoundary::setSeenPoses(std::span<const SeenPose> poses) {
+    m_lastPose.clear();
+    for (const SeenPose& p : poses) {
+        m_lastPose[p.body] = LastPose{p.com, p.angle};
+    }
+}
+
 void BodyBoundary::project(const ProjectContext& context, uint32_t begin, uint32_t end) {
     if (m_colliders.empty()) {
         return;
@@ -473,25 +494,64 @@ void BodyBoundary::project(const ProjectContext& context, uint32_t begin, uint32
     std::vector<KinematicShape::Sweep> sweeps(m_colliders.size());
     std::vector<uint8_t> ready(m_colliders.size(), 0);
     std::vector<Kick> kicks;
+    std::vector<uint32_t> near; // the colliders near particle i, in collider (= body) order
     const uint32_t second = context.prevTimeInStep == context.timeInStep ? 1 : 0;
+    // Runs one collider's projection on particle i and records the velocity it gave.
+    auto run = [&](uint32_t i, uint32_t k, bool pushOutOnly) {
+        const KinematicShape& shape = *m_entries[m_colliders[k].entry].shape;
+        if (ready[k] == 0) {
+            sweeps[k] = shape.sweep(context);
+            ready[k] = 1;
+        }
+        const float x = context.px[i], y = context.py[i];
+        const float vx = context.vx[i], vy = context.vy[i];
+        if (pushOutOnly) {
+            shape.pushOutParticle(sweeps[k], context, i);
+        } else {
+            shape.projectParticle(sweeps[k], context, i);
+        }
+        if (context.vx[i] != vx || context.vy[i] != vy) {
+            kicks.push_back({context.timeInStep, second, i, k, context.material[i],
+                             context.vx[i] - vx, context.vy[i] - vy, context.px[i],
+                             context.py[i]});
+        }
+        return context.px[i] != x || context.py[i] != y;
+    };
     for (uint32_t i = begin; i < end; ++i) {
         const Box path{
             std::min(context.prevX[i], context.px[i]), std::min(context.prevY[i], context.py[i]),
             std::max(context.prevX[i], context.px[i]), std::max(context.prevY[i], context.py[i])};
+        near.clear();
+        bool moved = false;
         m_grid.forEach(path, m_boxes, [&](uint32_t k) {
-            const KinematicShape& shape = *m_entries[m_colliders[k].entry].shape;
-            if (ready[k] == 0) {
-                sweeps[k] = shape.sweep(context);
-                ready[k] = 1;
-            }
-            const float vx = context.vx[i], vy = context.vy[i];
-            shape.projectParticle(sweeps[k], context, i);
-            if (context.vx[i] != vx || context.vy[i] != vy) {
-                kicks.push_back({context.timeInStep, second, i, k, context.material[i],
-                                 context.vx[i] - vx, context.vy[i] - vy, context.px[i],
-                                 context.py[i]});
-            }
+            near.push_back(k);
+            moved = run(i, k, false) || moved;
         });
+        if (!moved || near.size() < 2) {
+            continue;
+        }
+        // A body's fixtures may overlap (a paddle wheel's blades meet at its hub): pushed out of
+        // one, a particle can stand inside another. It leaves the union of the body's fixtures:
+        // each one it stands inside pushes it to its nearest surface, until none does (a few
+        // rounds reach the union's surface for the convex overlaps bodies are made of).
+        constexpr int kUnionRounds = 8;
+        for (std::size_t first = 0; first < near.size();) {
+            const uint32_t body = m_colliders[near[first]].body;
+            std::size_t last = first + 1;
+            while (last < near.size() && m_colliders[near[last]].body == body) {
+                ++last;
+            }
+            for (int round = 0; round < kUnionRounds && last - first > 1; ++round) {
+                bool pushed = false;
+                for (std::size_t n = first; n < last; ++n) {
+                    pushed = run(i, near[n], true) || pushed;
+                }
+                if (!pushed) {
+                    break;
+                }
+            }
+            first = last;
+        }
     }
     if (!kicks.empty()) {
         const std::lock_guard<std::mutex> lock(m_kickMutex);

@@ -177,6 +177,17 @@ public:
     /// when a projection changes its velocity. Set before each step.
     void setMaterialMasses(std::vector<double> masses) { m_masses = std::move(masses); }
 
+    /// Where the fluid's last step left a body (centre of mass, unit: m; angle, unit: rad).
+    struct SeenPose {
+        const b2Body* body = nullptr;
+        glm::dvec2 com{0.0, 0.0};
+        double angle = 0.0;
+    };
+    /// Every body's pose at the end of the last step, in the `b2World`'s body order (saves).
+    std::vector<SeenPose> seenPoses() const;
+    /// Replaces them (a restored save); bodies not listed come in as if new.
+    void setSeenPoses(std::span<const SeenPose> poses);
+
 private:
     bool couples(const b2Fixture& fixture) const;
     uint32_t findOrBuild(b2Fixture& fixture, const glm::dvec2& localCenter, uint32_t bodyIndex,

@@ -1,13 +1,18 @@
 // fluid::box2d — the coupling's frame: fluid step, forces to bodies, Box2D step, reports.
 #include <fluid/box2d/coupling.h>
 
+#include "binary.h"
 #include "body_boundary.h"
 
 #include <fluid/error.h>
+#include <fluid/registry.h>
 
 #include <box2d/box2d.h>
 
 #include <algorithm>
+#include <cstring>
+#include <istream>
+#include <ostream>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -139,9 +144,27 @@ float arealDensity(const World& world, MaterialId material) {
 Coupling::Coupling(World& world, b2World& physics, const CouplingDef& def)
     : m_physics(&physics), m_boundary(nullptr), m_def(def) {
     validate(def);
-    auto plugin = std::make_unique<BodyBoundary>();
-    plugin->attach(&physics, &m_def);
-    m_boundary = &static_cast<BodyBoundary&>(world.addBoundary(std::move(plugin)));
+    // A loaded snapshot brings the plugin back detached, in its place among the boundaries.
+    for (const auto& plugin : world.boundaries()) {
+        auto* bodies = dynamic_cast<BodyBoundary*>(plugin.get());
+        if (bodies != nullptr && !bodies->attached()) {
+            m_boundary = bodies;
+            break;
+        }
+    }
+    if (m_boundary == nullptr) {
+        m_boundary = &static_cast<BodyBoundary&>(
+            world.addBoundary(std::make_unique<BodyBoundary>()));
+    }
+    m_boundary->attach(&physics, &m_def);
+}
+
+void registerCouplingPlugin(Registry& registry) {
+    registry.add(PluginInfo{std::string(BodyBoundary::kType), PluginKind::Boundary,
+                            "Box2D bodies of a fluid::box2d::Coupling (snapshots only: detached "
+                            "until a Coupling takes it over)",
+                            {},
+                            [] { return std::unique_ptr<Plugin>(new BodyBoundary()); }});
 }
 
 Coupling::~Coupling() {
@@ -307,6 +330,8 @@ void Coupling::applyForces(float dt) {
     }
     m_debt.assign(bodies.size(), glm::dvec2(0.0, 0.0));
     m_torqueDebt.assign(bodies.size(), 0.0);
+    m_applied.assign(bodies.size(), glm::vec2(0.0f, 0.0f));
+    m_appliedTorque.assign(bodies.size(), 0.0f);
     const double h = dt;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         const BodyEntry& entry = bodies[b];
@@ -361,12 +386,14 @@ void Coupling::applyForces(float dt) {
         m_debt[b] = owed - h * dynamic;
         m_torqueDebt[b] = torqueOwed - h * torque;
         const glm::dvec2 f = buoyancy + dynamic;
+        m_applied[b] = glm::vec2(float(f.x), float(f.y));
+        m_appliedTorque[b] = float(torque);
         if (f.x != 0.0 || f.y != 0.0) {
-            entry.body->ApplyForce(b2Vec2(float(f.x), float(f.y)), entry.body->GetWorldCenter(),
-                                   true);
+            entry.body->ApplyForce(b2Vec2(m_applied[b].x, m_applied[b].y),
+                                   entry.body->GetWorldCenter(), true);
         }
         if (torque != 0.0) {
-            entry.body->ApplyTorque(float(torque), true);
+            entry.body->ApplyTorque(m_appliedTorque[b], true);
         }
     }
 }
@@ -375,7 +402,8 @@ void Coupling::remember() {
     m_previous.clear();
     for (std::size_t b = 0; b < m_reports.size(); ++b) {
         const BodyReport& r = m_reports[b];
-        m_previous.push_back({r.body, r.wetPoints > 0, r.material, m_debt[b], m_torqueDebt[b]});
+        m_previous.push_back({r.body, r.wetPoints > 0, r.material, m_debt[b], m_torqueDebt[b],
+                              m_applied[b], m_appliedTorque[b]});
     }
 }
 
@@ -553,6 +581,126 @@ void Coupling::makeReports(const World& world) {
             if (p.wet && current.count(p.body) == 0 && alive.count(p.body) != 0) {
                 m_contacts.push_back({p.body, ContactPhase::End, p.material});
             }
+        }
+    }
+}
+
+namespace {
+constexpr char kStateMagic[8] = {'F', 'L', 'C', 'O', 'U', 'P', 'L', 'E'};
+constexpr uint32_t kStateVersion = 1;
+} // namespace
+
+void Coupling::save(std::ostream& out) const {
+    std::unordered_map<const b2Body*, uint32_t> index; // lookup only
+    for (const b2Body* b = m_physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
+        index.emplace(b, uint32_t(index.size()));
+    }
+    binary::Writer w(out);
+    out.write(kStateMagic, sizeof(kStateMagic));
+    w.put(kStateVersion);
+    // Bodies destroyed since the last frame are left out.
+    uint32_t kept = 0;
+    for (const Previous& p : m_previous) {
+        kept += index.count(p.body) != 0 ? 1 : 0;
+    }
+    w.put(kept);
+    for (const Previous& p : m_previous) {
+        const auto found = index.find(p.body);
+        if (found == index.end()) {
+            continue;
+        }
+        w.put(found->second);
+        w.put(uint8_t(p.wet ? 1 : 0));
+        w.put(p.material);
+        w.put(p.debt.x);
+        w.put(p.debt.y);
+        w.put(p.torqueDebt);
+        w.put(p.applied.x);
+        w.put(p.applied.y);
+        w.put(p.appliedTorque);
+    }
+    const std::vector<BodyBoundary::SeenPose> poses = m_boundary->seenPoses();
+    w.put(uint32_t(poses.size()));
+    for (const BodyBoundary::SeenPose& p : poses) {
+        w.put(index.at(p.body));
+        w.put(p.com.x);
+        w.put(p.com.y);
+        w.put(p.angle);
+    }
+    if (!out) {
+        throw Error("fluid::box2d::Coupling::save: the stream failed while writing");
+    }
+}
+
+void Coupling::load(std::istream& in) {
+    std::vector<b2Body*> bodies;
+    for (b2Body* b = m_physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
+        bodies.push_back(b);
+    }
+    binary::Reader r(in, "coupling save");
+    char magic[sizeof(kStateMagic)];
+    if (!in.read(magic, sizeof(magic)) || std::memcmp(magic, kStateMagic, sizeof(magic)) != 0) {
+        r.fail("not a coupling save (bad magic)");
+    }
+    const auto version = r.get<uint32_t>("version");
+    if (version != kStateVersion) {
+        r.fail("version " + std::to_string(version) + " is not supported (this build reads " +
+               std::to_string(kStateVersion) + ")");
+    }
+    const auto body = [&](const char* field) {
+        const auto k = r.get<uint32_t>(field);
+        if (k >= bodies.size()) {
+            r.fail(std::string(field) + " " + std::to_string(k) + " is beyond the Box2D world's " +
+                   std::to_string(bodies.size()) + " bodies");
+        }
+        return bodies[k];
+    };
+    const auto finite = [&](auto value, const char* field) {
+        if (!std::isfinite(value)) {
+            r.fail(std::string(field) + " is not finite");
+        }
+        return value;
+    };
+    std::vector<Previous> previous(r.count("body state count", uint32_t(bodies.size())));
+    for (Previous& p : previous) {
+        p.body = body("body index");
+        const auto wet = r.get<uint8_t>("wet flag");
+        if (wet > 1) {
+            r.fail("wet flag = " + std::to_string(wet) + " is not 0 or 1");
+        }
+        p.wet = wet != 0;
+        p.material = r.get<uint16_t>("material");
+        p.debt.x = finite(r.get<double>("debt"), "debt");
+        p.debt.y = finite(r.get<double>("debt"), "debt");
+        p.torqueDebt = finite(r.get<double>("torque debt"), "torque debt");
+        p.applied.x = finite(r.get<float>("applied force"), "applied force");
+        p.applied.y = finite(r.get<float>("applied force"), "applied force");
+        p.appliedTorque = finite(r.get<float>("applied torque"), "applied torque");
+    }
+    std::vector<BodyBoundary::SeenPose> poses(r.count("pose count", uint32_t(bodies.size())));
+    for (BodyBoundary::SeenPose& p : poses) {
+        p.body = body("posed body index");
+        p.com.x = finite(r.get<double>("pose"), "pose");
+        p.com.y = finite(r.get<double>("pose"), "pose");
+        p.angle = finite(r.get<double>("pose angle"), "pose angle");
+    }
+    // Everything read: now the coupling changes.
+    m_previous = std::move(previous);
+    m_boundary->setSeenPoses(poses);
+    m_reports.clear();
+    m_splashes.clear();
+    m_contacts.clear();
+    m_removed.clear();
+    m_profile = Profile{};
+    for (const Previous& p : m_previous) {
+        if (p.body->GetType() != b2_dynamicBody) {
+            continue;
+        }
+        if (p.applied.x != 0.0f || p.applied.y != 0.0f) {
+            p.body->ApplyForce(b2Vec2(p.applied.x, p.applied.y), p.body->GetWorldCenter(), true);
+        }
+        if (p.appliedTorque != 0.0f) {
+            p.body->ApplyTorque(p.appliedTorque, true);
         }
     }
 }

@@ -143,6 +143,11 @@ public:
     /// keep several shapes and pick, per particle, the ones near it (the Box2D coupling).
     /// Writes only slot `i`; any worker thread.
     void projectParticle(const Sweep& sweep, const ProjectContext& context, uint32_t i) const;
+    /// Puts particle `i` on the nearest surface point if it stands inside the shape at the
+    /// sweep's end pose (its path ignored); returns true if it moved. For owners of overlapping
+    /// shapes that must end outside all of them (a body's fixtures). Writes only slot `i`; any
+    /// worker thread.
+    bool pushOutParticle(const Sweep& sweep, const ProjectContext& context, uint32_t i) const;
     /// True once `prepare` built the geometry for the current shape and spacing.
     bool built() const { return m_built; }
     /// Axis-aligned bounds of the shape in its local frame (unit: m), as last built.
@@ -207,6 +212,11 @@ protected:
     void onParamChanged(std::size_t index) override;
 
 private:
+    // Puts particle `i` at `contact` (local frame of the sweep's end pose) and takes away its
+    // velocity into the wall, relative to the wall's own velocity there.
+    void place(const Sweep& sweep, const ProjectContext& context, uint32_t i,
+               const Contact& contact) const;
+
     std::vector<glm::dvec2> m_local;
     LocalBounds m_bounds;
     bool m_built = false;

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <iosfwd>
 #include <memory>
 #include <span>
 #include <vector>
@@ -108,6 +109,13 @@ float arealDensity(const World& world, MaterialId material);
 
 class BodyBoundary;
 
+/// Registers the type "box2d.bodies", the coupling's boundary plugin, in `registry` so that
+/// `World::load` reads snapshots of coupled worlds (see `Coupling`, "Saving"). The plugin is
+/// not for levels or `Registry::create` by hand: detached, it is an empty boundary until a
+/// `Coupling` takes it over. Throws `fluid::Error` if the type is registered already. Thread
+/// rule: as `Registry::add`.
+void registerCouplingPlugin(Registry& registry);
+
 /// Two-way coupling of a fluid `World` with a Box2D `b2World`.
 ///
 /// Every coupled fixture (circle, polygon, edge, chain; static, kinematic or dynamic body) is a
@@ -182,8 +190,10 @@ class BodyBoundary;
 /// Order among boundaries: the coupling is one boundary plugin of the world (type
 /// "box2d.bodies"), added by the constructor; boundaries added after it have the final word in
 /// each projection, so add containers (`boundary.box`) before creating the coupling.
-/// Snapshots (`World::save`) of a coupled world cannot be loaded: "box2d.bodies" is not in the
-/// registry (the Box2D world is the game's to save).
+/// Saving: `World::save` writes the plugin in its place among the boundaries; a registry with
+/// `registerCouplingPlugin` loads it back detached, and a `Coupling` made for the loaded world
+/// takes it over. The Box2D world is saved with `savePhysics` (physics_save.h) and the
+/// coupling's own state with `save`; `fluid::Level::save` does all three for a level.
 ///
 /// Limits: a body farther than 1e5 m from the origin, or whose speed exceeds 1e3 m/s, is
 /// skipped for that step (it is neither a boundary nor pushed); a chain of more than 4096
@@ -197,8 +207,10 @@ class BodyBoundary;
 /// so that a `World` (a movable value) may be moved after the coupling was made.
 class Coupling {
 public:
-    /// Attaches `physics` to `world` (adds the "box2d.bodies" boundary plugin). Throws
-    /// `fluid::Error` for a bad `def`. Stepping thread, between steps.
+    /// Attaches `physics` to `world`: takes over the world's first detached "box2d.bodies"
+    /// boundary plugin (one a loaded snapshot brought back, keeping its place among the
+    /// boundaries), or adds one. Throws `fluid::Error` for a bad `def`. Stepping thread,
+    /// between steps.
     Coupling(World& world, b2World& physics, const CouplingDef& def = {});
     /// Detaches: the world's plugin stops seeing bodies.
     ~Coupling();
@@ -252,6 +264,21 @@ public:
     /// The Box2D world.
     b2World& physics() const;
 
+    /// Writes the coupling's state between frames to `out`: per body (by its index in the
+    /// `b2World`'s `GetBodyList()`) the wet state and material the contact events compare with,
+    /// the relaxation's unpaid impulse, the force and torque applied for Box2D's next step, and
+    /// the pose the fluid last saw it at. Bodies stand by index, so the Box2D world must be
+    /// restored with its bodies in the same order (`savePhysics` and `loadPhysics` keep it).
+    /// Reports and events of the last frame are not state and are not saved. Stepping thread,
+    /// between frames; throws `fluid::Error` if the stream fails.
+    void save(std::ostream& out) const;
+    /// Reads what `save` wrote into this coupling, whose Box2D world has just been restored
+    /// (before any step): replaces the state above and applies the saved forces and torques to
+    /// their bodies. Throws `fluid::Error` ("coupling save: ...") for a truncated or malformed
+    /// save, or a body index beyond the Box2D world's bodies; the coupling is unchanged then.
+    /// Stepping thread, between frames.
+    void load(std::istream& in);
+
 private:
     void checkWorld(const World& world, const char* function) const;
     void fluidRound(World& world, float dt);
@@ -268,6 +295,8 @@ private:
         uint16_t material = 0;
         glm::dvec2 debt{0.0, 0.0}; // impulse measured but not applied yet (N s)
         double torqueDebt = 0.0;   // angular impulse likewise (N m s)
+        glm::vec2 applied{0.0f, 0.0f}; // force handed to Box2D for its next step (N)
+        float appliedTorque = 0.0f;    // torque likewise (N m)
     };
 
     b2World* m_physics;
@@ -281,6 +310,8 @@ private:
     std::vector<RemovedEvent> m_removed; // the rounds' removals of the last frame, in order
     std::vector<glm::dvec2> m_debt; // per body of the step, in body order: see Previous
     std::vector<double> m_torqueDebt;
+    std::vector<glm::vec2> m_applied; // per body of the step: see Previous
+    std::vector<float> m_appliedTorque;
     std::vector<double> m_addedMass; // per body of the step (kg), for the relaxation
     std::vector<double> m_displaced; // fluid mass displaced (kg): submerged area x density
 };

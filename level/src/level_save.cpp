@@ -1,0 +1,270 @@
+// fluid::level — saving and restoring a level between frames (Level::save, readLevelSave).
+#include <fluid/box2d/physics_save.h>
+#include <fluid/level.h>
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <unordered_map>
+
+namespace fluid {
+
+namespace {
+
+constexpr char kMagic[8] = {'F', 'L', 'U', 'I', 'D', 'L', 'V', 'L'};
+constexpr uint32_t kVersion = 1;
+// A name that refers to nothing any more (the game destroyed the body or joint).
+constexpr uint32_t kGone = 0xFFFFFFFFu;
+
+uint64_t fnv1a(std::string_view bytes) {
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (const char c : bytes) {
+        h ^= uint8_t(c);
+        h *= 0x100000001b3ull;
+    }
+    return h;
+}
+
+void putU32(std::string& out, uint32_t v) {
+    out.append(reinterpret_cast<const char*>(&v), sizeof(v));
+}
+
+void putBytes(std::string& out, std::string_view bytes) {
+    const uint64_t n = bytes.size();
+    out.append(reinterpret_cast<const char*>(&n), sizeof(n));
+    out.append(bytes);
+}
+
+// Reads the parts of a save whose checksum held.
+class Parts {
+public:
+    Parts(std::string_view data, std::string file) : m_data(data), m_file(std::move(file)) {}
+    uint32_t u32(const char* field) {
+        uint32_t v = 0;
+        std::memcpy(&v, take(sizeof(v), field).data(), sizeof(v));
+        return v;
+    }
+    std::string_view bytes(const char* field) {
+        uint64_t n = 0;
+        std::memcpy(&n, take(sizeof(n), field).data(), sizeof(n));
+        if (n > m_data.size() - m_offset) {
+            fail(std::string(field) + " promises " + std::to_string(n) + " bytes; " +
+                 std::to_string(m_data.size() - m_offset) + " remain");
+        }
+        return take(std::size_t(n), field);
+    }
+    bool done() const { return m_offset == m_data.size(); }
+    [[noreturn]] void fail(const std::string& message) const {
+        throw Error("level save '" + m_file + "': " + message);
+    }
+
+private:
+    std::string_view take(std::size_t n, const char* field) {
+        if (n > m_data.size() - m_offset) {
+            fail(std::string("truncated (ended while reading ") + field + ")");
+        }
+        const std::string_view out = m_data.substr(m_offset, n);
+        m_offset += n;
+        return out;
+    }
+    std::string_view m_data;
+    std::size_t m_offset = 0;
+    std::string m_file;
+};
+
+} // namespace
+
+void Level::save(std::ostream& out) const {
+    std::string data(kMagic, sizeof(kMagic));
+    putU32(data, kVersion);
+    putBytes(data, file);
+    putBytes(data, source);
+    putU32(data, uint32_t(m_goalState));
+    std::ostringstream worldBytes;
+    world.save(worldBytes);
+    putBytes(data, worldBytes.str());
+    putU32(data, physics ? 1 : 0);
+    if (physics) {
+        std::ostringstream physicsBytes, couplingBytes;
+        box2d::savePhysics(*physics, physicsBytes);
+        coupling->save(couplingBytes);
+        putBytes(data, physicsBytes.str());
+        putBytes(data, couplingBytes.str());
+        // The level's names by position in Box2D's lists.
+        std::unordered_map<const b2Body*, uint32_t> bodyIndex; // lookup only
+        for (const b2Body* b = physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
+            bodyIndex.emplace(b, uint32_t(bodyIndex.size()));
+        }
+        std::unordered_map<const b2Joint*, uint32_t> jointIndex; // lookup only
+        for (const b2Joint* j = physics->GetJointList(); j != nullptr; j = j->GetNext()) {
+            jointIndex.emplace(j, uint32_t(jointIndex.size()));
+        }
+        putU32(data, uint32_t(bodies.size()));
+        for (const auto& [bodyName, body] : bodies) {
+            const auto found = bodyIndex.find(body);
+            putU32(data, found != bodyIndex.end() ? found->second : kGone);
+        }
+        putU32(data, uint32_t(joints.size()));
+        for (const auto& [jointName, joint] : joints) {
+            const auto found = jointIndex.find(joint);
+            putU32(data, found != jointIndex.end() ? found->second : kGone);
+        }
+    }
+    const uint64_t sum = fnv1a(data);
+    data.append(reinterpret_cast<const char*>(&sum), sizeof(sum));
+    out.write(data.data(), std::streamsize(data.size()));
+    if (!out) {
+        throw Error("Level::save: the stream failed while writing the save of '" + file + "'");
+    }
+}
+
+void Level::saveFile(const std::string& path) const {
+    std::ostringstream bytes;
+    save(bytes);
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out) {
+        throw Error("Level::saveFile: cannot open '" + path + "' for writing");
+    }
+    const std::string data = bytes.str();
+    out.write(data.data(), std::streamsize(data.size()));
+    out.close();
+    if (!out) {
+        throw Error("Level::saveFile: writing '" + path + "' failed");
+    }
+}
+
+Level readLevelSave(std::istream& in, std::string_view file, const Registry& registry,
+                    const LevelOptions& options) {
+    std::string raw;
+    char buffer[65536];
+    while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0) {
+        raw.append(buffer, std::size_t(in.gcount()));
+    }
+    Parts check(raw, std::string(file));
+    if (raw.size() < sizeof(kMagic) || std::memcmp(raw.data(), kMagic, sizeof(kMagic)) != 0) {
+        check.fail("not a level save (no FLUIDLVL header)");
+    }
+    if (raw.size() < sizeof(kMagic) + sizeof(uint32_t) + sizeof(uint64_t)) {
+        check.fail("truncated (" + std::to_string(raw.size()) + " bytes)");
+    }
+    uint32_t version = 0;
+    std::memcpy(&version, raw.data() + sizeof(kMagic), sizeof(version));
+    if (version != kVersion) {
+        check.fail("format version " + std::to_string(version) +
+                   " is not supported; this fluid reads version " + std::to_string(kVersion));
+    }
+    const std::string_view data = std::string_view(raw).substr(0, raw.size() - sizeof(uint64_t));
+    uint64_t sum = 0;
+    std::memcpy(&sum, raw.data() + data.size(), sizeof(sum));
+    if (sum != fnv1a(data)) {
+        check.fail("corrupt or truncated (checksum mismatch)");
+    }
+    Parts parts(data.substr(sizeof(kMagic) + sizeof(uint32_t)), std::string(file));
+    const std::string levelFile(parts.bytes("the level file name"));
+    const std::string_view source = parts.bytes("the level file text");
+    const uint32_t goalState = parts.u32("the goal state");
+    if (goalState > uint32_t(GoalState::Lost)) {
+        parts.fail("goal state " + std::to_string(goalState) + " is not one");
+    }
+    const std::string_view worldBytes = parts.bytes("the world");
+    const uint32_t hasPhysics = parts.u32("the Box2D flag");
+
+    // Everything but the state comes from the level file, as the game loaded it.
+    Level level = parseLevel(source, levelFile, registry, options);
+    if ((hasPhysics == 1) != (level.physics != nullptr)) {
+        parts.fail(hasPhysics == 1 ? "holds a Box2D world, but its level file declares no body"
+                                   : "holds no Box2D world, but its level file declares bodies");
+    }
+    const box2d::CouplingDef couplingDef =
+        level.coupling ? level.coupling->def() : box2d::CouplingDef{};
+    std::vector<std::string> bodyNames, jointNames;
+    for (const auto& entry : level.bodies) {
+        bodyNames.push_back(entry.first);
+    }
+    for (const auto& entry : level.joints) {
+        jointNames.push_back(entry.first);
+    }
+    level.coupling.reset();
+    level.joints.clear();
+    level.bodies.clear();
+    level.physics.reset();
+
+    // The part's own error follows the save's name.
+    const auto located = [&](const char* part, const auto& load) {
+        try {
+            return load();
+        } catch (const Error& e) {
+            parts.fail(std::string(part) + ": " + e.what());
+        }
+    };
+    Registry withCoupling = registry;
+    if (withCoupling.find("box2d.bodies") == nullptr) {
+        box2d::registerCouplingPlugin(withCoupling);
+    }
+    level.world = located("the world", [&] {
+        std::istringstream s{std::string(worldBytes)};
+        return World::load(s, withCoupling, options.workerCount, options.tasks);
+    });
+    level.m_goalState = GoalState(goalState);
+    if (hasPhysics == 1) {
+        const std::string_view physicsBytes = parts.bytes("the Box2D world");
+        const std::string_view couplingBytes = parts.bytes("the coupling");
+        level.physics = located("the Box2D world", [&] {
+            std::istringstream s{std::string(physicsBytes)};
+            return box2d::loadPhysics(s);
+        });
+        std::vector<b2Body*> bodyList;
+        for (b2Body* b = level.physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
+            bodyList.push_back(b);
+        }
+        std::vector<b2Joint*> jointList;
+        for (b2Joint* j = level.physics->GetJointList(); j != nullptr; j = j->GetNext()) {
+            jointList.push_back(j);
+        }
+        const auto names = [&](const char* what, const std::vector<std::string>& fileNames,
+                               const auto& list, auto& out) {
+            const uint32_t count = parts.u32(what);
+            if (count != fileNames.size()) {
+                parts.fail(std::string("names ") + std::to_string(count) + " " + what +
+                           "; its level file declares " + std::to_string(fileNames.size()));
+            }
+            for (uint32_t k = 0; k < count; ++k) {
+                const uint32_t index = parts.u32(what);
+                if (index == kGone) {
+                    continue; // destroyed by the game before the save
+                }
+                if (index >= list.size()) {
+                    parts.fail(std::string(what) + " '" + fileNames[k] + "' is number " +
+                               std::to_string(index) + " of " + std::to_string(list.size()));
+                }
+                out.emplace_back(fileNames[k], list[index]);
+            }
+        };
+        names("bodies", bodyNames, bodyList, level.bodies);
+        names("joints", jointNames, jointList, level.joints);
+        level.coupling = located("the coupling", [&] {
+            auto coupling =
+                std::make_unique<box2d::Coupling>(level.world, *level.physics, couplingDef);
+            std::istringstream s{std::string(couplingBytes)};
+            coupling->load(s);
+            return coupling;
+        });
+    } else if (hasPhysics != 0) {
+        parts.fail("Box2D flag " + std::to_string(hasPhysics) + " is not 0 or 1");
+    }
+    if (!parts.done()) {
+        parts.fail("bytes left over after the last part");
+    }
+    return level;
+}
+
+Level loadLevelSave(const std::string& path, const Registry& registry,
+                    const LevelOptions& options) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw Error("loadLevelSave: cannot open '" + path + "'");
+    }
+    return readLevelSave(in, path, registry, options);
+}
+
+} // namespace fluid

@@ -1,0 +1,30 @@
+// fluid — saving and restoring a Box2D 2.4 world: bodies, fixtures, revolute joints.
+#pragma once
+
+#include <iosfwd>
+#include <memory>
+
+class b2World;
+
+namespace fluid::box2d {
+
+/// Writes `physics` to `out` in a binary form `loadPhysics` reads back: the world's gravity and
+/// settings; every body in `GetBodyList()` order with its type, pose, velocities, damping,
+/// gravity scale, flags (awake, enabled, bullet, fixed rotation, sleep allowed) and mass data;
+/// every fixture in order (circle, polygon, edge, chain; density, friction, restitution and its
+/// threshold, sensor flag, filter); every revolute joint with its anchors, limits and motor.
+/// Not saved: user data (pointers), contact listeners and filters, and Box2D's internal solver
+/// state (contacts and their warm-starting impulses, joint impulses, sleep timers), which is
+/// rebuilt by the next `Step` — a restored world continues close to, not bit-identical with,
+/// the original. Throws `fluid::Error` for a joint of another type (naming it). Thread rule:
+/// the thread that steps `physics`, between steps.
+void savePhysics(const b2World& physics, std::ostream& out);
+
+/// Reads what `savePhysics` wrote and builds a new `b2World` whose bodies, fixtures and joints
+/// keep their saved order in `GetBodyList()`, `GetFixtureList()` and `GetJointList()`. Throws
+/// `fluid::Error` ("box2d save: ...") for a truncated or malformed save: a count out of range,
+/// a non-finite or out-of-range value (|coordinate| above 1e5 m, a polygon not of 3 to 8
+/// vertices), an unknown shape or joint type. Any thread (the new world is the caller's).
+std::unique_ptr<b2World> loadPhysics(std::istream& in);
+
+} // namespace fluid::box2d
