@@ -62,7 +62,7 @@ void validate(const WorldDef& def) {
     }
     checkRange("depth", def.depth, 1e-4f, 1e3f, "m");
     checkRange("courant", def.courant, 0.01f, 1.0f, "1");
-    checkRange<uint32_t>("maxSubsteps", def.maxSubsteps, 1, 10000, "count");
+    checkRange<uint32_t>("maxSubsteps", def.maxSubsteps, 1, 1000, "count");
     checkRange<uint32_t>("maxParticles", def.maxParticles, 1, 1u << 26, "count");
     validatePositionBased(def.positionBased, "WorldDef: positionBased.");
     if (def.tasks.enqueue == nullptr) {

@@ -180,7 +180,7 @@ private:
             def.soundSpeed = float(c);
             def.courant = float(w.number("courant", {0.01, 1, "1"}, def.courant));
             def.maxSubsteps =
-                uint32_t(w.integer("maxSubsteps", {1, 10000, "count"}, def.maxSubsteps));
+                uint32_t(w.integer("maxSubsteps", {1, 1000, "count"}, def.maxSubsteps));
             def.maxParticles = uint32_t(
                 w.integer("maxParticles", {1, double(1u << 26), "count"}, def.maxParticles));
             def.workerCount = uint32_t(w.integer("workers", {1, 256, "count"}, 1));

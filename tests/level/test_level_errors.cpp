@@ -130,6 +130,8 @@ TEST_CASE("level errors: wrong types say what was expected and what was found", 
 TEST_CASE("level errors: out-of-range values give the range and unit", "[level][errors]") {
     CHECK(errorOf(level(R"(, "world": {"frameRate": 5000})")) ==
           "t.json:1:73: at /world/frameRate: 5000 is out of range [1, 1000] (unit: Hz)");
+    CHECK(errorOf(level(R"(, "world": {"maxSubsteps": 10000})")) ==
+          "t.json:1:75: at /world/maxSubsteps: 10000 is out of range [1, 1000] (unit: count)");
     CHECK(errorOf(level(R"(, "world": {"workers": 0})")) ==
           "t.json:1:71: at /world/workers: 0 is out of range [1, 256] (unit: count)");
     CHECK(errorOf(level(R"(, "world": {"soundSpeed": 0.05})")) ==

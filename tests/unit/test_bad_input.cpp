@@ -133,6 +133,12 @@ TEST_CASE("WorldDef with NaN or out-of-range fields throws", "[unit][bad-input]"
         def.maxSubsteps = 0;
         CHECK_THROWS_AS(World(def), Error);
     }
+    SECTION("a sub-step cap that would let one frame take seconds") {
+        def.maxSubsteps = 1001;
+        CHECK_THROWS_MATCHES(World(def), Error,
+                             Catch::Message("WorldDef: maxSubsteps = 1001 is out of range "
+                                            "[1, 1000] (unit: count)"));
+    }
     SECTION("zero position-based sub-steps") {
         def.positionBased.substeps = 0;
         CHECK_THROWS_MATCHES(World(def), Error,
