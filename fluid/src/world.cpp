@@ -236,7 +236,7 @@ ParticleHandle World::addParticle(glm::vec2 position, glm::vec2 velocity, Materi
     return s.append(position, velocity, materialId.index, std::numeric_limits<double>::infinity());
 }
 
-uint32_t World::spawnBlob(const BlobDef& blob) {
+uint32_t World::spawnBlob(const BlobDef& blob, uint32_t* insideSolids) {
     const Material& mat = material(blob.material);
     checkVec("spawnBlob", "velocity", blob.velocity);
     checkLifetime("spawnBlob: ", blob.lifetime);
@@ -286,6 +286,20 @@ uint32_t World::spawnBlob(const BlobDef& blob) {
                 points.push_back(p);
             }
         }
+    }
+    // Lattice points inside a boundary's solid (or outside its container) would be thrown out
+    // at the first step, violently: they are left out.
+    const std::size_t before = points.size();
+    std::erase_if(points, [&](glm::vec2 p) {
+        for (const auto& boundary : m_state->boundaries) {
+            if (boundary->contains(p)) {
+                return true;
+            }
+        }
+        return false;
+    });
+    if (insideSolids != nullptr) {
+        *insideSolids = static_cast<uint32_t>(before - points.size());
     }
     if (m_state->particles.size() + points.size() > m_state->def.maxParticles) {
         throw Error("spawnBlob: particle cap exceeded: " + std::to_string(points.size()) +

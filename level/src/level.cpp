@@ -111,14 +111,15 @@ public:
         readWorld(root);
         readMaterials(root);
         readPlugins(root);
-        readBlobs(root);
         readEmitters(root);
         readDrains(root);
         readSensors(root);
         readGoal(root);
-        // Last: the coupling's boundary plugin joins after the file's containers (see
+        // The coupling's boundary plugin joins after the file's containers (see
         // box2d::Coupling), and bodies' densities read the finished world's materials.
         detail::readBodies(m_doc, root, m_level);
+        // Last: blobs leave out the lattice points inside every solid, bodies included.
+        readBlobs(root);
     }
 
 private:
@@ -449,8 +450,21 @@ private:
             blob.lifetime = float(b.number("lifetime", kLifetime, 0.0));
             checkBlobSize(b, shape, blob.material);
             const uint32_t first = m_level.world.particleCount();
+            uint32_t inside = 0;
             const uint32_t added =
-                located(m_doc, at, [&] { return m_level.world.spawnBlob(blob); });
+                located(m_doc, at, [&] { return m_level.world.spawnBlob(blob, &inside); });
+            if (added == 0 && inside > 0) {
+                b.fail("the blob holds no particle: all of its " + std::to_string(inside) +
+                       " lattice points lie inside solids (plugins or bodies) or outside the "
+                       "container");
+            }
+            if (inside > 0) {
+                m_level.warnings.push_back(m_doc.locatedText(
+                    at, std::to_string(inside) + " of the blob's " +
+                            std::to_string(inside + added) +
+                            " lattice points lie inside solids (plugins or bodies) or outside "
+                            "the container and were left out"));
+            }
             if (added == 0) {
                 b.fail("the blob holds no particle: it is smaller than the material's lattice "
                        "spacing " +

@@ -69,6 +69,13 @@ void BoxContainer::prepare(const StepContext& context) {
     m_builtSupport = context.supportRadius;
 }
 
+bool BoxContainer::contains(glm::vec2 point) const {
+    const double x = point.x, y = point.y;
+    const bool openTop = value(kOpenTop) >= 0.5;
+    return x < value(kMinX) || x > value(kMaxX) || y < value(kMinY) ||
+           (!openTop && y > value(kMaxY));
+}
+
 void BoxContainer::project(const ProjectContext& context, uint32_t begin, uint32_t end) {
     const auto x0 = static_cast<float>(value(kMinX));
     const auto y0 = static_cast<float>(value(kMinY));

@@ -57,6 +57,11 @@ void CircleBoundary::build(double spacing, double support, std::vector<glm::dvec
     }
 }
 
+bool CircleBoundary::insideLocal(glm::dvec2 local) const {
+    const double r = value(kRadius);
+    return local.x * local.x + local.y * local.y < r * r;
+}
+
 bool CircleBoundary::collide(glm::dvec2 prev, glm::dvec2 cur, double /*spacing*/, double eps,
                              Contact& out) const {
     const double r2 = m_radius * m_radius;

@@ -169,6 +169,10 @@ bool KinematicShape::pushOutParticle(const Sweep& w, const ProjectContext& conte
     return true;
 }
 
+bool KinematicShape::contains(glm::vec2 point) const {
+    return insideLocal(pose().toLocal(glm::dvec2(point)));
+}
+
 void KinematicShape::project(const ProjectContext& context, uint32_t begin, uint32_t end) {
     if (!m_built) {
         return; // no prepare yet: no geometry to test against

@@ -116,6 +116,20 @@ bool PolygonBoundary::containsLocal(glm::dvec2 local) const {
     return m_edges && m_edges->inside(local);
 }
 
+bool PolygonBoundary::insideLocal(glm::dvec2 local) const {
+    // Even-odd over the vertices as set (no build needed).
+    const std::span<const glm::vec2> v = pointsAt(kVertices);
+    bool inside = false;
+    for (std::size_t k = 0, j = v.size() - 1; k < v.size(); j = k++) {
+        const glm::dvec2 a(v[k]), b(v[j]);
+        if ((a.y > local.y) != (b.y > local.y) &&
+            local.x < (b.x - a.x) * (local.y - a.y) / (b.y - a.y) + a.x) {
+            inside = !inside;
+        }
+    }
+    return inside;
+}
+
 void PolygonBoundary::validate() const {
     if (pointsAt(kVertices).empty()) {
         return; // not set yet: the first step says so

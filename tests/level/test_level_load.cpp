@@ -394,6 +394,64 @@ TEST_CASE("a level names its quality preset, and explicit settings override its 
     CHECK(o.viscosityInterval == game.viscosityInterval);
 }
 
+TEST_CASE("blobs leave out what lies inside bodies and solid plugins, with a warning",
+          "[level]") {
+    const std::string text = R"({
+  "version": 1,
+  "world": { "gravity": [0, -9.81] },
+  "materials": [ { "name": "water", "preset": "water" } ],
+  "plugins": [ { "type": "boundary.box", "params": { "minX": 0, "maxX": 1, "maxY": 1 } },
+               { "type": "boundary.circle", "params": { "x": 0.7, "y": 0.1, "radius": 0.05 } } ],
+  "bodies": [ { "name": "crate", "position": [0.2, 0.1],
+                "fixtures": [ { "shape": "box", "width": 0.1, "height": 0.1, "densityRatio": 0.5 } ] } ],
+  "blobs": [
+    { "material": "water", "shape": "box", "min": [0, 0], "max": [0.9, 0.2] }
+  ]
+})";
+    Level level = parseLevel(text, "t.json", builtins());
+    REQUIRE(level.warnings.size() == 1);
+    CHECK_THAT(level.warnings[0],
+               Catch::StartsWith("t.json:10:5: at /blobs/0: ") &&
+                   Catch::EndsWith(" lattice points lie inside solids (plugins or bodies) or "
+                                   "outside the container and were left out"));
+    // No particle inside the crate or the disc.
+    for (uint32_t i = 0; i < level.world.particleCount(); ++i) {
+        const float x = level.world.positionX()[i], y = level.world.positionY()[i];
+        CHECK_FALSE((std::fabs(x - 0.2f) < 0.05f && std::fabs(y - 0.1f) < 0.05f));
+        CHECK((x - 0.7f) * (x - 0.7f) + (y - 0.1f) * (y - 0.1f) >= 0.05f * 0.05f);
+    }
+    // Nothing is thrown out at the first frames (free fall alone reaches 0.8 m/s).
+    float fastest = 0.0f;
+    for (int f = 0; f < 5; ++f) {
+        level.step();
+        for (uint32_t i = 0; i < level.world.particleCount(); ++i) {
+            fastest = std::max(fastest, std::hypot(level.world.velocityX()[i],
+                                                   level.world.velocityY()[i]));
+        }
+    }
+    CHECK(fastest < 1.5f);
+
+    // A blob wholly inside the crate is an error.
+    const std::string buried = R"({
+  "version": 1,
+  "materials": [ { "name": "water", "preset": "water" } ],
+  "bodies": [ { "name": "crate", "position": [0.2, 0.1],
+                "fixtures": [ { "shape": "box", "width": 0.2, "height": 0.2, "densityRatio": 0.5 } ] } ],
+  "blobs": [ { "material": "water", "shape": "box", "min": [0.15, 0.05], "max": [0.25, 0.15] } ]
+})";
+    std::string buriedError = "no error";
+    try {
+        parseLevel(buried, "t.json", builtins());
+    } catch (const LevelError& e) {
+        buriedError = e.what();
+    }
+    CHECK_THAT(buriedError,
+               Catch::StartsWith("t.json:6:14: at /blobs/0: the blob holds no particle: all of "
+                                 "its ") &&
+                   Catch::EndsWith(" lattice points lie inside solids (plugins or bodies) or "
+                                   "outside the container"));
+}
+
 TEST_CASE("blobs that overlap load with a warning naming the blob, the file, line and column",
           "[level]") {
     const std::string text = R"({

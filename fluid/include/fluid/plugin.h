@@ -316,6 +316,12 @@ public:
     /// Wall friction: scale of the fluid's viscosity against this solid (unit: 1; 0 = free slip,
     /// 1 = the fluid's own viscosity, larger = stickier).
     virtual float friction() const { return 0.0f; }
+    /// True when `point` (unit: m) lies in what `project` keeps particles out of: inside a
+    /// solid, outside a container; a wall has no inside. Read from the plugin's parameters as
+    /// they are now (it may be called before any `prepare`): `World::spawnBlob` leaves out the
+    /// lattice points it returns true for. Default: false (the plugin does not say). Stepping
+    /// thread.
+    virtual bool contains(glm::vec2 /*point*/) const { return false; }
     /// The samples, as left by the last `prepare`.
     const BoundarySamples& samples() const { return m_samples; }
 

@@ -28,13 +28,13 @@ namespace fluid {
 /// that both sides must agree on, or the entry points below. The test "the plugin ABI
 /// declaration hash is current" fails when the declarations of plugin.h and registry.h change,
 /// as a reminder. Thread rule: a constant.
-inline constexpr uint32_t kPluginAbiVersion = 2;
+inline constexpr uint32_t kPluginAbiVersion = 3;
 
 /// FNV-1a (32 bit) of the declarations of fluid/plugin.h and fluid/registry.h with `//`
 /// comments and all whitespace removed (see `pluginAbiDeclHash`). Part of
 /// `pluginAbiDetails()`, so a plugin compiled against other declarations is refused even when
 /// `kPluginAbiVersion` was not bumped. Update it when that test says so. Thread rule: a constant.
-inline constexpr uint32_t kPluginAbiDeclHash = 0x98a77e3du;
+inline constexpr uint32_t kPluginAbiDeclHash = 0xf0c1a077u;
 
 /// Name of the entry point returning the library's `kPluginAbiVersion` (C linkage, signature
 /// `uint32_t(void)`, frozen for every future ABI version).

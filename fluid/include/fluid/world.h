@@ -250,10 +250,11 @@ public:
     /// Adds one particle (finite position and velocity, unit: m and m/s; known material).
     /// Throws when the world is full (`WorldDef::maxParticles`).
     ParticleHandle addParticle(glm::vec2 position, glm::vec2 velocity, MaterialId material);
-    /// Fills the blob's shape on its material's lattice; all or nothing. Returns the particle
-    /// count added (0 if the shape holds no lattice point). Throws for bad geometry or a full
-    /// world.
-    uint32_t spawnBlob(const BlobDef& blob);
+    /// Fills the blob's shape on its material's lattice; all or nothing. Lattice points that a
+    /// boundary plugin `contains` (inside a solid, outside a container) are left out, and their
+    /// count is written to `insideSolids` when given. Returns the particle count added (0 if
+    /// the shape holds no free lattice point). Throws for bad geometry or a full world.
+    uint32_t spawnBlob(const BlobDef& blob, uint32_t* insideSolids = nullptr);
     /// Removes the particle; throws `fluid::Error` for a stale or null handle.
     void removeParticle(ParticleHandle handle);
     /// True while the particle behind `handle` exists.

@@ -152,6 +152,21 @@ float BodyBoundary::friction() const {
     return m_def != nullptr ? m_def->friction : 0.0f;
 }
 
+bool BodyBoundary::contains(glm::vec2 point) const {
+    if (m_physics == nullptr) {
+        return false;
+    }
+    const b2Vec2 p(point.x, point.y);
+    for (const b2Body* body = m_physics->GetBodyList(); body != nullptr; body = body->GetNext()) {
+        for (const b2Fixture* f = body->GetFixtureList(); f != nullptr; f = f->GetNext()) {
+            if (couples(*f) && f->TestPoint(p)) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
 bool BodyBoundary::couples(const b2Fixture& fixture) const {
     if (fixture.IsSensor()) {
         return false;

@@ -161,6 +161,8 @@ public:
     void receiveForces(std::span<const float> fx, std::span<const float> fy,
                        std::span<const float> drag) override;
     float friction() const override;
+    /// True when `point` lies in a coupled fixture of a body (`b2Fixture::TestPoint`).
+    bool contains(glm::vec2 point) const override;
 
     /// The coupled bodies of the last `prepare`, in body-list order.
     std::span<const BodyEntry> bodies() const { return m_bodies; }

@@ -41,6 +41,8 @@ public:
     float friction() const override { return static_cast<float>(value(kFriction)); }
     /// A container: it projects after every solid and wall.
     BoundaryRole role() const override { return BoundaryRole::Container; }
+    /// True outside the box (below, beside, or above a closed one): where `project` acts.
+    bool contains(glm::vec2 point) const override;
 
 private:
     void onParamChanged(std::size_t index) override;

@@ -38,6 +38,7 @@ private:
                LocalBounds& bounds) override;
     bool collide(glm::dvec2 prev, glm::dvec2 cur, double spacing, double eps,
                  Contact& out) const override;
+    bool insideLocal(glm::dvec2 local) const override;
 
     double m_radius = 0.1;
 };

@@ -159,6 +159,8 @@ public:
     void finish(const StepContext& context) override;
     /// The `friction` parameter.
     float friction() const override { return static_cast<float>(value(kFriction)); }
+    /// True when `point` (unit: m) lies inside the shape at its pose now (`insideLocal`).
+    bool contains(glm::vec2 point) const final;
 
     /// The samples in the local frame, as last laid (unit: m). Empty before the first `prepare`.
     std::span<const glm::dvec2> localSamples() const { return m_local; }
@@ -205,6 +207,9 @@ protected:
     /// reads only what `build` made.
     virtual bool collide(glm::dvec2 prev, glm::dvec2 cur, double spacing, double eps,
                          Contact& out) const = 0;
+    /// True when `local` (the shape's frame, unit: m) lies inside the solid, from the shape's
+    /// parameters as they are now (before any `build`). Default: false (a wall has no inside).
+    virtual bool insideLocal(glm::dvec2 /*local*/) const { return false; }
     /// How far from the surface `collide` may act (unit: m): the bounds are enlarged by it.
     virtual double reach(double /*spacing*/) const { return 0.0; }
     /// Marks the local samples and geometry stale when a shape parameter changed, and checks

@@ -58,6 +58,7 @@ private:
                LocalBounds& bounds) override;
     bool collide(glm::dvec2 prev, glm::dvec2 cur, double spacing, double eps,
                  Contact& out) const override;
+    bool insideLocal(glm::dvec2 local) const override;
     bool pushOut(glm::dvec2 c, double eps, Contact& out) const;
     bool admissible(glm::dvec2 from, glm::dvec2 to) const;
 
