@@ -20,6 +20,7 @@
 //     then.
 // The first failure prints the frame, the check and the figures, and exits 1.
 #include <fluid/box2d/coupling.h>
+#include <fluid/box2d/physics_save.h>
 #include <fluid/fluid.h>
 
 #include <box2d/box2d.h>
@@ -116,6 +117,12 @@ int main(int argc, char** argv) {
     uint32_t threads = 2;
     app.add_option("--seconds", seconds, "Wall-clock time to run (s)")->check(CLI::Range(1.0, 1e6));
     app.add_option("--threads", threads, "Worker threads")->check(CLI::Range(1u, 256u));
+    uint32_t dumpFrame = 0;
+    std::string dumpPrefix;
+    app.add_option("--dump-frame", dumpFrame,
+                   "Before this frame's step, save the world, the Box2D world and the coupling "
+                   "to PREFIX.world, PREFIX.b2d and PREFIX.coupling (to replay a failure)");
+    app.add_option("--dump", dumpPrefix, "PREFIX for --dump-frame");
     CLI11_PARSE(app, argc, argv);
 
     fluid::WorldDef def;
@@ -292,6 +299,14 @@ int main(int argc, char** argv) {
         }
 
         const uint32_t before = world.particleCount();
+        if (frame == dumpFrame && !dumpPrefix.empty()) {
+            world.saveFile(dumpPrefix + ".world");
+            std::ofstream b2d(dumpPrefix + ".b2d", std::ios::binary);
+            fluid::box2d::savePhysics(physics, b2d);
+            std::ofstream state(dumpPrefix + ".coupling", std::ios::binary);
+            coupling.save(state);
+            std::printf("fluid-soak: saved frame %u to %s.*\n", frame, dumpPrefix.c_str());
+        }
         coupling.step(world, kFrame);
 
         // The checks.

@@ -6,6 +6,7 @@
 #include <glm/common.hpp>
 
 #include <algorithm>
+#include <mutex>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -94,8 +95,31 @@ void checkLifetime(const char* function, float seconds) {
 
 namespace detail {
 
+namespace {
+std::mutex g_tagMutex;
+std::vector<uint8_t> g_tagUsed; // [k]: tag k + 1 is held by a live world
+} // namespace
+
+WorldTag::WorldTag() {
+    const std::lock_guard<std::mutex> lock(g_tagMutex);
+    std::size_t k = 0;
+    while (k < g_tagUsed.size() && g_tagUsed[k] != 0) {
+        ++k;
+    }
+    if (k == g_tagUsed.size()) {
+        g_tagUsed.push_back(0);
+    }
+    g_tagUsed[k] = 1;
+    m_value = static_cast<uint32_t>(k + 1);
+}
+
+WorldTag::~WorldTag() {
+    const std::lock_guard<std::mutex> lock(g_tagMutex);
+    g_tagUsed[m_value - 1] = 0;
+}
+
 std::optional<uint32_t> WorldState::findIndex(ParticleHandle handle) const {
-    if (handle.isNull() || handle.slot >= slotGeneration.size() ||
+    if (handle.isNull() || handle.world != tag.value() || handle.slot >= slotGeneration.size() ||
         slotGeneration[handle.slot] != handle.generation || slotIndex[handle.slot] == UINT32_MAX) {
         return std::nullopt;
     }
@@ -105,6 +129,12 @@ std::optional<uint32_t> WorldState::findIndex(ParticleHandle handle) const {
 uint32_t WorldState::checkedIndex(ParticleHandle handle, const char* function) const {
     if (handle.isNull()) {
         throw Error(std::string(function) + ": null particle handle");
+    }
+    if (handle.world != tag.value()) {
+        throw Error(std::string(function) + ": particle handle " + describe(handle) +
+                    " belongs to another world (world " + std::to_string(handle.world) +
+                    "; this is world " + std::to_string(tag.value()) +
+                    "; a handle saved with a snapshot needs World::adopt)");
     }
     const std::optional<uint32_t> index = findIndex(handle);
     if (!index) {
@@ -135,7 +165,7 @@ ParticleHandle WorldState::append(glm::vec2 x, glm::vec2 v, uint16_t material, d
     p.material.push_back(material);
     p.slot.push_back(slot);
     p.expiry.push_back(expiry);
-    return ParticleHandle{slot, slotGeneration[slot]};
+    return ParticleHandle{slot, slotGeneration[slot], tag.value()};
 }
 
 void WorldState::releaseSlot(uint32_t slot) {
@@ -317,6 +347,11 @@ void World::removeParticle(ParticleHandle handle) {
     m_state->removeAt(m_state->checkedIndex(handle, "World::removeParticle"));
 }
 
+ParticleHandle World::adopt(ParticleHandle handle) const {
+    handle.world = handle.isNull() ? 0 : m_state->tag.value();
+    return handle;
+}
+
 bool World::isValid(ParticleHandle handle) const {
     return indexOf(handle).has_value();
 }
@@ -332,7 +367,7 @@ ParticleHandle World::handleAt(uint32_t index) const {
                     " particles");
     }
     const uint32_t slot = m_state->particles.slot[index];
-    return ParticleHandle{slot, m_state->slotGeneration[slot]};
+    return ParticleHandle{slot, m_state->slotGeneration[slot], m_state->tag.value()};
 }
 
 glm::vec2 World::position(ParticleHandle handle) const {

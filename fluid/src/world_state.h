@@ -115,6 +115,23 @@ struct CoarseGrid {
                                           // count for none: d keeps a 0 there)
 };
 
+// A world object's tag in its handles (ParticleHandle::world): the lowest number from 1 not
+// held by a live world, released when the world goes (as Box2D v3 numbers its worlds). A program
+// that makes and destroys its worlds in the same order gets the same tags in every run, so
+// hashes of handles and events agree between runs; two live worlds never share one.
+// Thread-safe.
+class WorldTag {
+public:
+    WorldTag();
+    ~WorldTag();
+    WorldTag(const WorldTag&) = delete;
+    WorldTag& operator=(const WorldTag&) = delete;
+    uint32_t value() const { return m_value; }
+
+private:
+    uint32_t m_value = 0;
+};
+
 struct WorldState {
     WorldDef def;
     std::unique_ptr<ThreadPool> pool; // own pool when the host gave no hook
@@ -127,6 +144,9 @@ struct WorldState {
     // Handles: slot -> index and generation; free slots reused last-in first-out.
     std::vector<uint32_t> slotIndex;
     std::vector<uint32_t> slotGeneration;
+    // This world object's tag in its handles, never saved (a loaded world has its own), so
+    // that snapshots of equal states are equal.
+    WorldTag tag;
     std::vector<uint32_t> freeSlots;
 
     std::vector<std::unique_ptr<ForcePlugin>> forces;

@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <sstream>
+
 using namespace fluid;
 using namespace fluid::test;
 
@@ -46,8 +48,8 @@ TEST_CASE("add and remove particles, handles go stale", "[unit][handles]") {
                          Catch::Message("World::removeParticle: null particle handle"));
     CHECK_FALSE(world.isValid(ParticleHandle{}));
     // A handle that was never issued.
-    CHECK_FALSE(world.isValid(ParticleHandle{1000, 1}));
-    CHECK_THROWS_AS(world.position(ParticleHandle{1000, 1}), Error);
+    CHECK_FALSE(world.isValid(ParticleHandle{1000, 1, a.world}));
+    CHECK_THROWS_AS(world.position(ParticleHandle{1000, 1, a.world}), Error);
     CHECK(world.particleCount() == 2);
 
     SECTION("slot reuse bumps the generation") {
@@ -150,4 +152,57 @@ TEST_CASE("handles follow their particles through steps", "[unit][handles]") {
     }
     CHECK(world.particleCount() == n - 1);
     CHECK(world.position(lone).x == Approx(0.5f + 6 * dt).epsilon(1e-5));
+}
+
+TEST_CASE("handles know their world: another world refuses them", "[unit][handles]") {
+    World first;
+    World second;
+    const MaterialId w1 = first.addMaterial(water());
+    const MaterialId w2 = second.addMaterial(water());
+    const ParticleHandle a = first.addParticle({0.0f, 0.0f}, {0.0f, 0.0f}, w1);
+    const ParticleHandle b = second.addParticle({1.0f, 0.0f}, {0.0f, 0.0f}, w2);
+    // Same slot and generation, different worlds.
+    REQUIRE(a.slot == b.slot);
+    REQUIRE(a.generation == b.generation);
+    CHECK(a.world != b.world);
+    CHECK(a != b);
+    CHECK_FALSE(second.isValid(a));
+    CHECK_FALSE(second.indexOf(a).has_value());
+    CHECK_THROWS_MATCHES(
+        second.removeParticle(a), Error,
+        Catch::Message("World::removeParticle: particle handle {slot 0, generation 1} belongs to "
+                       "another world (world " +
+                       std::to_string(a.world) + "; this is world " + std::to_string(b.world) +
+                       "; a handle saved with a snapshot needs World::adopt)"));
+    CHECK(second.particleCount() == 1); // nothing removed
+    CHECK(second.isValid(b));
+    CHECK(first.isValid(a));
+}
+
+TEST_CASE("world tags repeat from run to run; a loaded world adopts saved handles",
+          "[unit][handles][snapshot]") {
+    // A world made after another was destroyed takes its tag: a program that makes its worlds
+    // in the same order gets the same handles, and hashes of them agree between runs.
+    uint32_t tag = 0;
+    {
+        World once;
+        tag = once.addParticle({0.0f, 0.0f}, {0.0f, 0.0f}, once.addMaterial(water())).world;
+    }
+    World again;
+    const MaterialId w = again.addMaterial(water());
+    const ParticleHandle h = again.addParticle({0.5f, 0.25f}, {0.0f, 0.0f}, w);
+    CHECK(h.world == tag);
+
+    std::stringstream bytes;
+    again.save(bytes);
+    Registry registry;
+    const World loaded = World::load(bytes, registry);
+    CHECK_FALSE(loaded.isValid(h)); // another World object
+    const ParticleHandle adopted = loaded.adopt(h);
+    CHECK(adopted.slot == h.slot);
+    CHECK(adopted.generation == h.generation);
+    CHECK(loaded.isValid(adopted));
+    CHECK(loaded.position(adopted) == glm::vec2(0.5f, 0.25f));
+    CHECK(loaded.adopt(ParticleHandle{}).isNull());
+    CHECK(loaded.adopt(ParticleHandle{}) == ParticleHandle{});
 }

@@ -71,13 +71,17 @@ std::string fingerprint(const World& world) {
         add(span.data(), span.size_bytes());
     }
     add(world.materialIndex().data(), world.materialIndex().size_bytes());
+    // Handles by slot and generation: their world tag names the World object, not its state
+    // (a loaded copy has its own).
     for (uint32_t i = 0; i < world.particleCount(); ++i) {
         const ParticleHandle h = world.handleAt(i);
-        add(&h, sizeof(h));
+        add(&h.slot, sizeof(h.slot));
+        add(&h.generation, sizeof(h.generation));
         const float life = world.lifetime(h);
         add(&life, sizeof(life));
     }
-    for (const RemovedEvent& e : world.removedEvents()) {
+    for (RemovedEvent e : world.removedEvents()) {
+        e.particle.world = 0;
         add(&e, sizeof(e));
     }
     const auto r = world.sensorReading(SensorId{0});

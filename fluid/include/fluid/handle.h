@@ -14,10 +14,16 @@ struct ParticleHandle {
     uint32_t slot = 0;
     /// Generation of the slot when the handle was made (unit: count; 0 means null).
     uint32_t generation = 0;
+    /// Tag of the `World` object that made the handle (unit: id; 0 in the null handle): the
+    /// lowest number from 1 that no other live world holds, so a program making its worlds in
+    /// the same order gets the same tags in every run. Another world refuses the handle
+    /// (`World::isValid` is false, other calls throw naming it). Not saved in snapshots: a
+    /// loaded world has its own tag, and `World::adopt` carries a handle over to it.
+    uint32_t world = 0;
 
     /// True for the null handle.
     constexpr bool isNull() const { return generation == 0; }
-    /// Handles are equal when slot and generation are.
+    /// Handles are equal when slot, generation and world are.
     friend constexpr bool operator==(ParticleHandle, ParticleHandle) = default;
 };
 

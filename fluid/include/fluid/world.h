@@ -257,6 +257,10 @@ public:
     uint32_t spawnBlob(const BlobDef& blob, uint32_t* insideSolids = nullptr);
     /// Removes the particle; throws `fluid::Error` for a stale or null handle.
     void removeParticle(ParticleHandle handle);
+    /// `handle` with this world's tag (same slot and generation): for a handle saved alongside a
+    /// snapshot (or taken from the world it was saved from), used with the world loaded from
+    /// it. Checks nothing; the particle's existence is `isValid`'s to say. Any thread.
+    ParticleHandle adopt(ParticleHandle handle) const;
     /// True while the particle behind `handle` exists.
     bool isValid(ParticleHandle handle) const;
     /// Current slot of the particle in the spans below, or nullopt for a stale handle.
