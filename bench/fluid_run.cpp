@@ -1,8 +1,8 @@
 // fluid-run — plays a level file headless: progress on a terminal, per-frame statistics as CSV
-// (the fluid, sensors, goal and Box2D bodies), snapshots every K frames, plugin libraries loaded
-// at run time.
+// (the fluid, sensors, goal and Box2D bodies), snapshots every K frames (level saves for levels
+// with bodies, which it also plays on from), plugin libraries loaded at run time.
 //
-//   fluid-run LEVEL.json --frames N [--csv stats.csv] [--threads T]
+//   fluid-run LEVEL.json|SAVE.level --frames N [--csv stats.csv] [--threads T]
 //             [--snapshot-every K --out DIR] [--plugin lib.so]...
 //
 // Exit status: 0 when the run finished, 1 for bad input (the loader's message on stderr), 2 for
@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <string_view>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -177,7 +178,7 @@ int main(int argc, char** argv) {
     std::string levelPath, csvPath, outDir;
     uint32_t frames = 0, threads = 0, snapshotEvery = 0;
     std::vector<std::string> plugins;
-    app.add_option("level", levelPath, "Level file (JSON, see docs/levels.md)")->required();
+    app.add_option("level", levelPath, "Level file (JSON, see docs/levels.md) or a level save (.level) to play on from")->required();
     app.add_option("--frames", frames, "Frames to play (at the level's frame rate)")
         ->required()
         ->check(CLI::Range(1u, 100000000u));
@@ -185,7 +186,8 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads, "Worker threads (default: the level's world.workers)")
         ->check(CLI::Range(1u, 256u));
     app.add_option("--snapshot-every", snapshotEvery,
-                   "Save a snapshot every K frames (needs --out)")
+                   "Save a snapshot every K frames (needs --out): frame_K.snap, or frame_K.level "
+                   "(a level save) for a level with bodies")
         ->check(CLI::Range(1u, 100000000u));
     app.add_option("--out", outDir, "Directory for snapshots (created if missing)");
     app.add_option("--plugin", plugins,
@@ -206,7 +208,14 @@ int main(int argc, char** argv) {
         }
         fluid::LevelOptions options;
         options.workerCount = threads;
-        fluid::Level level = fluid::loadLevel(levelPath, registry, options);
+        // A level save (Level::saveFile, the .level files below) continues where it was made.
+        const bool isSave = [&] {
+            std::ifstream in(levelPath, std::ios::binary);
+            char magic[8] = {};
+            return in.read(magic, sizeof(magic)) && std::string_view(magic, 8) == "FLUIDLVL";
+        }();
+        fluid::Level level = isSave ? fluid::loadLevelSave(levelPath, registry, options)
+                                    : fluid::loadLevel(levelPath, registry, options);
         for (const std::string& warning : level.warnings) {
             std::cerr << "fluid-run: warning: " << warning << '\n';
         }
@@ -222,12 +231,6 @@ int main(int argc, char** argv) {
         }
         if (snapshotEvery > 0) {
             std::filesystem::create_directories(outDir);
-            if (level.coupling) {
-                // The snapshot holds the fluid; the Box2D world is the game's to save.
-                std::cerr << "fluid-run: warning: the level has Box2D bodies; snapshots hold the "
-                             "fluid only and World::loadFile refuses them (plugin "
-                             "'box2d.bodies' is not in the registry)\n";
-            }
         }
         const bool terminal = isatty(fileno(stderr)) != 0;
         const Clock::time_point start = Clock::now();
@@ -238,9 +241,18 @@ int main(int argc, char** argv) {
                 writeRow(csv, frame, level);
             }
             if (snapshotEvery > 0 && frame % snapshotEvery == 0) {
+                // Without bodies the world's snapshot (World::loadFile reads it); with bodies a
+                // level save, which holds the Box2D world and the coupling too (fluid-run and
+                // loadLevelSave read it).
                 std::ostringstream name;
-                name << "frame_" << std::setw(6) << std::setfill('0') << frame << ".snap";
-                level.world.saveFile((std::filesystem::path(outDir) / name.str()).string());
+                name << "frame_" << std::setw(6) << std::setfill('0') << frame
+                     << (level.coupling ? ".level" : ".snap");
+                const std::string path = (std::filesystem::path(outDir) / name.str()).string();
+                if (level.coupling) {
+                    level.saveFile(path);
+                } else {
+                    level.world.saveFile(path);
+                }
             }
             const Clock::time_point now = Clock::now();
             if (terminal && (now - lastShown > std::chrono::milliseconds(100) || frame == frames)) {

@@ -257,22 +257,52 @@ TEST_CASE("fluid-run: with Box2D bodies the CSV is identical for 1 and 2 threads
     fs::remove_all(dir);
 }
 
-TEST_CASE("fluid-run warns that snapshots of a level with bodies hold the fluid only",
+TEST_CASE("fluid-run saves a level with bodies as level saves and plays on from one",
           "[fluid-run][bodies]") {
     const fs::path dir = fs::temp_directory_path() / "fluid_run_bodies_snap";
     fs::remove_all(dir);
-    const Run run = fluidRun({std::string(FLUID_LEVELS_DIR) + "/paddle_wheel.json", "--frames", "2",
-                              "--snapshot-every", "2", "--out", (dir / "s").string()},
+    const std::string wheel = std::string(FLUID_LEVELS_DIR) + "/paddle_wheel.json";
+    const Run run = fluidRun({wheel, "--frames", "4", "--snapshot-every", "2", "--csv",
+                              (dir / "full.csv").string(), "--out", (dir / "s").string()},
                              dir);
-    CHECK(run.status == 0);
-    CHECK(run.err.find("fluid-run: warning: the level has Box2D bodies; snapshots hold the "
-                       "fluid only") != std::string::npos);
-    REQUIRE(fs::exists(dir / "s" / "frame_000002.snap"));
-    // As the warning says: the built-in registry has no "box2d.bodies".
+    REQUIRE(run.status == 0);
+    CHECK(run.err.find("warning") == std::string::npos);
+    REQUIRE(fs::exists(dir / "s" / "frame_000002.level"));
+    REQUIRE(fs::exists(dir / "s" / "frame_000004.level"));
+    // The save holds the Box2D world: it loads with the built-in registry.
     Registry registry;
     registerBuiltinPlugins(registry);
-    CHECK_THROWS_WITH(World::loadFile((dir / "s" / "frame_000002.snap").string(), registry),
-                      Catch::Contains("box2d.bodies"));
+    const Level saved = loadLevelSave((dir / "s" / "frame_000002.level").string(), registry);
+    CHECK(saved.bodies.size() == 2);
+    // Played on from frame 2 for 2 frames, it reaches frame 4's time and particle count.
+    const Run resumed = fluidRun({(dir / "s" / "frame_000002.level").string(), "--frames", "2",
+                                  "--csv", (dir / "resumed.csv").string()},
+                                 dir);
+    REQUIRE(resumed.status == 0);
+    const auto lastRow = [](const std::string& text) {
+        std::vector<std::string> lines;
+        std::istringstream in(text);
+        for (std::string line; std::getline(in, line);) {
+            lines.push_back(line);
+        }
+        std::vector<std::string> cells;
+        std::istringstream row(lines.back());
+        for (std::string cell; std::getline(row, cell, ',');) {
+            cells.push_back(cell);
+        }
+        return cells;
+    };
+    const std::vector<std::string> full = lastRow(slurp(dir / "full.csv"));
+    const std::vector<std::string> part = lastRow(slurp(dir / "resumed.csv"));
+    REQUIRE(full.size() == part.size());
+    CHECK(part[1] == full[1]); // time
+    CHECK(part[2] == full[2]); // particles
+    // A bad save is refused with its name.
+    std::ofstream((dir / "bad.level").string(), std::ios::binary) << "FLUIDLVL broken";
+    const Run bad = fluidRun({(dir / "bad.level").string(), "--frames", "1"}, dir);
+    CHECK(bad.status == 1);
+    CHECK(bad.err.find("level save '" + (dir / "bad.level").string() + "': ") !=
+          std::string::npos);
     fs::remove_all(dir);
 }
 
