@@ -12,9 +12,10 @@
 //   - no particle outside the tank, none deeper than a quarter spacing inside a plank or a body
 //     (plus, for a body, how far it moves in a coupling round: the fluid projects against the
 //     body's pose advanced over the round, Box2D's pose lags it). Box2D's crates do not collide
-//     with the fluid's planks, so a crate may press a particle into a plank or overlap it: a
-//     particle inside a plank within that reach of a body has no admissible place (the body's
-//     projection, the last, puts it there) and is counted as squeezed, not failed;
+//     with the fluid's planks, so a tilted crate sinking onto a plank overlaps it: a particle in
+//     the overlap has no admissible place, and the body's projection (the last) leaves it on the
+//     body's surface inside the plank. A particle inside a plank that touches a body at the pose
+//     the fluid used is counted as squeezed, not failed;
 //   - every position and velocity finite; every body inside the tank;
 //   - resident memory, after the first minute (a third of shorter runs), within 5% of its value
 //     then.
@@ -336,6 +337,19 @@ int main(int argc, char** argv) {
                                 std::fabs(bodies[b]->GetAngularVelocity()) * reach;
             bodyDeep[b] = deep + speed * (kFrame / float(rounds));
         }
+        // A point moved back by a body's motion over one coupling round: where it stands
+        // against the pose the fluid's last projection used (Box2D's pose advanced over the
+        // round), in Box2D's pose.
+        const auto poseBack = [&](const b2Body* body, b2Vec2 p) {
+            const float h = kFrame / float(rounds);
+            const b2Vec2 c = body->GetWorldCenter();
+            const float turn = -body->GetAngularVelocity() * h;
+            const b2Vec2 d = p - c;
+            return c +
+                   b2Vec2(std::cos(turn) * d.x - std::sin(turn) * d.y,
+                          std::sin(turn) * d.x + std::cos(turn) * d.y) -
+                   h * body->GetLinearVelocity();
+        };
         std::vector<std::vector<glm::dvec2>> plankPolys;
         for (const Plank& p : planks) {
             const fluid::KinematicShape::Pose pose = p.plugin->pose();
@@ -357,12 +371,14 @@ int main(int argc, char** argv) {
             for (size_t k = 0; k < plankPolys.size(); ++k) {
                 const float depth = depthInside(plankPolys[k], glm::dvec2(px[i], py[i]));
                 if (depth > deep) {
+                    // Pressed there by a body: it touches the particle at the pose the fluid
+                    // used (its own put the particle on its surface).
                     bool pressed = false;
                     for (size_t b = 0; b < bodies.size() && !pressed; ++b) {
+                        const b2Vec2 back = poseBack(bodies[b], b2Vec2(px[i], py[i]));
                         for (b2Fixture* f = bodies[b]->GetFixtureList(); f != nullptr;
                              f = f->GetNext()) {
-                            pressed = pressed ||
-                                      depthInside(f, b2Vec2(px[i], py[i])) > -(bodyDeep[b] + deep);
+                            pressed = pressed || depthInside(f, back) > -deep;
                         }
                     }
                     if (pressed) {
@@ -401,13 +417,8 @@ int main(int argc, char** argv) {
                         // The same depth in the body's frame moved back by its motion over a
                         // round: what it would read against the pose the fluid used.
                         const b2Body* body = bodies[b];
-                        const float h = kFrame / float(rounds);
                         const b2Vec2 c = body->GetWorldCenter();
-                        const float turn = -body->GetAngularVelocity() * h;
-                        const b2Vec2 d = b2Vec2(px[i], py[i]) - c;
-                        const b2Vec2 back = c + b2Vec2(std::cos(turn) * d.x - std::sin(turn) * d.y,
-                                                       std::sin(turn) * d.x + std::cos(turn) * d.y) -
-                                            h * body->GetLinearVelocity();
+                        const b2Vec2 back = poseBack(body, b2Vec2(px[i], py[i]));
                         fail("particle " + std::to_string(i) + " " + std::to_string(depth) +
                              " m inside body " + std::to_string(b) + " (allowed " +
                              std::to_string(bodyDeep[b]) + " m; body at " +
