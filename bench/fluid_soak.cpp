@@ -4,18 +4,19 @@
 // The scene: a closed 2.5 x 1.5 m tank with about 19,000 particles of water and yoghurt, Box2D
 // crates and a motor-driven paddle wheel, two faucets (the yoghurt one with lifetimes) and two
 // drains, a pointer that pushes and pulls, explosions, gravity flipping between down, up and
-// sideways, kinematic planks the script moves (one fast), and blobs dropped onto each other.
+// sideways, kinematic planks the script moves (one fast; crates collide with their Box2D
+// twins), and blobs dropped onto each other.
 // The overflow drains keep the liquid near 0.8 m deep while the faucets pour.
 // After every frame:
 //   - particles = start + emitted + dropped in blobs - removed (drained or expired, each
 //     removal reported once in the coupling's events);
 //   - no particle outside the tank, none deeper than a quarter spacing inside a plank or a body
 //     (plus, for a body, how far it moves in a coupling round: the fluid projects against the
-//     body's pose advanced over the round, Box2D's pose lags it). Box2D's crates do not collide
-//     with the fluid's planks, so a tilted crate sinking onto a plank overlaps it: a particle in
-//     the overlap has no admissible place, and the body's projection (the last) leaves it on the
-//     body's surface inside the plank. A particle inside a plank that touches a body at the pose
-//     the fluid used is counted as squeezed, not failed;
+//     body's pose advanced over the round, Box2D's pose lags it). The planks have kinematic
+//     Box2D twins the crates collide with; where Box2D still lets a crate touch a plank, a
+//     particle between them has no admissible place, and the body's projection (the last)
+//     leaves it on the body's surface inside the plank: a particle inside a plank that touches
+//     a body at the pose the fluid used is counted as squeezed, not failed;
 //   - every position and velocity finite; every body inside the tank;
 //   - resident memory, after the first minute (a third of shorter runs), within 5% of its value
 //     then.
@@ -88,6 +89,7 @@ float depthInside(const std::vector<glm::dvec2>& poly, glm::dvec2 p) {
 
 struct Plank {
     fluid::PolygonBoundary* plugin = nullptr;
+    b2Body* body = nullptr; // its Box2D twin (kinematic, not coupled): crates collide with it
     std::vector<glm::vec2> local;
     float speed = 0.0f; // along x (m/s), reversed at the ends of its lane
     float lo = 0.0f, hi = 0.0f;
@@ -202,6 +204,17 @@ int main(int argc, char** argv) {
     addBox(physics, b2_staticBody, {-t, 0.5f * kHeight}, t, 0.5f * kHeight + t, 0.0f, kWall);
     addBox(physics, b2_staticBody, {kWidth + t, 0.5f * kHeight}, t, 0.5f * kHeight + t, 0.0f,
            kWall);
+    // Each plank has a kinematic Box2D twin that the crates collide with, as a game would make
+    // its moving platforms: without it a crate sinks onto a plank and overlaps it, and the
+    // liquid between them has no admissible place.
+    for (size_t k = 0; k < planks.size(); ++k) {
+        const fluid::KinematicShape::Pose pose = planks[k].plugin->pose();
+        const glm::vec2 half = planks[k].local[2]; // the top-right corner: half extents
+        planks[k].body = addBox(physics, b2_kinematicBody,
+                                {float(pose.origin.x), float(pose.origin.y)}, half.x, half.y, 0.0f,
+                                kWall);
+        planks[k].body->SetLinearVelocity({planks[k].speed, 0.0f});
+    }
     const float rho = fluid::box2d::arealDensity(world, water);
     std::vector<b2Body*> bodies;
     for (int k = 0; k < 6; ++k) {
@@ -276,6 +289,8 @@ int main(int argc, char** argv) {
                 p.speed = -p.speed;
                 p.plugin->setVelocity({p.speed, 0.0f}, 0.0f);
             }
+            p.body->SetTransform({float(pose.origin.x), float(pose.origin.y)}, 0.0f);
+            p.body->SetLinearVelocity({p.speed, 0.0f});
         }
         if (frame % 150 == 0) {
             // Two blobs dropped onto each other where nothing stands yet.
@@ -459,6 +474,7 @@ int main(int argc, char** argv) {
                         (unsigned long long)skipped, (unsigned long long)dropped,
                         (unsigned long long)(removed - expired), (unsigned long long)expired,
                         (unsigned long long)squeezed, rss / 1048576.0);
+            std::fflush(stdout); // progress shows in a log file as it happens
         }
     }
     std::printf("fluid-soak: passed: %u frames (%.1f s simulated) in %.0f s, %u particles at the "

@@ -157,6 +157,29 @@ FixtureRead getFixture(In& in) {
             f.polygon.m_vertices[k] = in.vec("polygon vertex", kMaxCoordinate);
             f.polygon.m_normals[k] = in.vec("polygon normal", 1.001f);
         }
+        // Box2D needs a convex counter-clockwise polygon with some area whose normals face out
+        // of its edges (b2PolygonShape::Set makes one); libbox2d asserts on the area, and a
+        // polygon breaking the rest would give NaN contacts.
+        float twiceArea = 0.0f;
+        for (uint32_t k = 0; k < count; ++k) {
+            twiceArea += b2Cross(f.polygon.m_vertices[k], f.polygon.m_vertices[(k + 1) % count]);
+        }
+        if (!(twiceArea > 2e-6f)) {
+            in.r.fail("a polygon encloses no area");
+        }
+        for (uint32_t k = 0; k < count; ++k) {
+            const b2Vec2 a = f.polygon.m_vertices[k];
+            const b2Vec2 b = f.polygon.m_vertices[(k + 1) % count];
+            const b2Vec2 c = f.polygon.m_vertices[(k + 2) % count];
+            b2Vec2 normal = b2Cross(b - a, 1.0f);
+            const bool edge = normal.Normalize() > b2_linearSlop;
+            if (!edge || b2Cross(b - a, c - b) <= 0.0f ||
+                (normal - f.polygon.m_normals[k]).Length() > 1e-3f) {
+                in.r.fail("polygon edge " + std::to_string(k) +
+                          " is degenerate, not convex counter-clockwise, or its normal does not "
+                          "face out of it");
+            }
+        }
         break;
     }
     case kChain: {
@@ -165,8 +188,14 @@ FixtureRead getFixture(In& in) {
             in.r.fail("a chain has " + std::to_string(count) + " vertices (at least 2)");
         }
         f.chain.resize(count);
-        for (b2Vec2& v : f.chain) {
-            v = in.vec("chain vertex", kMaxCoordinate);
+        for (std::size_t k = 0; k < count; ++k) {
+            f.chain[k] = in.vec("chain vertex", kMaxCoordinate);
+            // Box2D's own rule for chains (b2ChainShape::CreateChain asserts it).
+            if (k > 0 && b2DistanceSquared(f.chain[k - 1], f.chain[k]) <=
+                             b2_linearSlop * b2_linearSlop) {
+                in.r.fail("chain vertices " + std::to_string(k - 1) + " and " +
+                          std::to_string(k) + " are closer than b2_linearSlop");
+            }
         }
         f.prev = in.vec("chain previous vertex", kMaxCoordinate);
         f.next = in.vec("chain next vertex", kMaxCoordinate);
@@ -308,6 +337,12 @@ std::unique_ptr<b2World> loadPhysics(std::istream& stream) {
         b.mass.mass = in.number("mass", 0.0f);
         b.mass.center = in.vec("mass centre", kMaxCoordinate);
         b.mass.I = in.number("rotational inertia", 0.0f);
+        // SetMassData keeps I - m |c|^2, the inertia about the centre of mass: it must be
+        // positive for a body that turns.
+        if (b.def.type == b2_dynamicBody && b.mass.mass > 0.0f && b.mass.I > 0.0f &&
+            !b.def.fixedRotation && b.mass.I - b.mass.mass * b2Dot(b.mass.center, b.mass.center) <= 0.0f) {
+            in.r.fail("a body's rotational inertia about its centre of mass is not positive");
+        }
         b.fixtures.resize(in.r.count("fixture count", kMaxFixtures));
         for (FixtureRead& f : b.fixtures) {
             f = getFixture(in);
@@ -329,6 +364,9 @@ std::unique_ptr<b2World> loadPhysics(std::istream& stream) {
         j.def.enableMotor = in.flag("joint motor enabled");
         j.def.lowerAngle = in.number("joint lower limit");
         j.def.upperAngle = in.number("joint upper limit");
+        if (j.def.lowerAngle > j.def.upperAngle) {
+            in.r.fail("a joint's lower limit is above its upper limit");
+        }
         j.def.motorSpeed = in.number("joint motor speed");
         j.def.maxMotorTorque = in.number("joint motor torque", 0.0f);
     }
