@@ -5,6 +5,8 @@
 #include <fluid/level.h>
 #include <fluid/plugins/builtin.h>
 
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <string_view>
 
@@ -20,6 +22,14 @@ inline const Registry& builtins() {
         return r;
     }();
     return registry;
+}
+
+/// The text of the shipped level `name` (a file in levels/); empty if it cannot be read.
+inline std::string readLevel(const char* name) {
+    std::ifstream in(std::string(FLUID_LEVELS_DIR) + "/" + name, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
 }
 
 /// The message of the LevelError that parsing `text` as "t.json" throws ("no error" when none).

@@ -23,13 +23,6 @@ using namespace fluid::test;
 
 namespace {
 
-std::string readLevel(const char* name) {
-    std::ifstream in(std::string(FLUID_LEVELS_DIR) + "/" + name, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 // The level's body named `name`; fails the test when there is none.
 b2Body* requireBody(const Level& level, std::string_view name) {
     b2Body* body = bodyNamed(level, name);

@@ -25,13 +25,6 @@ using namespace fluid::test;
 
 namespace {
 
-std::string readLevel(const char* name) {
-    std::ifstream in(std::string(FLUID_LEVELS_DIR) + "/" + name, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 std::string saveOf(const Level& level) {
     std::ostringstream out;
     level.save(out);
