@@ -388,6 +388,12 @@ private:
         case K::F1:
             m_showHelp = !m_showHelp;
             break;
+        case K::F5:
+            quickSave();
+            break;
+        case K::F9:
+            quickLoad();
+            break;
         case K::F11:
             createWindow(!m_fullscreen);
             break;
@@ -411,6 +417,38 @@ private:
                 }
             }
             break;
+        }
+    }
+
+    std::string quickSavePath() const {
+        return (std::filesystem::path(m_options.saveDir) / (m_session->file().stem + ".level"))
+            .string();
+    }
+
+    void quickSave() {
+        try {
+            std::filesystem::create_directories(m_options.saveDir);
+            m_session->save(quickSavePath());
+            toast("Saved (F9 goes back to it)");
+        } catch (const std::exception& e) {
+            toast(std::string("Could not save: ") + e.what());
+        }
+    }
+
+    void quickLoad() {
+        const std::string path = quickSavePath();
+        if (!std::filesystem::exists(path)) {
+            toast("No save of this level yet: F5 saves");
+            return;
+        }
+        try {
+            // A grabbed body belongs to the Box2D world about to go.
+            m_grab.end(m_session->level().physics.get());
+            m_session->restore(path);
+            m_renderer->setMaterials(m_session->styles());
+            toast("Loaded the save");
+        } catch (const std::exception& e) {
+            toast(std::string("Could not load: ") + e.what());
         }
     }
 

@@ -25,6 +25,9 @@ struct GameOptions {
     bool fullscreen = false;
     /// Where F12 saves screenshots.
     std::string screenshotDir = ".";
+    /// Where F5 saves the level and F9 loads it back (one file per level, `<stem>.level`;
+    /// created when needed).
+    std::string saveDir = ".";
     /// Scripted input (`readScript`), played at the frames it names.
     std::vector<ScriptAction> script;
     /// 0: play until the window closes. Otherwise run exactly this many frames of one step

@@ -83,6 +83,10 @@ int main(int argc, char** argv) {
                    "Headless: also render every K frames while stepping (0 = only at the end)");
     app.add_flag("--no-hud", noHud, "Headless: leave the HUD and level banner out of images");
     app.add_flag("--fullscreen", fullscreen, "Start in fullscreen (F11 toggles)");
+    std::string saveDir;
+    app.add_option("--save-dir", saveDir,
+                   "Where F5 saves the level and F9 loads it (default: $XDG_STATE_HOME/fluid-demo, "
+                   "else ~/.local/state/fluid-demo)");
     app.add_option("--script", scriptPath,
                    "Play the game with scripted input (docs/demo.md); with --frames N it runs N "
                    "frames of one step each, prints a summary and exits");
@@ -241,5 +245,15 @@ int main(int argc, char** argv) {
     options.script = std::move(script);
     options.frames = frames;
     options.screenshot = screenshot;
+    if (saveDir.empty()) {
+        const char* state = std::getenv("XDG_STATE_HOME");
+        const char* home = std::getenv("HOME");
+        saveDir = state != nullptr && *state != '\0'
+                      ? (std::filesystem::path(state) / "fluid-demo").string()
+                  : home != nullptr && *home != '\0'
+                      ? (std::filesystem::path(home) / ".local/state/fluid-demo").string()
+                      : (std::filesystem::temp_directory_path() / "fluid-demo").string();
+    }
+    options.saveDir = saveDir;
     return runGame(options);
 }

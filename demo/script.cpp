@@ -20,6 +20,7 @@ constexpr std::pair<const char*, sf::Keyboard::Key> kKeys[] = {
     {"Period", sf::Keyboard::Period}, {"N", sf::Keyboard::N},
     {"B", sf::Keyboard::B},           {"Tab", sf::Keyboard::Tab},
     {"F1", sf::Keyboard::F1},         {"Escape", sf::Keyboard::Escape},
+    {"F5", sf::Keyboard::F5},         {"F9", sf::Keyboard::F9},
     {"Q", sf::Keyboard::Q},           {"E", sf::Keyboard::E},
     {"Num1", sf::Keyboard::Num1},     {"Num2", sf::Keyboard::Num2},
     {"Num3", sf::Keyboard::Num3},     {"Num4", sf::Keyboard::Num4},

@@ -33,7 +33,8 @@ LevelOptions optionsFor(uint32_t workers) {
 
 } // namespace
 
-Session::Session(const LevelFile& file, uint32_t workers) : m_file(file) {
+Session::Session(const LevelFile& file, uint32_t workers)
+    : m_file(file), m_workers(std::max(workers, 1u)) {
     registerBuiltinPlugins(m_registry);
     m_level = loadLevel(file.path, m_registry, optionsFor(workers));
     World& world = m_level.world;
@@ -91,6 +92,47 @@ Session::Session(const LevelFile& file, uint32_t workers) : m_file(file) {
         {{"radius", double(m_pointerRadius)}, {"strength", 40.0}}};
     m_pointer = &static_cast<PointerForce&>(
         world.addForce(m_registry.createForce(PointerForce::kType, pointer)));
+}
+
+namespace {
+
+// The session's pointer and gravity plugins among a world's forces: the last pointer (the
+// session adds its own last), the first gravity (the level's, or the session's zero one).
+std::pair<PointerForce*, Plugin*> findControls(World& world) {
+    PointerForce* pointer = nullptr;
+    Plugin* gravity = nullptr;
+    for (const auto& force : world.forces()) {
+        if (gravity == nullptr && force->type() == "force.gravity") {
+            gravity = force.get();
+        }
+        if (auto* p = dynamic_cast<PointerForce*>(force.get())) {
+            pointer = p;
+        }
+    }
+    return {pointer, gravity};
+}
+
+} // namespace
+
+void Session::save(const std::string& path) const {
+    m_level.saveFile(path);
+}
+
+void Session::restore(const std::string& path) {
+    Level restored = loadLevelSave(path, m_registry, optionsFor(m_workers));
+    if (restored.file != m_level.file) {
+        throw Error("'" + path + "' is a save of '" + restored.file + "', not of '" +
+                    m_level.file + "'");
+    }
+    // The session's own materials and plugins were in the world when it was saved (plugins
+    // live on the heap: the pointers outlive the level's move).
+    const auto [pointer, gravity] = findControls(restored.world);
+    if (pointer == nullptr || gravity == nullptr) {
+        throw Error("'" + path + "' lacks the demo's gravity or pointer plugin");
+    }
+    m_level = std::move(restored);
+    m_pointer = pointer;
+    m_gravity = gravity;
 }
 
 gl::Camera Session::camera(glm::ivec2 size) const {

@@ -74,6 +74,14 @@ public:
     /// cycles through 0.5, 0.8 and 1.6 times water's. Returns false in a level without bodies.
     bool dropCrate(glm::vec2 center);
 
+    /// Saves the level as it stands (`Level::saveFile`: liquid, Box2D bodies, coupling) to
+    /// `path`. Throws `fluid::Error` naming the file.
+    void save(const std::string& path) const;
+    /// Goes back to a save made by `save` for this level: the liquid, the bodies and the
+    /// gravity switch as they were (the material Space drops stays as chosen). Throws
+    /// `fluid::Error` for a bad save or one of another level (this session is unchanged then).
+    void restore(const std::string& path);
+
     /// Fills `under` and `over` with the level's walls, sensors, bodies and nozzles, and the
     /// pointer ring when `showPointer`.
     void drawShapes(const gl::Camera& camera, bool showPointer, gl::ShapeBatch& under,
@@ -81,6 +89,7 @@ public:
 
 private:
     LevelFile m_file;
+    uint32_t m_workers = 1;
     Registry m_registry;
     Level m_level;
     ViewBounds m_bounds;

@@ -36,7 +36,7 @@ constexpr ImGuiWindowFlags kOverlayFlags =
     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
     ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoMove;
 
-constexpr std::array<ControlHelp, 19> kControls{{
+constexpr std::array<ControlHelp, 20> kControls{{
     {"S", "Cycle views: metaballs, pressure, particles"},
     {"G", "Gravity on / zero-g"},
     {"Left drag", "Push the fluid"},
@@ -52,6 +52,7 @@ constexpr std::array<ControlHelp, 19> kControls{{
     {"N / B", "Next / previous level"},
     {"1 - 9", "Jump to a level"},
     {"Tab", "Tuning panel"},
+    {"F5 / F9", "Save the level / go back to the save"},
     {"F1", "This help"},
     {"F11", "Fullscreen"},
     {"F12", "Screenshot"},

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -40,12 +41,12 @@ struct Summary {
 
 // Plays `script` in `level` for `frames` frames and parses the summary line.
 Summary play(const std::string& name, const std::string& level, int frames,
-             const std::string& script) {
+             const std::string& script, const std::string& extra = "") {
     const std::string path = std::string(FLUID_DEMO_WORK_DIR) + "/" + name + ".script";
     std::ofstream(path) << script;
     const demo_test::Run run =
         demo_test::runDemo("--level " + level + " --size 480x270 --threads 1 --frames " +
-                           std::to_string(frames) + " --script '" + path + "'");
+                           std::to_string(frames) + " --script '" + path + "'" + extra);
     Summary summary;
     summary.status = run.status;
     summary.output = run.output;
@@ -181,4 +182,35 @@ TEST_CASE("game: a bad script is refused with its file and line", "[demo]") {
     CHECK(run.status == 2);
     CHECK(run.output == "fluid-demo: " + path +
                             ":3: unknown action 'jump' (expected key, move, press or release)\n");
+}
+
+TEST_CASE("game: F5 saves the level with its crates, F9 goes back to it", "[demo]") {
+    const std::string dir = std::string(FLUID_DEMO_WORK_DIR) + "/saves";
+    std::filesystem::remove_all(dir);
+    const std::string args = " --save-dir '" + dir + "'";
+    // F9 before any F5: nothing to load, the level plays on.
+    const Summary none = play("load_none", "crates", 3, "1 key F9\n", args);
+    CHECK(none.number("time") > 0.0);
+    // The reference: 60 frames, saved at the start of frame 30.
+    const Summary straight = play("save_ref", "crates", 60, "30 key F5\n", args);
+    REQUIRE(std::filesystem::exists(dir + "/crates.level"));
+    // Saved at frame 30, loaded at frame 60, played on to frame 90: the state of frame 60.
+    const Summary back = play("save_back", "crates", 90, "30 key F5\n60 key F9\n", args);
+    std::printf("[measure] F5/F9 in crates: time %s vs %s, centre of mass (%s, %s) vs (%s, %s)\n",
+                back.text("time").c_str(), straight.text("time").c_str(),
+                back.text("cx").c_str(), back.text("cy").c_str(), straight.text("cx").c_str(),
+                straight.text("cy").c_str());
+    CHECK(back.number("time") == Approx(straight.number("time")));
+    CHECK(back.number("particles") == straight.number("particles"));
+    CHECK(std::fabs(back.number("cx") - straight.number("cx")) < 1e-3);
+    CHECK(std::fabs(back.number("cy") - straight.number("cy")) < 1e-3);
+    for (const auto& [key, value] : straight.fields) {
+        if (key.rfind("b_", 0) == 0) {
+            const auto [x0, y0] = straight.point(key);
+            const auto [x1, y1] = back.point(key);
+            INFO(key);
+            CHECK(std::hypot(x1 - x0, y1 - y0) < 1e-3);
+        }
+    }
+    std::filesystem::remove_all(dir);
 }
