@@ -179,7 +179,7 @@ TEST_CASE("handles know their world: another world refuses them", "[unit][handle
     CHECK(first.isValid(a));
 }
 
-TEST_CASE("world tags repeat from run to run; a loaded world adopts saved handles",
+TEST_CASE("world tags repeat from run to run, and a loaded world adopts saved handles",
           "[unit][handles][snapshot]") {
     // A world made after another was destroyed takes its tag: a program that makes its worlds
     // in the same order gets the same handles, and hashes of them agree between runs.
