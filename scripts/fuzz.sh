@@ -61,6 +61,11 @@ rm -rf "$seeds"
 mkdir -p "$seeds" "$build/corpus" "$build/artifacts"
 cp levels/*.json tests/fuzz/seeds/*.json "$seeds"/
 cp tests/level/data/*.json "$seeds"/ 2>/dev/null || true
+# A level save (Level::save) of a tiny level with bodies and a joint, written by this build, so
+# that the save reader is fuzzed too (inputs starting with FLUIDLVL; see level_fuzz.cpp).
+FLUID_FUZZ_WRITE_SAVE="tests/fuzz/seeds/save_seed.json=$seeds/save_seed.level" \
+    "$build/fluid-fuzz-level" -runs=0 >"$build/seed.log" 2>&1 ||
+    { cat "$build/seed.log" >&2; exit 1; }
 
 log="$build/fuzz.log"
 echo "fuzz.sh: running fluid-fuzz-level (${budget[*]}); log in $log"

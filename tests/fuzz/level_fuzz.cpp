@@ -9,6 +9,13 @@
 // 2,000 particles, no boundary plugin but the Box2D coupling's, Box2D fixtures of at most 100 m
 // of outline), which reaches emitters, forces, drains, sensors, the coupling and b2World::Step
 // with whatever values the loader accepts.
+//
+// An input that starts with FLUIDLVL is a level save (Level::save): its checksum is made right
+// before reading (the fuzzer could never match it), so that the mutations reach every part of
+// the reader (readLevelSave: the level text, world snapshot, Box2D world, coupling state and
+// names). scripts/fuzz.sh seeds it with a save of tests/fuzz/seeds/save_seed.json written by
+// this binary: FLUID_FUZZ_WRITE_SAVE=LEVEL.json=OUT.level makes LLVMFuzzerInitialize load the
+// level, step it twice and save it.
 #include <fluid/level.h>
 #include <fluid/plugins/builtin.h>
 
@@ -16,8 +23,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <string_view>
 
 namespace {
@@ -51,7 +62,52 @@ bool smallBodies(const fluid::Level& level) {
     return perimeter < 100.0; // m: about 10,000 samples at water's spacing
 }
 
+// The bytes with their trailing FNV-1a 64 checksum made right (Level::save's).
+std::string resealed(const uint8_t* data, size_t size) {
+    std::string bytes(reinterpret_cast<const char*>(data), size);
+    if (bytes.size() >= 20) {
+        uint64_t h = 0xcbf29ce484222325ull;
+        for (size_t k = 0; k + 8 < bytes.size(); ++k) {
+            h ^= uint8_t(bytes[k]);
+            h *= 0x100000001b3ull;
+        }
+        std::memcpy(bytes.data() + bytes.size() - 8, &h, 8);
+    }
+    return bytes;
+}
+
+bool stepWanted() {
+    static const bool step = [] {
+        const char* value = std::getenv("FLUID_FUZZ_STEP");
+        return value != nullptr && std::strcmp(value, "1") == 0;
+    }();
+    return step;
+}
+
 } // namespace
+
+extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
+    const char* spec = std::getenv("FLUID_FUZZ_WRITE_SAVE");
+    if (spec == nullptr) {
+        return 0;
+    }
+    const std::string text(spec);
+    const size_t eq = text.find('=');
+    if (eq == std::string::npos) {
+        std::fprintf(stderr, "FLUID_FUZZ_WRITE_SAVE: expected LEVEL.json=OUT.level\n");
+        std::exit(2);
+    }
+    try {
+        fluid::Level level = fluid::loadLevel(text.substr(0, eq), registry());
+        level.step();
+        level.step();
+        level.saveFile(text.substr(eq + 1));
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "FLUID_FUZZ_WRITE_SAVE: %s\n", e.what());
+        std::exit(2);
+    }
+    return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     fluid::LevelOptions options;
@@ -59,6 +115,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // and no thread pool (a file may ask for 256 workers).
     options.maxParticles = 20000;
     options.workerCount = 1;
+    if (size >= 8 && std::memcmp(data, "FLUIDLVL", 8) == 0) {
+        try {
+            std::istringstream in(resealed(data, size));
+            fluid::Level level = fluid::readLevelSave(in, "fuzz.level", registry(), options);
+            (void)level.goalValue();
+            if (stepWanted() && level.world.particleCount() <= 2000 && smallBodies(level)) {
+                level.step();
+            }
+        } catch (const fluid::Error&) {
+            // Refused with a message.
+        }
+        return 0;
+    }
     try {
         fluid::Level level =
             fluid::parseLevel(std::string_view(reinterpret_cast<const char*>(data), size),
@@ -66,10 +135,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         // The goal accessors read sensors and materials by the ids the loader stored.
         (void)level.goalValue();
         (void)level.goalState();
-        static const bool step = [] {
-            const char* value = std::getenv("FLUID_FUZZ_STEP");
-            return value != nullptr && std::strcmp(value, "1") == 0;
-        }();
+        const bool step = stepWanted();
         // The only boundary allowed is the Box2D coupling's, with small bodies.
         const std::size_t coupled = level.coupling ? 1 : 0;
         if (step && level.world.particleCount() <= 2000 &&
