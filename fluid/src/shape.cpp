@@ -115,22 +115,8 @@ bool contains(const Shape& shape, glm::vec2 p) {
         const glm::vec2 d = p - shape.center;
         return d.x * d.x + d.y * d.y <= shape.radius * shape.radius;
     }
-    case ShapeType::Polygon: {
-        // Even-odd rule; points exactly on an edge count as whichever side the rule puts them.
-        const std::vector<glm::vec2>& poly = shape.vertices;
-        bool inside = false;
-        for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-            const glm::vec2 a = poly[i];
-            const glm::vec2 b = poly[j];
-            if ((a.y > p.y) != (b.y > p.y)) {
-                const float x = (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x;
-                if (p.x < x) {
-                    inside = !inside;
-                }
-            }
-        }
-        return inside;
-    }
+    case ShapeType::Polygon:
+        return insidePolygon(std::span<const glm::vec2>(shape.vertices), p);
     }
     return false;
 }

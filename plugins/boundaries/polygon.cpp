@@ -3,6 +3,7 @@
 
 #include <fluid/error.h>
 #include <fluid/plugins/polygon.h>
+#include <fluid/shape.h>
 
 #include <glm/common.hpp>
 
@@ -117,17 +118,8 @@ bool PolygonBoundary::containsLocal(glm::dvec2 local) const {
 }
 
 bool PolygonBoundary::insideLocal(glm::dvec2 local) const {
-    // Even-odd over the vertices as set (no build needed).
-    const std::span<const glm::vec2> v = pointsAt(kVertices);
-    bool inside = false;
-    for (std::size_t k = 0, j = v.size() - 1; k < v.size(); j = k++) {
-        const glm::dvec2 a(v[k]), b(v[j]);
-        if ((a.y > local.y) != (b.y > local.y) &&
-            local.x < (b.x - a.x) * (local.y - a.y) / (b.y - a.y) + a.x) {
-            inside = !inside;
-        }
-    }
-    return inside;
+    // Over the vertices as set (no build needed).
+    return insidePolygon(pointsAt(kVertices), local);
 }
 
 void PolygonBoundary::validate() const {

@@ -3,7 +3,9 @@
 
 #include <glm/vec2.hpp>
 
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -66,6 +68,21 @@ void validate(const Shape& shape, std::string_view who);
 /// True when `point` (unit: m) lies inside `shape` (boundary points of a rectangle or circle
 /// count as inside; polygons use the even-odd rule). Thread rule: any thread.
 bool contains(const Shape& shape, glm::vec2 point);
+
+/// True when `point` (unit: m) lies inside the polygon `vertices` (either winding) by the
+/// even-odd rule; a point on an edge counts as whichever side the rule puts it. Computed in the
+/// point's precision (`glm::vec2` or `glm::dvec2`). Thread rule: any thread.
+template <class Vec> bool insidePolygon(std::span<const glm::vec2> vertices, Vec point) {
+    bool inside = false;
+    for (std::size_t i = 0, j = vertices.size() - 1; i < vertices.size(); j = i++) {
+        const Vec a(vertices[i]), b(vertices[j]);
+        if ((a.y > point.y) != (b.y > point.y) &&
+            point.x < (b.x - a.x) * (point.y - a.y) / (b.y - a.y) + a.x) {
+            inside = !inside;
+        }
+    }
+    return inside;
+}
 
 /// Area of `shape` (unit: m^2). Thread rule: any thread.
 float area(const Shape& shape);
