@@ -237,7 +237,7 @@ uint32_t finishGameplay(WorldState& s) {
                     continue;
                 }
                 RemovedEvent ev;
-                ev.particle = ParticleHandle{p.slot[i], s.slotGeneration[p.slot[i]], s.tag.value()};
+                ev.particle = s.handleOf(p.slot[i]);
                 ev.position = {p.px[i], p.py[i]};
                 ev.velocity = {p.vx[i], p.vy[i]};
                 ev.material = MaterialId{p.material[i]};

@@ -165,7 +165,7 @@ ParticleHandle WorldState::append(glm::vec2 x, glm::vec2 v, uint16_t material, d
     p.material.push_back(material);
     p.slot.push_back(slot);
     p.expiry.push_back(expiry);
-    return ParticleHandle{slot, slotGeneration[slot], tag.value()};
+    return handleOf(slot);
 }
 
 void WorldState::releaseSlot(uint32_t slot) {
@@ -367,7 +367,7 @@ ParticleHandle World::handleAt(uint32_t index) const {
                     " particles");
     }
     const uint32_t slot = m_state->particles.slot[index];
-    return ParticleHandle{slot, m_state->slotGeneration[slot], m_state->tag.value()};
+    return m_state->handleOf(slot);
 }
 
 glm::vec2 World::position(ParticleHandle handle) const {

@@ -175,6 +175,10 @@ struct WorldState {
     std::optional<uint32_t> findIndex(ParticleHandle handle) const; // nullopt: null or stale
     /// Adds a particle at the end of the arrays (the caller checked inputs and capacity).
     ParticleHandle append(glm::vec2 x, glm::vec2 v, uint16_t material, double expiry);
+    /// The handle of the particle in `slot` now: its generation and this world's tag.
+    ParticleHandle handleOf(uint32_t slot) const {
+        return ParticleHandle{slot, slotGeneration[slot], tag.value()};
+    }
     /// Marks a removed particle's slot free and its handles stale.
     void releaseSlot(uint32_t slot);
     uint32_t checkedIndex(ParticleHandle handle, const char* function) const;
