@@ -87,6 +87,8 @@ struct Options {
     float coarse = -1.0f;
     /// "tait" or "linear" (explicit solver).
     std::string eos = "tait";
+    /// The scene's liquid: "water" or "yoghurt" (the presets of fluid/material.h).
+    std::string material = "water";
     /// Crates scene: step Box2D next to the fluid without coupling them (the reference run).
     bool noCoupling = false;
     /// "A:B" as given on the command line (empty: the timed frames); parsed into
@@ -130,9 +132,9 @@ std::pair<float, float> spawnBlock(fluid::World& world, fluid::MaterialId water,
     return {width, height};
 }
 
-/// Fills `world` with the dam-break scene of about `n` water particles.
-Scene buildDam(fluid::World& world, uint32_t n) {
-    const fluid::MaterialId water = world.addMaterial(fluid::water());
+/// Fills `world` with the dam-break scene of about `n` particles of `liquid`.
+Scene buildDam(fluid::World& world, uint32_t n, const fluid::Material& liquid) {
+    const fluid::MaterialId water = world.addMaterial(liquid);
     // nx columns by 2 nx rows hold 2 nx^2 ~ n particles.
     const auto nx = std::max<uint32_t>(1, uint32_t(std::lround(std::sqrt(n / 2.0))));
     const uint32_t ny = 2 * nx;
@@ -149,8 +151,8 @@ Scene buildDam(fluid::World& world, uint32_t n) {
 /// Fills `world` with the resting tank of about `n` water particles: nx = round(sqrt(3 n / 5))
 /// columns by ny = round(5 nx / 3) rows (nx ny ~ n), filling the width of a closed box 1.595
 /// water heights tall (0.3008 x 0.8 m for 30 x 50).
-Scene buildTank(fluid::World& world, uint32_t n) {
-    const fluid::MaterialId water = world.addMaterial(fluid::water());
+Scene buildTank(fluid::World& world, uint32_t n, const fluid::Material& liquid) {
+    const fluid::MaterialId water = world.addMaterial(liquid);
     const auto nx = std::max<uint32_t>(1, uint32_t(std::lround(std::sqrt(3.0 * n / 5.0))));
     const auto ny = std::max<uint32_t>(1, uint32_t(std::lround(5.0 * nx / 3.0)));
     const auto [width, height] = spawnBlock(world, water, nx, ny);
@@ -164,9 +166,9 @@ Scene buildTank(fluid::World& world, uint32_t n) {
     return {text, water, width, width, boxHeight};
 }
 
-/// Fills `world` with a zero-gravity round blob of about `n` water particles.
-Scene buildBlob(fluid::World& world, uint32_t n) {
-    const fluid::MaterialId water = world.addMaterial(fluid::water());
+/// Fills `world` with a zero-gravity round blob of about `n` particles of `liquid`.
+Scene buildBlob(fluid::World& world, uint32_t n, const fluid::Material& liquid) {
+    const fluid::MaterialId water = world.addMaterial(liquid);
     const float s = world.spacing(water);
     fluid::BlobDef blob;
     blob.shape = fluid::BlobShape::Circle;
@@ -429,10 +431,12 @@ int run(const Options& opt) {
     def.equationOfState =
         opt.eos == "linear" ? fluid::EquationOfState::Linear : fluid::EquationOfState::Tait;
     fluid::World world(def);
-    const Scene scene = opt.scene == "blob"   ? buildBlob(world, opt.particles)
-                        : opt.scene == "tank" ? buildTank(world, opt.particles)
-                                              : buildDam(world, opt.particles);
+    const fluid::Material liquid = opt.material == "yoghurt" ? fluid::yoghurt() : fluid::water();
+    const Scene scene = opt.scene == "blob"   ? buildBlob(world, opt.particles, liquid)
+                        : opt.scene == "tank" ? buildTank(world, opt.particles, liquid)
+                                              : buildDam(world, opt.particles, liquid);
     std::string what = scene.text;
+    what += opt.material == "yoghurt" ? ", yoghurt" : "";
 
     // One frame of the scene: World::step alone, or (crates) the coupled frame or the uncoupled
     // reference. Declared in this order so the coupling goes before the b2World, and the
@@ -689,6 +693,8 @@ int main(int argc, char** argv) {
     app.add_option("--iterations", opt.iterations,
                    "Position-based constraint iterations per sub-step (0: the preset's)")
         ->check(CLI::Range(0u, 100u));
+    app.add_option("--material", opt.material,
+                   "The scene's liquid: water (the default) or yoghurt (fluid::yoghurt())");
     app.add_option("--eos", opt.eos, "Equation of state of the explicit solver: tait or linear");
     app.add_flag("--no-coupling", opt.noCoupling,
                  "Crates scene: step the Box2D crates without coupling them to the fluid");
@@ -732,6 +738,11 @@ int main(int argc, char** argv) {
     if (opt.quality != "game" && opt.quality != "precise") {
         std::fprintf(stderr, "fluid-bench: unknown quality '%s' (expected game or precise)\n",
                      opt.quality.c_str());
+        return 2;
+    }
+    if (opt.material != "water" && opt.material != "yoghurt") {
+        std::fprintf(stderr, "fluid-bench: unknown material '%s' (expected water or yoghurt)\n",
+                     opt.material.c_str());
         return 2;
     }
     if (opt.eos != "tait" && opt.eos != "linear") {

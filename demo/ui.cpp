@@ -364,7 +364,7 @@ struct MaterialField {
 };
 
 // The open lower ends of validate(Material) are given small positive floors.
-constexpr std::array<MaterialField, 6> kMaterialFields{{
+constexpr std::array<MaterialField, 10> kMaterialFields{{
     {"viscosity", &Material::viscosity, 0.0f, 1e4f, "Pa*s",
      "Dynamic viscosity mu (seed eq. 2.6). Water 3.5, yoghurt 20."},
     {"surface tension", &Material::surfaceTension, 0.0f, 1e3f, "m^3/(kg s^2)",
@@ -377,6 +377,14 @@ constexpr std::array<MaterialField, 6> kMaterialFields{{
      "Mass of one particle. Changes the particle spacing: the fluid expands or packs."},
     {"smoothing distance", &Material::smoothingDistance, 1e-4f, 10.0f, "m",
      "Kernel support radius h: how far particles feel each other."},
+    {"yield stress", &Material::yieldStress, 0.0f, 1e5f, "Pa",
+     "Below this stress the material does not flow: it heaps and sticks. Water 0, yoghurt 30."},
+    {"consistency", &Material::consistency, 0.0f, 1e4f, "Pa*s^n",
+     "K of the Herschel-Bulkley law: the flowing stress above the yield stress is K rate^n."},
+    {"flow index", &Material::flowIndex, 0.1f, 2.0f, "1",
+     "n of the Herschel-Bulkley law: below 1 thins with shear, above 1 thickens."},
+    {"shear modulus", &Material::shearModulus, 0.0f, 1e6f, "Pa",
+     "Stiffness below the yield stress (0: as stiff as the step allows). Yoghurt 200."},
 }};
 
 void materialSection(World& world, const std::string& name, MaterialId id, FieldErrors& errors) {

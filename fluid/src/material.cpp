@@ -29,6 +29,10 @@ Material yoghurt() {
     m.smoothingDistance = 0.04f;
     m.kernelParticles = 50.0f;
     m.surfaceTension = 0.1f;
+    m.yieldStress = 30.0f;
+    m.consistency = 2.0f;
+    m.flowIndex = 0.7f;
+    m.shearModulus = 200.0f;
     m.name = "yoghurt";
     return m;
 }
@@ -55,6 +59,14 @@ void validate(const Material& m) {
     check(m, "smoothingDistance", m.smoothingDistance, 1e-4f, 10.0f, false, "m");
     check(m, "kernelParticles", m.kernelParticles, 4.0f, 400.0f, false, "count");
     check(m, "surfaceTension", m.surfaceTension, 0.0f, 1e3f, false, "m^3/(kg s^2)");
+    check(m, "yieldStress", m.yieldStress, 0.0f, 1e5f, false, "Pa");
+    check(m, "consistency", m.consistency, 0.0f, 1e4f, false, "Pa*s^n");
+    check(m, "flowIndex", m.flowIndex, 0.1f, 2.0f, false, "1");
+    check(m, "shearModulus", m.shearModulus, 0.0f, 1e6f, false, "Pa");
+}
+
+bool hasYield(const Material& m) {
+    return m.yieldStress > 0.0f || m.consistency > 0.0f;
 }
 
 float particleArea(const Material& material, float depth) {

@@ -45,6 +45,11 @@ PbfView makeView(const WorldState& s, const PbfConstants& c) {
     v.nx = p.prevX.data();
     v.ny = p.prevY.data();
     v.material = p.material.data();
+    v.sxx = p.sxx.data();
+    v.sxy = p.sxy.data();
+    v.tx = p.tx.data();
+    v.ty = p.ty.data();
+    v.yielding = s.yielding;
     v.grid = s.grid.view();
     v.samples = w.size();
     v.wx = w.px.data();
@@ -116,9 +121,27 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
     pairs(s, [&](uint32_t b, uint32_t e) { k.displace(v, o, multiplier.data(), sCorr, b, e); });
 }
 
+std::vector<YieldLaw> yieldLaws(const WorldState& s, float dt) {
+    std::vector<YieldLaw> laws(s.constants.size());
+    for (size_t m = 0; m < laws.size(); ++m) {
+        const MaterialConstants& mc = s.constants[m];
+        YieldLaw& law = laws[m];
+        law.yielding = mc.yielding;
+        law.yieldStress = mc.yieldStress;
+        law.consistency = mc.consistency;
+        law.flowIndex = mc.flowIndex;
+        // The stiffest shear modulus whose wave crosses kShearWave of the support per step.
+        const float speed = kShearWave * mc.support / dt;
+        const float stiffest = mc.restDensity * speed * speed;
+        law.shearModulus =
+            mc.shearModulus > 0.0f ? std::min(mc.shearModulus, stiffest) : stiffest;
+    }
+    return laws;
+}
+
 void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first, bool curl) {
     Particles& p = s.particles;
-    const PbfView v = makeView(s, c);
+    PbfView v = makeView(s, c);
     PbfOut o;
     o.ax = p.ax.data();
     o.ay = p.ay.data();
@@ -126,12 +149,21 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first,
     o.nx = p.prevX.data();
     o.ny = p.prevY.data();
     o.density = p.density.data();
+    std::vector<YieldLaw> laws;
+    if (first && s.yielding) {
+        laws = yieldLaws(s, c.dt);
+        v.yield = laws.data();
+        o.sxx = p.sxx.data();
+        o.sxy = p.sxy.data();
+        o.tx = p.tx.data();
+        o.ty = p.ty.data();
+    }
     const PbfPairs& k = pbfPairs();
     pairs(s, [&](uint32_t b, uint32_t e) { k.viscosity(v, o, scale, first, curl, b, e); });
 }
 
 void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surfaceTension) {
-    if (!(vorticity > 0.0f) && !surfaceTension) {
+    if (!(vorticity > 0.0f) && !surfaceTension && !s.yielding) {
         return;
     }
     Particles& p = s.particles;
@@ -240,6 +272,43 @@ void pbfSampleFriction(WorldState& s, const PbfConstants& c, float scale, float 
             w.fx[w.source[k]] += share * laneSum(accX);
             w.fy[w.source[k]] += share * laneSum(accY);
             w.drag[w.source[k]] += share * laneSum(accD);
+        }
+    });
+}
+
+void pbfSampleStress(WorldState& s, const PbfConstants& c, float weight) {
+    const Particles& p = s.particles;
+    Samples& w = s.samples;
+    const float* __restrict px = p.px.data();
+    const float* __restrict py = p.py.data();
+    const float* __restrict hs = p.h.data();
+    const float* __restrict tx = p.tx.data();
+    const float* __restrict ty = p.ty.data();
+    const float* __restrict mass = p.mass.data();
+    const float* __restrict rho0 = p.restDensity.data();
+    const auto count = static_cast<uint32_t>(w.reporting.size());
+    parallelFor(s.tasks, count, kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t r = b; r < e; ++r) {
+            const uint32_t k = w.reporting[r];
+            const float xw = w.px[k], yw = w.py[k];
+            const float friction = std::min(w.friction[k], 1.0f);
+            float accX[kLanes] = {}, accY[kLanes] = {};
+            s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
+                lanes(jb, je, [&](size_t j, int l) {
+                    const float dx = px[j] - xw, dy = py[j] - yw;
+                    const float invH = 1.0f / hs[j];
+                    const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
+                    const float invH4 = (invH * invH) * (invH * invH);
+                    // pbfSurface's wall stress on j: m_j kG 2 rho0_j V_w f h^-4 t^3 (s_j/rho0_j^2)
+                    // . (x_j - x_w); the sample takes the opposite.
+                    const float f = mass[j] * 2.0f * rho0[j] * invH4 * (t * t * t);
+                    accX[l] -= f * (tx[j] * dx + ty[j] * dy);
+                    accY[l] -= f * (ty[j] * dx - tx[j] * dy);
+                });
+            });
+            const float share = weight * c.sampleVolume * kG * friction;
+            w.fx[w.source[k]] += share * laneSum(accX);
+            w.fy[w.source[k]] += share * laneSum(accY);
         }
     });
 }

@@ -38,13 +38,25 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
 /// Viscosity, seed eq. 2.6 with rest volumes, as an explicit velocity update over dt * `scale`
 /// into ax, ay (wall friction from the boundary samples). When `first`, also each particle's
 /// Akinci surface normals (from invRho of the last constraint sweep) and density at the current
-/// positions (over the lattice sum, as the constraint reads it), and with `curl` its vorticity
-/// (for vorticity confinement; without it the vorticity is left unwritten).
+/// positions (over the lattice sum, as the constraint reads it), with `curl` its vorticity
+/// (for vorticity confinement; without it the vorticity is left unwritten), and in a yielding
+/// world the stress of its yielding particles advanced over dt (yield_law.h; into sxx, sxy and
+/// over rho0^2 into tx, ty).
 void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first, bool curl);
 
-/// Vorticity confinement (strength `vorticity`) and, when `surfaceTension`, cohesion and
-/// curvature [Akinci 2013], added to vx, vy over dt. Needs vorticity, normals and density.
+/// Vorticity confinement (strength `vorticity`), when `surfaceTension` cohesion and curvature
+/// [Akinci 2013], and in a yielding world the divergence of the deviatoric stress, added to vx,
+/// vy over dt. Needs vorticity, normals and density, and the stress pbfViscosity's first pass
+/// advanced.
 void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surfaceTension);
+
+/// Share of the support a shear wave may cross per viscosity run: the solver's cap on a
+/// yielding material's shear modulus, G <= rho0 (kShearWave h / dt)^2.
+inline constexpr float kShearWave = 0.25f;
+
+/// The reaction of each reporting sample to pbfSurface's wall stress (N), at the positions and
+/// stresses that pass reads, times `weight`, added to the sample's force.
+void pbfSampleStress(WorldState& s, const PbfConstants& c, float weight);
 
 /// The reaction of each reporting sample (`Samples::reporting`) to one density sweep: the
 /// sweep's wall term moves particle j by w_j dl_j V_j... (see pbfDisplace) at the current

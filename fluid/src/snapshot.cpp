@@ -27,7 +27,7 @@ namespace fluid {
 namespace {
 
 constexpr char kMagic[8] = {'F', 'L', 'U', 'I', 'D', 'S', 'N', 'P'};
-constexpr uint32_t kVersion = 3;
+constexpr uint32_t kVersion = 4; // 4: Herschel-Bulkley fields and particle stress
 
 uint64_t fnv1a(const std::byte* data, size_t size) {
     uint64_t h = 0xcbf29ce484222325ull;
@@ -205,11 +205,16 @@ void checkParticles(const detail::WorldState& s) {
     }
     for (size_t i = 0; i < n; ++i) {
         const bool finite = std::isfinite(p.px[i]) && std::isfinite(p.py[i]) &&
-                            std::isfinite(p.vx[i]) && std::isfinite(p.vy[i]);
+                            std::isfinite(p.vx[i]) && std::isfinite(p.vy[i]) &&
+                            std::isfinite(p.sxx[i]) && std::isfinite(p.sxy[i]);
         if (!finite || std::isnan(p.expiry[i]) || p.material[i] >= s.materials.size() ||
             p.slot[i] >= s.slotIndex.size() || s.slotIndex[p.slot[i]] != i) {
             In::fail("particle " + std::to_string(i) +
                      " has a non-finite state, a bad material or a bad handle");
+        }
+        if ((p.sxx[i] != 0.0f || p.sxy[i] != 0.0f) && !hasYield(s.materials[p.material[i]])) {
+            In::fail("particle " + std::to_string(i) +
+                     " holds a stress, but its material has no yield stress or consistency");
         }
     }
     std::vector<uint8_t> free(s.slotIndex.size(), 0);
@@ -254,6 +259,10 @@ void World::save(std::ostream& out) const {
         o.put(m.smoothingDistance);
         o.put(m.kernelParticles);
         o.put(m.surfaceTension);
+        o.put(m.yieldStress);
+        o.put(m.consistency);
+        o.put(m.flowIndex);
+        o.put(m.shearModulus);
         o.string(m.name);
     }
     // Particles in their current order, and the handle table.
@@ -405,6 +414,10 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
         m.smoothingDistance = in.get<float>();
         m.kernelParticles = in.get<float>();
         m.surfaceTension = in.get<float>();
+        m.yieldStress = in.get<float>();
+        m.consistency = in.get<float>();
+        m.flowIndex = in.get<float>();
+        m.shearModulus = in.get<float>();
         m.name = in.string("a material name");
         world.addMaterial(m);
     }

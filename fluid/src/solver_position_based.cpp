@@ -18,7 +18,9 @@
 //     viscosity   (every PositionBasedDef::viscosityInterval sub-steps, over their time)
 //                 seed eq. 2.6 as an explicit velocity update, split into as many passes as
 //                 its stability asks; vorticity, normals and density at x* on the way
-//     surface     vorticity confinement and surface tension [Akinci 2013] into v
+//     surface     vorticity confinement and surface tension [Akinci 2013] into v, and in a
+//                 world with a yielding material the stress the viscosity run advanced
+//                 (Herschel-Bulkley, yield_law.h): its divergence into v
 //     boundaries  boundary plugins project out of solids (safety net)
 // Pressure for readers is p = -lambda rho0 / (m dt^2): the multipliers' displacement
 // dx = -dt^2 grad p / rho0 read back.
@@ -280,6 +282,10 @@ void stepPositionBased(WorldState& s, float frameDt) {
     refreshConstants(s);
     setArtificialPressure(s);
     const bool moving = samplesMove(s);
+    if (s.yielding) {
+        p.tx.resize(n);
+        p.ty.resize(n);
+    }
 
     const uint32_t substeps = frameSubsteps(settings.substeps, frameDt);
     const float dt = frameDt / float(substeps);
@@ -366,6 +372,9 @@ void stepPositionBased(WorldState& s, float frameDt) {
                 pbfViscosity(s, spanned, passScale, pass == 0, settings.vorticity > 0.0f);
                 p.vx.swap(p.ax);
                 p.vy.swap(p.ay);
+            }
+            if (facts.wantsForces && s.yielding) {
+                pbfSampleStress(s, spanned, weight);
             }
             pbfSurface(s, spanned, settings.vorticity, facts.surfaceTension);
         });

@@ -27,9 +27,16 @@ constexpr uint32_t kStackedGrain = 8192;
 void refreshConstants(WorldState& s) {
     const size_t m = s.materials.size();
     s.constants.resize(m);
+    s.yielding = false;
     for (size_t i = 0; i < m; ++i) {
         const Material& mat = s.materials[i];
         MaterialConstants& c = s.constants[i];
+        c.yielding = hasYield(mat);
+        c.yieldStress = mat.yieldStress;
+        c.consistency = mat.consistency;
+        c.flowIndex = mat.flowIndex;
+        c.shearModulus = mat.shearModulus;
+        s.yielding = s.yielding || c.yielding;
         c.mass = mat.mass;
         c.massPerDepth = mat.mass / s.def.depth;
         c.restDensity = mat.restDensity;
@@ -206,6 +213,12 @@ void sortParticles(WorldState& s, float cellSize,
     const std::span<const uint32_t> order = s.grid.order();
     for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy}) {
         permute(*channel, order, s.sortScratch, s.tasks);
+    }
+    // Without a yielding material the stress channels are all zero: nothing to permute.
+    if (s.yielding) {
+        for (auto* channel : {&p.sxx, &p.sxy}) {
+            permute(*channel, order, s.sortScratch, s.tasks);
+        }
     }
     // Most worlds have no lifetimes: an all-infinite channel needs no permutation (and no
     // scratch of 8 bytes per particle).

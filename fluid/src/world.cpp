@@ -162,6 +162,8 @@ ParticleHandle WorldState::append(glm::vec2 x, glm::vec2 v, uint16_t material, d
     p.vy.push_back(v.y);
     p.density.push_back(0.0f);
     p.pressure.push_back(0.0f);
+    p.sxx.push_back(0.0f);
+    p.sxy.push_back(0.0f);
     p.material.push_back(material);
     p.slot.push_back(slot);
     p.expiry.push_back(expiry);
@@ -213,8 +215,24 @@ World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
+namespace {
+// The explicit solver steps Newtonian materials only.
+void checkSolverTakes(const WorldDef& def, const Material& material, const char* function) {
+    if (def.solver == Solver::Explicit && hasYield(material)) {
+        std::ostringstream s;
+        s << function << ": material '" << material.name << "' has a Herschel-Bulkley flow law "
+          << "(yieldStress = " << material.yieldStress << " Pa, consistency = "
+          << material.consistency
+          << " Pa*s^n), which the explicit solver does not step; use Solver::PositionBased, "
+             "or set yieldStress and consistency to 0";
+        throw Error(s.str());
+    }
+}
+} // namespace
+
 MaterialId World::addMaterial(const Material& material) {
     validate(material);
+    checkSolverTakes(m_state->def, material, "World::addMaterial");
     if (m_state->materials.size() >= 65535) {
         throw Error("World::addMaterial: the world already has 65535 materials");
     }
@@ -226,6 +244,7 @@ MaterialId World::addMaterial(const Material& material) {
 void World::setMaterial(MaterialId id, const Material& material) {
     (void)this->material(id);
     validate(material);
+    checkSolverTakes(m_state->def, material, "World::setMaterial");
     // The material's spacing sets its emitters' lanes and rate limit: check them again, and
     // keep the old material if one no longer fits.
     const Material old = m_state->materials[id.index];
@@ -239,6 +258,17 @@ void World::setMaterial(MaterialId id, const Material& material) {
     } catch (...) {
         m_state->materials[id.index] = old;
         throw;
+    }
+    // A material that no longer yields drops its stress: only yielding worlds sort and step
+    // the stress channels, and they must then hold zeros.
+    if (!hasYield(material)) {
+        detail::Particles& p = m_state->particles;
+        for (uint32_t i = 0; i < p.size(); ++i) {
+            if (p.material[i] == id.index) {
+                p.sxx[i] = 0.0f;
+                p.sxy[i] = 0.0f;
+            }
+        }
     }
 }
 

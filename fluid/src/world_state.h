@@ -22,6 +22,10 @@ struct Particles {
     std::vector<uint16_t> material;
     std::vector<uint32_t> slot;
     std::vector<float> density, pressure;
+    // The deviatoric stress of a Herschel-Bulkley material (Pa), kept between steps: sxx
+    // (= -syy) and sxy of the symmetric traceless 2D tensor. 0 for Newtonian particles, and not
+    // permuted by the sort in a world without a yielding material (all zeros).
+    std::vector<float> sxx, sxy;
     // Simulated time (s) at which the particle is removed; +infinity for those that live
     // forever. Absolute and double, so that a long lifetime neither stalls nor drifts.
     std::vector<double> expiry;
@@ -45,15 +49,18 @@ struct Particles {
     // density, surface tension, 1/mass, rest area V = m/(depth rho0), pair pressure.
     std::vector<float> h, massPerDepth, viscosity, mass, restDensity, gamma;
     std::vector<float> invMass, volume, pairPressure, invLattice;
+    // Position-based, yielding worlds: the stress over rho0^2 (sxx, sxy; m^2/s^2) that the
+    // surface pass reads, written by the viscosity pass's stress update.
+    std::vector<float> tx, ty;
 
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }
     /// The float channels that persist between steps (besides material, slot and expiry).
-    std::array<std::vector<float>*, 6> keptFloats() {
-        return {&px, &py, &vx, &vy, &density, &pressure};
+    std::array<std::vector<float>*, 8> keptFloats() {
+        return {&px, &py, &vx, &vy, &density, &pressure, &sxx, &sxy};
     }
     /// See `keptFloats`.
-    std::array<const std::vector<float>*, 6> keptFloats() const {
-        return {&px, &py, &vx, &vy, &density, &pressure};
+    std::array<const std::vector<float>*, 8> keptFloats() const {
+        return {&px, &py, &vx, &vy, &density, &pressure, &sxx, &sxy};
     }
 };
 
@@ -73,6 +80,12 @@ struct MaterialConstants {
     float neighbours = 0; // lattice points within h of one (count; 29 water, 49 yoghurt)
     float diagonal = 0;   // position-based: the density constraint's denominator sum_j w_j
                           // |grad_j C|^2 for a particle inside the lattice (1/(kg m^2))
+    // Herschel-Bulkley law (Material::yieldStress etc.); `yielding` false for a Newtonian one.
+    bool yielding = false;
+    float yieldStress = 0;  // tau_y (Pa)
+    float consistency = 0;  // K (Pa s^n)
+    float flowIndex = 1;    // n
+    float shearModulus = 0; // G as the material asks (Pa; 0: the solver's bound)
 };
 
 /// Boundary samples of all boundary plugins, sorted by cell for the sub-step.
@@ -139,6 +152,9 @@ struct WorldState {
 
     std::vector<Material> materials;
     std::vector<MaterialConstants> constants;
+    // Some material follows the Herschel-Bulkley law (refreshConstants): the stress channels
+    // are sorted and stepped.
+    bool yielding = false;
 
     Particles particles;
     // Handles: slot -> index and generation; free slots reused last-in first-out.

@@ -86,6 +86,10 @@ constexpr MaterialField kMaterialFields[] = {
     {"smoothingDistance", &Material::smoothingDistance, {1e-4, 10.0, "m"}},
     {"kernelParticles", &Material::kernelParticles, {4.0, 400.0, "count"}},
     {"surfaceTension", &Material::surfaceTension, {0.0, 1e3, "m^3/(kg s^2)"}},
+    {"yieldStress", &Material::yieldStress, {0.0, 1e5, "Pa"}},
+    {"consistency", &Material::consistency, {0.0, 1e4, "Pa*s^n"}},
+    {"flowIndex", &Material::flowIndex, {0.1, 2.0, "1"}},
+    {"shearModulus", &Material::shearModulus, {0.0, 1e6, "Pa"}},
 };
 
 class LevelReader {

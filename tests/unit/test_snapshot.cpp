@@ -190,7 +190,7 @@ TEST_CASE("snapshot: truncated, corrupt or foreign data is refused", "[snapshot]
     std::string version = bytes;
     version[8] = 7;
     CHECK_THROWS_WITH(restored(version, registry),
-                      "snapshot: format version 7 is not supported; this fluid reads version 3");
+                      "snapshot: format version 7 is not supported; this fluid reads version 4");
     // Every truncation point is refused, none crashes.
     for (size_t cut = 0; cut < bytes.size(); cut += 97) {
         CHECK_THROWS_AS(restored(bytes.substr(0, cut), registry), Error);

@@ -2,10 +2,12 @@
 // and the table of those passes for the instruction set the machine has.
 //
 // The passes are compiled once per instruction set (pbf_pairs_*.cpp). Their object files
-// include nothing but this header, <immintrin.h> and <cstdint>, and define everything they use
+// include nothing but this header (with ../yield_law.h), <immintrin.h> and <cstdint>, and define everything they use
 // with internal linkage, so no inline function of the standard library can be linked from a
 // wider instruction set than the machine runs.
 #pragma once
+
+#include "../yield_law.h"
 
 #include <cstdint>
 
@@ -120,6 +122,11 @@ struct PbfView {
     const float *density = nullptr, *vorticity = nullptr, *nx = nullptr, *ny = nullptr;
     const uint16_t* material = nullptr;
     const float* leastDiagonal = nullptr; // per material: least denominator of a multiplier
+    // Yielding worlds (Material::yieldStress): each particle's deviatoric stress (Pa) and the
+    // same over rho0^2 (m^2/s^2), and per material its Herschel-Bulkley law this step.
+    const float *sxx = nullptr, *sxy = nullptr, *tx = nullptr, *ty = nullptr;
+    const YieldLaw* yield = nullptr;
+    bool yielding = false; // some material yields: the stress passes run
     GridView grid;
     // Boundary samples (sorted by their own grid): positions, velocities, friction.
     uint32_t samples = 0;
@@ -139,6 +146,7 @@ struct PbfOut {
     float *constraint = nullptr, *diagonal = nullptr, *density = nullptr, *invRho = nullptr;
     float *ax = nullptr, *ay = nullptr, *vorticity = nullptr, *nx = nullptr, *ny = nullptr;
     float *vx = nullptr, *vy = nullptr;
+    float *sxx = nullptr, *sxy = nullptr, *tx = nullptr, *ty = nullptr;
 };
 
 /// One instruction set's pair passes over particles [b, e); see pbf_loops.h for what each

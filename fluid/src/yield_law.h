@@ -1,0 +1,94 @@
+// fluid — the Herschel-Bulkley stress update of one particle (Material::yieldStress etc.).
+//
+// The deviatoric stress s of a yielding material is a 2D symmetric traceless tensor, stored as
+// a = s_xx = -s_yy and b = s_xy; its von Mises norm |s| = sqrt(a^2 + b^2) is the shear stress
+// of simple shear. Over a time dt with deviatoric strain rate D' = (dxx, dxy) and spin w =
+// (dvx/dy - dvy/dx) / 2 the update is an elastic trial step with the Jaumann (co-rotational)
+// rate, then a return to the Herschel-Bulkley flow surface:
+//   trial     s* = s + dt (2 G D' + W s - s W)   (the spin's turn made exactly)
+//   |s*| <= tau_y:  s = s*                                  (below yield: an elastic solid)
+//   else            |s| = |s*| - G dt g = tau_y + K g^n      (g: the plastic shear rate)
+// so under a steady shear rate g the stress settles at tau_y + K g^n, the Herschel-Bulkley law,
+// and a material left alone keeps a stress of at most tau_y: it holds its shape. The return is
+// implicit in g, so it is stable for any K and n; only G's elastic wave limits the step (the
+// solver caps G). Scalar code, compiled into every instruction set's pair passes with the same
+// operations in the same order, so every set gives the same bits. As simd/pair_view.h asks of
+// what those passes include: no standard header, and functions of internal linkage only
+// (compiler builtins for the maths), so no copy built for a wider instruction set can be
+// linked in place of another.
+#pragma once
+
+namespace fluid::detail {
+
+/// One material's Herschel-Bulkley constants as a step uses them.
+struct YieldLaw {
+    bool yielding = false;  // false: a Newtonian material, stress kept at 0
+    float yieldStress = 0;  // tau_y (Pa)
+    float consistency = 0;  // K (Pa s^n)
+    float flowIndex = 1;    // n
+    float shearModulus = 0; // G this step (Pa): the material's, capped by the solver
+};
+
+/// The plastic shear rate g >= 0 (1/s) with excess - gdt g = K g^n (excess = |s*| - tau_y > 0,
+/// gdt = G dt > 0, K > 0): safeguarded Newton from the root of K g^n = excess, which bounds it
+/// from above; f is monotone, so the bracket [lo, hi] always holds the root.
+static inline float plasticRate(float excess, float gdt, float consistency, float flowIndex) {
+    float hi = __builtin_fminf(excess / gdt, __builtin_powf(excess / consistency, 1.0f / flowIndex));
+    float lo = 0.0f;
+    float x = hi;
+    for (int it = 0; it < 12; ++it) {
+        const float power = __builtin_powf(x, flowIndex);
+        const float f = excess - gdt * x - consistency * power;
+        if (f > 0.0f) {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        // f' = -gdt - K n x^(n-1), written without dividing by x when it is 0.
+        const float slope = x > 0.0f ? gdt + consistency * flowIndex * power / x : gdt;
+        float next = x + f / slope;
+        if (!(next > lo && next < hi)) {
+            next = 0.5f * (lo + hi);
+        }
+        if (__builtin_fabsf(next - x) <= 1e-5f * x) {
+            return next;
+        }
+        x = next;
+    }
+    return x;
+}
+
+/// Advances the stress (a, b) of one particle over `dt` (s) with deviatoric strain rate (dxx,
+/// dxy) (1/s) and spin `spin` (1/s) under `law`. A non-finite result (from non-finite input)
+/// resets the stress to 0, so a bad velocity cannot leave a NaN stress behind.
+static inline void yieldStep(const YieldLaw& law, float dxx, float dxy, float spin, float dt, float& a,
+                      float& b) {
+    // The Jaumann terms turn (a, b) by the angle 2 spin dt; turned exactly (a Cayley rotation:
+    // no trigonometry, and the norm kept), since a forward Euler turn grows the norm by
+    // sqrt(1 + (2 spin dt)^2) per step and a fast-spinning shear-thickening flow blew up.
+    const float u = spin * dt;
+    const float inv = 1.0f / (1.0f + u * u);
+    const float cosine = (1.0f - u * u) * inv, sine = 2.0f * u * inv;
+    const float g2 = 2.0f * law.shearModulus;
+    const float ta = (a * cosine + b * sine) + dt * g2 * dxx;
+    const float tb = (b * cosine - a * sine) + dt * g2 * dxy;
+    const float norm = __builtin_sqrtf(ta * ta + tb * tb);
+    const float excess = norm - law.yieldStress;
+    if (!(excess > 0.0f)) {
+        const bool finite = __builtin_isfinite(norm);
+        a = finite ? ta : 0.0f;
+        b = finite ? tb : 0.0f;
+        return;
+    }
+    const float gdt = law.shearModulus * dt;
+    float target = law.yieldStress;
+    if (law.consistency > 0.0f && gdt > 0.0f) {
+        const float rate = plasticRate(excess, gdt, law.consistency, law.flowIndex);
+        target += law.consistency * __builtin_powf(rate, law.flowIndex);
+    }
+    const float scale = __builtin_fminf(target / norm, 1.0f);
+    a = __builtin_isfinite(scale) ? ta * scale : 0.0f;
+    b = __builtin_isfinite(scale) ? tb * scale : 0.0f;
+}
+
+} // namespace fluid::detail
