@@ -384,7 +384,7 @@ constexpr std::array<MaterialField, 10> kMaterialFields{{
     {"flow index", &Material::flowIndex, 0.1f, 2.0f, "1",
      "n of the Herschel-Bulkley law: below 1 thins with shear, above 1 thickens."},
     {"shear modulus", &Material::shearModulus, 0.0f, 1e6f, "Pa",
-     "Stiffness below the yield stress (0: as stiff as the step allows). Yoghurt 200."},
+     "Stiffness below the yield stress (0: as stiff as the step allows, the yoghurt preset)."},
 }};
 
 void materialSection(World& world, const std::string& name, MaterialId id, FieldErrors& errors) {

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Render the README's pictures into docs/screenshots/: every level of levels/ after 2.5 s
 # (metaballs, HUD on), the dam break in the pressure and particle views mid-collapse, and
-# "Fill the cup" after the planks were dragged into a slide (scripted input, as a player would).
+# "Fill the cup" after the planks were dragged into a slide (scripted input, as a player would),
+# the yoghurt dollop once both spouts have emptied (4 s), and the sticky plank carried over the
+# bowl with its yoghurt still on it.
 # Usage: bash scripts/screenshots.sh [path/to/fluid-demo]   (build it first; runs under Xvfb
 # when there is no display)
 set -euo pipefail
@@ -47,4 +49,22 @@ drag() { # x0 y0 x1 y1
 } >"$script"
 run "$demo" --level cup_and_planks --frames 330 --size "$size" --script "$script" \
     --screenshot "$out/cup_and_planks.png" >/dev/null
+
+# Yoghurt dollop: after 4 s both spouts have emptied; the mound stands on its table.
+run "$demo" --level yoghurt_dollop --frames 240 --size "$size" \
+    --screenshot "$out/yoghurt_dollop.png" >/dev/null
+
+# Sticky plank: shift + drag the plank from (0.32, 0.5) to (0.8, 0.42), over the bowl, in 1.5 s
+# (eased, so the yoghurt rides along); the picture is taken before the shake.
+script="$tmp/plank.script"
+{
+    echo "10 press left 0.32 0.5 shift"
+    for k in $(seq 1 90); do
+        awk -v f=$((10 + k)) -v k="$k" \
+            'BEGIN { t = 0.5 - 0.5 * cos(3.14159265 * k / 90);
+                     printf "%d move %.4f %.4f\n", f, 0.32 + t * 0.48, 0.5 - t * 0.08 }'
+    done
+} >"$script"
+run "$demo" --level sticky_plank --frames 100 --size "$size" --script "$script" \
+    --screenshot "$out/sticky_plank.png" >/dev/null
 echo "screenshots.sh: wrote $(ls "$out" | wc -l) pictures to $out/"

@@ -32,7 +32,7 @@ Material yoghurt() {
     m.yieldStress = 30.0f;
     m.consistency = 2.0f;
     m.flowIndex = 0.7f;
-    m.shearModulus = 200.0f;
+    m.shearModulus = 0.0f;
     m.name = "yoghurt";
     return m;
 }

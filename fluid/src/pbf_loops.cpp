@@ -49,6 +49,7 @@ PbfView makeView(const WorldState& s, const PbfConstants& c) {
     v.sxy = p.sxy.data();
     v.tx = p.tx.data();
     v.ty = p.ty.data();
+    v.rigidity = p.rigidity.data();
     v.yielding = s.yielding;
     v.grid = s.grid.view();
     v.samples = w.size();
@@ -157,6 +158,7 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first,
         o.sxy = p.sxy.data();
         o.tx = p.tx.data();
         o.ty = p.ty.data();
+        o.rigidity = p.rigidity.data();
     }
     const PbfPairs& k = pbfPairs();
     pairs(s, [&](uint32_t b, uint32_t e) { k.viscosity(v, o, scale, first, curl, b, e); });
@@ -171,6 +173,11 @@ void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surf
     PbfOut o;
     o.vx = p.vx.data();
     o.vy = p.vy.data();
+    if (s.yielding) {
+        // The velocity change waits in kx, ky for the next prediction (see Particles::kx).
+        o.vx = p.kx.data();
+        o.vy = p.ky.data();
+    }
     const PbfPairs& k = pbfPairs();
     pairs(s, [&](uint32_t b, uint32_t e) { k.surface(v, o, vorticity, surfaceTension, b, e); });
 }

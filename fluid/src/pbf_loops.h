@@ -52,7 +52,7 @@ void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surf
 
 /// Share of the support a shear wave may cross per viscosity run: the solver's cap on a
 /// yielding material's shear modulus, G <= rho0 (kShearWave h / dt)^2.
-inline constexpr float kShearWave = 0.25f;
+inline constexpr float kShearWave = 0.15f;
 
 /// The reaction of each reporting sample to pbfSurface's wall stress (N), at the positions and
 /// stresses that pass reads, times `weight`, added to the sample's force.

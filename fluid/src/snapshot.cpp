@@ -14,6 +14,7 @@
 #include <fluid/error.h>
 #include <fluid/registry.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -27,7 +28,7 @@ namespace fluid {
 namespace {
 
 constexpr char kMagic[8] = {'F', 'L', 'U', 'I', 'D', 'S', 'N', 'P'};
-constexpr uint32_t kVersion = 4; // 4: Herschel-Bulkley fields and particle stress
+constexpr uint32_t kVersion = 4; // 4: Herschel-Bulkley fields, stress and pending kicks
 
 uint64_t fnv1a(const std::byte* data, size_t size) {
     uint64_t h = 0xcbf29ce484222325ull;
@@ -206,7 +207,8 @@ void checkParticles(const detail::WorldState& s) {
     for (size_t i = 0; i < n; ++i) {
         const bool finite = std::isfinite(p.px[i]) && std::isfinite(p.py[i]) &&
                             std::isfinite(p.vx[i]) && std::isfinite(p.vy[i]) &&
-                            std::isfinite(p.sxx[i]) && std::isfinite(p.sxy[i]);
+                            std::isfinite(p.sxx[i]) && std::isfinite(p.sxy[i]) &&
+                            std::isfinite(p.kx[i]) && std::isfinite(p.ky[i]);
         if (!finite || std::isnan(p.expiry[i]) || p.material[i] >= s.materials.size() ||
             p.slot[i] >= s.slotIndex.size() || s.slotIndex[p.slot[i]] != i) {
             In::fail("particle " + std::to_string(i) +
@@ -432,6 +434,8 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
     in.array(s.slotGeneration, "the handle generations");
     in.array(s.freeSlots, "the free slots");
     checkParticles(s);
+    s.kicksPending = std::any_of(p.kx.begin(), p.kx.end(), [](float k) { return k != 0.0f; }) ||
+                     std::any_of(p.ky.begin(), p.ky.end(), [](float k) { return k != 0.0f; });
 
     const auto forces = in.get<uint64_t>();
     for (uint64_t k = 0; k < forces; ++k) {

@@ -283,8 +283,24 @@ void stepPositionBased(WorldState& s, float frameDt) {
     setArtificialPressure(s);
     const bool moving = samplesMove(s);
     if (s.yielding) {
+        // Only particles of a yielding material make this a yielding step.
+        const std::vector<MaterialConstants>& mc = s.constants;
+        s.yielding = std::any_of(p.material.begin(), p.material.end(),
+                                 [&](uint16_t m) { return mc[m].yielding; });
+    }
+    if (s.yielding) {
         p.tx.resize(n);
         p.ty.resize(n);
+        p.rigidity.resize(n);
+    } else if (s.kicksPending) {
+        // The last yielding step's changes go in before this Newtonian one.
+        each(s, [&](uint32_t i) {
+            p.vx[i] += p.kx[i];
+            p.vy[i] += p.ky[i];
+            p.kx[i] = 0.0f;
+            p.ky[i] = 0.0f;
+        });
+        s.kicksPending = false;
     }
 
     const uint32_t substeps = frameSubsteps(settings.substeps, frameDt);
@@ -328,6 +344,15 @@ void stepPositionBased(WorldState& s, float frameDt) {
         // positions before the prediction (solveDensity resets both).
         timed(prof.external, [&] { externalForces(s, dt, s.time + double(inStep), p.ax, p.ay); });
         timed(prof.integrate, [&] {
+            if (s.yielding) {
+                // The last surface pass's velocity change (see Particles::kx).
+                each(s, [&](uint32_t i) {
+                    p.vx[i] += p.kx[i];
+                    p.vy[i] += p.ky[i];
+                    p.kx[i] = 0.0f;
+                    p.ky[i] = 0.0f;
+                });
+            }
             const IntegrateStats st = integrate(s, p.ax, p.ay, dt, speedCap, p.cx, p.cy);
             prof.nonFiniteRepaired += st.repaired;
             prof.speedClamped += st.clamped;
@@ -382,6 +407,7 @@ void stepPositionBased(WorldState& s, float frameDt) {
             projectBoundaries(s, dt, endInStep, endInStep, facts.sampleSpacing, p.ox, p.oy);
         });
     }
+    s.kicksPending = s.yielding;
     densityError(s);
     if (facts.wantsForces) {
         deliverSampleForces(s);

@@ -164,6 +164,8 @@ ParticleHandle WorldState::append(glm::vec2 x, glm::vec2 v, uint16_t material, d
     p.pressure.push_back(0.0f);
     p.sxx.push_back(0.0f);
     p.sxy.push_back(0.0f);
+    p.kx.push_back(0.0f);
+    p.ky.push_back(0.0f);
     p.material.push_back(material);
     p.slot.push_back(slot);
     p.expiry.push_back(expiry);
@@ -415,6 +417,8 @@ void World::setVelocity(ParticleHandle handle, glm::vec2 velocity) {
     checkVec("World::setVelocity", "velocity", velocity);
     m_state->particles.vx[i] = velocity.x;
     m_state->particles.vy[i] = velocity.y;
+    m_state->particles.kx[i] = 0.0f; // the host's velocity replaces a pending change too
+    m_state->particles.ky[i] = 0.0f;
 }
 
 ForcePlugin& World::addForce(std::unique_ptr<ForcePlugin> plugin) {
@@ -655,6 +659,12 @@ std::span<const float> World::velocityY() const {
 }
 std::span<const float> World::density() const {
     return m_state->particles.density;
+}
+std::span<const float> World::stressXX() const {
+    return m_state->particles.sxx;
+}
+std::span<const float> World::stressXY() const {
+    return m_state->particles.sxy;
 }
 std::span<const float> World::pressure() const {
     return m_state->particles.pressure;

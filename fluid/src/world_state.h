@@ -26,6 +26,11 @@ struct Particles {
     // (= -syy) and sxy of the symmetric traceless 2D tensor. 0 for Newtonian particles, and not
     // permuted by the sort in a world without a yielding material (all zeros).
     std::vector<float> sxx, sxy;
+    // Yielding worlds, position-based: the velocity change of the last surface pass (m/s),
+    // applied before the next prediction instead of at once, so that the density solve meets
+    // the cohesion and stress forces in the same sub-step as gravity: a resting particle then
+    // reads a velocity of 0, not the dt * force the next solve takes back. 0 elsewhere.
+    std::vector<float> kx, ky;
     // Simulated time (s) at which the particle is removed; +infinity for those that live
     // forever. Absolute and double, so that a long lifetime neither stalls nor drifts.
     std::vector<double> expiry;
@@ -49,18 +54,19 @@ struct Particles {
     // density, surface tension, 1/mass, rest area V = m/(depth rho0), pair pressure.
     std::vector<float> h, massPerDepth, viscosity, mass, restDensity, gamma;
     std::vector<float> invMass, volume, pairPressure, invLattice;
-    // Position-based, yielding worlds: the stress over rho0^2 (sxx, sxy; m^2/s^2) that the
-    // surface pass reads, written by the viscosity pass's stress update.
-    std::vector<float> tx, ty;
+    // Position-based, yielding worlds: the stress over rho0^2 (sxx, sxy; m^2/s^2) and how far
+    // below its yield stress each particle is (rigidity, 1 - |s| / tau_y in [0, 1]; 0 for a
+    // Newtonian one), written by the viscosity pass for the surface pass to read.
+    std::vector<float> tx, ty, rigidity;
 
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }
     /// The float channels that persist between steps (besides material, slot and expiry).
-    std::array<std::vector<float>*, 8> keptFloats() {
-        return {&px, &py, &vx, &vy, &density, &pressure, &sxx, &sxy};
+    std::array<std::vector<float>*, 10> keptFloats() {
+        return {&px, &py, &vx, &vy, &density, &pressure, &sxx, &sxy, &kx, &ky};
     }
     /// See `keptFloats`.
-    std::array<const std::vector<float>*, 8> keptFloats() const {
-        return {&px, &py, &vx, &vy, &density, &pressure, &sxx, &sxy};
+    std::array<const std::vector<float>*, 10> keptFloats() const {
+        return {&px, &py, &vx, &vy, &density, &pressure, &sxx, &sxy, &kx, &ky};
     }
 };
 
@@ -152,9 +158,13 @@ struct WorldState {
 
     std::vector<Material> materials;
     std::vector<MaterialConstants> constants;
-    // Some material follows the Herschel-Bulkley law (refreshConstants): the stress channels
-    // are sorted and stepped.
+    // Some particle is of a material that follows the Herschel-Bulkley law (refreshConstants
+    // for the materials, the position-based step for the particles): the stress channels are
+    // sorted and stepped. A world with a yielding material but no such particle, such as a
+    // water tank in a level that also lists yoghurt, steps as a Newtonian one.
     bool yielding = false;
+    // Particles::kx, ky hold changes not yet applied (a yielding step wrote them).
+    bool kicksPending = false;
 
     Particles particles;
     // Handles: slot -> index and generation; free slots reused last-in first-out.

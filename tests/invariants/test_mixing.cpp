@@ -58,7 +58,7 @@ TEST_CASE("a yoghurt blob dropped into water: both materials interact",
     Stopwatch sw(std::string("yoghurt into water 1.2 s, ") + solverName(solver));
     World world(physicsDef(solver));
     const MaterialId w = world.addMaterial(water()); // first: the walls are sampled at its spacing
-    const MaterialId y = world.addMaterial(yoghurt());
+    const MaterialId y = world.addMaterial(forSolver(yoghurt(), solver));
     const float s = world.spacing(w);
     const uint32_t cols = 40, rows = 20;
     const float width = float(cols) * s, depth = float(rows) * s, top = 0.5f;

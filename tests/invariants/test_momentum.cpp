@@ -93,7 +93,7 @@ TEST_CASE("zero-g water and yoghurt blobs collide and keep their momentum over 1
     Stopwatch sw(std::string("momentum, two materials, ") + solverName(solver));
     World world(physicsDef(solver));
     const MaterialId w = world.addMaterial(water());
-    const MaterialId y = world.addMaterial(yoghurt());
+    const MaterialId y = world.addMaterial(forSolver(yoghurt(), solver));
     BlobDef a;
     a.shape = BlobShape::Circle;
     a.center = {-0.12f, 0.02f};

@@ -17,7 +17,7 @@ TEST_CASE("a block resting 1 s in zero gravity still reads its rest density",
         CAPTURE(preset.name);
         Stopwatch sw("rest density 1 s " + preset.name + ", " + solverName(solver));
         World world(physicsDef(solver));
-        const MaterialId id = world.addMaterial(preset);
+        const MaterialId id = world.addMaterial(forSolver(preset, solver));
         world.spawnBlob(latticeBlock(world, id, -0.12f, -0.12f, 24, 24));
         for (int frame = 0; frame < 60; ++frame) {
             world.step(kFrame);

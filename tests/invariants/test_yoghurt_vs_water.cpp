@@ -64,7 +64,7 @@ TEST_CASE("yoghurt's dam-break front lags water's and reaches the far wall later
     const float boxW = 1.0f; // four block widths
     const DamRun w = runDam(solver, water(), boxW, 90);
     // Yoghurt gets up to 1.5 s; if it has not arrived by then it is later anyway.
-    const DamRun y = runDam(solver, yoghurt(), boxW, 90);
+    const DamRun y = runDam(solver, forSolver(yoghurt(), solver), boxW, 90);
     CAPTURE(w.particles, y.particles, w.frontAt03, y.frontAt03, w.wallFrame, y.wallFrame);
     std::printf(
         "[measure] %s dam break fronts at 0.3 s: water %.3f m (%u particles), yoghurt %.3f m "

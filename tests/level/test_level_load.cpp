@@ -69,9 +69,10 @@ const Level::PluginEntry* plugin(const Level& level, std::string_view name) {
 // paddle_wheel.json and crates.json are played in test_level_box2d_levels.cpp; the demo's
 // levels in test_level_demo_levels.cpp (big_tank.json for 150 frames).
 constexpr std::string_view kLevelsWithOwnTest[] = {
-    "dam_break.json",      "zero_g_blobs.json", "fill_the_cup.json",     "planetoid.json",
-    "paddle_wheel.json",   "crates.json",       "yoghurt_vs_water.json", "zero_g_arena.json",
-    "cup_and_planks.json", "big_tank.json"};
+    "dam_break.json",       "zero_g_blobs.json", "fill_the_cup.json",     "planetoid.json",
+    "paddle_wheel.json",    "crates.json",       "yoghurt_vs_water.json", "zero_g_arena.json",
+    "cup_and_planks.json",  "big_tank.json",     "yoghurt_dollop.json",   "sticky_plank.json",
+    "yoghurt_or_water.json"};
 
 TEST_CASE("every shipped level loads, and levels without a test of their own run 120 frames",
           "[level]") {

@@ -323,6 +323,16 @@ inline WorldDef physicsDef(Solver solver = Solver::PositionBased) {
     return def;
 }
 
+/// `material` as `solver` steps it: the explicit solver takes Newtonian materials only, so there
+/// a yield stress and consistency are dropped (the seed's yoghurt, Table 4.1 alone).
+inline Material forSolver(Material material, Solver solver) {
+    if (solver == Solver::Explicit) {
+        material.yieldStress = 0.0f;
+        material.consistency = 0.0f;
+    }
+    return material;
+}
+
 /// The solver's name in test output.
 inline const char* solverName(Solver solver) {
     return solver == Solver::PositionBased ? "position-based" : "explicit";

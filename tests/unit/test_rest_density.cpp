@@ -17,7 +17,7 @@ TEST_CASE("a fresh resting block of each preset reads its rest density", "[unit]
         WorldDef def;
         def.solver = solver;
         World world(def); // zero gravity: no force plugin, no boundary
-        const MaterialId id = world.addMaterial(preset);
+        const MaterialId id = world.addMaterial(forSolver(preset, solver));
         world.spawnBlob(latticeBlock(world, id, -0.12f, -0.12f, 24, 24));
         REQUIRE(world.particleCount() == 24u * 24u);
         world.step(1e-4f); // one tiny step: density is computed, nothing moves measurably

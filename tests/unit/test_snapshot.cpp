@@ -21,7 +21,7 @@ World scene(Solver solver, uint32_t workers) {
     def.workerCount = workers;
     World world(def);
     const MaterialId water = world.addMaterial(fluid::water());
-    const MaterialId yoghurt = world.addMaterial(fluid::yoghurt());
+    const MaterialId yoghurt = world.addMaterial(fluid::test::forSolver(fluid::yoghurt(), solver));
     Registry registry;
     registerBuiltinPlugins(registry);
     world.addForce(registry.createForce("force.gravity"));

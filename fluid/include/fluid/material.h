@@ -58,9 +58,11 @@ struct Material {
     float flowIndex = 1.0f;
     /// Shear modulus G below the yield stress (unit: Pa; range [0, 1e6]): how far the material
     /// bends before it yields (a strain of yieldStress / G). The solver uses at most what its
-    /// sub-step can carry (a shear wave crossing a quarter of the support per viscosity run);
-    /// 0 asks for that bound. Only read when `yieldStress` or `consistency` is positive.
-    /// Yoghurt: 200 (stirred yoghurt's storage modulus is about 100-500 Pa).
+    /// sub-step can carry, rho0 (h / (4 dt))^2 for a viscosity run of dt (about 6,000 Pa for the
+    /// yoghurt preset at the default settings, 1,500 Pa at `Quality::Game`); 0 asks for that
+    /// bound. Only read when `yieldStress` or `consistency` is positive. Water: 200 (unused);
+    /// yoghurt: 0. Stirred yoghurt's storage modulus is about 100-500 Pa, but at 200 Pa a
+    /// stirred yoghurt wobbles like jelly after the spoon leaves (see docs/solver.md).
     float shearModulus = 200.0f;
     /// Display name (free text, for tools and error messages).
     std::string name = "water";
@@ -69,7 +71,8 @@ struct Material {
 /// The seed's water (Table 4.1, values unchanged). Thread rule: any thread.
 Material water();
 /// The seed's yoghurt (Table 4.1, values unchanged) with a Herschel-Bulkley flow law: yield
-/// stress 30 Pa, consistency 2 Pa*s^n, flow index 0.7, shear modulus 200 Pa. Table 4.1's
+/// stress 30 Pa, consistency 2 Pa*s^n, flow index 0.7, shear modulus 0 (as stiff as the step
+/// allows). Table 4.1's
 /// viscosity of 20 Pa*s stays as the law's high-shear limit. Thread rule: any thread.
 Material yoghurt();
 

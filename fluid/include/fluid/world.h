@@ -371,6 +371,13 @@ public:
     std::span<const float> density() const;
     /// Pressure per slot from the last sub-step (unit: Pa).
     std::span<const float> pressure() const;
+    /// Deviatoric stress s_xx (= -s_yy) per slot (unit: Pa): the stress a yielding material
+    /// (`Material::yieldStress`, `consistency`) holds, at most the yield stress at rest and
+    /// tau_y + K rate^n in flow; 0 for a Newtonian material. hypot(s_xx, s_xy) over the yield
+    /// stress tells how close a particle is to flowing (1: flowing). Thread rule: as `density`.
+    std::span<const float> stressXX() const;
+    /// Deviatoric shear stress s_xy per slot (unit: Pa); see `stressXX`.
+    std::span<const float> stressXY() const;
     /// Material index per slot.
     std::span<const uint16_t> materialIndex() const;
 

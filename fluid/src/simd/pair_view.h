@@ -125,6 +125,7 @@ struct PbfView {
     // Yielding worlds (Material::yieldStress): each particle's deviatoric stress (Pa) and the
     // same over rho0^2 (m^2/s^2), and per material its Herschel-Bulkley law this step.
     const float *sxx = nullptr, *sxy = nullptr, *tx = nullptr, *ty = nullptr;
+    const float* rigidity = nullptr; // 1 - |s| / tau_y in [0, 1]; 0 for Newtonian particles
     const YieldLaw* yield = nullptr;
     bool yielding = false; // some material yields: the stress passes run
     GridView grid;
@@ -146,7 +147,7 @@ struct PbfOut {
     float *constraint = nullptr, *diagonal = nullptr, *density = nullptr, *invRho = nullptr;
     float *ax = nullptr, *ay = nullptr, *vorticity = nullptr, *nx = nullptr, *ny = nullptr;
     float *vx = nullptr, *vy = nullptr;
-    float *sxx = nullptr, *sxy = nullptr, *tx = nullptr, *ty = nullptr;
+    float *sxx = nullptr, *sxy = nullptr, *tx = nullptr, *ty = nullptr, *rigidity = nullptr;
 };
 
 /// One instruction set's pair passes over particles [b, e); see pbf_loops.h for what each
