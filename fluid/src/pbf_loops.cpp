@@ -169,14 +169,20 @@ void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surf
         return;
     }
     Particles& p = s.particles;
-    const PbfView v = makeView(s, c);
+    PbfView v = makeView(s, c);
     PbfOut o;
     o.vx = p.vx.data();
     o.vy = p.vy.data();
+    std::vector<YieldLaw> laws;
     if (s.yielding) {
         // The velocity change waits in kx, ky for the next prediction (see Particles::kx).
+        laws = yieldLaws(s, c.dt);
+        v.yield = laws.data();
         o.vx = p.kx.data();
         o.vy = p.ky.data();
+        o.wallNx = p.wallNx.data();
+        o.wallNy = p.wallNy.data();
+        o.wallAdhesion = p.wallAdhesion.data();
     }
     const PbfPairs& k = pbfPairs();
     pairs(s, [&](uint32_t b, uint32_t e) { k.surface(v, o, vorticity, surfaceTension, b, e); });
@@ -291,8 +297,11 @@ void pbfSampleStress(WorldState& s, const PbfConstants& c, float weight) {
     const float* __restrict hs = p.h.data();
     const float* __restrict tx = p.tx.data();
     const float* __restrict ty = p.ty.data();
+    const float* __restrict nx = p.wallNx.data();
+    const float* __restrict ny = p.wallNy.data();
     const float* __restrict mass = p.mass.data();
     const float* __restrict rho0 = p.restDensity.data();
+    const float* __restrict adhesion = p.wallAdhesion.data();
     const auto count = static_cast<uint32_t>(w.reporting.size());
     parallelFor(s.tasks, count, kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t r = b; r < e; ++r) {
@@ -306,11 +315,22 @@ void pbfSampleStress(WorldState& s, const PbfConstants& c, float weight) {
                     const float invH = 1.0f / hs[j];
                     const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
                     const float invH4 = (invH * invH) * (invH * invH);
-                    // pbfSurface's wall stress on j: m_j kG 2 rho0_j V_w f h^-4 t^3 (s_j/rho0_j^2)
-                    // . (x_j - x_w); the sample takes the opposite.
-                    const float f = mass[j] * 2.0f * rho0[j] * invH4 * (t * t * t);
-                    accX[l] -= f * (tx[j] * dx + ty[j] * dy);
-                    accY[l] -= f * (ty[j] * dx - tx[j] * dy);
+                    // pbfSurface's wall term on j from this sample: m_j kG 2 rho0_j V_w f h^-4
+                    // t^3 times the traction s_j/rho0_j^2 . (x_j - x_w) along the wall, plus
+                    // the adhesion along the wall's normal; the sample takes the opposite.
+                    // pbfSurface's wall terms on j from this sample, the sample takes the
+                    // opposite: the traction m_j kG 2 rho0_j V_w f h^-4 t^3 (s_j/rho0_j^2) .
+                    // (x_j - x_w) along the wall, and this sample's share of j's adhesion
+                    // (its part of the walls' gradient sum along the normal).
+                    float fx = tx[j] * dx + ty[j] * dy, fy = ty[j] * dx - tx[j] * dy;
+                    const float normal = fx * nx[j] + fy * ny[j];
+                    fx -= normal * nx[j];
+                    fy -= normal * ny[j];
+                    const float t3 = t * t * t;
+                    const float f = mass[j] * 2.0f * rho0[j] * invH4 * t3;
+                    const float share = mass[j] * adhesion[j] * t3 * (dx * nx[j] + dy * ny[j]);
+                    accX[l] -= f * fx + share * nx[j] / (c.sampleVolume * kG);
+                    accY[l] -= f * fy + share * ny[j] / (c.sampleVolume * kG);
                 });
             });
             const float share = weight * c.sampleVolume * kG * friction;

@@ -292,6 +292,9 @@ void stepPositionBased(WorldState& s, float frameDt) {
         p.tx.resize(n);
         p.ty.resize(n);
         p.rigidity.resize(n);
+        p.wallNx.resize(n);
+        p.wallNy.resize(n);
+        p.wallAdhesion.resize(n);
     } else if (s.kicksPending) {
         // The last yielding step's changes go in before this Newtonian one.
         each(s, [&](uint32_t i) {
@@ -398,10 +401,10 @@ void stepPositionBased(WorldState& s, float frameDt) {
                 p.vx.swap(p.ax);
                 p.vy.swap(p.ay);
             }
+            pbfSurface(s, spanned, settings.vorticity, facts.surfaceTension);
             if (facts.wantsForces && s.yielding) {
                 pbfSampleStress(s, spanned, weight);
             }
-            pbfSurface(s, spanned, settings.vorticity, facts.surfaceTension);
         });
         timed(prof.boundaries, [&] {
             projectBoundaries(s, dt, endInStep, endInStep, facts.sampleSpacing, p.ox, p.oy);

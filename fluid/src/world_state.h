@@ -58,6 +58,11 @@ struct Particles {
     // below its yield stress each particle is (rigidity, 1 - |s| / tau_y in [0, 1]; 0 for a
     // Newtonian one), written by the viscosity pass for the surface pass to read.
     std::vector<float> tx, ty, rigidity;
+    // ... and, written by the surface pass, the unit direction from the walls within reach to
+    // the particle (0, 0 with none) and its adhesion to them (acceleration along that direction
+    // over the length of the walls' kernel gradient sum; <= 0), which the walls' reaction
+    // (pbfSampleStress) reads.
+    std::vector<float> wallNx, wallNy, wallAdhesion;
 
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }
     /// The float channels that persist between steps (besides material, slot and expiry).

@@ -148,6 +148,7 @@ struct PbfOut {
     float *ax = nullptr, *ay = nullptr, *vorticity = nullptr, *nx = nullptr, *ny = nullptr;
     float *vx = nullptr, *vy = nullptr;
     float *sxx = nullptr, *sxy = nullptr, *tx = nullptr, *ty = nullptr, *rigidity = nullptr;
+    float *wallNx = nullptr, *wallNy = nullptr, *wallAdhesion = nullptr;
 };
 
 /// One instruction set's pair passes over particles [b, e); see pbf_loops.h for what each
