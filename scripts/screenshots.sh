@@ -54,15 +54,15 @@ run "$demo" --level cup_and_planks --frames 330 --size "$size" --script "$script
 run "$demo" --level yoghurt_dollop --frames 240 --size "$size" \
     --screenshot "$out/yoghurt_dollop.png" >/dev/null
 
-# Sticky plank: shift + drag the plank from (0.32, 0.5) to (0.8, 0.42), over the bowl, in 1.5 s
-# (eased, so the yoghurt rides along); the picture is taken before the shake.
+# Sticky plank: shift + drag the plank from (0.32, 0.5) to (0.8, 0.32), low over the bowl, in
+# 1.5 s (eased, so the yoghurt rides along); the picture is taken before the shake.
 script="$tmp/plank.script"
 {
     echo "10 press left 0.32 0.5 shift"
     for k in $(seq 1 90); do
         awk -v f=$((10 + k)) -v k="$k" \
             'BEGIN { t = 0.5 - 0.5 * cos(3.14159265 * k / 90);
-                     printf "%d move %.4f %.4f\n", f, 0.32 + t * 0.48, 0.5 - t * 0.08 }'
+                     printf "%d move %.4f %.4f\n", f, 0.32 + t * 0.48, 0.5 - t * 0.18 }'
     done
 } >"$script"
 run "$demo" --level sticky_plank --frames 100 --size "$size" --script "$script" \
