@@ -134,8 +134,7 @@ std::vector<YieldLaw> yieldLaws(const WorldState& s, float dt) {
         // The stiffest shear modulus whose wave crosses kShearWave of the support per step.
         const float speed = kShearWave * mc.support / dt;
         const float stiffest = mc.restDensity * speed * speed;
-        law.shearModulus =
-            mc.shearModulus > 0.0f ? std::min(mc.shearModulus, stiffest) : stiffest;
+        law.shearModulus = mc.shearModulus > 0.0f ? std::min(mc.shearModulus, stiffest) : stiffest;
     }
     return laws;
 }
@@ -315,9 +314,6 @@ void pbfSampleStress(WorldState& s, const PbfConstants& c, float weight) {
                     const float invH = 1.0f / hs[j];
                     const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
                     const float invH4 = (invH * invH) * (invH * invH);
-                    // pbfSurface's wall term on j from this sample: m_j kG 2 rho0_j V_w f h^-4
-                    // t^3 times the traction s_j/rho0_j^2 . (x_j - x_w) along the wall, plus
-                    // the adhesion along the wall's normal; the sample takes the opposite.
                     // pbfSurface's wall terms on j from this sample, the sample takes the
                     // opposite: the traction m_j kG 2 rho0_j V_w f h^-4 t^3 (s_j/rho0_j^2) .
                     // (x_j - x_w) along the wall, and this sample's share of j's adhesion

@@ -214,7 +214,8 @@ void sortParticles(WorldState& s, float cellSize,
     for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy}) {
         permute(*channel, order, s.sortScratch, s.tasks);
     }
-    // Without a yielding material the stress channels are all zero: nothing to permute.
+    // In a step without yielding particles the stress channels are all zero: nothing to
+    // permute (WorldState::yielding). The pending kicks are zero at every sort.
     if (s.yielding) {
         for (auto* channel : {&p.sxx, &p.sxy}) {
             permute(*channel, order, s.sortScratch, s.tasks);

@@ -223,8 +223,8 @@ void checkSolverTakes(const WorldDef& def, const Material& material, const char*
     if (def.solver == Solver::Explicit && hasYield(material)) {
         std::ostringstream s;
         s << function << ": material '" << material.name << "' has a Herschel-Bulkley flow law "
-          << "(yieldStress = " << material.yieldStress << " Pa, consistency = "
-          << material.consistency
+          << "(yieldStress = " << material.yieldStress
+          << " Pa, consistency = " << material.consistency
           << " Pa*s^n), which the explicit solver does not step; use Solver::PositionBased, "
              "or set yieldStress and consistency to 0";
         throw Error(s.str());

@@ -24,7 +24,7 @@ struct Particles {
     std::vector<float> density, pressure;
     // The deviatoric stress of a Herschel-Bulkley material (Pa), kept between steps: sxx
     // (= -syy) and sxy of the symmetric traceless 2D tensor. 0 for Newtonian particles, and not
-    // permuted by the sort in a world without a yielding material (all zeros).
+    // permuted by the sort in a step without yielding particles (all zeros then).
     std::vector<float> sxx, sxy;
     // Yielding worlds, position-based: the velocity change of the last surface pass (m/s),
     // applied before the next prediction instead of at once, so that the density solve meets

@@ -63,8 +63,8 @@ static inline float plasticRate(float excess, float gdt, float consistency, floa
 /// Advances the stress (a, b) of one particle over `dt` (s) with deviatoric strain rate (dxx,
 /// dxy) (1/s) and spin `spin` (1/s) under `law`. A non-finite result (from non-finite input)
 /// resets the stress to 0, so a bad velocity cannot leave a NaN stress behind.
-static inline void yieldStep(const YieldLaw& law, float dxx, float dxy, float spin, float dt, float& a,
-                      float& b) {
+static inline void yieldStep(const YieldLaw& law, float dxx, float dxy, float spin, float dt,
+                             float& a, float& b) {
     // The Jaumann terms turn (a, b) by the angle 2 spin dt; turned exactly (a Cayley rotation:
     // no trigonometry, and the norm kept), since a forward Euler turn grows the norm by
     // sqrt(1 + (2 spin dt)^2) per step and a fast-spinning shear-thickening flow blew up.

@@ -21,8 +21,8 @@ namespace {
 /// A heap's free-surface profile: per lattice column, the top particle's height plus half a
 /// spacing, and the fronts (outermost particles plus half a spacing).
 struct HeapProfile {
-    float left = 0.0f, right = 0.0f;  // fronts (m)
-    std::map<int, float> top;         // column index -> surface height (m)
+    float left = 0.0f, right = 0.0f; // fronts (m)
+    std::map<int, float> top;        // column index -> surface height (m)
     float spacing = 0.0f;
     float halfWidth() const { return 0.5f * (right - left); }
 };

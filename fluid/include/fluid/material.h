@@ -27,7 +27,8 @@ struct Material {
     /// Rest ("ideal") density (unit: kg/m^3; range (0, 1e5]). Seed water: 1000, yoghurt: 1050.
     float restDensity = 1000.0f;
     /// Dynamic viscosity mu of the seed's eq. 2.6 (unit: Pa*s; range [0, 1e4]). Seed water: 3.5,
-    /// yoghurt: 20.0 (tuned values from the seed, far above real water's 0.001).
+    /// yoghurt: 20.0 (tuned values from the seed, far above real water's 0.001). For a material
+    /// with a yield stress it is the flow law's high-shear limit, added to K gamma_dot^n.
     float viscosity = 3.5f;
     /// Stiffness k of the seed's linear equation of state p = k (rho - rho0) (unit: J/kg, i.e.
     /// m^2/s^2: its square root is the sound speed; range (0, 1e8]). Seed water: 3.0, yoghurt: 5.0.
@@ -58,11 +59,11 @@ struct Material {
     float flowIndex = 1.0f;
     /// Shear modulus G below the yield stress (unit: Pa; range [0, 1e6]): how far the material
     /// bends before it yields (a strain of yieldStress / G). The solver uses at most what its
-    /// sub-step can carry, rho0 (h / (4 dt))^2 for a viscosity run of dt (about 6,000 Pa for the
-    /// yoghurt preset at the default settings, 1,500 Pa at `Quality::Game`); 0 asks for that
+    /// step can carry, rho0 (0.15 h / dt)^2 for a viscosity run of dt (about 2,200 Pa for the
+    /// yoghurt preset at the default settings, 540 Pa at `Quality::Game`); 0 asks for that
     /// bound. Only read when `yieldStress` or `consistency` is positive. Water: 200 (unused);
     /// yoghurt: 0. Stirred yoghurt's storage modulus is about 100-500 Pa, but at 200 Pa a
-    /// stirred yoghurt wobbles like jelly after the spoon leaves (see docs/solver.md).
+    /// stirred yoghurt wobbles like jelly after the spoon leaves (docs/position_based.md).
     float shearModulus = 200.0f;
     /// Display name (free text, for tools and error messages).
     std::string name = "water";
@@ -72,8 +73,8 @@ struct Material {
 Material water();
 /// The seed's yoghurt (Table 4.1, values unchanged) with a Herschel-Bulkley flow law: yield
 /// stress 30 Pa, consistency 2 Pa*s^n, flow index 0.7, shear modulus 0 (as stiff as the step
-/// allows). Table 4.1's
-/// viscosity of 20 Pa*s stays as the law's high-shear limit. Thread rule: any thread.
+/// allows). Table 4.1's viscosity of 20 Pa*s stays as the law's high-shear limit. Thread rule:
+/// any thread.
 Material yoghurt();
 
 /// True when `material` follows the Herschel-Bulkley law (a positive yield stress or
