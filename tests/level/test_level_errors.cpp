@@ -141,6 +141,14 @@ TEST_CASE("level errors: out-of-range values give the range and unit", "[level][
           "t.json:1:57: at /materials/0/viscosity: -1 is out of range [0, 10000] (unit: Pa*s)");
     CHECK(errorOf(R"({"version": 1, "materials": [{"name": "w", "mass": 0}]})") ==
           "t.json:1:52: at /materials/0/mass: 0 is out of range (0, 1000] (unit: kg)");
+    CHECK(errorOf(R"({"version": 1, "materials": [{"name": "w", "flowIndex": 3}]})") ==
+          "t.json:1:57: at /materials/0/flowIndex: 3 is out of range [0.1, 2] (unit: 1)");
+    // A yield stress needs the position-based solver.
+    CHECK(errorOf(R"({"version": 1, "world": {"solver": "explicit"},
+  "materials": [{"name": "y", "preset": "yoghurt"}]})") ==
+          "t.json:2:17: at /materials/0: World::addMaterial: material 'y' has a Herschel-Bulkley "
+          "flow law (yieldStress = 30 Pa, consistency = 2 Pa*s^n), which the explicit solver "
+          "does not step; use Solver::PositionBased, or set yieldStress and consistency to 0");
     // Plugin parameters: the registry's declared range.
     CHECK(
         errorOf(level(R"(, "plugins": [{"type": "boundary.box", "params": {"friction": 11}}])")) ==
