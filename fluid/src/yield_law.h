@@ -32,7 +32,7 @@ struct YieldLaw {
 /// The plastic shear rate g >= 0 (1/s) with excess - gdt g = K g^n (excess = |s*| - tau_y > 0,
 /// gdt = G dt > 0, K > 0): safeguarded Newton from excess / gdt, the rate without the flow law,
 /// which bounds the root from above; f is monotone, so the bracket [lo, hi] always holds the
-/// root. The elastic term usually dominates (G dt is some 5-20 Pa s at game settings against
+/// root. The elastic term usually dominates (G dt is about 5-10 Pa s with the solver's cap against
 /// K n g^(n-1) of a few Pa s), so two or three steps reach 1e-3; at most 8, each a powf (in a
 /// 16k yoghurt dam break the update with 12 steps to 1e-5 took an eighth of the frame).
 static inline float plasticRate(float excess, float gdt, float consistency, float flowIndex) {
