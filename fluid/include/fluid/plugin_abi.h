@@ -27,8 +27,9 @@ namespace fluid {
 /// virtual function (added, removed, reordered, signature), an inline function's behaviour
 /// that both sides must agree on, or the entry points below. The test "the plugin ABI
 /// declaration hash is current" fails when the declarations of plugin.h and registry.h change,
-/// as a reminder. Thread rule: a constant.
-inline constexpr uint32_t kPluginAbiVersion = 3;
+/// as a reminder. 4: `Material` gained the yield-stress fields (plugins see it in their
+/// contexts). Thread rule: a constant.
+inline constexpr uint32_t kPluginAbiVersion = 4;
 
 /// FNV-1a (32 bit) of the declarations of fluid/plugin.h and fluid/registry.h with `//`
 /// comments and all whitespace removed (see `pluginAbiDeclHash`). Part of
