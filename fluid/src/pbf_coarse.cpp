@@ -34,6 +34,8 @@ constexpr size_t kMaxNodes = size_t(1) << 22;
 // to anchor the potential), and the residual, relative to the start, that ends the solve.
 constexpr float kShift = 1e-3f;
 constexpr float kResidual = 1e-4f;
+// Largest turn the solve gives a body per sub-step (rad).
+constexpr float kMaxTurn = 0.05f;
 // Particles per task of the move.
 constexpr uint32_t kMoveGrain = 2048;
 
@@ -105,14 +107,185 @@ void moveParticle(Particles& p, const CoarseGrid& cg, const Layout& g, const flo
     p.py[i] = p.oy[i] + uy;
 }
 
+// G^T v: per body, the sums of its faces' fluxes times v (x, y, angle), in face order (the
+// faces are in unknown order: the same sums on every run).
+void bodyForce(const CoarseGrid& cg, const float* v, std::vector<double>& sum) {
+    std::fill(sum.begin(), sum.end(), 0.0);
+    for (const CoarseGrid::BodyFace& f : cg.bodyFaces) {
+        const double x = v[f.unknown];
+        sum[3 * f.body] += double(f.gx) * x;
+        sum[3 * f.body + 1] += double(f.gy) * x;
+        sum[3 * f.body + 2] += double(f.ga) * x;
+    }
+}
+
+// Which body fills each solid node (cg.owner; -1 for none): the body whose own samples bring at
+// least half of the node's sample fill. Each body's samples are splatted over its box of nodes
+// in a scratch array, in sample order; a later body takes a node an earlier one also half
+// filled.
+void markOwners(WorldState& s, const Layout& g, float amount, float time) {
+    CoarseGrid& cg = s.coarse;
+    const Samples& w = s.samples;
+    const size_t nodes = size_t(g.nx) * size_t(g.ny);
+    cg.owner.assign(nodes, -1);
+    const size_t count = s.bodies.size();
+    // Each body's samples in sorted order (a counting sort of the samples by body).
+    std::vector<uint32_t> start(count + 1, 0), order;
+    for (const int32_t b : w.body) {
+        if (b >= 0) {
+            ++start[size_t(b) + 1];
+        }
+    }
+    for (size_t b = 0; b < count; ++b) {
+        start[b + 1] += start[b];
+    }
+    order.resize(start[count]);
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (uint32_t k = 0; k < w.body.size(); ++k) {
+        if (w.body[k] >= 0) {
+            order[fill[size_t(w.body[k])]++] = k;
+        }
+    }
+    for (size_t b = 0; b < count; ++b) {
+        int i0 = g.nx, j0 = g.ny, i1 = -1, j1 = -1;
+        for (uint32_t o = start[b]; o < start[b + 1]; ++o) {
+            int i = 0, j = 0;
+            float fx = 0, fy = 0;
+            g.cell(w.px[order[o]], w.py[order[o]], i, j, fx, fy);
+            i0 = std::min(i0, i);
+            j0 = std::min(j0, j);
+            i1 = std::max(i1, i + 1);
+            j1 = std::max(j1, j + 1);
+        }
+        if (i1 < 0) {
+            continue;
+        }
+        Layout local = g;
+        local.x0 = g.x0 + float(i0) * (1.0f / g.invH);
+        local.y0 = g.y0 + float(j0) * (1.0f / g.invH);
+        local.nx = i1 - i0 + 1;
+        local.ny = j1 - j0 + 1;
+        cg.ownFill.assign(size_t(local.nx) * size_t(local.ny), 0.0f);
+        for (uint32_t o = start[b]; o < start[b + 1]; ++o) {
+            // The same cell and fractions as the world grid's splat (offset by the box).
+            int i = 0, j = 0;
+            float fx = 0, fy = 0;
+            g.cell(w.px[order[o]], w.py[order[o]], i, j, fx, fy);
+            const size_t k = size_t(j - j0) * size_t(local.nx) + size_t(i - i0);
+            cg.ownFill[k] += amount * (1.0f - fx) * (1.0f - fy);
+            cg.ownFill[k + 1] += amount * fx * (1.0f - fy);
+            cg.ownFill[k + size_t(local.nx)] += amount * (1.0f - fx) * fy;
+            cg.ownFill[k + size_t(local.nx) + 1] += amount * fx * fy;
+        }
+        // The body's own inside test, at the pose its samples stand at (the plugin's sweep
+        // pose at `time`, which the coarse corrections so far have moved and turned).
+        const BodyState& body = s.bodies[b];
+        const BoundaryPlugin& plugin = *s.boundaries[body.plugin];
+        const float offX = body.dvx * time + body.ox, offY = body.dvy * time + body.oy;
+        const float turn = body.dw * time + body.oa;
+        const float pcx = body.cx + body.vx * time, pcy = body.cy + body.vy * time;
+        const float ct = std::cos(turn), st = std::sin(turn);
+        const float cell = 1.0f / g.invH;
+        uint32_t inside = 0;
+        for (int j = j0; j <= j1; ++j) {
+            for (int i = i0; i <= i1; ++i) {
+                const size_t k = size_t(j) * size_t(g.nx) + size_t(i);
+                const float rx = g.x0 + float(i) * cell - (pcx + offX);
+                const float ry = g.y0 + float(j) * cell - (pcy + offY);
+                const glm::vec2 point(pcx + ct * rx + st * ry, pcy - st * rx + ct * ry);
+                if (plugin.bodyContains(body.index, point, time)) {
+                    cg.owner[k] = int32_t(b);
+                    ++inside;
+                }
+            }
+        }
+        for (int j = j0; j <= j1; ++j) {
+            for (int i = i0; i <= i1; ++i) {
+                const size_t k = size_t(j) * size_t(g.nx) + size_t(i);
+                const float own = cg.ownFill[size_t(j - j0) * size_t(local.nx) + size_t(i - i0)];
+                if (own > 0.0f && own >= 0.5f * cg.solid[k] && cg.owner[k] == -1) {
+                    // Mostly this body's samples: the body itself where the plugin has no
+                    // inside test, else its skin outside (typed by its fill alone).
+                    cg.owner[k] = inside == 0 ? int32_t(b) : -2 - int32_t(b);
+                }
+            }
+        }
+    }
+}
+
+// The rest density of the liquid the bodies float in: the particles' mean, weighted by their
+// rest area (one material: its own).
+double fluidDensity(const WorldState& s) {
+    const Particles& p = s.particles;
+    double mass = 0.0, area = 0.0;
+    std::vector<uint32_t> counts(s.materials.size(), 0);
+    for (const uint16_t m : p.material) {
+        ++counts[m];
+    }
+    for (size_t m = 0; m < counts.size(); ++m) {
+        const double v = double(counts[m]) * double(particleArea(s.materials[m], s.def.depth));
+        mass += v * double(s.materials[m].restDensity);
+        area += v;
+    }
+    return area > 0.0 ? mass / area : double(s.materials.empty() ? 1000.0f
+                                                                  : s.materials[0].restDensity);
+}
+
+// The bodies' share of the solve: each moves by share M^-1 G^T psi (rho0 depth over its mass
+// and inertia), at most kMaxMove of a coarse cell and kMaxTurn per sub-step, taken as a
+// velocity change from the sub-step's start (placeSamples offsets its samples from then on) and
+// an impulse. Returns true when some body moved.
+bool moveBodies(WorldState& s, const CoarseGrid& cg, const std::vector<double>& mobility,
+                std::vector<double>& bodySum, const CoarseSettings& settings, const float* psi) {
+    bodyForce(cg, psi, bodySum);
+    const double span = double(settings.endTime) - double(settings.startTime);
+    if (!(span > 0.0)) {
+        return false;
+    }
+    const double limit = double(kMaxMove) * double(settings.cellSize);
+    bool moved = false;
+    for (size_t b = 0; b < s.bodies.size(); ++b) {
+        BodyState& body = s.bodies[b];
+        double dx = double(settings.share) * mobility[3 * b] * bodySum[3 * b];
+        double dy = double(settings.share) * mobility[3 * b + 1] * bodySum[3 * b + 1];
+        double da = double(settings.share) * mobility[3 * b + 2] * bodySum[3 * b + 2];
+        const double len = std::sqrt(dx * dx + dy * dy);
+        if (!std::isfinite(len) || !std::isfinite(da)) {
+            continue;
+        }
+        if (len > limit) {
+            dx *= limit / len;
+            dy *= limit / len;
+        }
+        da = std::clamp(da, -double(kMaxTurn), double(kMaxTurn));
+        if (dx == 0.0 && dy == 0.0 && da == 0.0) {
+            continue;
+        }
+        const double dvx = dx / span, dvy = dy / span, dw = da / span;
+        body.dvx += float(dvx);
+        body.dvy += float(dvy);
+        body.dw += float(dw);
+        body.ox -= float(dvx * double(settings.startTime));
+        body.oy -= float(dvy * double(settings.startTime));
+        body.oa -= float(dw * double(settings.startTime));
+        body.impulseX += double(body.mass) * dvx;
+        body.impulseY += double(body.mass) * dvy;
+        body.angularImpulse += double(body.inertia) * dw;
+        moved = true;
+    }
+    return moved;
+}
+
 } // namespace
 
-void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize, float tolerance,
-               uint32_t maxIterations) {
+bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& settings) {
     Particles& p = s.particles;
     const uint32_t n = p.size();
+    const float share = settings.share, cellSize = settings.cellSize;
+    const float tolerance = settings.tolerance;
+    const uint32_t maxIterations = settings.maxIterations;
     if (n == 0 || !(share > 0.0f)) {
-        return;
+        return false;
     }
     struct Bounds {
         float lx, hx, ly, hy;
@@ -141,7 +314,7 @@ void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
     g.y0 = ly - cellSize;
     const double spanX = double(hx - lx) / cellSize + 3.0, spanY = double(hy - ly) / cellSize + 3.0;
     if (!(spanX * spanY < double(kMaxNodes))) {
-        return;
+        return false;
     }
     g.nx = int(spanX);
     g.ny = int(spanY);
@@ -195,13 +368,18 @@ void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
             splat(cg.solid, g, x, y, c.sampleVolume * invArea);
         }
     }
+    const bool bodies = !s.bodies.empty();
+    if (bodies) {
+        markOwners(s, g, c.sampleVolume * invArea, settings.endTime);
+    }
     cg.type.assign(nodes, kAir);
     cg.rhs.assign(nodes, 0.0f);
     bool any = false;
     const float h2 = cellSize * cellSize;
     for (size_t k = 0; k < nodes; ++k) {
         const float f = cg.fluid[k], sf = cg.solid[k];
-        if (sf > f && sf >= 0.25f) {
+        const int32_t owner = bodies ? cg.owner[k] : -1;
+        if (owner >= 0 || (owner == -1 && sf > f && sf >= 0.25f)) {
             cg.type[k] = kSolid;
         } else if (f + sf >= 0.5f) {
             cg.type[k] = kFluid;
@@ -212,10 +390,10 @@ void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
             }
         }
     }
-    if (!any) {
-        return;
-    }
     const int nx = g.nx, ny = g.ny;
+    if (!any) {
+        return false;
+    }
     // The unknowns in compact order (cg.active: their nodes), each with its diagonal and its
     // fluid neighbours' compact indices (count: none, see below).
     cg.active.clear();
@@ -251,6 +429,52 @@ void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
             }
         }
     }
+    // The bodies' faces: a fluid unknown next to a solid node that a body fills. The body's
+    // displacement (x, y, angle) drives the flux H (n . (D + angle x r)) out of the unknown's
+    // cell through that face (n from the unknown to the solid node, r from the body's centre
+    // to the face's middle, at the pose the samples were placed at).
+    cg.bodyFaces.clear();
+    std::vector<double> mobility; // per body: x, y, angle (rho0 depth / mass; / inertia)
+    if (bodies) {
+        mobility.assign(3 * s.bodies.size(), 0.0);
+        const double rho = fluidDensity(s);
+        for (size_t b = 0; b < s.bodies.size(); ++b) {
+            const BodyState& body = s.bodies[b];
+            mobility[3 * b] = rho * double(s.def.depth) / double(body.mass);
+            mobility[3 * b + 1] = mobility[3 * b];
+            mobility[3 * b + 2] =
+                body.inertia > 0.0f ? rho * double(s.def.depth) / double(body.inertia) : 0.0;
+        }
+        const float t = settings.endTime;
+        for (size_t a = 0; a < count; ++a) {
+            const uint32_t k = cg.active[a];
+            const int i = int(k % uint32_t(nx)), j = int(k / uint32_t(nx));
+            const int di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
+            for (int e = 0; e < 4; ++e) {
+                const int ii = i + di[e], jj = j + dj[e];
+                if (ii < 0 || jj < 0 || ii >= nx || jj >= ny) {
+                    continue;
+                }
+                const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
+                if (cg.type[m] != kSolid || cg.owner[m] < 0) {
+                    continue;
+                }
+                const auto b = uint32_t(cg.owner[m]);
+                const BodyState& body = s.bodies[b];
+                const float centerX = body.cx + (body.vx + body.dvx) * t + body.ox;
+                const float centerY = body.cy + (body.vy + body.dvy) * t + body.oy;
+                const float fx = g.x0 + (float(i) + 0.5f * float(di[e])) * cellSize;
+                const float fy = g.y0 + (float(j) + 0.5f * float(dj[e])) * cellSize;
+                const float rx = fx - centerX, ry = fy - centerY;
+                const auto nxf = float(di[e]), nyf = float(dj[e]);
+                cg.bodyFaces.push_back({uint32_t(a), b, cellSize * nxf, cellSize * nyf,
+                                        cellSize * (rx * nyf - ry * nxf)});
+            }
+        }
+    }
+    const bool coupled = !cg.bodyFaces.empty();
+    std::vector<double> bodySum(bodies ? 3 * s.bodies.size() : 0);
+
     // Conjugate gradients on A psi = rhs: (A psi)_a = diagonal_a psi_a - sum of the fluid
     // neighbours' psi (air holds 0); the diagonal's small shift keeps a closed container full
     // of fluid solvable. The dot products sum in double over kDotLanes interleaved partial sums
@@ -294,7 +518,20 @@ void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
                 dqLanes[l] += double(d[a]) * double(acc);
             }
         }
-        const double dq = combineLanes(dqLanes);
+        double dq = combineLanes(dqLanes);
+        if (coupled) {
+            // + G M^-1 G^T d: the flux of the bodies' displacement under d's pressure.
+            bodyForce(cg, d, bodySum);
+            for (size_t k = 0; k < bodySum.size(); ++k) {
+                bodySum[k] *= mobility[k];
+            }
+            for (const CoarseGrid::BodyFace& f : cg.bodyFaces) {
+                q[f.unknown] += float(double(f.gx) * bodySum[3 * f.body] +
+                                      double(f.gy) * bodySum[3 * f.body + 1] +
+                                      double(f.ga) * bodySum[3 * f.body + 2]);
+            }
+            dq = laneDot(d, q, padded);
+        }
         if (!(dq > 0.0)) {
             break;
         }
@@ -351,6 +588,7 @@ void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize
             moveParticle(p, cg, g, value.data(), share, i);
         }
     });
+    return coupled && moveBodies(s, cg, mobility, bodySum, settings, psi);
 }
 
 } // namespace fluid::detail

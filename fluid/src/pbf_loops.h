@@ -76,13 +76,24 @@ void pbfDeliverPush(WorldState& s, float weight);
 /// `weight`, added to the sample's force and drag rate.
 void pbfSampleFriction(WorldState& s, const PbfConstants& c, float scale, float weight);
 
+/// What one coarse correction works with.
+struct CoarseSettings {
+    float share = 0;            // share of the displacement applied (1)
+    float cellSize = 0;         // grid spacing (m)
+    float tolerance = 0;        // compression left alone (1)
+    uint32_t maxIterations = 0; // conjugate-gradient iterations at most
+    float startTime = 0;        // the sub-step's start and end, in the step (s): the samples
+    float endTime = 0;          // stand at endTime; a body's correction counts from startTime
+};
+
 /// The coarse-level density correction (pbf_coarse.cpp): moves the predicted positions (px,
 /// py = ox, oy + cx, cy, writing cx, cy) by `share` of the displacement that removes the
 /// compression above `tolerance` on a grid of `cellSize` (m), with at most `maxIterations`
-/// conjugate-gradient iterations. Moves nothing when nothing is compressed or the world is too
-/// wide for the grid. Boundary samples take no reaction from it (rigid bodies coupled through
-/// fluid::box2d refuse it).
-void pbfCoarse(WorldState& s, const PbfConstants& c, float share, float cellSize, float tolerance,
-               uint32_t maxIterations);
+/// conjugate-gradient iterations. The rigid bodies of `WorldState::bodies` are unknowns of the
+/// same solve: each gets `share` of its displacement as a velocity change from `startTime`
+/// (BodyState's corrections; placeSamples moves its samples). Moves nothing when nothing is
+/// compressed or the world is too wide for the grid. Returns true when a body moved (its
+/// samples must be placed again).
+bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& settings);
 
 } // namespace fluid::detail

@@ -330,6 +330,7 @@ void stepExplicit(WorldState& s, float frameDt) {
     prof.substeps = total;
     prof.soundSpeed = soundSpeed;
 
+    deliverBodyImpulses(s, frameDt); // zeros: no coarse solve here
     if (wantsForces) {
         deliverSampleForces(s);
     }

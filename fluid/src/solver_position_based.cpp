@@ -171,8 +171,8 @@ void applyCorrections(WorldState& s) {
 // may take back a push, never pull), and moves the particles by the displacement of the
 // change. Positions are Chebyshev-accelerated between sweeps [Wang 2015]:
 // x_k+1 = omega_k+1 (x^_k+1 - x_k-1) + x_k-1.
-void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations, float coarse,
-                  float coarseCell, bool push, Profile& prof) {
+void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations,
+                  const CoarseSettings& coarse, float sampleCell, bool push, Profile& prof) {
     Particles& p = s.particles;
     // The change shares the constraint's storage: the update reads C_i, then writes dl_i, and
     // the next sweep's constraint pass comes after the last read of dl.
@@ -196,9 +196,13 @@ void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations, flo
             std::min(1.0f, kRelaxNeighbours / std::max(s.constants[m].neighbours, 1.0f));
         relaxation[m] = (iterations == 1 ? kRelaxSingle : kRelax) * ratio * ratio;
     }
-    if (coarse > 0.0f) {
-        timed(prof.density,
-              [&] { pbfCoarse(s, c, coarse, coarseCell, kCoarseTolerance, kCoarseIterations); });
+    if (coarse.share > 0.0f) {
+        timed(prof.density, [&] {
+            if (pbfCoarse(s, c, coarse)) {
+                // The bodies moved with the fluid: the sweeps see them at their new pose.
+                placeSamples(s, coarse.endTime, sampleCell, true);
+            }
+        });
     }
     float omega = 1.0f;
     for (uint32_t it = 0; it < iterations; ++it) {
@@ -281,7 +285,8 @@ void stepPositionBased(WorldState& s, float frameDt) {
     gatherSamples(s, context);
     refreshConstants(s);
     setArtificialPressure(s);
-    const bool moving = samplesMove(s);
+    // Rigid bodies may be moved by the coarse solve: their samples are placed every sub-step.
+    const bool moving = samplesMove(s) || !s.bodies.empty();
     if (s.yielding) {
         // Only particles of a yielding material make this a yielding step.
         const std::vector<MaterialConstants>& mc = s.constants;
@@ -373,8 +378,14 @@ void stepPositionBased(WorldState& s, float frameDt) {
             fillMaterialChannels(s);
             placeSamples(s, endInStep, facts.maxSupport, moving || sub == 0);
         });
-        solveDensity(s, c, settings.iterations, coarseShare, kCoarseCell * facts.minSupport,
-                     facts.wantsForces, prof);
+        CoarseSettings coarse;
+        coarse.share = coarseShare;
+        coarse.cellSize = kCoarseCell * facts.minSupport;
+        coarse.tolerance = kCoarseTolerance;
+        coarse.maxIterations = kCoarseIterations;
+        coarse.startTime = inStep;
+        coarse.endTime = endInStep;
+        solveDensity(s, c, settings.iterations, coarse, facts.maxSupport, facts.wantsForces, prof);
         timed(prof.integrate, [&] { updateVelocity(s, dt); });
         timed(prof.forces, [&] {
             // Each force on a reporting sample is the reaction to what the solver did to the
@@ -412,6 +423,7 @@ void stepPositionBased(WorldState& s, float frameDt) {
     }
     s.kicksPending = s.yielding;
     densityError(s);
+    deliverBodyImpulses(s, frameDt);
     if (facts.wantsForces) {
         deliverSampleForces(s);
     }

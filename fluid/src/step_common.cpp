@@ -6,10 +6,13 @@
 #include "lanes.h"
 #include "parallel.h"
 
+#include <fluid/error.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace fluid::detail {
 
@@ -17,6 +20,8 @@ namespace {
 
 // separateStacked: how far a particle found exactly on another is moved (unit: cell sizes, the
 // largest support), and the angle between successive slots' directions (rad).
+// (kMaxBodyMass: the largest mass and inertia a RigidBody may declare; kg, kg m^2.)
+constexpr float kMaxBodyMass = 1e9f;
 constexpr float kStackedNudge = 1.0f / 64.0f;
 constexpr float kGoldenAngle = 2.39996323f;
 // Cells per task of separateStacked (most hold one particle or none).
@@ -84,6 +89,81 @@ void gatherSamples(WorldState& s, const StepContext& context) {
     out.fx.assign(total, 0.0f);
     out.fy.assign(total, 0.0f);
     out.drag.assign(total, 0.0f);
+    // The rigid bodies with a mass: unknowns of the position-based coarse solve.
+    s.bodies.clear();
+    out.bodyOf.assign(total, -1);
+    for (size_t p = 0; p < s.boundaries.size(); ++p) {
+        const std::span<const RigidBody> bodies = s.boundaries[p]->rigidBodies();
+        const size_t count = s.boundaries[p]->samples().size();
+        for (size_t b = 0; b < bodies.size(); ++b) {
+            const RigidBody& rb = bodies[b];
+            const auto fail = [&](const std::string& what) {
+                throw Error(std::string(s.boundaries[p]->type()) + ": rigid body " +
+                            std::to_string(b) + ": " + what);
+            };
+            const auto finite = [](glm::vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); };
+            if (!(rb.mass >= 0.0f && rb.mass <= kMaxBodyMass)) {
+                fail("mass = " + std::to_string(rb.mass) + " is out of range [0, 1e9] (unit: kg)");
+            }
+            if (!(rb.inertia >= 0.0f && rb.inertia <= kMaxBodyMass)) {
+                fail("inertia = " + std::to_string(rb.inertia) +
+                     " is out of range [0, 1e9] (unit: kg m^2)");
+            }
+            if (!finite(rb.center) || !finite(rb.velocity) || !std::isfinite(rb.angularVelocity)) {
+                fail("center, velocity and angularVelocity must be finite");
+            }
+            if (rb.sampleBegin > rb.sampleEnd || rb.sampleEnd > count) {
+                fail("samples [" + std::to_string(rb.sampleBegin) + ", " +
+                     std::to_string(rb.sampleEnd) + ") are not within the plugin's " +
+                     std::to_string(count) + " samples");
+            }
+            if (rb.mass == 0.0f || rb.sampleBegin == rb.sampleEnd) {
+                continue; // moved by the host only
+            }
+            BodyState body;
+            body.plugin = uint32_t(p);
+            body.index = uint32_t(b);
+            body.sampleBegin = out.pluginBegin[p] + rb.sampleBegin;
+            body.sampleEnd = out.pluginBegin[p] + rb.sampleEnd;
+            body.mass = rb.mass;
+            body.inertia = rb.inertia;
+            body.cx = rb.center.x;
+            body.cy = rb.center.y;
+            body.vx = rb.velocity.x;
+            body.vy = rb.velocity.y;
+            body.omega = rb.angularVelocity;
+            const auto index = int32_t(s.bodies.size());
+            for (uint32_t k = body.sampleBegin; k < body.sampleEnd; ++k) {
+                if (out.bodyOf[k] < 0) { // a sample listed twice stays with its first body
+                    out.bodyOf[k] = index;
+                }
+            }
+            s.bodies.push_back(body);
+        }
+    }
+}
+
+void deliverBodyImpulses(WorldState& s, float frameDt) {
+    std::vector<RigidBodyImpulse> impulses;
+    for (size_t p = 0; p < s.boundaries.size(); ++p) {
+        const size_t count = s.boundaries[p]->rigidBodies().size();
+        if (count == 0) {
+            continue;
+        }
+        impulses.assign(count, RigidBodyImpulse{});
+        for (const BodyState& body : s.bodies) {
+            if (body.plugin != p) {
+                continue;
+            }
+            RigidBodyImpulse& out = impulses[body.index];
+            out.impulse = glm::vec2(float(body.impulseX), float(body.impulseY));
+            out.angularImpulse = float(body.angularImpulse);
+            out.displacement =
+                glm::vec2(body.dvx * frameDt + body.ox, body.dvy * frameDt + body.oy);
+            out.rotation = body.dw * frameDt + body.oa;
+        }
+        s.boundaries[p]->receiveBodyImpulses(impulses);
+    }
 }
 
 // Positions of all samples at `t` seconds into the step, sorted by cell (rebuilt each sub-step
@@ -108,6 +188,25 @@ void placeSamples(WorldState& s, float t, float cellSize, bool rebuild) {
             friction[i] = f;
         }
     }
+    // The coarse solve's corrections of the rigid bodies so far: an offset growing with the
+    // velocity change, and the turn about the corrected centre (linear in the small angle).
+    for (const BodyState& b : s.bodies) {
+        if (b.dvx == 0.0f && b.dvy == 0.0f && b.dw == 0.0f && b.ox == 0.0f && b.oy == 0.0f &&
+            b.oa == 0.0f) {
+            continue;
+        }
+        const float offX = b.dvx * t + b.ox, offY = b.dvy * t + b.oy, turn = b.dw * t + b.oa;
+        const float cx = b.cx + b.vx * t + offX, cy = b.cy + b.vy * t + offY;
+        for (uint32_t i = b.sampleBegin; i < b.sampleEnd; ++i) {
+            x[i] += offX;
+            y[i] += offY;
+            const float rx = x[i] - cx, ry = y[i] - cy;
+            x[i] -= turn * ry;
+            y[i] += turn * rx;
+            vx[i] += b.dvx - b.dw * ry;
+            vy[i] += b.dvy + b.dw * rx;
+        }
+    }
     // Samples line the level's walls: cells of R (3x3 per query; clipping gains little along a
     // thin wall), and dense up to 2 cells per particle, because a hashed grid would slow every
     // particle's query (16k dam: 30% per frame).
@@ -128,8 +227,10 @@ void placeSamples(WorldState& s, float t, float cellSize, bool rebuild) {
         }
     }
     out.reporting.clear();
+    out.body.resize(total);
     for (uint32_t k = 0; k < total; ++k) {
         const uint32_t i = order[k];
+        out.body[k] = out.bodyOf[i];
         out.px[k] = x[i];
         out.py[k] = y[i];
         out.vx[k] = vx[i];

@@ -80,8 +80,14 @@ void permute(std::vector<T>& channel, std::span<const uint32_t> order, std::vect
 /// Per-material constants from the material table (equation-of-state fields left 0).
 void refreshConstants(WorldState& s);
 
-/// Boundary plugins' prepare hooks; sizes the per-sample force sums.
+/// Boundary plugins' prepare hooks; sizes the per-sample force sums; collects the plugins'
+/// rigid bodies with a mass into `WorldState::bodies` (throws `fluid::Error` naming the plugin
+/// and body for a mass, inertia or sample range out of range, or a non-finite pose).
 void gatherSamples(WorldState& s, const StepContext& context);
+
+/// After the step: each boundary plugin with rigid bodies gets what the coarse solve did to them
+/// (`BoundaryPlugin::receiveBodyImpulses`).
+void deliverBodyImpulses(WorldState& s, float frameDt);
 
 /// Positions of all samples at `t` seconds into the step, sorted by cell (rebuilt only when
 /// `rebuild` or the sample count changed).

@@ -112,10 +112,27 @@ struct Samples {
     // sweep's value for the Chebyshev recurrence.
     std::vector<uint32_t> reporting;
     std::vector<float> pushX, pushY, pushPrevX, pushPrevY;
+    // The rigid body (index in WorldState::bodies) each sample belongs to, -1 for none: in
+    // concatenation order (gatherSamples) and in sorted order (placeSamples).
+    std::vector<int32_t> bodyOf, body;
     Grid grid;
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }
 };
 
+/// A boundary plugin's rigid body with a mass (`BoundaryPlugin::rigidBodies`) during a step: an
+/// unknown of the coarse pressure solve (pbf_coarse.cpp). Rebuilt by every gatherSamples.
+struct BodyState {
+    uint32_t plugin = 0;                  // index in WorldState::boundaries
+    uint32_t index = 0;                   // index in that plugin's rigidBodies()
+    uint32_t sampleBegin = 0, sampleEnd = 0; // its samples, in concatenation order
+    float mass = 0, inertia = 0;          // kg, kg m^2 (inertia 0: not turned)
+    float cx = 0, cy = 0;                 // centre of mass at the start of the step (m)
+    float vx = 0, vy = 0, omega = 0;      // its sweep velocity (m/s, rad/s)
+    // The coarse solve's corrections so far: a velocity change (dvx, dvy, dw) and a position
+    // offset at time t into the step of (dvx, dvy, dw) t + (ox, oy, oa); placeSamples adds them.
+    float dvx = 0, dvy = 0, dw = 0, ox = 0, oy = 0, oa = 0;
+    double impulseX = 0, impulseY = 0, angularImpulse = 0; // summed over the step (N s, N m s)
+};
 /// An emitter: its settings, and the state a snapshot carries.
 struct EmitterState {
     EmitterDef def;
@@ -137,6 +154,15 @@ struct CoarseGrid {
     std::vector<float> diagonal;          // per unknown: the operator's diagonal
     std::vector<int32_t> neighbours;      // per unknown: 4 neighbouring unknowns (the unknowns'
                                           // count for none: d keeps a 0 there)
+    std::vector<int32_t> owner;           // per node: the body whose samples fill it, or -1
+    std::vector<float> ownFill;           // scratch: one body's sample fill over its box
+    // The bodies' Jacobian: per (unknown, body) pair, the flux the body's displacement
+    // (x, y, angle) drives out of the unknown's cell (m, m, m^2), in unknown order.
+    struct BodyFace {
+        uint32_t unknown = 0, body = 0;
+        float gx = 0, gy = 0, ga = 0;
+    };
+    std::vector<BodyFace> bodyFaces;
 };
 
 // A world object's tag in its handles (ParticleHandle::world): the lowest number from 1 not
@@ -185,6 +211,7 @@ struct WorldState {
 
     Grid grid;
     Samples samples;
+    std::vector<BodyState> bodies;
     CoarseGrid coarse;
     std::vector<float> sortScratch;   // also carries slots and materials (sortParticles)
     std::vector<double> sortScratchD; // expiry, only when some particle has a lifetime

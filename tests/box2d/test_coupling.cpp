@@ -354,21 +354,67 @@ TEST_CASE("the category mask, the filter and sensors keep fixtures out of the fl
     }
 }
 
-TEST_CASE("a world with the coarse correction (the game preset) is refused with bodies",
+TEST_CASE("the game preset carries a body in its coarse solve: a box at half water's density "
+          "floats",
           "[box2d]") {
+    // Before the bodies were unknowns of the coarse solve, the correction moved the water out
+    // of the body's way without a reaction: a box at half water's density sank to the floor.
     Pool pool;
-    addBox(pool.physics, b2_dynamicBody, {0.3f, 0.3f}, 0.03f, 0.03f, 1.0f);
-    Coupling coupling(pool.world, pool.physics, CouplingDef{});
     pool.world.setPositionBased(positionBasedPreset(Quality::Game));
-    const std::string message =
-        "PositionBasedDef::coarseCorrection must be 0 with rigid bodies (it gives them no "
-        "reaction yet); use Quality::Precise or set it to 0";
-    CHECK_THROWS_WITH(coupling.step(pool.world, kFrame),
-                      "fluid::box2d::Coupling::step: " + message);
-    CHECK_THROWS_WITH(coupling.stepFluid(pool.world, kFrame),
-                      "fluid::box2d::Coupling::stepFluid: " + message);
-    // The precise preset steps.
-    pool.world.setPositionBased(positionBasedPreset(Quality::Precise));
-    coupling.step(pool.world, kFrame);
+    const float rho = box2d::arealDensity(pool.world, pool.water);
+    const float surface = 15.0f * pool.s, half = 0.04f;
+    b2Body* box =
+        addBox(pool.physics, b2_dynamicBody, {0.3f, surface + half}, 0.1f, half, 0.5f * rho);
+    Coupling coupling(pool.world, pool.physics, CouplingDef{});
+    double lift = 0.0;
+    const int frames = 150, window = 30;
+    for (int f = 0; f < frames; ++f) {
+        coupling.step(pool.world, kFrame);
+        if (f >= frames - window) {
+            lift += double(coupling.report(box)->force.y) / window;
+        }
+    }
+    const double weight = double(box->GetMass()) * kG;
+    const double bottom = box->GetPosition().y - half;
+    std::printf("[measure] game preset, box at 0.5 on 0.15 m of water: bottom %.4f m (surface "
+                "%.4f m), lift %.2f N vs weight %.2f N over the last 0.5 s\n",
+                bottom, surface, lift, weight);
+    CHECK(allFinite(pool.world));
+    // Floating: its bottom in the water, well above the floor, the fluid carrying it.
+    CHECK(bottom > 0.5 * surface);
+    CHECK(bottom < surface);
+    CHECK(lift == Approx(weight).epsilon(0.1));
+}
+
+TEST_CASE("a boundary plugin's rigid body with bad data is refused with the plugin's name",
+          "[box2d]") {
+    struct BadBodies final : BoundaryPlugin {
+        RigidBody body;
+        BadBodies() : BoundaryPlugin("test.bad_bodies", {}) {}
+        void prepare(const StepContext&) override {
+            m_samples.clear();
+            m_samples.add(0.3f, 0.3f);
+        }
+        void project(const ProjectContext&, uint32_t, uint32_t) override {}
+        std::span<const RigidBody> rigidBodies() const override { return {&body, 1}; }
+    };
+    Pool pool;
+    pool.world.setPositionBased(positionBasedPreset(Quality::Game));
+    auto& bad = static_cast<BadBodies&>(pool.world.addBoundary(std::make_unique<BadBodies>()));
+    bad.body.mass = kNaN;
+    bad.body.sampleEnd = 1;
+    CHECK_THROWS_WITH(pool.world.step(kFrame),
+                      "test.bad_bodies: rigid body 0: mass = nan is out of range [0, 1e9] "
+                      "(unit: kg)");
+    bad.body.mass = 1.0f;
+    bad.body.sampleEnd = 2;
+    CHECK_THROWS_WITH(pool.world.step(kFrame), "test.bad_bodies: rigid body 0: samples [0, 2) "
+                                               "are not within the plugin's 1 samples");
+    bad.body.sampleEnd = 1;
+    bad.body.velocity.x = kNaN;
+    CHECK_THROWS_WITH(pool.world.step(kFrame), "test.bad_bodies: rigid body 0: center, velocity "
+                                               "and angularVelocity must be finite");
+    bad.body.velocity.x = 0.0f;
+    pool.world.step(kFrame);
     CHECK(allFinite(pool.world));
 }

@@ -28,14 +28,15 @@ namespace fluid {
 /// that both sides must agree on, or the entry points below. The test "the plugin ABI
 /// declaration hash is current" fails when the declarations of plugin.h and registry.h change,
 /// as a reminder. 4: `Material` gained the yield-stress fields (plugins see it in their
-/// contexts). Thread rule: a constant.
-inline constexpr uint32_t kPluginAbiVersion = 4;
+/// contexts). 5: `BoundaryPlugin` gained `rigidBodies` and `receiveBodyImpulses` (bodies in the
+/// coarse pressure solve). Thread rule: a constant.
+inline constexpr uint32_t kPluginAbiVersion = 5;
 
 /// FNV-1a (32 bit) of the declarations of fluid/plugin.h and fluid/registry.h with `//`
 /// comments and all whitespace removed (see `pluginAbiDeclHash`). Part of
 /// `pluginAbiDetails()`, so a plugin compiled against other declarations is refused even when
 /// `kPluginAbiVersion` was not bumped. Update it when that test says so. Thread rule: a constant.
-inline constexpr uint32_t kPluginAbiDeclHash = 0xf0c1a077u;
+inline constexpr uint32_t kPluginAbiDeclHash = 0xf2abbe24u;
 
 /// Name of the entry point returning the library's `kPluginAbiVersion` (C linkage, signature
 /// `uint32_t(void)`, frozen for every future ABI version).

@@ -319,6 +319,7 @@ void BodyBoundary::prepare(const StepContext& context) {
     m_kicks.clear();
     m_samples.clear();
     m_bodies.clear();
+    m_rigid.clear();
     m_colliders.clear();
     m_boxes.clear();
     m_spacing = context.sampleSpacing;
@@ -452,6 +453,24 @@ void BodyBoundary::prepare(const StepContext& context) {
         }
         be.colliderEnd = uint32_t(m_colliders.size());
         if (be.colliderEnd > be.colliderBegin) {
+            // A dynamic body is an unknown of the coarse pressure solve (mass and inertia about
+            // its centre of mass, as Box2D weighs it: kg/m^2 x area, the fluid's areal density
+            // times the same area).
+            RigidBody rigid;
+            if (body->GetType() == b2_dynamicBody) {
+                const double mass = body->GetMass();
+                const double inertia = body->GetInertia() -
+                                       mass * (localCenter.x * localCenter.x +
+                                               localCenter.y * localCenter.y);
+                rigid.mass = float(mass);
+                rigid.inertia = float(std::max(inertia, 0.0));
+            }
+            rigid.center = glm::vec2(com);
+            rigid.velocity = glm::vec2(velocity);
+            rigid.angularVelocity = float(omega);
+            rigid.sampleBegin = m_colliders[be.colliderBegin].sampleBegin;
+            rigid.sampleEnd = m_colliders[be.colliderEnd - 1].sampleEnd;
+            m_rigid.push_back(rigid);
             m_bodies.push_back(be);
         }
     }
@@ -571,6 +590,44 @@ void BodyBoundary::project(const ProjectContext& context, uint32_t begin, uint32
     if (!kicks.empty()) {
         const std::lock_guard<std::mutex> lock(m_kickMutex);
         m_kicks.insert(m_kicks.end(), kicks.begin(), kicks.end());
+    }
+}
+
+bool BodyBoundary::bodyContains(uint32_t body, glm::vec2 point, float timeInStep) const {
+    if (body >= m_bodies.size()) {
+        return false;
+    }
+    const BodyEntry& e = m_bodies[body];
+    // Into the body's centre-of-mass frame at timeInStep, then out at its pose now (the end
+    // of the sweep), where Box2D's fixtures stand.
+    const double t = timeInStep;
+    const glm::dvec2 com = e.com + t * e.velocity;
+    const double angle = e.angle + t * e.omega;
+    const glm::dvec2 d = glm::dvec2(point) - com;
+    const glm::dvec2 local = rotate(d, std::cos(angle), -std::sin(angle));
+    const b2Transform& xf = e.body->GetTransform();
+    const glm::dvec2 center = toVec(e.body->GetWorldCenter());
+    const glm::dvec2 now = center + rotate(local, double(xf.q.c), double(xf.q.s));
+    const b2Vec2 p(float(now.x), float(now.y));
+    for (uint32_t k = e.colliderBegin; k < e.colliderEnd; ++k) {
+        const b2Fixture* fixture = m_entries[m_colliders[k].entry].fixture;
+        if (fixture->GetShape()->GetType() != b2Shape::e_chain &&
+            fixture->GetShape()->GetType() != b2Shape::e_edge && fixture->TestPoint(p)) {
+            return true;
+        }
+    }
+    return false;
+}
+
+void BodyBoundary::receiveBodyImpulses(std::span<const RigidBodyImpulse> impulses) {
+    for (std::size_t b = 0; b < m_bodies.size() && b < impulses.size(); ++b) {
+        BodyEntry& body = m_bodies[b];
+        body.coarse = impulses[b];
+        const auto last = m_lastPose.find(body.body);
+        if (last != m_lastPose.end()) {
+            last->second.com += glm::dvec2(impulses[b].displacement);
+            last->second.angle += double(impulses[b].rotation);
+        }
     }
 }
 

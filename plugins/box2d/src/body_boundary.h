@@ -126,6 +126,9 @@ struct BodyEntry {
     double drag = 0.0, angularDrag = 0.0;
     /// The body's colliders: [colliderBegin, colliderEnd) in `BodyBoundary::colliders`.
     uint32_t colliderBegin = 0, colliderEnd = 0;
+    /// What the coarse pressure solve did to it over the step (see `RigidBodyImpulse`): zero
+    /// without the coarse correction, and for bodies that are not dynamic.
+    RigidBodyImpulse coarse;
 };
 
 /// A coupled fixture in this step: its cache entry, samples and swept box.
@@ -161,6 +164,15 @@ public:
     void receiveForces(std::span<const float> fx, std::span<const float> fy,
                        std::span<const float> drag) override;
     float friction() const override;
+    /// The dynamic bodies with their mass and inertia; the others with mass 0 (moved by Box2D
+    /// only). One per `bodies()` entry, in that order.
+    std::span<const RigidBody> rigidBodies() const override { return m_rigid; }
+    /// Keeps each body's correction in `BodyEntry::coarse`, and moves its seen pose with it
+    /// (the `Coupling` moves the body there).
+    void receiveBodyImpulses(std::span<const RigidBodyImpulse> impulses) override;
+    /// `b2Fixture::TestPoint` on the body's coupled fixtures, the point carried from the sweep
+    /// pose at `timeInStep` to the body's pose now.
+    bool bodyContains(uint32_t body, glm::vec2 point, float timeInStep) const override;
     /// True when `point` lies in a coupled fixture of a body (`b2Fixture::TestPoint`).
     bool contains(glm::vec2 point) const override;
 
@@ -200,6 +212,7 @@ private:
     std::vector<FixtureEntry> m_entries;
     std::unordered_map<const b2Fixture*, uint32_t> m_index; // lookup only, never iterated
     std::vector<BodyEntry> m_bodies;
+    std::vector<RigidBody> m_rigid; // per body of m_bodies
     std::vector<Collider> m_colliders;
     std::vector<Box> m_boxes; // per collider: where it sweeps during the step
     BoxGrid m_grid;

@@ -206,15 +206,6 @@ std::span<const ContactEvent> Coupling::contacts() const {
 }
 
 void Coupling::checkWorld(const World& world, const char* function) const {
-    // The coarse correction moves the fluid without a reaction on the bodies: measured with
-    // the game preset, bodies floated 20-50% too high and the reported submerged fraction
-    // read 0, so it is refused rather than wrong.
-    if (world.def().solver == Solver::PositionBased &&
-        world.def().positionBased.coarseCorrection > 0.0f) {
-        throw Error(std::string("fluid::box2d::Coupling::") + function +
-                    ": PositionBasedDef::coarseCorrection must be 0 with rigid bodies (it gives "
-                    "them no reaction yet); use Quality::Precise or set it to 0");
-    }
     for (const auto& plugin : world.boundaries()) {
         if (plugin.get() == m_boundary) {
             return;
@@ -314,12 +305,43 @@ void Coupling::fluidRound(World& world, float dt) {
     }
     m_boundary->setMaterialMasses(std::move(masses));
     world.step(dt);
+    applyCorrections();
     addProfile(world.profile());
     const std::span<const RemovedEvent> removed = world.removedEvents();
     m_removed.insert(m_removed.end(), removed.begin(), removed.end());
     makeReports(world);
     applyForces(dt);
     remember();
+}
+
+// The coarse pressure solve moved each dynamic body with the fluid during the step (see
+// RigidBodyImpulse): the body takes the velocity change and the displacement, so that Box2D goes
+// on from where the fluid left it. The seen pose already moved (BodyBoundary::
+// receiveBodyImpulses), so the next step does not sweep the body over the correction again.
+void Coupling::applyCorrections() {
+    for (const BodyEntry& entry : m_boundary->bodies()) {
+        const RigidBodyImpulse& c = entry.coarse;
+        if (entry.type != b2_dynamicBody ||
+            (c.impulse.x == 0.0f && c.impulse.y == 0.0f && c.angularImpulse == 0.0f &&
+             c.displacement.x == 0.0f && c.displacement.y == 0.0f && c.rotation == 0.0f)) {
+            continue;
+        }
+        b2Body* body = entry.body;
+        const float mass = body->GetMass();
+        const b2Vec2 local = body->GetLocalCenter();
+        const float inertia = body->GetInertia() - mass * (local.x * local.x + local.y * local.y);
+        if (mass > 0.0f) {
+            body->SetLinearVelocity(body->GetLinearVelocity() +
+                                    b2Vec2(c.impulse.x / mass, c.impulse.y / mass));
+        }
+        if (inertia > 0.0f && !body->IsFixedRotation()) {
+            body->SetAngularVelocity(body->GetAngularVelocity() + c.angularImpulse / inertia);
+        }
+        const b2Vec2 center = body->GetWorldCenter() + b2Vec2(c.displacement.x, c.displacement.y);
+        const float angle = body->GetAngle() + (body->IsFixedRotation() ? 0.0f : c.rotation);
+        const b2Rot q(angle);
+        body->SetTransform(center - b2Mul(q, local), angle);
+    }
 }
 
 void Coupling::applyForces(float dt) {
@@ -431,7 +453,9 @@ void Coupling::makeReports(const World& world) {
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         const BodyEntry& e = bodies[b];
         const double angle = e.angle + e.omega * frameDt;
-        frames[b] = {e.com + frameDt * e.velocity, std::cos(angle), std::sin(angle)};
+        const double turned = angle + double(e.coarse.rotation);
+        frames[b] = {e.com + frameDt * e.velocity + glm::dvec2(e.coarse.displacement),
+                     std::cos(turned), std::sin(turned)};
     }
     std::vector<Box> boxes(colliders.size());
     for (std::size_t k = 0; k < colliders.size(); ++k) {
@@ -492,8 +516,10 @@ void Coupling::makeReports(const World& world) {
         const BodyEntry& entry = bodies[b];
         BodyReport& r = m_reports[b];
         r.body = entry.body;
-        r.force = glm::vec2(entry.force);
-        r.torque = float(entry.torque);
+        // The sweeps' forces and the coarse solve's impulse over the step.
+        const double invDt = frameDt > 0.0 ? 1.0 / frameDt : 0.0;
+        r.force = glm::vec2(entry.force + invDt * glm::dvec2(entry.coarse.impulse));
+        r.torque = float(entry.torque + invDt * double(entry.coarse.angularImpulse));
         double area = 0.0, submerged = 0.0, chords = 0.0;
         counts.clear();
         for (uint32_t k = entry.colliderBegin; k < entry.colliderEnd; ++k) {

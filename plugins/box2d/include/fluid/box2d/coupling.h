@@ -284,6 +284,7 @@ private:
     void fluidRound(World& world, float dt);
     void addProfile(const Profile& round);
     void applyForces(float dt);
+    void applyCorrections();
     void makeReports(const World& world);
     void remember();
 
