@@ -156,6 +156,7 @@ struct CoarseGrid {
                                           // count for none: d keeps a 0 there)
     std::vector<int32_t> owner;           // per node: the body whose samples fill it, or -1
     std::vector<float> ownFill;           // scratch: one body's sample fill over its box
+    std::vector<uint8_t> inside;          // scratch: one body's inside test on a fine lattice
     // The bodies' Jacobian: per (unknown, body) pair, the flux the body's displacement
     // (x, y, angle) drives out of the unknown's cell (m, m, m^2), in unknown order.
     struct BodyFace {

@@ -369,7 +369,8 @@ public:
     /// the pose its samples stand at `timeInStep` seconds into the step (its start pose moved
     /// by its velocities). The coarse solve reads the body's outline on its grid with it; a
     /// plugin that answers false everywhere has the outline read from its samples instead
-    /// (coarser). Stepping thread, during the sub-steps: read only. Default: false.
+    /// (coarser; a small body's own samples may then overfill the nodes round it and push it).
+    /// Stepping thread, during the sub-steps: read only. Default: false.
     virtual bool bodyContains(uint32_t /*body*/, glm::vec2 /*point*/, float /*timeInStep*/) const {
         return false;
     }
