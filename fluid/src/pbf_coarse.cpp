@@ -10,6 +10,10 @@
 //             than particles: no flux through it), fluid (the unknowns)
 //   solve     -lap psi = max(F - 1 - tolerance, 0) H^2 on the fluid nodes, conjugate gradients
 //   move      each particle by -share grad psi (bilinear), at most kMaxMove of its support
+//   bodies    rigid bodies of boundary plugins (WorldState::bodies) are unknowns of the same
+//             solve [Batty, Bertails & Bridson 2007]: the operator gains G M^-1 G^T, G the flux
+//             a body's displacement (x, y) drives through the faces of its nodes, and each body
+//             moves by share M^-1 G^T psi (docs/position_based.md, "Bodies in the coarse solve")
 // The displacement divergence -div u = lap psi removes the compression to first order. The grid
 // work runs serially in a fixed order and the particles' moves are independent of each other,
 // so results do not depend on the number of workers.
@@ -36,8 +40,8 @@ constexpr float kShift = 1e-3f;
 constexpr float kResidual = 1e-4f;
 // Lattice points per cell side at which a body's inside test is read for its fill.
 constexpr int kSubcells = 4;
-// Largest turn the solve gives a body per sub-step (rad).
-constexpr float kMaxTurn = 0.05f;
+// Most lattice points one body's outline is read at per sub-step.
+constexpr int kMaxLattice = 1 << 18;
 // Particles per task of the move.
 constexpr uint32_t kMoveGrain = 2048;
 
@@ -109,34 +113,43 @@ void moveParticle(Particles& p, const CoarseGrid& cg, const Layout& g, const flo
     p.py[i] = p.oy[i] + uy;
 }
 
-// G^T v: per body, the sums of its faces' fluxes times v (x, y, angle), in face order (the
-// faces are in unknown order: the same sums on every run).
+// G^T v: per body, the sums of its faces' fluxes times v (x, y), in face order (the faces are
+// in unknown order: the same sums on every run).
 void bodyForce(const CoarseGrid& cg, const float* v, std::vector<double>& sum) {
     std::fill(sum.begin(), sum.end(), 0.0);
     for (const CoarseGrid::BodyFace& f : cg.bodyFaces) {
         const double x = v[f.unknown];
-        sum[3 * f.body] += double(f.gx) * x;
-        sum[3 * f.body + 1] += double(f.gy) * x;
-        sum[3 * f.body + 2] += double(f.ga) * x;
+        sum[2 * f.body] += double(f.gx) * x;
+        sum[2 * f.body + 1] += double(f.gy) * x;
     }
 }
 
 // Which body fills each node (cg.owner): b for a node inside body b (its inside test at the
-// pose its samples stand at), -2 - b for one outside it within its reach (typed by its fill
-// alone), -1 elsewhere. Each body's fill of the nodes in its box comes from its outline, read on
-// a lattice of kSubcells^2 points per cell, in place of its samples' splat (cg.solid); a plugin
-// without an inside test keeps the samples' fill, and the nodes they fill most are the body's.
+// pose its samples stand at), -1 elsewhere. Each body's fill of the nodes in its box comes from
+// its outline, read on a lattice of kSubcells^2 points per cell, in place of its samples' splat
+// (cg.solid; cg.bodyFill keeps the bodies' part). A plugin without an inside test, or a body too
+// large for the lattice, keeps its samples' fill, and the nodes they fill most are its own.
 void markOwners(WorldState& s, const Layout& g, float amount, float time) {
     CoarseGrid& cg = s.coarse;
     const Samples& w = s.samples;
     const size_t nodes = size_t(g.nx) * size_t(g.ny);
     cg.owner.assign(nodes, -1);
+    cg.bodyFill.assign(nodes, 0.0f);
     const size_t count = s.bodies.size();
-    // Each body's samples in sorted order (a counting sort of the samples by body).
+    // Each body's samples on the grid, in sorted order (a counting sort of the samples by
+    // body). Those beyond the grid are left out, as the splat leaves them out: the grid spans
+    // the particles only, and its clamped cells would pile a body above the liquid into its top
+    // row (4.5 cm crates resting on water were read as solid rows over full nodes, and pushed
+    // out of it at 1 m/s).
+    const float x1 = g.x0 + float(g.nx - 1) / g.invH, y1 = g.y0 + float(g.ny - 1) / g.invH;
+    const auto onGrid = [&](uint32_t k) {
+        return w.body[k] >= 0 && w.px[k] >= g.x0 && w.px[k] <= x1 && w.py[k] >= g.y0 &&
+               w.py[k] <= y1;
+    };
     std::vector<uint32_t> start(count + 1, 0), order;
-    for (const int32_t b : w.body) {
-        if (b >= 0) {
-            ++start[size_t(b) + 1];
+    for (uint32_t k = 0; k < w.body.size(); ++k) {
+        if (onGrid(k)) {
+            ++start[size_t(w.body[k]) + 1];
         }
     }
     for (size_t b = 0; b < count; ++b) {
@@ -145,7 +158,7 @@ void markOwners(WorldState& s, const Layout& g, float amount, float time) {
     order.resize(start[count]);
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
     for (uint32_t k = 0; k < w.body.size(); ++k) {
-        if (w.body[k] >= 0) {
+        if (onGrid(k)) {
             order[fill[size_t(w.body[k])]++] = k;
         }
     }
@@ -185,23 +198,21 @@ void markOwners(WorldState& s, const Layout& g, float amount, float time) {
             cg.ownFill[k + size_t(local.nx)] += amount * (1.0f - fx) * fy;
             cg.ownFill[k + size_t(local.nx) + 1] += amount * fx * fy;
         }
-        // The body's own inside test, at the pose its samples stand at (the plugin's sweep
-        // pose at `time`, which the coarse corrections so far have moved and turned).
+        // The body's own inside test, where its samples stand (its own sweep at `time`, which
+        // the coarse corrections so far have moved).
         const BodyState& body = s.bodies[b];
         const BoundaryPlugin& plugin = *s.boundaries[body.plugin];
         const float offX = body.dvx * time + body.ox, offY = body.dvy * time + body.oy;
-        const float turn = body.dw * time + body.oa;
-        const float pcx = body.cx + body.vx * time, pcy = body.cy + body.vy * time;
-        const float ct = std::cos(turn), st = std::sin(turn);
         const float cell = 1.0f / g.invH;
         const auto contains = [&](float x, float y) {
-            const float rx = x - (pcx + offX), ry = y - (pcy + offY);
-            return plugin.bodyContains(body.index,
-                                       glm::vec2(pcx + ct * rx + st * ry, pcy - st * rx + ct * ry),
-                                       time);
+            return plugin.bodyContains(body.index, glm::vec2(x - offX, y - offY), time);
         };
-        // The inside test on a lattice of kSubcells x kSubcells points per cell over the box.
-        const int fnx = (i1 - i0) * kSubcells, fny = (j1 - j0) * kSubcells;
+        // The inside test on a lattice of kSubcells x kSubcells points per cell over the box
+        // (a body too large for it keeps its samples' fill).
+        const bool tooLarge = double(i1 - i0) * double(j1 - j0) * kSubcells * kSubcells >
+                             double(kMaxLattice);
+        const int fnx = tooLarge ? 0 : (i1 - i0) * kSubcells;
+        const int fny = tooLarge ? 0 : (j1 - j0) * kSubcells;
         std::vector<uint8_t>& in = cg.inside;
         in.assign(size_t(std::max(fnx, 0)) * size_t(std::max(fny, 0)), 0);
         uint32_t inside = 0;
@@ -246,10 +257,9 @@ void markOwners(WorldState& s, const Layout& g, float amount, float time) {
                 }
                 geometric /= float(kSubcells * kSubcells);
                 cg.solid[k] = std::max(cg.solid[k] - own, 0.0f) + geometric;
+                cg.bodyFill[k] += geometric;
                 if (contains(g.x0 + float(i) * cell, g.y0 + float(j) * cell)) {
                     cg.owner[k] = int32_t(b);
-                } else if (cg.owner[k] == -1 && (own > 0.0f || geometric > 0.0f)) {
-                    cg.owner[k] = -2 - int32_t(b); // next to it, outside: typed by its fill
                 }
             }
         }
@@ -274,10 +284,10 @@ double fluidDensity(const WorldState& s) {
                                                                   : s.materials[0].restDensity);
 }
 
-// The bodies' share of the solve: each moves by share M^-1 G^T psi (rho0 depth over its mass
-// and inertia), at most kMaxMove of a coarse cell and kMaxTurn per sub-step, taken as a
-// velocity change from the sub-step's start (placeSamples offsets its samples from then on) and
-// an impulse. Returns true when some body moved.
+// The bodies' share of the solve: each moves by share M^-1 G^T psi (rho0 depth over its mass), at
+// most kMaxMove of a coarse cell per sub-step, taken as a velocity change from the sub-step's
+// start (placeSamples offsets its samples from then on) and an impulse. Returns true when some
+// body moved.
 bool moveBodies(WorldState& s, const CoarseGrid& cg, const std::vector<double>& mobility,
                 std::vector<double>& bodySum, const CoarseSettings& settings, const float* psi) {
     bodyForce(cg, psi, bodySum);
@@ -289,31 +299,23 @@ bool moveBodies(WorldState& s, const CoarseGrid& cg, const std::vector<double>& 
     bool moved = false;
     for (size_t b = 0; b < s.bodies.size(); ++b) {
         BodyState& body = s.bodies[b];
-        double dx = double(settings.share) * mobility[3 * b] * bodySum[3 * b];
-        double dy = double(settings.share) * mobility[3 * b + 1] * bodySum[3 * b + 1];
-        double da = double(settings.share) * mobility[3 * b + 2] * bodySum[3 * b + 2];
+        double dx = double(settings.share) * mobility[b] * bodySum[2 * b];
+        double dy = double(settings.share) * mobility[b] * bodySum[2 * b + 1];
         const double len = std::sqrt(dx * dx + dy * dy);
-        if (!std::isfinite(len) || !std::isfinite(da)) {
+        if (!std::isfinite(len) || len == 0.0) {
             continue;
         }
         if (len > limit) {
             dx *= limit / len;
             dy *= limit / len;
         }
-        da = std::clamp(da, -double(kMaxTurn), double(kMaxTurn));
-        if (dx == 0.0 && dy == 0.0 && da == 0.0) {
-            continue;
-        }
-        const double dvx = dx / span, dvy = dy / span, dw = da / span;
+        const double dvx = dx / span, dvy = dy / span;
         body.dvx += float(dvx);
         body.dvy += float(dvy);
-        body.dw += float(dw);
         body.ox -= float(dvx * double(settings.startTime));
         body.oy -= float(dvy * double(settings.startTime));
-        body.oa -= float(dw * double(settings.startTime));
         body.impulseX += double(body.mass) * dvx;
         body.impulseY += double(body.mass) * dvy;
-        body.angularImpulse += double(body.inertia) * dw;
         moved = true;
     }
     return moved;
@@ -421,8 +423,9 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
     const float h2 = cellSize * cellSize;
     for (size_t k = 0; k < nodes; ++k) {
         const float f = cg.fluid[k], sf = cg.solid[k];
-        const int32_t owner = bodies ? cg.owner[k] : -1;
-        if (owner >= 0 || (owner == -1 && sf > f && sf >= 0.25f)) {
+        // Solid: inside a body, or filled more by other solids' samples than by particles.
+        const float fixed = bodies ? sf - cg.bodyFill[k] : sf;
+        if ((bodies && cg.owner[k] >= 0) || (fixed > f && fixed >= 0.25f)) {
             cg.type[k] = kSolid;
         } else if (f + sf >= 0.5f) {
             cg.type[k] = kFluid;
@@ -472,23 +475,19 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
             }
         }
     }
-    // The bodies' faces: a fluid unknown next to a solid node that a body fills. The body's
-    // displacement (x, y, angle) drives the flux H (n . (D + angle x r)) out of the unknown's
-    // cell through that face (n from the unknown to the solid node, r from the body's centre
-    // to the face's middle, at the pose the samples were placed at).
+    // The bodies' faces: a fluid unknown next to a node inside a body. The body's displacement
+    // D drives the flux H n . D out of the unknown's cell through that face (n from the unknown
+    // to the body's node). Only translation: a rotation's flux through the grid's faces (the
+    // staircase of the outline, not its normals) gave a 4.5 cm crate a torque that spun it to
+    // 15 rad/s; the sweeps' forces on its samples turn it instead.
     cg.bodyFaces.clear();
-    std::vector<double> mobility; // per body: x, y, angle (rho0 depth / mass; / inertia)
+    std::vector<double> mobility; // per body: rho0 depth / mass (1/m^2)
     if (bodies) {
-        mobility.assign(3 * s.bodies.size(), 0.0);
+        mobility.assign(s.bodies.size(), 0.0);
         const double rho = fluidDensity(s);
         for (size_t b = 0; b < s.bodies.size(); ++b) {
-            const BodyState& body = s.bodies[b];
-            mobility[3 * b] = rho * double(s.def.depth) / double(body.mass);
-            mobility[3 * b + 1] = mobility[3 * b];
-            mobility[3 * b + 2] =
-                body.inertia > 0.0f ? rho * double(s.def.depth) / double(body.inertia) : 0.0;
+            mobility[b] = rho * double(s.def.depth) / double(s.bodies[b].mass);
         }
-        const float t = settings.endTime;
         for (size_t a = 0; a < count; ++a) {
             const uint32_t k = cg.active[a];
             const int i = int(k % uint32_t(nx)), j = int(k / uint32_t(nx));
@@ -502,21 +501,13 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
                 if (cg.type[m] != kSolid || cg.owner[m] < 0) {
                     continue;
                 }
-                const auto b = uint32_t(cg.owner[m]);
-                const BodyState& body = s.bodies[b];
-                const float centerX = body.cx + (body.vx + body.dvx) * t + body.ox;
-                const float centerY = body.cy + (body.vy + body.dvy) * t + body.oy;
-                const float fx = g.x0 + (float(i) + 0.5f * float(di[e])) * cellSize;
-                const float fy = g.y0 + (float(j) + 0.5f * float(dj[e])) * cellSize;
-                const float rx = fx - centerX, ry = fy - centerY;
-                const auto nxf = float(di[e]), nyf = float(dj[e]);
-                cg.bodyFaces.push_back({uint32_t(a), b, cellSize * nxf, cellSize * nyf,
-                                        cellSize * (rx * nyf - ry * nxf)});
+                cg.bodyFaces.push_back({uint32_t(a), uint32_t(cg.owner[m]),
+                                        cellSize * float(di[e]), cellSize * float(dj[e])});
             }
         }
     }
     const bool coupled = !cg.bodyFaces.empty();
-    std::vector<double> bodySum(bodies ? 3 * s.bodies.size() : 0);
+    std::vector<double> bodySum(bodies ? 2 * s.bodies.size() : 0);
 
     // Conjugate gradients on A psi = rhs: (A psi)_a = diagonal_a psi_a - sum of the fluid
     // neighbours' psi (air holds 0); the diagonal's small shift keeps a closed container full
@@ -566,12 +557,11 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
             // + G M^-1 G^T d: the flux of the bodies' displacement under d's pressure.
             bodyForce(cg, d, bodySum);
             for (size_t k = 0; k < bodySum.size(); ++k) {
-                bodySum[k] *= mobility[k];
+                bodySum[k] *= mobility[k / 2];
             }
             for (const CoarseGrid::BodyFace& f : cg.bodyFaces) {
-                q[f.unknown] += float(double(f.gx) * bodySum[3 * f.body] +
-                                      double(f.gy) * bodySum[3 * f.body + 1] +
-                                      double(f.ga) * bodySum[3 * f.body + 2]);
+                q[f.unknown] += float(double(f.gx) * bodySum[2 * f.body] +
+                                      double(f.gy) * bodySum[2 * f.body + 1]);
             }
             dq = laneDot(d, q, padded);
         }

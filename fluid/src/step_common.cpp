@@ -12,16 +12,17 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 
 namespace fluid::detail {
 
 namespace {
 
+// The largest mass a RigidBody may declare (kg).
+constexpr float kMaxBodyMass = 1e9f;
 // separateStacked: how far a particle found exactly on another is moved (unit: cell sizes, the
 // largest support), and the angle between successive slots' directions (rad).
-// (kMaxBodyMass: the largest mass and inertia a RigidBody may declare; kg, kg m^2.)
-constexpr float kMaxBodyMass = 1e9f;
 constexpr float kStackedNudge = 1.0f / 64.0f;
 constexpr float kGoldenAngle = 2.39996323f;
 // Cells per task of separateStacked (most hold one particle or none).
@@ -101,16 +102,10 @@ void gatherSamples(WorldState& s, const StepContext& context) {
                 throw Error(std::string(s.boundaries[p]->type()) + ": rigid body " +
                             std::to_string(b) + ": " + what);
             };
-            const auto finite = [](glm::vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); };
             if (!(rb.mass >= 0.0f && rb.mass <= kMaxBodyMass)) {
-                fail("mass = " + std::to_string(rb.mass) + " is out of range [0, 1e9] (unit: kg)");
-            }
-            if (!(rb.inertia >= 0.0f && rb.inertia <= kMaxBodyMass)) {
-                fail("inertia = " + std::to_string(rb.inertia) +
-                     " is out of range [0, 1e9] (unit: kg m^2)");
-            }
-            if (!finite(rb.center) || !finite(rb.velocity) || !std::isfinite(rb.angularVelocity)) {
-                fail("center, velocity and angularVelocity must be finite");
+                std::ostringstream text;
+                text << "mass = " << rb.mass << " is out of range [0, 1e9] (unit: kg)";
+                fail(text.str());
             }
             if (rb.sampleBegin > rb.sampleEnd || rb.sampleEnd > count) {
                 fail("samples [" + std::to_string(rb.sampleBegin) + ", " +
@@ -126,12 +121,6 @@ void gatherSamples(WorldState& s, const StepContext& context) {
             body.sampleBegin = out.pluginBegin[p] + rb.sampleBegin;
             body.sampleEnd = out.pluginBegin[p] + rb.sampleEnd;
             body.mass = rb.mass;
-            body.inertia = rb.inertia;
-            body.cx = rb.center.x;
-            body.cy = rb.center.y;
-            body.vx = rb.velocity.x;
-            body.vy = rb.velocity.y;
-            body.omega = rb.angularVelocity;
             const auto index = int32_t(s.bodies.size());
             for (uint32_t k = body.sampleBegin; k < body.sampleEnd; ++k) {
                 if (out.bodyOf[k] < 0) { // a sample listed twice stays with its first body
@@ -157,10 +146,8 @@ void deliverBodyImpulses(WorldState& s, float frameDt) {
             }
             RigidBodyImpulse& out = impulses[body.index];
             out.impulse = glm::vec2(float(body.impulseX), float(body.impulseY));
-            out.angularImpulse = float(body.angularImpulse);
             out.displacement =
                 glm::vec2(body.dvx * frameDt + body.ox, body.dvy * frameDt + body.oy);
-            out.rotation = body.dw * frameDt + body.oa;
         }
         s.boundaries[p]->receiveBodyImpulses(impulses);
     }
@@ -189,22 +176,17 @@ void placeSamples(WorldState& s, float t, float cellSize, bool rebuild) {
         }
     }
     // The coarse solve's corrections of the rigid bodies so far: an offset growing with the
-    // velocity change, and the turn about the corrected centre (linear in the small angle).
+    // velocity change.
     for (const BodyState& b : s.bodies) {
-        if (b.dvx == 0.0f && b.dvy == 0.0f && b.dw == 0.0f && b.ox == 0.0f && b.oy == 0.0f &&
-            b.oa == 0.0f) {
+        if (b.dvx == 0.0f && b.dvy == 0.0f && b.ox == 0.0f && b.oy == 0.0f) {
             continue;
         }
-        const float offX = b.dvx * t + b.ox, offY = b.dvy * t + b.oy, turn = b.dw * t + b.oa;
-        const float cx = b.cx + b.vx * t + offX, cy = b.cy + b.vy * t + offY;
+        const float offX = b.dvx * t + b.ox, offY = b.dvy * t + b.oy;
         for (uint32_t i = b.sampleBegin; i < b.sampleEnd; ++i) {
             x[i] += offX;
             y[i] += offY;
-            const float rx = x[i] - cx, ry = y[i] - cy;
-            x[i] -= turn * ry;
-            y[i] += turn * rx;
-            vx[i] += b.dvx - b.dw * ry;
-            vy[i] += b.dvy + b.dw * rx;
+            vx[i] += b.dvx;
+            vy[i] += b.dvy;
         }
     }
     // Samples line the level's walls: cells of R (3x3 per query; clipping gains little along a

@@ -122,16 +122,14 @@ struct Samples {
 /// A boundary plugin's rigid body with a mass (`BoundaryPlugin::rigidBodies`) during a step: an
 /// unknown of the coarse pressure solve (pbf_coarse.cpp). Rebuilt by every gatherSamples.
 struct BodyState {
-    uint32_t plugin = 0;                  // index in WorldState::boundaries
-    uint32_t index = 0;                   // index in that plugin's rigidBodies()
+    uint32_t plugin = 0;                     // index in WorldState::boundaries
+    uint32_t index = 0;                      // index in that plugin's rigidBodies()
     uint32_t sampleBegin = 0, sampleEnd = 0; // its samples, in concatenation order
-    float mass = 0, inertia = 0;          // kg, kg m^2 (inertia 0: not turned)
-    float cx = 0, cy = 0;                 // centre of mass at the start of the step (m)
-    float vx = 0, vy = 0, omega = 0;      // its sweep velocity (m/s, rad/s)
-    // The coarse solve's corrections so far: a velocity change (dvx, dvy, dw) and a position
-    // offset at time t into the step of (dvx, dvy, dw) t + (ox, oy, oa); placeSamples adds them.
-    float dvx = 0, dvy = 0, dw = 0, ox = 0, oy = 0, oa = 0;
-    double impulseX = 0, impulseY = 0, angularImpulse = 0; // summed over the step (N s, N m s)
+    float mass = 0;                          // kg
+    // The coarse solve's corrections so far: a velocity change (dvx, dvy) and a position offset
+    // at time t into the step of (dvx, dvy) t + (ox, oy); placeSamples adds them.
+    float dvx = 0, dvy = 0, ox = 0, oy = 0;
+    double impulseX = 0, impulseY = 0; // summed over the step (N s)
 };
 /// An emitter: its settings, and the state a snapshot carries.
 struct EmitterState {
@@ -154,14 +152,15 @@ struct CoarseGrid {
     std::vector<float> diagonal;          // per unknown: the operator's diagonal
     std::vector<int32_t> neighbours;      // per unknown: 4 neighbouring unknowns (the unknowns'
                                           // count for none: d keeps a 0 there)
-    std::vector<int32_t> owner;           // per node: the body whose samples fill it, or -1
+    std::vector<int32_t> owner;           // per node: the body it lies inside, or -1
+    std::vector<float> bodyFill;          // per node: the bodies' fill from their outlines
     std::vector<float> ownFill;           // scratch: one body's sample fill over its box
     std::vector<uint8_t> inside;          // scratch: one body's inside test on a fine lattice
-    // The bodies' Jacobian: per (unknown, body) pair, the flux the body's displacement
-    // (x, y, angle) drives out of the unknown's cell (m, m, m^2), in unknown order.
+    // The bodies' Jacobian: per face between an unknown and a body's node, the flux the body's
+    // displacement (x, y) drives out of the unknown's cell (m), in unknown order.
     struct BodyFace {
         uint32_t unknown = 0, body = 0;
-        float gx = 0, gy = 0, ga = 0;
+        float gx = 0, gy = 0;
     };
     std::vector<BodyFace> bodyFaces;
 };

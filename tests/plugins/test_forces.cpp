@@ -132,9 +132,6 @@ struct Scene {
     }
 };
 
-// Lone water particles are this far apart or more: several support radii (0.032 m).
-constexpr float kApart = 0.1f;
-
 } // namespace
 
 // ---- point gravity ---------------------------------------------------------------------------

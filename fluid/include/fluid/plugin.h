@@ -278,42 +278,29 @@ struct ProjectContext {
 
 /// A rigid body whose samples a boundary plugin lays (a Box2D body, or another physics engine's):
 /// what the position-based solver's coarse pressure solve needs to make the body one of its
-/// unknowns (docs/position_based.md, "Bodies in the coarse solve"). The body's samples move
-/// with it: `BoundarySamples::vx, vy` must be `velocity + angularVelocity x (sample - center)`.
-/// A body left out of `BoundaryPlugin::rigidBodies`, or with `mass` 0, is moved by the host
-/// only (static, kinematic): the solve takes no flux through it. Plain data.
+/// unknowns (docs/position_based.md, "Bodies in the coarse solve"). The solve moves the body
+/// along x and y; its turning comes from the sweeps' forces on its samples (`receiveForces`).
+/// A body left out of `BoundaryPlugin::rigidBodies`, or with `mass` 0, is moved by the host only
+/// (static, kinematic): the solve takes no flux through it. Plain data.
 struct RigidBody {
     /// Mass (unit: kg, weighed as the fluid's particles are: `Material::mass`, a slab
     /// `WorldDef::depth` deep; range (0, 1e9], or 0 for a body the fluid cannot move).
     float mass = 0.0f;
-    /// Moment of inertia about the centre of mass (unit: kg m^2; range [0, 1e9]; 0: the fluid
-    /// does not turn it).
-    float inertia = 0.0f;
-    /// Centre of mass at the start of the step (unit: m; finite).
-    glm::vec2 center{0.0f, 0.0f};
-    /// Velocity of the centre of mass during the step (unit: m/s; finite).
-    glm::vec2 velocity{0.0f, 0.0f};
-    /// Angular velocity during the step (unit: rad/s, counter-clockwise; finite).
-    float angularVelocity = 0.0f;
     /// Its samples: [sampleBegin, sampleEnd) of the plugin's `samples()` (unit: index).
     uint32_t sampleBegin = 0, sampleEnd = 0;
 };
 
 /// What the coarse pressure solve did to one `RigidBody` over a `World::step`: the pressure's
 /// impulse, and the displacement it gave the body's samples during the step (the fluid was
-/// moved out of the way of the body at its corrected pose). A host that wants the fluid and its
-/// body to agree adds `impulse / mass` to the body's velocity and moves it by `displacement`
-/// and `rotation` (as `fluid::box2d::Coupling` does). Plain data.
+/// moved out of the way of the body at its corrected place). A host that wants the fluid and its
+/// body to agree adds `impulse / mass` to the body's velocity and moves it by `displacement` (as
+/// `fluid::box2d::Coupling` does). Plain data.
 struct RigidBodyImpulse {
-    /// Linear impulse (unit: N s).
+    /// Impulse (unit: N s).
     glm::vec2 impulse{0.0f, 0.0f};
-    /// Angular impulse about the centre of mass (unit: N m s, counter-clockwise).
-    float angularImpulse = 0.0f;
-    /// How far the samples were moved beyond `velocity x frameDt` by the end of the step
+    /// How far the samples were moved beyond their own velocity's path by the end of the step
     /// (unit: m).
     glm::vec2 displacement{0.0f, 0.0f};
-    /// The same for the angle (unit: rad, counter-clockwise, about the centre of mass).
-    float rotation = 0.0f;
 };
 
 /// A solid the fluid cannot enter (container, polygon, moving paddle, rigid body...).
@@ -366,10 +353,9 @@ public:
     /// Stepping thread. Default: nothing.
     virtual void receiveBodyImpulses(std::span<const RigidBodyImpulse> /*impulses*/) {}
     /// True when `point` (unit: m) lies inside rigid body `body` (index in `rigidBodies()`) at
-    /// the pose its samples stand at `timeInStep` seconds into the step (its start pose moved
-    /// by its velocities). The coarse solve reads the body's outline on its grid with it; a
-    /// plugin that answers false everywhere has the outline read from its samples instead
-    /// (coarser; a small body's own samples may then overfill the nodes round it and push it).
+    /// the place its samples stand at `timeInStep` seconds into the step (moved by their own
+    /// velocities). The coarse solve reads the body's outline on its grid with it; a plugin that
+    /// answers false everywhere has the outline read from its samples instead (coarser).
     /// Stepping thread, during the sub-steps: read only. Default: false.
     virtual bool bodyContains(uint32_t /*body*/, glm::vec2 /*point*/, float /*timeInStep*/) const {
         return false;

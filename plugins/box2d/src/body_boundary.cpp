@@ -453,21 +453,12 @@ void BodyBoundary::prepare(const StepContext& context) {
         }
         be.colliderEnd = uint32_t(m_colliders.size());
         if (be.colliderEnd > be.colliderBegin) {
-            // A dynamic body is an unknown of the coarse pressure solve (mass and inertia about
-            // its centre of mass, as Box2D weighs it: kg/m^2 x area, the fluid's areal density
-            // times the same area).
+            // A dynamic body is an unknown of the coarse pressure solve (its mass as Box2D
+            // weighs it: kg/m^2 x area, the fluid's areal density times the same area).
             RigidBody rigid;
             if (body->GetType() == b2_dynamicBody) {
-                const double mass = body->GetMass();
-                const double inertia = body->GetInertia() -
-                                       mass * (localCenter.x * localCenter.x +
-                                               localCenter.y * localCenter.y);
-                rigid.mass = float(mass);
-                rigid.inertia = float(std::max(inertia, 0.0));
+                rigid.mass = body->GetMass();
             }
-            rigid.center = glm::vec2(com);
-            rigid.velocity = glm::vec2(velocity);
-            rigid.angularVelocity = float(omega);
             rigid.sampleBegin = m_colliders[be.colliderBegin].sampleBegin;
             rigid.sampleEnd = m_colliders[be.colliderEnd - 1].sampleEnd;
             m_rigid.push_back(rigid);
@@ -626,7 +617,6 @@ void BodyBoundary::receiveBodyImpulses(std::span<const RigidBodyImpulse> impulse
         const auto last = m_lastPose.find(body.body);
         if (last != m_lastPose.end()) {
             last->second.com += glm::dvec2(impulses[b].displacement);
-            last->second.angle += double(impulses[b].rotation);
         }
     }
 }

@@ -164,14 +164,14 @@ public:
     void receiveForces(std::span<const float> fx, std::span<const float> fy,
                        std::span<const float> drag) override;
     float friction() const override;
-    /// The dynamic bodies with their mass and inertia; the others with mass 0 (moved by Box2D
-    /// only). One per `bodies()` entry, in that order.
+    /// The dynamic bodies with their mass; the others with mass 0 (moved by Box2D only). One
+    /// per `bodies()` entry, in that order.
     std::span<const RigidBody> rigidBodies() const override { return m_rigid; }
     /// Keeps each body's correction in `BodyEntry::coarse`, and moves its seen pose with it
     /// (the `Coupling` moves the body there).
     void receiveBodyImpulses(std::span<const RigidBodyImpulse> impulses) override;
-    /// `b2Fixture::TestPoint` on the body's coupled fixtures, the point carried from the sweep
-    /// pose at `timeInStep` to the body's pose now.
+    /// `b2Fixture::TestPoint` on the body's coupled circles and polygons, the point carried
+    /// from the sweep pose at `timeInStep` to the body's pose now.
     bool bodyContains(uint32_t body, glm::vec2 point, float timeInStep) const override;
     /// True when `point` lies in a coupled fixture of a body (`b2Fixture::TestPoint`).
     bool contains(glm::vec2 point) const override;

@@ -321,26 +321,17 @@ void Coupling::fluidRound(World& world, float dt) {
 void Coupling::applyCorrections() {
     for (const BodyEntry& entry : m_boundary->bodies()) {
         const RigidBodyImpulse& c = entry.coarse;
-        if (entry.type != b2_dynamicBody ||
-            (c.impulse.x == 0.0f && c.impulse.y == 0.0f && c.angularImpulse == 0.0f &&
-             c.displacement.x == 0.0f && c.displacement.y == 0.0f && c.rotation == 0.0f)) {
-            continue;
-        }
         b2Body* body = entry.body;
         const float mass = body->GetMass();
-        const b2Vec2 local = body->GetLocalCenter();
-        const float inertia = body->GetInertia() - mass * (local.x * local.x + local.y * local.y);
-        if (mass > 0.0f) {
-            body->SetLinearVelocity(body->GetLinearVelocity() +
-                                    b2Vec2(c.impulse.x / mass, c.impulse.y / mass));
+        if (entry.type != b2_dynamicBody || !(mass > 0.0f) ||
+            (c.impulse.x == 0.0f && c.impulse.y == 0.0f && c.displacement.x == 0.0f &&
+             c.displacement.y == 0.0f)) {
+            continue;
         }
-        if (inertia > 0.0f && !body->IsFixedRotation()) {
-            body->SetAngularVelocity(body->GetAngularVelocity() + c.angularImpulse / inertia);
-        }
-        const b2Vec2 center = body->GetWorldCenter() + b2Vec2(c.displacement.x, c.displacement.y);
-        const float angle = body->GetAngle() + (body->IsFixedRotation() ? 0.0f : c.rotation);
-        const b2Rot q(angle);
-        body->SetTransform(center - b2Mul(q, local), angle);
+        body->SetLinearVelocity(body->GetLinearVelocity() +
+                                b2Vec2(c.impulse.x / mass, c.impulse.y / mass));
+        body->SetTransform(body->GetPosition() + b2Vec2(c.displacement.x, c.displacement.y),
+                           body->GetAngle());
     }
 }
 
@@ -453,9 +444,8 @@ void Coupling::makeReports(const World& world) {
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         const BodyEntry& e = bodies[b];
         const double angle = e.angle + e.omega * frameDt;
-        const double turned = angle + double(e.coarse.rotation);
         frames[b] = {e.com + frameDt * e.velocity + glm::dvec2(e.coarse.displacement),
-                     std::cos(turned), std::sin(turned)};
+                     std::cos(angle), std::sin(angle)};
     }
     std::vector<Box> boxes(colliders.size());
     for (std::size_t k = 0; k < colliders.size(); ++k) {
@@ -519,7 +509,7 @@ void Coupling::makeReports(const World& world) {
         // The sweeps' forces and the coarse solve's impulse over the step.
         const double invDt = frameDt > 0.0 ? 1.0 / frameDt : 0.0;
         r.force = glm::vec2(entry.force + invDt * glm::dvec2(entry.coarse.impulse));
-        r.torque = float(entry.torque + invDt * double(entry.coarse.angularImpulse));
+        r.torque = float(entry.torque);
         double area = 0.0, submerged = 0.0, chords = 0.0;
         counts.clear();
         for (uint32_t k = entry.colliderBegin; k < entry.colliderEnd; ++k) {
