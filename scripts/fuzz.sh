@@ -44,7 +44,7 @@ if [[ ${#missing[@]} -gt 0 ]]; then
 fi
 
 build=build/fuzz
-flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined,fuzzer-no-link"
+flags="-O1 -g1 -fno-omit-frame-pointer -fsanitize=address,undefined,fuzzer-no-link"
 flags+=" -fno-sanitize-recover=undefined"
 cmake -S tests/fuzz -B "$build" -G Ninja \
     -DCMAKE_BUILD_TYPE=None \
