@@ -329,13 +329,7 @@ void solverSection(Level& level, FieldErrors& errors) {
         rangeTooltip("Vorticity confinement: gives back the swirl that damping takes; 0 is off.",
                      "1", 0, 10);
         if (changed) {
-            applyField(errors, id, [&] {
-                if (level.coupling && pb.coarseCorrection > 0.0f) {
-                    throw Error("with Box2D bodies the coarse correction must be 0 (it gives "
-                                "them no reaction yet): keep the precise preset");
-                }
-                world.setPositionBased(pb);
-            });
+            applyField(errors, id, [&] { world.setPositionBased(pb); });
         }
         showFieldError(errors, id);
     } else {

@@ -453,9 +453,15 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
     const size_t count = cg.active.size();
     // A missing neighbour points at slot `count`, which the vectors the operator reads keep at 0
     // (the same sums as skipping it, without a branch).
+    // A face between an unknown and a node inside a body is also a row of the bodies' Jacobian:
+    // the body's displacement D drives the flux H n . D out of the unknown's cell through it (n
+    // from the unknown to the body's node). Only translation: a rotation's flux through the
+    // grid's faces (the staircase of the outline, not its normals) gave a 4.5 cm crate a torque
+    // that spun it to 15 rad/s; the sweeps' forces on its samples turn it instead.
     const auto none = int32_t(count);
     cg.diagonal.assign(count, kShift);
     cg.neighbours.assign(4 * count, none);
+    cg.bodyFaces.clear();
     for (size_t a = 0; a < count; ++a) {
         const uint32_t k = cg.active[a];
         const int i = int(k % uint32_t(nx)), j = int(k / uint32_t(nx));
@@ -472,38 +478,18 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
                 if (cg.slot[m] >= 0) {
                     cg.neighbours[4 * a + size_t(e)] = cg.slot[m];
                 }
+            } else if (bodies && cg.owner[m] >= 0) {
+                cg.bodyFaces.push_back({uint32_t(a), uint32_t(cg.owner[m]),
+                                        cellSize * float(di[e]), cellSize * float(dj[e])});
             }
         }
     }
-    // The bodies' faces: a fluid unknown next to a node inside a body. The body's displacement
-    // D drives the flux H n . D out of the unknown's cell through that face (n from the unknown
-    // to the body's node). Only translation: a rotation's flux through the grid's faces (the
-    // staircase of the outline, not its normals) gave a 4.5 cm crate a torque that spun it to
-    // 15 rad/s; the sweeps' forces on its samples turn it instead.
-    cg.bodyFaces.clear();
     std::vector<double> mobility; // per body: rho0 depth / mass (1/m^2)
     if (bodies) {
         mobility.assign(s.bodies.size(), 0.0);
         const double rho = fluidDensity(s);
         for (size_t b = 0; b < s.bodies.size(); ++b) {
             mobility[b] = rho * double(s.def.depth) / double(s.bodies[b].mass);
-        }
-        for (size_t a = 0; a < count; ++a) {
-            const uint32_t k = cg.active[a];
-            const int i = int(k % uint32_t(nx)), j = int(k / uint32_t(nx));
-            const int di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
-            for (int e = 0; e < 4; ++e) {
-                const int ii = i + di[e], jj = j + dj[e];
-                if (ii < 0 || jj < 0 || ii >= nx || jj >= ny) {
-                    continue;
-                }
-                const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
-                if (cg.type[m] != kSolid || cg.owner[m] < 0) {
-                    continue;
-                }
-                cg.bodyFaces.push_back({uint32_t(a), uint32_t(cg.owner[m]),
-                                        cellSize * float(di[e]), cellSize * float(dj[e])});
-            }
         }
     }
     const bool coupled = !cg.bodyFaces.empty();
