@@ -43,16 +43,23 @@ if [[ ${#missing[@]} -gt 0 ]]; then
     apt-get install -y -qq --no-install-recommends "${missing[@]}" </dev/null >/dev/null
 fi
 
-build=build/fuzz
-flags="-O1 -g1 -fno-omit-frame-pointer -fsanitize=address,undefined,fuzzer-no-link"
-flags+=" -fno-sanitize-recover=undefined"
-cmake -S tests/fuzz -B "$build" -G Ninja \
-    -DCMAKE_BUILD_TYPE=None \
-    -DCMAKE_CXX_COMPILER=clang++-14 \
-    -DCMAKE_CXX_FLAGS="$flags" \
-    -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
-    -DFLUID_WARNINGS_AS_ERRORS=OFF >"$build.configure.log" 2>&1 ||
-    { cat "$build.configure.log" >&2; exit 1; }
+# FLUID_FUZZ_BUILD names a configured tree that already has the fuzz target (the asan preset's
+# build/asan: FLUID_BUILD_FUZZ); without it the fuzzer gets a project of its own in build/fuzz.
+build="${FLUID_FUZZ_BUILD:-build/fuzz}"
+if [[ -z "${FLUID_FUZZ_BUILD:-}" ]]; then
+    flags="-O1 -g1 -fno-omit-frame-pointer -fsanitize=address,undefined,fuzzer-no-link"
+    flags+=" -fno-sanitize-recover=undefined"
+    cmake -S tests/fuzz -B "$build" -G Ninja \
+        -DCMAKE_BUILD_TYPE=None \
+        -DCMAKE_CXX_COMPILER=clang++-14 \
+        -DCMAKE_CXX_FLAGS="$flags" \
+        -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+        -DFLUID_WARNINGS_AS_ERRORS=OFF >"$build.configure.log" 2>&1 ||
+        { cat "$build.configure.log" >&2; exit 1; }
+elif [[ ! -f "$build/CMakeCache.txt" ]]; then
+    echo "fuzz.sh: FLUID_FUZZ_BUILD=$build is not a configured build tree" >&2
+    exit 1
+fi
 cmake --build "$build" --target fluid-fuzz-level -j2 >"$build.build.log" 2>&1 ||
     { cat "$build.build.log" >&2; exit 1; }
 

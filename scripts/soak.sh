@@ -4,7 +4,8 @@
 # body stays in the tank and resident memory stays flat (within 5% of its value after the first
 # minute, or a third of a shorter run). Exits non-zero at the first failure, naming the frame.
 #
-#   bash scripts/soak.sh        # 1 minute (what CI runs)
+#   bash scripts/soak.sh        # 1 minute
+#   bash scripts/soak.sh 0.5    # 30 s (what CI runs)
 #   bash scripts/soak.sh 10     # 10 minutes
 #
 # Builds the release preset's fluid-soak first (run scripts/deps.sh once on a fresh machine).
