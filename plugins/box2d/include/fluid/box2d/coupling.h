@@ -174,6 +174,13 @@ void registerCouplingPlugin(Registry& registry);
 /// Steady forces (buoyancy at rest, steady drag) are applied unchanged; a dry body gets its
 /// debt at once (w = 1).
 ///
+/// Coarse correction (`PositionBasedDef::coarseCorrection`, the `game` preset): every dynamic
+/// body is an unknown of the world's coarse pressure solve (`BoundaryPlugin::rigidBodies`). After
+/// each round the body takes the solve's velocity change at once (no relaxation: the solve
+/// already moved the fluid with it) and is moved by its displacement (`SetTransform`), and its
+/// report's force includes that impulse. With the game preset bodies float 10-22% higher than
+/// Archimedes and bob at a few cm/s (docs/position_based.md, "Bodies in the coarse solve").
+///
 /// Submerged area: each circle and polygon fixture carries points along its outline at the
 /// world's sample spacing; a point is wet when a particle centre lies within 0.75 spacing of it.
 /// The longest run of wet points along the outline (gaps of up to two dry points bridged)
