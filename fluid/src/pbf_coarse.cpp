@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 namespace fluid::detail {
 
@@ -78,15 +79,20 @@ struct Layout {
     }
 };
 
+// `amount` spread over the four nodes of the cell whose lower-left node is k (rows `stride`
+// nodes long) with bilinear fractions (fx, fy).
+void splatAt(std::vector<float>& fill, size_t stride, size_t k, float fx, float fy, float amount) {
+    fill[k] += amount * (1.0f - fx) * (1.0f - fy);
+    fill[k + 1] += amount * fx * (1.0f - fy);
+    fill[k + stride] += amount * (1.0f - fx) * fy;
+    fill[k + stride + 1] += amount * fx * fy;
+}
+
 void splat(std::vector<float>& fill, const Layout& g, float x, float y, float amount) {
     int i = 0, j = 0;
     float fx = 0, fy = 0;
     g.cell(x, y, i, j, fx, fy);
-    const size_t k = size_t(j) * size_t(g.nx) + size_t(i);
-    fill[k] += amount * (1.0f - fx) * (1.0f - fy);
-    fill[k + 1] += amount * fx * (1.0f - fy);
-    fill[k + size_t(g.nx)] += amount * (1.0f - fx) * fy;
-    fill[k + size_t(g.nx) + 1] += amount * fx * fy;
+    splatAt(fill, size_t(g.nx), size_t(j) * size_t(g.nx) + size_t(i), fx, fy, amount);
 }
 
 // Particle i's coarse move: share times minus the bilinear gradient of the node values (in its
@@ -124,29 +130,21 @@ void bodyForce(const CoarseGrid& cg, const float* v, std::vector<double>& sum) {
     }
 }
 
-// Which body fills each node (cg.owner): b for a node inside body b (its inside test at the
-// pose its samples stand at), -1 elsewhere. Each body's fill of the nodes in its box comes from
-// its outline, read on a lattice of kSubcells^2 points per cell, in place of its samples' splat
-// (cg.solid; cg.bodyFill keeps the bodies' part). A plugin without an inside test, or a body too
-// large for the lattice, keeps its samples' fill, and the nodes they fill most are its own.
-void markOwners(WorldState& s, const Layout& g, float amount, float time) {
-    CoarseGrid& cg = s.coarse;
+// Each body's samples on the grid, in sorted order: body b's are order[start[b]..start[b+1])
+// (a counting sort of the samples by body). Those beyond the grid are left out, as the splat
+// leaves them out: the grid spans the particles only, and its clamped cells would pile a body
+// above the liquid into its top row (4.5 cm crates resting on water were read as solid rows over
+// full nodes, and pushed out of it at 1 m/s).
+void sortBodySamples(const WorldState& s, const Layout& g, std::vector<uint32_t>& start,
+                     std::vector<uint32_t>& order) {
     const Samples& w = s.samples;
-    const size_t nodes = size_t(g.nx) * size_t(g.ny);
-    cg.owner.assign(nodes, -1);
-    cg.bodyFill.assign(nodes, 0.0f);
     const size_t count = s.bodies.size();
-    // Each body's samples on the grid, in sorted order (a counting sort of the samples by
-    // body). Those beyond the grid are left out, as the splat leaves them out: the grid spans
-    // the particles only, and its clamped cells would pile a body above the liquid into its top
-    // row (4.5 cm crates resting on water were read as solid rows over full nodes, and pushed
-    // out of it at 1 m/s).
     const float x1 = g.x0 + float(g.nx - 1) / g.invH, y1 = g.y0 + float(g.ny - 1) / g.invH;
     const auto onGrid = [&](uint32_t k) {
         return w.body[k] >= 0 && w.px[k] >= g.x0 && w.px[k] <= x1 && w.py[k] >= g.y0 &&
                w.py[k] <= y1;
     };
-    std::vector<uint32_t> start(count + 1, 0), order;
+    start.assign(count + 1, 0);
     for (uint32_t k = 0; k < w.body.size(); ++k) {
         if (onGrid(k)) {
             ++start[size_t(w.body[k]) + 1];
@@ -162,100 +160,131 @@ void markOwners(WorldState& s, const Layout& g, float amount, float time) {
             order[fill[size_t(w.body[k])]++] = k;
         }
     }
-    for (size_t b = 0; b < count; ++b) {
-        int i0 = g.nx, j0 = g.ny, i1 = -1, j1 = -1;
-        for (uint32_t o = start[b]; o < start[b + 1]; ++o) {
-            int i = 0, j = 0;
-            float fx = 0, fy = 0;
-            g.cell(w.px[order[o]], w.py[order[o]], i, j, fx, fy);
-            i0 = std::min(i0, i);
-            j0 = std::min(j0, j);
-            i1 = std::max(i1, i + 1);
-            j1 = std::max(j1, j + 1);
+}
+
+// One body's box of nodes [i0, i1] x [j0, j1] and its samples' fill of it (cg.ownFill, rows
+// i1 - i0 + 1 long): the cells of its samples, one node more each side (the outline lies up to
+// half a spacing outside the samples). False when it has no sample on the grid.
+struct NodeBox {
+    int i0 = 0, j0 = 0, i1 = 0, j1 = 0;
+    size_t stride() const { return size_t(i1 - i0 + 1); }
+};
+bool sampleFill(CoarseGrid& cg, const Samples& w, const Layout& g, float amount,
+                std::span<const uint32_t> samples, NodeBox& box) {
+    if (samples.empty()) {
+        return false;
+    }
+    // Each sample's cell and fractions, as the world grid's splat found them.
+    struct Cell {
+        int i, j;
+        float fx, fy;
+    };
+    std::vector<Cell> cells(samples.size());
+    box = NodeBox{g.nx, g.ny, -1, -1};
+    for (size_t o = 0; o < samples.size(); ++o) {
+        Cell& c = cells[o];
+        g.cell(w.px[samples[o]], w.py[samples[o]], c.i, c.j, c.fx, c.fy);
+        box.i0 = std::min(box.i0, c.i);
+        box.j0 = std::min(box.j0, c.j);
+        box.i1 = std::max(box.i1, c.i + 1);
+        box.j1 = std::max(box.j1, c.j + 1);
+    }
+    box.i0 = std::max(box.i0 - 1, 0);
+    box.j0 = std::max(box.j0 - 1, 0);
+    box.i1 = std::min(box.i1 + 1, g.nx - 1);
+    box.j1 = std::min(box.j1 + 1, g.ny - 1);
+    cg.ownFill.assign(box.stride() * size_t(box.j1 - box.j0 + 1), 0.0f);
+    for (const Cell& c : cells) {
+        const size_t k = size_t(c.j - box.j0) * box.stride() + size_t(c.i - box.i0);
+        splatAt(cg.ownFill, box.stride(), k, c.fx, c.fy, amount);
+    }
+    return true;
+}
+
+// The inside test on a lattice of kSubcells x kSubcells points per cell over the box, into
+// cg.inside (rows (i1 - i0) kSubcells long); returns how many points lie inside. None for a box
+// too large for the lattice (the body keeps its samples' fill).
+template <class Contains>
+uint32_t readOutline(CoarseGrid& cg, const Layout& g, const NodeBox& box, Contains&& contains) {
+    const double points = double(box.i1 - box.i0) * double(box.j1 - box.j0) * kSubcells * kSubcells;
+    const bool tooLarge = points > double(kMaxLattice);
+    const int fnx = tooLarge ? 0 : (box.i1 - box.i0) * kSubcells;
+    const int fny = tooLarge ? 0 : (box.j1 - box.j0) * kSubcells;
+    const float cell = 1.0f / g.invH;
+    const float x0 = g.x0 + float(box.i0) * cell, y0 = g.y0 + float(box.j0) * cell;
+    cg.inside.assign(size_t(fnx) * size_t(fny), 0);
+    uint32_t inside = 0;
+    for (int q = 0; q < fny; ++q) {
+        for (int r = 0; r < fnx; ++r) {
+            if (contains(x0 + (float(r) + 0.5f) * cell / float(kSubcells),
+                         y0 + (float(q) + 0.5f) * cell / float(kSubcells))) {
+                cg.inside[size_t(q) * size_t(fnx) + size_t(r)] = 1;
+                ++inside;
+            }
         }
-        if (i1 < 0) {
+    }
+    return inside;
+}
+
+// The body's share of node (i, j)'s fill (box-relative indices), from its outline: the bilinear
+// weights over the lattice points of cg.inside within the node's reach.
+float outlineFill(const CoarseGrid& cg, const NodeBox& box, int i, int j) {
+    const int fnx = (box.i1 - box.i0) * kSubcells, fny = (box.j1 - box.j0) * kSubcells;
+    float fill = 0.0f;
+    for (int q = std::max((j - 1) * kSubcells, 0); q < std::min((j + 1) * kSubcells, fny); ++q) {
+        const float wy = 1.0f - std::fabs((float(q) + 0.5f) / float(kSubcells) - float(j));
+        for (int r = std::max((i - 1) * kSubcells, 0); r < std::min((i + 1) * kSubcells, fnx);
+             ++r) {
+            if (cg.inside[size_t(q) * size_t(fnx) + size_t(r)] != 0) {
+                fill += (1.0f - std::fabs((float(r) + 0.5f) / float(kSubcells) - float(i))) * wy;
+            }
+        }
+    }
+    return fill / float(kSubcells * kSubcells);
+}
+
+// Which body fills each node (cg.owner): b for a node inside body b (its inside test at the
+// pose its samples stand at), -1 elsewhere. Each body's fill of the nodes in its box comes from
+// its outline, in place of its samples' splat (cg.solid; cg.bodyFill keeps the bodies' part): a
+// body's own samples must never fill a node outside it and push it (a 4.5 cm crate whose samples
+// overfilled the node under it climbed to the lid at 2.4 m/s). A plugin without an inside test,
+// or a body too large for the lattice, keeps its samples' fill, and the nodes they fill most are
+// its own.
+void markOwners(WorldState& s, const Layout& g, float amount, float time) {
+    CoarseGrid& cg = s.coarse;
+    const size_t nodes = size_t(g.nx) * size_t(g.ny);
+    cg.owner.assign(nodes, -1);
+    cg.bodyFill.assign(nodes, 0.0f);
+    std::vector<uint32_t> start, order;
+    sortBodySamples(s, g, start, order);
+    const float cell = 1.0f / g.invH;
+    for (size_t b = 0; b < s.bodies.size(); ++b) {
+        NodeBox box;
+        const std::span<const uint32_t> samples(order.data() + start[b], start[b + 1] - start[b]);
+        if (!sampleFill(cg, s.samples, g, amount, samples, box)) {
             continue;
-        }
-        // One node more each side: the outline lies up to half a spacing outside the samples.
-        i0 = std::max(i0 - 1, 0);
-        j0 = std::max(j0 - 1, 0);
-        i1 = std::min(i1 + 1, g.nx - 1);
-        j1 = std::min(j1 + 1, g.ny - 1);
-        Layout local = g;
-        local.x0 = g.x0 + float(i0) * (1.0f / g.invH);
-        local.y0 = g.y0 + float(j0) * (1.0f / g.invH);
-        local.nx = i1 - i0 + 1;
-        local.ny = j1 - j0 + 1;
-        cg.ownFill.assign(size_t(local.nx) * size_t(local.ny), 0.0f);
-        for (uint32_t o = start[b]; o < start[b + 1]; ++o) {
-            // The same cell and fractions as the world grid's splat (offset by the box).
-            int i = 0, j = 0;
-            float fx = 0, fy = 0;
-            g.cell(w.px[order[o]], w.py[order[o]], i, j, fx, fy);
-            const size_t k = size_t(j - j0) * size_t(local.nx) + size_t(i - i0);
-            cg.ownFill[k] += amount * (1.0f - fx) * (1.0f - fy);
-            cg.ownFill[k + 1] += amount * fx * (1.0f - fy);
-            cg.ownFill[k + size_t(local.nx)] += amount * (1.0f - fx) * fy;
-            cg.ownFill[k + size_t(local.nx) + 1] += amount * fx * fy;
         }
         // The body's own inside test, where its samples stand (its own sweep at `time`, which
         // the coarse corrections so far have moved).
         const BodyState& body = s.bodies[b];
         const BoundaryPlugin& plugin = *s.boundaries[body.plugin];
         const float offX = body.dvx * time + body.ox, offY = body.dvy * time + body.oy;
-        const float cell = 1.0f / g.invH;
         const auto contains = [&](float x, float y) {
             return plugin.bodyContains(body.index, glm::vec2(x - offX, y - offY), time);
         };
-        // The inside test on a lattice of kSubcells x kSubcells points per cell over the box
-        // (a body too large for it keeps its samples' fill).
-        const bool tooLarge = double(i1 - i0) * double(j1 - j0) * kSubcells * kSubcells >
-                             double(kMaxLattice);
-        const int fnx = tooLarge ? 0 : (i1 - i0) * kSubcells;
-        const int fny = tooLarge ? 0 : (j1 - j0) * kSubcells;
-        std::vector<uint8_t>& in = cg.inside;
-        in.assign(size_t(std::max(fnx, 0)) * size_t(std::max(fny, 0)), 0);
-        uint32_t inside = 0;
-        for (int q = 0; q < fny; ++q) {
-            for (int r = 0; r < fnx; ++r) {
-                const float x = local.x0 + (float(r) + 0.5f) * cell / float(kSubcells);
-                const float y = local.y0 + (float(q) + 0.5f) * cell / float(kSubcells);
-                if (contains(x, y)) {
-                    in[size_t(q) * size_t(fnx) + size_t(r)] = 1;
-                    ++inside;
-                }
-            }
-        }
-        for (int j = j0; j <= j1; ++j) {
-            for (int i = i0; i <= i1; ++i) {
+        const uint32_t inside = readOutline(cg, g, box, contains);
+        for (int j = box.j0; j <= box.j1; ++j) {
+            for (int i = box.i0; i <= box.i1; ++i) {
                 const size_t k = size_t(j) * size_t(g.nx) + size_t(i);
-                const float own = cg.ownFill[size_t(j - j0) * size_t(local.nx) + size_t(i - i0)];
+                const float own =
+                    cg.ownFill[size_t(j - box.j0) * box.stride() + size_t(i - box.i0)];
                 if (inside == 0) {
                     if (own > 0.0f && own >= 0.5f * cg.solid[k]) {
                         cg.owner[k] = int32_t(b); // no inside test: the nodes its samples fill
                     }
                     continue;
                 }
-                // The body's share of the node's fill, from its outline (the bilinear weights
-                // over the lattice points) in place of its samples: a body's own samples must
-                // never fill a node outside it and push it (a 4.5 cm crate whose samples
-                // overfilled the node under it climbed to the lid at 2.4 m/s).
-                float geometric = 0.0f;
-                for (int q = std::max((j - 1 - j0) * kSubcells, 0);
-                     q < std::min((j + 1 - j0) * kSubcells, fny); ++q) {
-                    const float wy =
-                        1.0f - std::fabs((float(q) + 0.5f) / float(kSubcells) - float(j - j0));
-                    for (int r = std::max((i - 1 - i0) * kSubcells, 0);
-                         r < std::min((i + 1 - i0) * kSubcells, fnx); ++r) {
-                        if (in[size_t(q) * size_t(fnx) + size_t(r)] != 0) {
-                            const float wx = 1.0f - std::fabs((float(r) + 0.5f) /
-                                                                  float(kSubcells) -
-                                                              float(i - i0));
-                            geometric += wx * wy;
-                        }
-                    }
-                }
-                geometric /= float(kSubcells * kSubcells);
+                const float geometric = outlineFill(cg, box, i - box.i0, j - box.j0);
                 cg.solid[k] = std::max(cg.solid[k] - own, 0.0f) + geometric;
                 cg.bodyFill[k] += geometric;
                 if (contains(g.x0 + float(i) * cell, g.y0 + float(j) * cell)) {
@@ -267,7 +296,8 @@ void markOwners(WorldState& s, const Layout& g, float amount, float time) {
 }
 
 // The rest density of the liquid the bodies float in: the particles' mean, weighted by their
-// rest area (one material: its own).
+// rest area (one material: its own). The world has particles (pbfCoarse returns before
+// otherwise).
 double fluidDensity(const WorldState& s) {
     const Particles& p = s.particles;
     double mass = 0.0, area = 0.0;
@@ -280,8 +310,104 @@ double fluidDensity(const WorldState& s) {
         mass += v * double(s.materials[m].restDensity);
         area += v;
     }
-    return area > 0.0 ? mass / area : double(s.materials.empty() ? 1000.0f
-                                                                  : s.materials[0].restDensity);
+    return mass / area;
+}
+
+// Each node's type (air, fluid, solid) and right-hand side: a fluid node's compression above
+// `tolerance`, times h2. Returns true when some node is compressed.
+bool classifyNodes(CoarseGrid& cg, size_t nodes, float tolerance, float h2, bool bodies) {
+    cg.type.assign(nodes, kAir);
+    cg.rhs.assign(nodes, 0.0f);
+    bool any = false;
+    for (size_t k = 0; k < nodes; ++k) {
+        const float f = cg.fluid[k], sf = cg.solid[k];
+        // Solid: inside a body, or filled more by other solids' samples than by particles.
+        const float fixed = bodies ? sf - cg.bodyFill[k] : sf;
+        if ((bodies && cg.owner[k] >= 0) || (fixed > f && fixed >= 0.25f)) {
+            cg.type[k] = kSolid;
+        } else if (f + sf >= 0.5f) {
+            cg.type[k] = kFluid;
+            const float e = f + sf - 1.0f - tolerance;
+            if (e > 0.0f) {
+                cg.rhs[k] = e * h2;
+                any = true;
+            }
+        }
+    }
+    return any;
+}
+
+// The unknowns in compact order (cg.active: their nodes), each with its diagonal and its fluid
+// neighbours' compact indices; a missing neighbour points at slot `count` (the unknowns' count),
+// which the vectors the operator reads keep at 0 (the same sums as skipping it, without a
+// branch). A face between an unknown and a node inside a body is also a row of the bodies'
+// Jacobian (cg.bodyFaces): the body's displacement D drives the flux H n . D out of the
+// unknown's cell through it (n from the unknown to the body's node). Only translation: a
+// rotation's flux through the grid's faces (the staircase of the outline, not its normals) gave
+// a 4.5 cm crate a torque that spun it to 15 rad/s; the sweeps' forces on its samples turn it
+// instead.
+void buildOperator(CoarseGrid& cg, const Layout& g, float cellSize, bool bodies) {
+    const int nx = g.nx, ny = g.ny;
+    const size_t nodes = size_t(nx) * size_t(ny);
+    cg.active.clear();
+    cg.slot.assign(nodes, -1);
+    for (size_t k = 0; k < nodes; ++k) {
+        if (cg.type[k] == kFluid) {
+            cg.slot[k] = int32_t(cg.active.size());
+            cg.active.push_back(uint32_t(k));
+        }
+    }
+    const size_t count = cg.active.size();
+    const auto none = int32_t(count);
+    cg.diagonal.assign(count, kShift);
+    cg.neighbours.assign(4 * count, none);
+    cg.bodyFaces.clear();
+    for (size_t a = 0; a < count; ++a) {
+        const uint32_t k = cg.active[a];
+        const int i = int(k % uint32_t(nx)), j = int(k / uint32_t(nx));
+        const int di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
+        for (int e = 0; e < 4; ++e) {
+            const int ii = i + di[e], jj = j + dj[e];
+            if (ii < 0 || jj < 0 || ii >= nx || jj >= ny) {
+                cg.diagonal[a] += 1.0f; // outside the grid: air
+                continue;
+            }
+            const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
+            if (cg.type[m] != kSolid) { // no flux through solids
+                cg.diagonal[a] += 1.0f;
+                if (cg.slot[m] >= 0) {
+                    cg.neighbours[4 * a + size_t(e)] = cg.slot[m];
+                }
+            } else if (bodies && cg.owner[m] >= 0) {
+                cg.bodyFaces.push_back({uint32_t(a), uint32_t(cg.owner[m]), cellSize * float(di[e]),
+                                        cellSize * float(dj[e])});
+            }
+        }
+    }
+}
+
+// Per body, how far the solve moves it per unit of G^T psi: rho0 depth / mass (1/m^2).
+std::vector<double> bodyMobility(const WorldState& s) {
+    std::vector<double> mobility(s.bodies.size());
+    const double rho = fluidDensity(s);
+    for (size_t b = 0; b < s.bodies.size(); ++b) {
+        mobility[b] = rho * double(s.def.depth) / double(s.bodies[b].mass);
+    }
+    return mobility;
+}
+
+// q += G M^-1 G^T d: the flux of the bodies' displacement under d's pressure (bodySum is
+// scratch, two per body).
+void addBodyFlux(const CoarseGrid& cg, const std::vector<double>& mobility, const float* d,
+                 float* q, std::vector<double>& bodySum) {
+    bodyForce(cg, d, bodySum);
+    for (size_t k = 0; k < bodySum.size(); ++k) {
+        bodySum[k] *= mobility[k / 2];
+    }
+    for (const CoarseGrid::BodyFace& f : cg.bodyFaces) {
+        q[f.unknown] +=
+            float(double(f.gx) * bodySum[2 * f.body] + double(f.gy) * bodySum[2 * f.body + 1]);
+    }
 }
 
 // The bodies' share of the solve: each moves by share M^-1 G^T psi (rho0 depth over its mass), at
@@ -417,83 +543,16 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
     if (bodies) {
         markOwners(s, g, c.sampleVolume * invArea, settings.endTime);
     }
-    cg.type.assign(nodes, kAir);
-    cg.rhs.assign(nodes, 0.0f);
-    bool any = false;
-    const float h2 = cellSize * cellSize;
-    for (size_t k = 0; k < nodes; ++k) {
-        const float f = cg.fluid[k], sf = cg.solid[k];
-        // Solid: inside a body, or filled more by other solids' samples than by particles.
-        const float fixed = bodies ? sf - cg.bodyFill[k] : sf;
-        if ((bodies && cg.owner[k] >= 0) || (fixed > f && fixed >= 0.25f)) {
-            cg.type[k] = kSolid;
-        } else if (f + sf >= 0.5f) {
-            cg.type[k] = kFluid;
-            const float e = f + sf - 1.0f - tolerance;
-            if (e > 0.0f) {
-                cg.rhs[k] = e * h2;
-                any = true;
-            }
-        }
-    }
-    const int nx = g.nx, ny = g.ny;
-    if (!any) {
+    if (!classifyNodes(cg, nodes, tolerance, cellSize * cellSize, bodies)) {
         return false;
     }
-    // The unknowns in compact order (cg.active: their nodes), each with its diagonal and its
-    // fluid neighbours' compact indices (count: none, see below).
-    cg.active.clear();
-    cg.slot.assign(nodes, -1);
-    for (size_t k = 0; k < nodes; ++k) {
-        if (cg.type[k] == kFluid) {
-            cg.slot[k] = int32_t(cg.active.size());
-            cg.active.push_back(uint32_t(k));
-        }
-    }
+    const int nx = g.nx, ny = g.ny;
+    buildOperator(cg, g, cellSize, bodies);
     const size_t count = cg.active.size();
-    // A missing neighbour points at slot `count`, which the vectors the operator reads keep at 0
-    // (the same sums as skipping it, without a branch).
-    // A face between an unknown and a node inside a body is also a row of the bodies' Jacobian:
-    // the body's displacement D drives the flux H n . D out of the unknown's cell through it (n
-    // from the unknown to the body's node). Only translation: a rotation's flux through the
-    // grid's faces (the staircase of the outline, not its normals) gave a 4.5 cm crate a torque
-    // that spun it to 15 rad/s; the sweeps' forces on its samples turn it instead.
     const auto none = int32_t(count);
-    cg.diagonal.assign(count, kShift);
-    cg.neighbours.assign(4 * count, none);
-    cg.bodyFaces.clear();
-    for (size_t a = 0; a < count; ++a) {
-        const uint32_t k = cg.active[a];
-        const int i = int(k % uint32_t(nx)), j = int(k / uint32_t(nx));
-        const int di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
-        for (int e = 0; e < 4; ++e) {
-            const int ii = i + di[e], jj = j + dj[e];
-            if (ii < 0 || jj < 0 || ii >= nx || jj >= ny) {
-                cg.diagonal[a] += 1.0f; // outside the grid: air
-                continue;
-            }
-            const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
-            if (cg.type[m] != kSolid) { // no flux through solids
-                cg.diagonal[a] += 1.0f;
-                if (cg.slot[m] >= 0) {
-                    cg.neighbours[4 * a + size_t(e)] = cg.slot[m];
-                }
-            } else if (bodies && cg.owner[m] >= 0) {
-                cg.bodyFaces.push_back({uint32_t(a), uint32_t(cg.owner[m]),
-                                        cellSize * float(di[e]), cellSize * float(dj[e])});
-            }
-        }
-    }
-    std::vector<double> mobility; // per body: rho0 depth / mass (1/m^2)
-    if (bodies) {
-        mobility.assign(s.bodies.size(), 0.0);
-        const double rho = fluidDensity(s);
-        for (size_t b = 0; b < s.bodies.size(); ++b) {
-            mobility[b] = rho * double(s.def.depth) / double(s.bodies[b].mass);
-        }
-    }
     const bool coupled = !cg.bodyFaces.empty();
-    std::vector<double> bodySum(bodies ? 2 * s.bodies.size() : 0);
+    const std::vector<double> mobility = coupled ? bodyMobility(s) : std::vector<double>();
+    std::vector<double> bodySum(coupled ? 2 * s.bodies.size() : 0);
 
     // Conjugate gradients on A psi = rhs: (A psi)_a = diagonal_a psi_a - sum of the fluid
     // neighbours' psi (air holds 0); the diagonal's small shift keeps a closed container full
@@ -540,15 +599,7 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
         }
         double dq = combineLanes(dqLanes);
         if (coupled) {
-            // + G M^-1 G^T d: the flux of the bodies' displacement under d's pressure.
-            bodyForce(cg, d, bodySum);
-            for (size_t k = 0; k < bodySum.size(); ++k) {
-                bodySum[k] *= mobility[k / 2];
-            }
-            for (const CoarseGrid::BodyFace& f : cg.bodyFaces) {
-                q[f.unknown] += float(double(f.gx) * bodySum[2 * f.body] +
-                                      double(f.gy) * bodySum[2 * f.body + 1]);
-            }
+            addBodyFlux(cg, mobility, d, q, bodySum);
             dq = laneDot(d, q, padded);
         }
         if (!(dq > 0.0)) {

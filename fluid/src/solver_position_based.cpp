@@ -170,8 +170,9 @@ void applyCorrections(WorldState& s) {
 // multiplier l_i <- min(l_i - kRelax C_i / D_i, 0) (the constraint pushes, and a later sweep
 // may take back a push, never pull), and moves the particles by the displacement of the
 // change. Positions are Chebyshev-accelerated between sweeps [Wang 2015]:
-// x_k+1 = omega_k+1 (x^_k+1 - x_k-1) + x_k-1.
-void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations,
+// x_k+1 = omega_k+1 (x^_k+1 - x_k-1) + x_k-1. Returns true when the coarse correction moved a
+// rigid body (its samples were placed again).
+bool solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations,
                   const CoarseSettings& coarse, float sampleCell, bool push, Profile& prof) {
     Particles& p = s.particles;
     // The change shares the constraint's storage: the update reads C_i, then writes dl_i, and
@@ -196,9 +197,11 @@ void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations,
             std::min(1.0f, kRelaxNeighbours / std::max(s.constants[m].neighbours, 1.0f));
         relaxation[m] = (iterations == 1 ? kRelaxSingle : kRelax) * ratio * ratio;
     }
+    bool bodiesMoved = false;
     if (coarse.share > 0.0f) {
         timed(prof.density, [&] {
-            if (pbfCoarse(s, c, coarse)) {
+            bodiesMoved = pbfCoarse(s, c, coarse);
+            if (bodiesMoved) {
                 // The bodies moved with the fluid: the sweeps see them at their new pose.
                 placeSamples(s, coarse.endTime, sampleCell, true);
             }
@@ -246,6 +249,7 @@ void solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations,
             });
         });
     }
+    return bodiesMoved;
 }
 
 // v = (x* - x) / dt, computed as v + (total correction) / dt: a particle no constraint moved
@@ -285,8 +289,10 @@ void stepPositionBased(WorldState& s, float frameDt) {
     gatherSamples(s, context);
     refreshConstants(s);
     setArtificialPressure(s);
-    // Rigid bodies may be moved by the coarse solve: their samples are placed every sub-step.
-    const bool moving = samplesMove(s) || !s.bodies.empty();
+    const bool moving = samplesMove(s);
+    // Some rigid body was moved by the coarse solve in this step: its samples are placed again
+    // every sub-step from then on.
+    bool corrected = false;
     if (s.yielding) {
         // Only particles of a yielding material make this a yielding step.
         const std::vector<MaterialConstants>& mc = s.constants;
@@ -376,7 +382,7 @@ void stepPositionBased(WorldState& s, float frameDt) {
             sortParticles(s, facts.maxSupport, {&p.ox, &p.oy});
             prof.separated += separateStacked(s, facts.maxSupport, &p.ox, &p.oy);
             fillMaterialChannels(s);
-            placeSamples(s, endInStep, facts.maxSupport, moving || sub == 0);
+            placeSamples(s, endInStep, facts.maxSupport, moving || corrected || sub == 0);
         });
         CoarseSettings coarse;
         coarse.share = coarseShare;
@@ -385,7 +391,9 @@ void stepPositionBased(WorldState& s, float frameDt) {
         coarse.maxIterations = kCoarseIterations;
         coarse.startTime = inStep;
         coarse.endTime = endInStep;
-        solveDensity(s, c, settings.iterations, coarse, facts.maxSupport, facts.wantsForces, prof);
+        corrected = solveDensity(s, c, settings.iterations, coarse, facts.maxSupport,
+                                 facts.wantsForces, prof) ||
+                    corrected;
         timed(prof.integrate, [&] { updateVelocity(s, dt); });
         timed(prof.forces, [&] {
             // Each force on a reporting sample is the reaction to what the solver did to the
