@@ -6,7 +6,7 @@
 #include <glm/common.hpp>
 
 #include <algorithm>
-#include <mutex>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -96,26 +96,20 @@ void checkLifetime(const char* function, float seconds) {
 namespace detail {
 
 namespace {
-std::mutex g_tagMutex;
-std::vector<uint8_t> g_tagUsed; // [k]: tag k + 1 is held by a live world
+// The next world's tag. Tags are never reused within a process, so a handle kept from a
+// destroyed world (a level restarted) is refused by every later world.
+std::atomic<uint32_t> g_nextTag{1};
 } // namespace
 
 WorldTag::WorldTag() {
-    const std::lock_guard<std::mutex> lock(g_tagMutex);
-    std::size_t k = 0;
-    while (k < g_tagUsed.size() && g_tagUsed[k] != 0) {
-        ++k;
-    }
-    if (k == g_tagUsed.size()) {
-        g_tagUsed.push_back(0);
-    }
-    g_tagUsed[k] = 1;
-    m_value = static_cast<uint32_t>(k + 1);
-}
-
-WorldTag::~WorldTag() {
-    const std::lock_guard<std::mutex> lock(g_tagMutex);
-    g_tagUsed[m_value - 1] = 0;
+    uint32_t tag = g_nextTag.load(std::memory_order_relaxed);
+    do {
+        if (tag == UINT32_MAX) {
+            throw Error("World: the process has made 4294967294 worlds, every world tag is used "
+                        "(tags are never reused, so that an old world's handles stay refused)");
+        }
+    } while (!g_nextTag.compare_exchange_weak(tag, tag + 1, std::memory_order_relaxed));
+    m_value = tag;
 }
 
 std::optional<uint32_t> WorldState::findIndex(ParticleHandle handle) const {

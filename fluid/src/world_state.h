@@ -165,15 +165,13 @@ struct CoarseGrid {
     std::vector<BodyFace> bodyFaces;
 };
 
-// A world object's tag in its handles (ParticleHandle::world): the lowest number from 1 not
-// held by a live world, released when the world goes (as Box2D v3 numbers its worlds). A program
-// that makes and destroys its worlds in the same order gets the same tags in every run, so
-// hashes of handles and events agree between runs; two live worlds never share one.
-// Thread-safe.
+// A world object's tag in its handles (ParticleHandle::world): 1 for the first world the
+// process makes, then counting up, never reused, so a handle from a destroyed world names no
+// particle of a later one. A program that makes its worlds in the same order gets the same tags
+// in every run, so hashes of handles and events agree between runs. Thread-safe.
 class WorldTag {
 public:
     WorldTag();
-    ~WorldTag();
     WorldTag(const WorldTag&) = delete;
     WorldTag& operator=(const WorldTag&) = delete;
     uint32_t value() const { return m_value; }

@@ -179,19 +179,34 @@ TEST_CASE("handles know their world: another world refuses them", "[unit][handle
     CHECK(first.isValid(a));
 }
 
-TEST_CASE("world tags repeat from run to run, and a loaded world adopts saved handles",
+TEST_CASE("a handle from a destroyed world is refused by every later world, and a loaded world "
+          "adopts saved handles",
           "[unit][handles][snapshot]") {
-    // A world made after another was destroyed takes its tag: a program that makes its worlds
-    // in the same order gets the same handles, and hashes of them agree between runs.
-    uint32_t tag = 0;
+    // A level restart: the old world goes, a new one is made the same way. The old handle
+    // names slot 0, generation 1, which the new world also holds: the tag alone tells them apart.
+    ParticleHandle old;
     {
         World once;
-        tag = once.addParticle({0.0f, 0.0f}, {0.0f, 0.0f}, once.addMaterial(water())).world;
+        old = once.addParticle({0.0f, 0.0f}, {0.0f, 0.0f}, once.addMaterial(water()));
     }
     World again;
     const MaterialId w = again.addMaterial(water());
     const ParticleHandle h = again.addParticle({0.5f, 0.25f}, {0.0f, 0.0f}, w);
-    CHECK(h.world == tag);
+    REQUIRE(h.slot == old.slot);
+    REQUIRE(h.generation == old.generation);
+    CHECK(h.world > old.world); // tags count up, never reused
+    CHECK_FALSE(again.isValid(old));
+    CHECK_THROWS_MATCHES(again.position(old), Error,
+                         Catch::Message("World::position: particle handle {slot 0, generation 1} "
+                                        "belongs to another world (world " +
+                                        std::to_string(old.world) + "; this is world " +
+                                        std::to_string(h.world) +
+                                        "; a handle saved with a snapshot needs World::adopt)"));
+    for (int k = 0; k < 3; ++k) { // restarted again and again: still refused
+        World later;
+        later.addParticle({0.0f, 0.0f}, {0.0f, 0.0f}, later.addMaterial(water()));
+        CHECK_FALSE(later.isValid(old));
+    }
 
     std::stringstream bytes;
     again.save(bytes);

@@ -14,9 +14,10 @@ struct ParticleHandle {
     uint32_t slot = 0;
     /// Generation of the slot when the handle was made (unit: count; 0 means null).
     uint32_t generation = 0;
-    /// Tag of the `World` object that made the handle (unit: id; 0 in the null handle): the
-    /// lowest number from 1 that no other live world holds, so a program making its worlds in
-    /// the same order gets the same tags in every run. Another world refuses the handle
+    /// Tag of the `World` object that made the handle (unit: id; 0 in the null handle): 1 for
+    /// the process's first world, counting up and never reused, so a program making its worlds
+    /// in the same order gets the same tags in every run, and a handle kept from a destroyed
+    /// world (a restarted level) names nothing in a later one. Another world refuses the handle
     /// (`World::isValid` is false, other calls throw naming it). Not saved in snapshots: a
     /// loaded world has its own tag, and `World::adopt` carries a handle over to it.
     uint32_t world = 0;
