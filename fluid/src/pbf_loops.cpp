@@ -135,6 +135,8 @@ std::vector<YieldLaw> yieldLaws(const WorldState& s, float dt) {
         const float speed = kShearWave * mc.support / dt;
         const float stiffest = mc.restDensity * speed * speed;
         law.shearModulus = mc.shearModulus > 0.0f ? std::min(mc.shearModulus, stiffest) : stiffest;
+        law.carriedStress = kCarriedStrain * law.shearModulus;
+        law.flowStress = std::min(mc.yieldStress, law.carriedStress);
     }
     return laws;
 }

@@ -9,7 +9,9 @@
 //   |s*| <= tau_y:  s = s*                                  (below yield: an elastic solid)
 //   else            |s| = |s*| - G dt g = tau_y + K g^n      (g: the plastic shear rate)
 // so under a steady shear rate g the stress settles at tau_y + K g^n, the Herschel-Bulkley law,
-// and a material left alone keeps a stress of at most tau_y: it holds its shape. The return is
+// and a material left alone keeps a stress of at most tau_y: it holds its shape. No stress
+// above G times an elastic strain of kCarriedStrain (pbf_loops.h) is stored: the return starts
+// at tau_y or there, whichever is less, and returns at most to there. The return is
 // implicit in g, so it is stable for any K and n; only G's elastic wave limits the step (the
 // solver caps G). Scalar code, compiled into every instruction set's pair passes with the same
 // operations in the same order, so every set gives the same bits. As simd/pair_view.h asks of
@@ -22,11 +24,13 @@ namespace fluid::detail {
 
 /// One material's Herschel-Bulkley constants as a step uses them.
 struct YieldLaw {
-    bool yielding = false;  // false: a Newtonian material, stress kept at 0
-    float yieldStress = 0;  // tau_y (Pa)
-    float consistency = 0;  // K (Pa s^n)
-    float flowIndex = 1;    // n
-    float shearModulus = 0; // G this step (Pa): the material's, capped by the solver
+    bool yielding = false;   // false: a Newtonian material, stress kept at 0
+    float yieldStress = 0;   // tau_y (Pa): the material's, for how rigid a particle is
+    float consistency = 0;   // K (Pa s^n)
+    float flowIndex = 1;     // n
+    float shearModulus = 0;  // G this step (Pa): the material's, capped by the solver
+    float carriedStress = 0; // G kCarriedStrain (Pa): the most stress the step stores
+    float flowStress = 0;    // where the return starts (Pa): tau_y, at most carriedStress
 };
 
 /// The plastic shear rate g >= 0 (1/s) with excess - gdt g = K g^n (excess = |s*| - tau_y > 0,
@@ -75,7 +79,7 @@ static inline void yieldStep(const YieldLaw& law, float dxx, float dxy, float sp
     const float ta = (a * cosine + b * sine) + dt * g2 * dxx;
     const float tb = (b * cosine - a * sine) + dt * g2 * dxy;
     const float norm = __builtin_sqrtf(ta * ta + tb * tb);
-    const float excess = norm - law.yieldStress;
+    const float excess = norm - law.flowStress;
     if (!(excess > 0.0f)) {
         const bool finite = __builtin_isfinite(norm);
         a = finite ? ta : 0.0f;
@@ -83,10 +87,11 @@ static inline void yieldStep(const YieldLaw& law, float dxx, float dxy, float sp
         return;
     }
     const float gdt = law.shearModulus * dt;
-    float target = law.yieldStress;
+    float target = law.flowStress;
     if (law.consistency > 0.0f && gdt > 0.0f) {
         const float rate = plasticRate(excess, gdt, law.consistency, law.flowIndex);
         target += law.consistency * __builtin_powf(rate, law.flowIndex);
+        target = __builtin_fminf(target, law.carriedStress);
     }
     const float scale = __builtin_fminf(target / norm, 1.0f);
     a = __builtin_isfinite(scale) ? ta * scale : 0.0f;

@@ -86,6 +86,23 @@ inline double totalMass(const World& world) {
     return m;
 }
 
+/// Kinetic energy plus the potential energy in gravity `g` (m/s^2, pulling along -y) above
+/// y = 0 (unit: J per m of depth as the particles' masses give it: kg m^2/s^2).
+struct Energy {
+    double kinetic = 0.0, potential = 0.0;
+};
+inline Energy energy(const World& world, double g) {
+    const auto mat = world.materialIndex();
+    const auto vx = world.velocityX(), vy = world.velocityY(), py = world.positionY();
+    Energy e;
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        const double m = world.material(MaterialId{mat[i]}).mass;
+        e.kinetic += 0.5 * m * (double(vx[i]) * vx[i] + double(vy[i]) * vy[i]);
+        e.potential += m * g * py[i];
+    }
+    return e;
+}
+
 /// Largest speed (unit: m/s).
 inline float maxSpeed(const World& world) {
     const auto vx = world.velocityX(), vy = world.velocityY();

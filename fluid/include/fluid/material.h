@@ -49,10 +49,14 @@ struct Material {
     /// `consistency` 0 (the default): a Newtonian liquid, stepped exactly as without these
     /// fields. Water preset: 0; yoghurt: 30 (stirred yoghurt measures 5-30 Pa). Position-based
     /// solver only: the explicit solver refuses a material with a yield stress or a consistency.
+    /// The step stores no stress above G times a strain of 1 (G as `shearModulus` says: about
+    /// 2,200 Pa for the yoghurt preset at the default settings, 540 Pa at `Quality::Game`): a
+    /// stiffer material flows there, and stays as rigid inside as its own yield stress says.
     float yieldStress = 0.0f;
     /// Consistency K of the Herschel-Bulkley law (unit: Pa*s^n; range [0, 1e4]): the flowing
     /// stress above the yield stress is K gamma_dot^n, on top of the Newtonian `viscosity`
-    /// (which is the law's high-shear limit). Water: 0; yoghurt: 2 (measured 1-4 Pa*s^n).
+    /// (which is the law's high-shear limit), up to the stress the step stores (see
+    /// `yieldStress`). Water: 0; yoghurt: 2 (measured 1-4 Pa*s^n).
     float consistency = 0.0f;
     /// Flow index n of the Herschel-Bulkley law (unit: 1; range [0.1, 2]): below 1 the material
     /// thins with shear, above 1 it thickens. Water: 1; yoghurt: 0.7 (measured 0.6-0.85).
