@@ -36,12 +36,21 @@ float symmetricUnit(uint64_t& state) {
 // the last step (1 inside the material's resting lattice); a new particle is placed only if
 // the fill with its own term stays at or below 1. (Placing it wherever the fill without it is
 // below 1 let a faucet's rows pile into a closed box: 3,582 particles in room for 820, 830%
-// mean compression.) The particles' grid is built at the first question.
+// mean compression.) The particles' grid is built at the first question; particles placed
+// since then count as well, so that the rows of a long frame do not each fill the same room.
+// A place inside a solid or outside a container has no room: the boundary would throw the
+// particle into the liquid at the first step, and a nozzle outside a closed box pumped it to
+// 2,500% compression.
 class Room {
 public:
     explicit Room(WorldState& s) : m_s(s) {}
 
     bool fits(glm::vec2 x, uint16_t material) {
+        for (const auto& boundary : m_s.boundaries) {
+            if (boundary->contains(x)) {
+                return false;
+            }
+        }
         const Particles& p = m_s.particles;
         if (p.size() == 0 && m_s.samples.size() == 0) {
             return true;
@@ -52,7 +61,6 @@ public:
             for (const MaterialConstants& c : m_s.constants) {
                 m_support = std::max(m_support, c.support);
             }
-            m_grid.build(p.px, p.py, m_support, TaskHook{});
             m_areas.resize(m_s.materials.size());
             for (size_t m = 0; m < m_areas.size(); ++m) {
                 m_areas[m] = particleArea(m_s.materials[m], m_s.def.depth);
@@ -60,6 +68,11 @@ public:
             const float spacing = particleSpacing(m_s.materials[0], m_s.def.depth);
             m_sampleArea = spacing * spacing; // samples lie at material 0's spacing
             m_ready = true;
+            m_gridded = UINT32_MAX;
+        }
+        if (m_gridded > p.size() || p.size() - m_gridded > kUngridded) {
+            m_grid.build(p.px, p.py, m_support, TaskHook{});
+            m_gridded = p.size();
         }
         const MaterialConstants& c = m_s.constants[material];
         const float h = c.support;
@@ -72,6 +85,10 @@ public:
                 sum += double(m_areas[p.material[j]]) * kernel::wendland(r, h);
             }
         });
+        for (uint32_t j = m_gridded; j < p.size(); ++j) { // placed after the grid was built
+            const float r = glm::length(glm::vec2(p.px[j], p.py[j]) - x);
+            sum += double(m_areas[p.material[j]]) * kernel::wendland(r, h);
+        }
         const Samples& w = m_s.samples;
         if (w.size() > 0 && w.grid.size() == w.size()) {
             w.grid.forEachRange(x.x, x.y, [&](uint32_t b, uint32_t e) {
@@ -85,9 +102,12 @@ public:
     }
 
 private:
+    // Particles placed since the grid was built that are summed one by one; more rebuild it.
+    static constexpr uint32_t kUngridded = 256;
     WorldState& m_s;
     bool m_ready = false;
     Grid m_grid;
+    uint32_t m_gridded = 0; // particles [0, m_gridded) are in m_grid
     float m_support = 0.0f;
     std::vector<float> m_areas;
     float m_sampleArea = 0.0f;

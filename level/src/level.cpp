@@ -483,6 +483,23 @@ private:
     // (a hash of cells kOverlapReach of the smallest spacing wide): every point of a blob's
     // area lies within 0.71 spacings of one of its particles, a neighbouring blob's particles
     // a spacing or more away. The level gets a warning per blob overlapped.
+    // A nozzle inside a solid or outside the container places nothing there (World::step
+    // counts its particles as skipped): say so, as for a blob's left-out lattice points.
+    void warnBuriedNozzle(const std::string& at, glm::vec2 nozzle) {
+        const auto boundaries = m_level.world.boundaries();
+        for (const Level::PluginEntry& plugin : m_level.plugins) {
+            if (plugin.kind == PluginKind::Boundary && boundaries[plugin.index]->contains(nozzle)) {
+                m_level.warnings.push_back(m_doc.locatedText(
+                    at, "the emitter's nozzle [" + formatNumber(nozzle.x) + ", " +
+                            formatNumber(nozzle.y) +
+                            "] lies inside a solid or outside the "
+                            "container of plugin \"" +
+                            plugin.name + "\": it places no particle there (counted as skipped)"));
+                return;
+            }
+        }
+    }
+
     void warnOverlaps(const std::string& at, std::size_t blob, uint32_t first, float spacing) {
         const World& world = m_level.world;
         const std::span<const float> x = world.positionX(), y = world.positionY();
@@ -513,9 +530,9 @@ private:
                     for (const uint32_t j : found->second) {
                         const double ex = double(x[i]) - x[j], ey = double(y[i]) - y[j];
                         if (ex * ex + ey * ey < reach2) {
-                            const auto owner = std::upper_bound(m_blobStarts.begin(),
-                                                                m_blobStarts.end(), j) -
-                                               m_blobStarts.begin() - 1;
+                            const auto owner =
+                                std::upper_bound(m_blobStarts.begin(), m_blobStarts.end(), j) -
+                                m_blobStarts.begin() - 1;
                             ++hits[std::size_t(owner)];
                             counted = true;
                             break;
@@ -595,6 +612,7 @@ private:
             def.jitter = float(e.number("jitter", {0, 0.5, "1"}, 0.0));
             def.seed = e.integer("seed", {0, 9007199254740992.0, "1"}, def.seed);
             const EmitterId id = located(m_doc, at, [&] { return m_level.world.addEmitter(def); });
+            warnBuriedNozzle(at, def.position);
             m_emitterNames.add(m_doc, name, e.pointer("name"), id);
             m_level.emitters.emplace_back(name, id);
         }

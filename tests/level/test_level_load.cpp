@@ -395,6 +395,43 @@ TEST_CASE("a level names its quality preset, and explicit settings override its 
     CHECK(o.viscosityInterval == game.viscosityInterval);
 }
 
+TEST_CASE("an emitter whose nozzle lies outside the container or inside a solid is named in a "
+          "warning, and what it cannot place is counted as skipped",
+          "[level]") {
+    const std::string text = R"({
+  "version": 1,
+  "world": { "gravity": [0, -9.81] },
+  "materials": [ { "name": "water", "preset": "water" } ],
+  "plugins": [ { "type": "boundary.box", "name": "tank", "params": { "minX": 0, "maxX": 0.3, "maxY": 0.3 } },
+               { "type": "boundary.circle", "name": "pipe", "params": { "x": 0.15, "y": 0.1, "radius": 0.05 } } ],
+  "emitters": [
+    { "name": "out", "material": "water", "position": [0.5, 0.5], "speed": 1.5, "rate": 500 },
+    { "name": "in", "material": "water", "position": [0.15, 0.1], "direction": [0, 1], "speed": 0.5, "rate": 200 },
+    { "name": "fine", "material": "water", "position": [0.15, 0.25], "speed": 1.5, "rate": 500 }
+  ]
+})";
+    Level level = parseLevel(text, "t.json", builtins());
+    REQUIRE(level.warnings.size() == 2);
+    CHECK(level.warnings[0] ==
+          "t.json:8:5: at /emitters/0: the emitter's nozzle [0.5, 0.5] lies inside a solid or "
+          "outside the container of plugin \"tank\": it places no particle there (counted as "
+          "skipped)");
+    CHECK(level.warnings[1] ==
+          "t.json:9:5: at /emitters/1: the emitter's nozzle [0.15, 0.1] lies inside a solid or "
+          "outside the container of plugin \"pipe\": it places no particle there (counted as "
+          "skipped)");
+    uint32_t skipped = 0;
+    for (int f = 0; f < 60; ++f) {
+        level.step();
+        skipped += level.world.profile().emitSkipped;
+    }
+    // Only "fine" places particles: all of them in the tank and out of the pipe.
+    CHECK(skipped >= 690); // one second of "out" (500) and "in" (200), less a row
+    CHECK(level.world.particleCount() > 400);
+    CHECK(level.world.particleCount() <= 510);
+    CHECK(test::countOutside(level.world, 0.0f, 0.0f, 0.3f, 0.3f) == 0);
+}
+
 TEST_CASE("blobs leave out what lies inside bodies and solid plugins, with a warning",
           "[level]") {
     const std::string text = R"({
