@@ -39,7 +39,9 @@ struct SensorId {
 /// Particles are emitted at the start of each `World::step` for the time that passed since the
 /// last one, each placed where it would be had it left the nozzle at its own emission time, so
 /// a jet is evenly spaced whatever the frame rate. A row holds `lanes = 1 + round(width /
-/// spacing)` particles, one spacing apart across the nozzle.
+/// spacing)` particles, one spacing apart across the nozzle. No particle is placed where the
+/// liquid already stands at its rest density, inside a solid or outside a container (a boundary
+/// plugin's `contains`): those count in `Profile::emitSkipped`.
 struct EmitterDef {
     /// Centre of the nozzle (unit: m; finite).
     glm::vec2 position{0.0f, 0.0f};

@@ -207,7 +207,8 @@ struct Profile {
     /// Particles emitters could not add because the world was full (unit: count).
     uint32_t emitBlocked = 0;
     /// Particles emitters did not place because the liquid at their place already stood at
-    /// its rest density (a full cup, a submerged nozzle) (unit: count).
+    /// its rest density (a full cup, a submerged nozzle), or the place lies inside a solid or
+    /// outside a container (unit: count).
     uint32_t emitSkipped = 0;
     /// Particles drains and lifetimes removed at the end of the step (unit: count).
     uint32_t removed = 0;
