@@ -1,6 +1,7 @@
 // fluid — the position-based solver [Macklin & Mueller 2013], the default.
 //
-// One World::step(frameDt) = PositionBasedDef::substeps equal sub-steps of dt:
+// One World::step(frameDt) = PositionBasedDef::substeps equal sub-steps of dt (more for a frame
+// longer than 1/60 s: fluid::frameSubsteps):
 //   prepare       plugins' prepare hooks, boundary samples, material constants
 //   per sub-step:
 //     external    force plugins' accelerations at the current positions
@@ -88,11 +89,6 @@ constexpr uint32_t kCoarseIterations = 100;
 // (0.95-0.98 per frame) a water-and-yoghurt tank threw 18-23 particles above its surface while
 // settling; with at most 0.9 per frame none.
 constexpr float kCoarseFrame = 0.9f;
-// The frame the settings are tuned for (s): a longer frame takes proportionally more
-// sub-steps (frameSubsteps). Frames up to kLongFrameSlack longer keep the setting's count, so
-// a frame pacer's 1/59.94 s does not add a sub-step.
-constexpr double kTunedFrame = 1.0 / 60.0;
-constexpr double kLongFrameSlack = 0.1;
 // Least denominator of a multiplier, as a share of the material's lattice value (the least
 // in a resting tank is 0.35 of it for water, 0.27 for yoghurt). A particle squeezed between
 // two solids, or between a solid and one neighbour, has pushes that cancel: its gradient sum
@@ -109,15 +105,6 @@ constexpr float kMaxMove = 2.0f;
 // Largest viscosity factor dt nu sum_j V_j L_ij per pass (sum ~ 40 / (3 h^2)): below 0.5 the
 // explicit update only smooths, never overshoots.
 constexpr float kViscosityFactor = 0.5f;
-
-// Sub-steps of a frame of `frameDt` seconds: the setting's, or for a frame longer than the
-// tuned one as many as keep each sub-step within the setting's at 60 Hz (a 1 s frame at 4
-// sub-steps takes 240; before, its 0.25 s sub-steps crushed a 0.3 m column by 760%).
-uint32_t frameSubsteps(uint32_t setting, float frameDt) {
-    const double needed = double(frameDt) / kTunedFrame * double(setting);
-    const double more = std::ceil(needed - kLongFrameSlack * double(setting));
-    return more > double(setting) ? uint32_t(more) : setting; // frameDt <= 1 s: <= 66 x setting
-}
 
 template <class F> void each(WorldState& s, F&& f) {
     parallelFor(s.tasks, s.particles.size(), 1024, [&](uint32_t b, uint32_t e, uint32_t) {
@@ -317,7 +304,7 @@ void stepPositionBased(WorldState& s, float frameDt) {
         s.kicksPending = false;
     }
 
-    const uint32_t substeps = frameSubsteps(settings.substeps, frameDt);
+    const uint32_t substeps = fluid::frameSubsteps(settings.substeps, frameDt);
     const float dt = frameDt / float(substeps);
     PbfConstants c;
     c.dt = dt;

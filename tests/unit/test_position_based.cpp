@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 using namespace fluid;
@@ -71,6 +72,51 @@ TEST_CASE("position-based settings change between steps and show in the profile"
     CHECK(world.def().positionBased.vorticity == 0.0f);
     world.step(kFrame);
     CHECK(world.lastSubsteps() == 2);
+    CHECK(allFinite(world));
+}
+
+TEST_CASE("the long-frame rule: substepsFor(dt) is the sub-steps step(dt) takes, at any rate",
+          "[unit][position-based]") {
+    // The rule itself: the setting up to a tenth over 1/60 s, then per 1/60 s, rounded up.
+    CHECK(frameSubsteps(4, 1.0f / 60.0f) == 4);
+    CHECK(frameSubsteps(4, 1.0f / 59.94f) == 4);
+    CHECK(frameSubsteps(4, 1.0f / 240.0f) == 4);
+    CHECK(frameSubsteps(4, 1.0f / 50.0f) == 5);
+    CHECK(frameSubsteps(4, 0.1f) == 24);
+    CHECK(frameSubsteps(4, 0.5f) == 120);
+    CHECK(frameSubsteps(4, 1.0f) == 240);
+    CHECK(frameSubsteps(1, 1.0f) == 60);
+    CHECK(frameSubsteps(64, 1.0f) == 3834); // ceil(3840 - 6.4): the slack stays
+    const std::string tail =
+        " s is out of range; expected a finite value in (0, 1] (typically 1/60)";
+    CHECK_THROWS_MATCHES(frameSubsteps(4, 0.0f), Error,
+                         Catch::Message("fluid::frameSubsteps: frameDt = 0" + tail));
+    CHECK_THROWS_MATCHES(frameSubsteps(4, 2.0f), Error,
+                         Catch::Message("fluid::frameSubsteps: frameDt = 2" + tail));
+    CHECK_THROWS_MATCHES(frameSubsteps(0, kFrame), Error,
+                         Catch::Message("fluid::frameSubsteps: perFrame = 0 is out of range "
+                                        "[1, 64] (unit: count)"));
+    CHECK_THROWS_MATCHES(frameSubsteps(65, kFrame), Error,
+                         Catch::Message("fluid::frameSubsteps: perFrame = 65 is out of range "
+                                        "[1, 64] (unit: count)"));
+
+    // The world's count is the one its step takes.
+    World world = tank(6);
+    PositionBasedDef settings;
+    settings.substeps = 3;
+    world.setPositionBased(settings);
+    for (const float dt : {kFrame, 1.0f / 30.0f, 0.1f, 0.5f, 1.0f}) {
+        CAPTURE(dt);
+        const uint32_t planned = world.substepsFor(dt);
+        CHECK(planned == frameSubsteps(3, dt));
+        world.step(dt);
+        CHECK(world.lastSubsteps() == planned);
+    }
+    CHECK(world.substepsFor(1.0f) == 180);
+    CHECK_THROWS_MATCHES(world.substepsFor(std::numeric_limits<float>::quiet_NaN()), Error,
+                         Catch::Message("World::substepsFor: frameDt = nan" + tail));
+    CHECK_THROWS_MATCHES(world.substepsFor(-1.0f), Error,
+                         Catch::Message("World::substepsFor: frameDt = -1" + tail));
     CHECK(allFinite(world));
 }
 

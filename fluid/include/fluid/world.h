@@ -90,6 +90,17 @@ enum class Quality : uint8_t {
 /// The position-based settings of a named preset (pure function; any thread).
 PositionBasedDef positionBasedPreset(Quality quality);
 
+/// The long-frame rule: how many equal sub-steps a frame of `frameDt` takes when a 1/60 s
+/// frame takes `perFrame` (unit: count). `perFrame` for a frame up to a tenth longer than
+/// 1/60 s (a frame pacer's 1/59.94 s adds none), else as many as keep each sub-step no
+/// longer than at 60 Hz, rounded up: `ceil(frameDt * 60 * perFrame - perFrame / 10)` (1 s at 4:
+/// 240). So a setting tuned at 60 Hz holds at any frame rate at the same cost per simulated
+/// second. The position-based solver's sub-steps (`World::substepsFor`) and the rounds of a
+/// coupled Box2D frame (`fluid::box2d::Coupling::step`) follow it. `perFrame` in [1, 64]
+/// (unit: count), `frameDt` finite in (0, 1] (unit: s); throws `fluid::Error` naming the
+/// argument otherwise. Result in [perFrame, 66 x perFrame]. Pure function; any thread.
+uint32_t frameSubsteps(uint32_t perFrame, float frameDt);
+
 /// Everything a world is created from. Every field has a usable default.
 struct WorldDef {
     /// Pressure solver. Default: `Solver::PositionBased`.
@@ -357,6 +368,13 @@ public:
     /// frameDt, and passes on what a plugin's `prepare` throws, leaving the world unchanged
     /// in both cases; a hook that throws later, during the sub-steps, leaves it mid-step.
     void step(float frameDt);
+    /// The sub-steps the position-based solver takes for a `step(frameDt)` with this world's
+    /// settings: `frameSubsteps(def().positionBased.substeps, frameDt)` (unit: count; range
+    /// [1, 4224]). The explicit solver picks its own during the step from the CFL condition
+    /// (`Profile::substeps`); for it this is still the position-based settings' count.
+    /// `frameDt` as `step` (unit: s; finite, range (0, 1]); throws `fluid::Error` ("World::
+    /// substepsFor: frameDt = ... is out of range ...") otherwise. Stepping thread, between steps.
+    uint32_t substepsFor(float frameDt) const;
 
     /// Particles in the world (unit: count).
     uint32_t particleCount() const;

@@ -126,9 +126,12 @@ void registerCouplingPlugin(Registry& registry);
 /// summed in sample order and applied to dynamic bodies at their centre of mass, with the torque
 /// about it: buoyancy and drag come out of the fluid, not a formula.
 ///
-/// One frame (`step`) is one round per sub-step of the position-based solver
-/// (`PositionBasedDef::substeps`, default 4; one round for the explicit solver), the world
-/// stepping one sub-step at a time (its setting is put back after the frame). A round of h:
+/// One frame (`step`) of dt is one round per sub-step the position-based solver takes for dt
+/// (`World::substepsFor(dt)`: `PositionBasedDef::substeps`, default 4, per 1/60 s frame, more
+/// for a longer frame by the long-frame rule `fluid::frameSubsteps`), the world stepping one
+/// sub-step at a time (its setting is put back after the frame); with the explicit solver,
+/// `frameSubsteps(4, dt)` rounds, each in its own CFL sub-steps. So a frame of any length has
+/// the rounds of 60 Hz frames and their cost per simulated second. A round of h:
 ///   1. the `b2World` steps by h, with the fluid's forces of the previous round applied to its
 ///      dynamic bodies (and whatever the game applied);
 ///   2. the fluid world steps by h; every body sweeps rigidly from where the fluid last saw it
@@ -144,8 +147,10 @@ void registerCouplingPlugin(Registry& registry);
 ///      the body): Box2D integrates them at the next round's step 1.
 /// Rounds as short as the fluid's sub-steps matter: a body answers the fluid one round late,
 /// and with whole 1/60 s frames a box floating in a 0.64 m compartment bobbed and rocked
-/// without end (up to 0.4 m/s and 1.3 rad/s), where with 4 rounds it rests (under 0.01 m/s).
-/// The fluid costs the same; Box2D steps 4 times a frame. A game that steps Box2D itself calls
+/// without end (up to 0.4 m/s and 1.3 rad/s), where with 4 rounds it rests (under 0.01 m/s);
+/// with one round per frame the explicit solver let a light hull in levels/crates.json rock up
+/// to 23 rad/s and throw water over the tank's wall. The fluid costs the same; Box2D steps 4
+/// times a 1/60 s frame. A game that steps Box2D itself calls
 /// its own `b2World::Step(dt, ...)` and then `stepFluid(world, dt)` (steps 2-4, one round):
 /// bodies then answer a whole frame late, so floating boxes may rock (`step` is the remedy);
 /// the forces wait in the bodies for its next `Step` (`b2World::SetAutoClearForces` must stay
