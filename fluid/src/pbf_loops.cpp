@@ -126,17 +126,12 @@ std::vector<YieldLaw> yieldLaws(const WorldState& s, float dt) {
     std::vector<YieldLaw> laws(s.constants.size());
     for (size_t m = 0; m < laws.size(); ++m) {
         const MaterialConstants& mc = s.constants[m];
-        YieldLaw& law = laws[m];
-        law.yielding = mc.yielding;
-        law.yieldStress = mc.yieldStress;
-        law.consistency = mc.consistency;
-        law.flowIndex = mc.flowIndex;
         // The stiffest shear modulus whose wave crosses kShearWave of the support per step.
         const float speed = kShearWave * mc.support / dt;
         const float stiffest = mc.restDensity * speed * speed;
-        law.shearModulus = mc.shearModulus > 0.0f ? std::min(mc.shearModulus, stiffest) : stiffest;
-        law.carriedStress = kCarriedStrain * law.shearModulus;
-        law.flowStress = std::min(mc.yieldStress, law.carriedStress);
+        laws[m] =
+            makeYieldLaw(mc.yielding, mc.yieldStress, mc.consistency, mc.flowIndex,
+                         mc.shearModulus > 0.0f ? std::min(mc.shearModulus, stiffest) : stiffest);
     }
     return laws;
 }

@@ -320,7 +320,7 @@ TEST_CASE("yoghurt keeps momentum in zero gravity and gives bit-identical states
 // the shear modulus the step allows (about 2,200 Pa at the precise settings, 540 Pa at the game
 // preset's), so a stiff material stored strains of 10-50 and gave them back: with a yield
 // stress of 1e5 Pa the block reached 28 J/kg against the 1.5 J/kg it could lose, and filled the
-// box. The step now stores at most the stress of a strain of 1 (pbf_loops.h, kCarriedStrain):
+// box. The step now stores at most the stress of a strain of 1 (yield_law.h, kCarriedStrain):
 // measured, the energy never rises above the start's; at the precise settings the 1e5 Pa
 // block's top stands at 0.285 m of 0.29 after 4 s (at the game preset's it carries 540 Pa, less
 // than the block's weight asks at its foot, and the block slumps to 0.12 m).

@@ -16,13 +16,7 @@ using namespace fluid::test;
 namespace {
 
 detail::YieldLaw lawOf(float tauY, float k, float n, float g) {
-    detail::YieldLaw law;
-    law.yielding = true;
-    law.yieldStress = tauY;
-    law.consistency = k;
-    law.flowIndex = n;
-    law.shearModulus = g;
-    return law;
+    return detail::makeYieldLaw(true, tauY, k, n, g);
 }
 
 /// The shear stress a steady simple shear of `rate` (1/s) settles on (unit: Pa).
