@@ -592,6 +592,14 @@ TEST_CASE("Box2D world saves refuse values that would turn a body NaN, and count
     std::memcpy(fast.data() + bodyAt + 13, &huge, sizeof(huge)); // velocity x
     CHECK(refuse(fast) == "box2d save: body velocity = 1e+30 is not finite or out of [-1e+06, "
                           "1e+06]");
+    // The disc moved far from the body's origin: Box2D's CreateFixture would assert (the
+    // inertia about the centre of mass cancels to 0 in float); the body's fixture follows its
+    // mass data, count and the fixture kind and radius.
+    std::string far = bytes;
+    const b2Vec2 centre(1e4f, 1e4f);
+    std::memcpy(far.data() + bodyAt + 62 + 5, &centre, sizeof(centre));
+    CHECK(refuse(far) == "box2d save: a body's fixtures give it no positive rotational inertia "
+                         "about its centre of mass");
     std::string many = bytes;
     const uint32_t count = 1u << 20;
     std::memcpy(many.data() + bodyAt - 4, &count, sizeof(count));

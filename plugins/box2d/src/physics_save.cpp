@@ -238,6 +238,45 @@ struct BodyRead {
     std::vector<FixtureRead> fixtures;
 };
 
+// Box2D recomputes a dynamic body's mass from its fixtures at each CreateFixture of a fixture
+// with density (b2Body::ResetMassData, over the fixtures made so far: the loader makes them
+// from the last to the first) and asserts that the rotational inertia about the centre of mass
+// is positive. The same sums, in the same order and float arithmetic, refuse a body that would
+// fail it (a small disc far from the body's origin, say) before anything is built.
+void checkFixtureMass(In& in, const BodyRead& b) {
+    if (b.def.type != b2_dynamicBody || b.def.fixedRotation) {
+        return;
+    }
+    for (std::size_t made = b.fixtures.size(); made-- > 0;) {
+        if (!(b.fixtures[made].def.density > 0.0f)) {
+            continue; // CreateFixture resets the mass only for a fixture with density
+        }
+        float mass = 0.0f, inertia = 0.0f;
+        b2Vec2 center(0.0f, 0.0f);
+        for (std::size_t k = made; k < b.fixtures.size(); ++k) {
+            const FixtureRead& f = b.fixtures[k];
+            if (f.def.density == 0.0f || f.kind == kChain) {
+                continue; // a chain has no mass
+            }
+            const b2Shape& shape = f.kind == kCircle ? static_cast<const b2Shape&>(f.circle)
+                                   : f.kind == kEdge ? static_cast<const b2Shape&>(f.edge)
+                                                     : static_cast<const b2Shape&>(f.polygon);
+            b2MassData data;
+            shape.ComputeMass(&data, f.def.density);
+            mass += data.mass;
+            center += data.mass * data.center;
+            inertia += data.I;
+        }
+        if (mass > 0.0f) {
+            center *= 1.0f / mass;
+        }
+        if (inertia > 0.0f && !(inertia - mass * b2Dot(center, center) > 0.0f)) {
+            in.r.fail("a body's fixtures give it no positive rotational inertia about its "
+                      "centre of mass");
+        }
+    }
+}
+
 struct JointRead {
     uint32_t bodyA = 0, bodyB = 0;
     b2RevoluteJointDef def;
@@ -353,15 +392,17 @@ std::unique_ptr<b2World> loadPhysics(std::istream& stream) {
         b.mass.center = in.vec("mass centre", kMaxCoordinate);
         b.mass.I = in.number("rotational inertia", 0.0f, kMaxInertia);
         // SetMassData keeps I - m |c|^2, the inertia about the centre of mass: it must be
-        // positive for a body that turns.
-        if (b.def.type == b2_dynamicBody && b.mass.mass > 0.0f && b.mass.I > 0.0f &&
-            !b.def.fixedRotation && b.mass.I - b.mass.mass * b2Dot(b.mass.center, b.mass.center) <= 0.0f) {
+        // positive for a body that turns (a mass of 0 counts as 1 there).
+        const float m = b.mass.mass > 0.0f ? b.mass.mass : 1.0f;
+        if (b.def.type == b2_dynamicBody && b.mass.I > 0.0f && !b.def.fixedRotation &&
+            !(b.mass.I - m * b2Dot(b.mass.center, b.mass.center) > 0.0f)) {
             in.r.fail("a body's rotational inertia about its centre of mass is not positive");
         }
         b.fixtures.resize(in.r.count("fixture count", kMaxFixtures, kFixtureBytes));
         for (FixtureRead& f : b.fixtures) {
             f = getFixture(in);
         }
+        checkFixtureMass(in, b);
     }
     std::vector<JointRead> joints(in.r.count("joint count", kMaxJoints, kJointBytes));
     for (JointRead& j : joints) {
