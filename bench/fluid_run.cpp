@@ -208,8 +208,13 @@ int main(int argc, char** argv) {
         }
         fluid::LevelOptions options;
         options.workerCount = threads;
-        // A level save (Level::saveFile, the .level files below) continues where it was made.
+        // A level save (Level::saveFile, the .level files below) continues where it was made:
+        // a file that starts like one, or is named like one (an empty or damaged save is
+        // refused as a save, not read as a level file).
         const bool isSave = [&] {
+            if (std::filesystem::path(levelPath).extension() == ".level") {
+                return true;
+            }
             std::ifstream in(levelPath, std::ios::binary);
             char magic[8] = {};
             return in.read(magic, sizeof(magic)) && std::string_view(magic, 8) == "FLUIDLVL";

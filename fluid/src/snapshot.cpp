@@ -15,13 +15,16 @@
 #include <fluid/registry.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <istream>
-#include <iterator>
+#include <optional>
 #include <ostream>
 #include <sstream>
+#include <tuple>
 
 namespace fluid {
 
@@ -204,12 +207,19 @@ void checkParticles(const detail::WorldState& s) {
         s.slotGeneration.size() != s.slotIndex.size() || n > s.def.maxParticles) {
         In::fail("particle channels or handle table of inconsistent sizes");
     }
+    const std::pair<const char*, const std::vector<float>*> state[] = {
+        {"x", &p.px}, {"y", &p.py},     {"vx", &p.vx}, {"vy", &p.vy},
+        {"sxx", &p.sxx}, {"sxy", &p.sxy}, {"kx", &p.kx}, {"ky", &p.ky}};
     for (size_t i = 0; i < n; ++i) {
-        const bool finite = std::isfinite(p.px[i]) && std::isfinite(p.py[i]) &&
-                            std::isfinite(p.vx[i]) && std::isfinite(p.vy[i]) &&
-                            std::isfinite(p.sxx[i]) && std::isfinite(p.sxy[i]) &&
-                            std::isfinite(p.kx[i]) && std::isfinite(p.ky[i]);
-        if (!finite || std::isnan(p.expiry[i]) || p.material[i] >= s.materials.size() ||
+        for (const auto& [name, channel] : state) {
+            if (!std::isfinite((*channel)[i])) {
+                std::ostringstream text;
+                text << "particle " << i << " " << name << " = " << (*channel)[i]
+                     << " is not finite";
+                In::fail(text.str());
+            }
+        }
+        if (std::isnan(p.expiry[i]) || p.material[i] >= s.materials.size() ||
             p.slot[i] >= s.slotIndex.size() || s.slotIndex[p.slot[i]] != i) {
             In::fail("particle " + std::to_string(i) +
                      " has a non-finite state, a bad material or a bad handle");
@@ -231,6 +241,23 @@ void checkParticles(const detail::WorldState& s) {
         const bool used = index != UINT32_MAX && index < n && p.slot[index] == slot;
         if (!(used || (index == UINT32_MAX && free[slot] != 0)) || s.slotGeneration[slot] == 0) {
             In::fail("handle slot " + std::to_string(slot) + " is neither used nor free");
+        }
+    }
+}
+
+// The solver state carried between steps: finite, the sound speed and acceleration not
+// negative.
+void checkSolverState(const detail::WorldState& s) {
+    const std::tuple<const char*, double, double> solver[] = {
+        {"time", s.time, -DBL_MAX},
+        {"sound speed", s.soundSpeed, 0.0},
+        {"field gh", s.fieldGH, -DBL_MAX},
+        {"last max acceleration", s.lastMaxAccel, 0.0}};
+    for (const auto& [name, value, lowest] : solver) {
+        if (!std::isfinite(value) || value < lowest) {
+            std::ostringstream text;
+            text << "the solver state is not finite: " << name << " = " << value;
+            In::fail(text.str());
         }
     }
 }
@@ -358,32 +385,94 @@ void World::saveFile(const std::string& path) const {
     }
 }
 
-World World::load(std::istream& input, const Registry& registry, uint32_t workerCount,
-                  const TaskHook& tasks) {
-    const std::vector<char> raw{std::istreambuf_iterator<char>(input),
-                                std::istreambuf_iterator<char>()};
-    const size_t header = sizeof(kMagic) + sizeof(uint32_t) + sizeof(uint64_t);
-    if (raw.size() < header || std::memcmp(raw.data(), kMagic, sizeof(kMagic)) != 0) {
+namespace {
+
+// Bytes left in `in` after its position (unit: bytes), or nothing when the stream cannot tell
+// (a pipe).
+std::optional<uint64_t> remainingBytes(std::istream& in) {
+    const std::istream::pos_type at = in.tellg();
+    if (at == std::istream::pos_type(-1) || !in.seekg(0, std::ios::end)) {
+        in.clear();
+        return std::nullopt;
+    }
+    const std::istream::pos_type end = in.tellg();
+    in.seekg(at);
+    if (end == std::istream::pos_type(-1) || !in) {
+        in.clear();
+        return std::nullopt;
+    }
+    return end >= at ? uint64_t(end - at) : 0;
+}
+
+// Reads up to `n` bytes (fewer at the end of the stream), growing the buffer only as bytes
+// arrive: a size a corrupt header promises is never allocated before it is there.
+std::vector<char> readUpTo(std::istream& in, uint64_t n) {
+    std::vector<char> out;
+    constexpr uint64_t kChunk = uint64_t(1) << 20;
+    while (out.size() < n) {
+        const std::size_t want = std::size_t(std::min(kChunk, n - out.size()));
+        const std::size_t had = out.size();
+        out.resize(had + want);
+        in.read(out.data() + had, std::streamsize(want));
+        out.resize(had + std::size_t(in.gcount()));
+        if (std::size_t(in.gcount()) < want) {
+            break;
+        }
+    }
+    return out;
+}
+
+// The payload and checksum of a snapshot: the header (magic, version, payload size) is read
+// and checked first, and the size against the bytes the stream holds, before the body is read
+// or anything is sized by it (a huge file of another version is refused after 20 bytes).
+std::vector<char> readBody(std::istream& input, uint64_t& size) {
+    char header[sizeof(kMagic) + sizeof(uint32_t) + sizeof(uint64_t)];
+    input.read(header, sizeof(header));
+    if (std::size_t(input.gcount()) < sizeof(header) ||
+        std::memcmp(header, kMagic, sizeof(kMagic)) != 0) {
         throw Error("snapshot: not a fluid snapshot (no FLUIDSNP header)");
     }
     uint32_t version = 0;
-    uint64_t size = 0;
-    std::memcpy(&version, raw.data() + sizeof(kMagic), sizeof(version));
-    std::memcpy(&size, raw.data() + sizeof(kMagic) + sizeof(version), sizeof(size));
+    std::memcpy(&version, header + sizeof(kMagic), sizeof(version));
+    std::memcpy(&size, header + sizeof(kMagic) + sizeof(version), sizeof(size));
     if (version != kVersion) {
         throw Error("snapshot: format version " + std::to_string(version) +
                     " is not supported; this fluid reads version " + std::to_string(kVersion));
     }
-    if (raw.size() - header < sizeof(uint64_t) || size != raw.size() - header - sizeof(uint64_t)) {
+    const auto refuse = [&](uint64_t holds) {
         std::ostringstream s;
         s << "snapshot: truncated or padded: the header promises " << size
-          << " bytes of data and a checksum, the file holds " << raw.size() - header
+          << " bytes of data and a checksum, the file holds " << holds
           << " bytes after the header";
         throw Error(s.str());
+    };
+    const std::optional<uint64_t> remaining = remainingBytes(input);
+    const bool fits = size <= UINT64_MAX - sizeof(uint64_t);
+    if (remaining && (!fits || *remaining != size + sizeof(uint64_t))) {
+        refuse(*remaining);
     }
-    const auto* payload = reinterpret_cast<const std::byte*>(raw.data() + header);
+    std::vector<char> body = readUpTo(input, fits ? size + sizeof(uint64_t) : UINT64_MAX);
+    if (!remaining && (!fits || body.size() != size + sizeof(uint64_t) ||
+                       input.peek() != std::char_traits<char>::eof())) {
+        uint64_t holds = body.size();
+        char scratch[4096];
+        while (input.read(scratch, sizeof(scratch)) || input.gcount() > 0) {
+            holds += uint64_t(input.gcount());
+        }
+        refuse(holds);
+    }
+    return body;
+}
+
+} // namespace
+
+World World::load(std::istream& input, const Registry& registry, uint32_t workerCount,
+                  const TaskHook& tasks) {
+    uint64_t size = 0;
+    const std::vector<char> body = readBody(input, size);
+    const auto* payload = reinterpret_cast<const std::byte*>(body.data());
     uint64_t sum = 0;
-    std::memcpy(&sum, raw.data() + header + size, sizeof(sum));
+    std::memcpy(&sum, body.data() + size, sizeof(sum));
     if (fnv1a(payload, size) != sum) {
         throw Error("snapshot: corrupt: checksum mismatch");
     }
@@ -495,10 +584,7 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
     s.fieldMeasured = in.small(true, "the field flag");
     s.lastMaxAccel = in.get<float>();
     s.profile = in.get<Profile>();
-    if (!std::isfinite(s.time) || !(s.soundSpeed >= 0.0f && std::isfinite(s.soundSpeed)) ||
-        !std::isfinite(s.fieldGH) || !(s.lastMaxAccel >= 0.0f && std::isfinite(s.lastMaxAccel))) {
-        In::fail("the solver state is not finite");
-    }
+    checkSolverState(s);
     if (!in.done()) {
         In::fail("unexpected data after the last section");
     }

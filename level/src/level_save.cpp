@@ -2,6 +2,7 @@
 #include <fluid/box2d/physics_save.h>
 #include <fluid/level.h>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -133,18 +134,18 @@ void Level::saveFile(const std::string& path) const {
     }
 }
 
-Level readLevelSave(std::istream& in, std::string_view file, const Registry& registry,
-                    const LevelOptions& options) {
-    std::string raw;
-    char buffer[65536];
-    while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0) {
-        raw.append(buffer, std::size_t(in.gcount()));
-    }
-    Parts check(raw, std::string(file));
+namespace {
+
+// The whole save, read once its header holds: the magic and version are checked from the first
+// 12 bytes, before the body is read (a huge file of another version is refused at once).
+std::string readSave(std::istream& in, const Parts& check) {
+    std::string raw(sizeof(kMagic) + sizeof(uint32_t), '\0');
+    in.read(raw.data(), std::streamsize(raw.size()));
+    raw.resize(std::size_t(in.gcount()));
     if (raw.size() < sizeof(kMagic) || std::memcmp(raw.data(), kMagic, sizeof(kMagic)) != 0) {
         check.fail("not a level save (no FLUIDLVL header)");
     }
-    if (raw.size() < sizeof(kMagic) + sizeof(uint32_t) + sizeof(uint64_t)) {
+    if (raw.size() < sizeof(kMagic) + sizeof(uint32_t)) {
         check.fail("truncated (" + std::to_string(raw.size()) + " bytes)");
     }
     uint32_t version = 0;
@@ -153,6 +154,97 @@ Level readLevelSave(std::istream& in, std::string_view file, const Registry& reg
         check.fail("format version " + std::to_string(version) +
                    " is not supported; this fluid reads version " + std::to_string(kVersion));
     }
+    char buffer[65536];
+    while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0) {
+        raw.append(buffer, std::size_t(in.gcount()));
+    }
+    if (raw.size() < sizeof(kMagic) + sizeof(uint32_t) + sizeof(uint64_t)) {
+        check.fail("truncated (" + std::to_string(raw.size()) + " bytes)");
+    }
+    return raw;
+}
+
+// Fails unless the world holds, at the ids its level file gave them, everything the file
+// declares: materials by name, forces and boundaries by type (`parsed` is the world the level
+// file builds), emitters, drains and sensors. The game may have added more after loading (the
+// demo adds its materials and pointer force): those are kept.
+void checkDeclared(const Level& level, const World& parsed, const World& world,
+                   const Parts& parts) {
+    const auto missing = [&](const std::string& what, const std::string& name, uint32_t id,
+                             uint32_t held, const std::string& plural) {
+        parts.fail("its level file declares " + what + " '" + name + "' (" + std::to_string(id) +
+                   "), but the world holds " + std::to_string(held) + " " + plural);
+    };
+    for (const auto& [name, id] : level.materials) {
+        if (id.index >= world.materialCount()) {
+            missing("material", name, id.index, world.materialCount(), "materials");
+        }
+        const std::string& held = world.material(id).name;
+        if (held != name) {
+            parts.fail("its level file declares material '" + name + "' (" +
+                       std::to_string(id.index) + "), but the world's material " +
+                       std::to_string(id.index) + " is '" + held + "'");
+        }
+    }
+    for (const Level::PluginEntry& entry : level.plugins) {
+        const bool force = entry.kind == PluginKind::Force;
+        const auto type = [&](const World& w) -> std::string_view {
+            return force ? w.forces()[entry.index]->type() : w.boundaries()[entry.index]->type();
+        };
+        const std::size_t held = force ? world.forces().size() : world.boundaries().size();
+        const std::string what = force ? "force" : "boundary";
+        if (entry.index >= held) {
+            missing(what, entry.name, entry.index, uint32_t(held),
+                    force ? "forces" : "boundaries");
+        }
+        if (type(world) != type(parsed)) {
+            parts.fail("its level file declares " + what + " '" + entry.name + "' (" +
+                       std::to_string(entry.index) + ") of type '" + std::string(type(parsed)) +
+                       "', but the world's " + what + " " + std::to_string(entry.index) +
+                       " is of type '" + std::string(type(world)) + "'");
+        }
+    }
+    const auto ids = [&](const auto& named, uint32_t held, const char* what, const char* plural) {
+        for (const auto& [name, id] : named) {
+            if (id.index >= held) {
+                missing(what, name, id.index, held, plural);
+            }
+        }
+    };
+    ids(level.emitters, world.emitterCount(), "emitter", "emitters");
+    ids(level.drains, world.drainCount(), "drain", "drains");
+    ids(level.sensors, world.sensorCount(), "sensor", "sensors");
+}
+
+// Materials the game added to the world after loading the level (beyond the file's), named as
+// the world names them ("material<k>" when that name is empty or taken): `Level::materials`
+// lists every material the world holds, so tools see them all.
+void nameAddedMaterials(Level& level) {
+    for (uint32_t k = uint32_t(level.materials.size()); k < level.world.materialCount(); ++k) {
+        const MaterialId id{uint16_t(k)};
+        const auto taken = [&](const std::string& name) {
+            return name.empty() ||
+                   std::any_of(level.materials.begin(), level.materials.end(),
+                               [&](const auto& entry) { return entry.first == name; });
+        };
+        std::string name = level.world.material(id).name;
+        for (uint32_t n = 0; taken(name); ++n) {
+            name = "material" + std::to_string(k);
+            if (n > 0) {
+                name += '_';
+                name += std::to_string(n);
+            }
+        }
+        level.materials.emplace_back(name, id);
+    }
+}
+
+} // namespace
+
+Level readLevelSave(std::istream& in, std::string_view file, const Registry& registry,
+                    const LevelOptions& options) {
+    const Parts check{std::string_view(), std::string(file)};
+    const std::string raw = readSave(in, check);
     const std::string_view data = std::string_view(raw).substr(0, raw.size() - sizeof(uint64_t));
     uint64_t sum = 0;
     std::memcpy(&sum, raw.data() + data.size(), sizeof(sum));
@@ -169,8 +261,17 @@ Level readLevelSave(std::istream& in, std::string_view file, const Registry& reg
     const std::string_view worldBytes = parts.bytes("the world");
     const uint32_t hasPhysics = parts.u32("the Box2D flag");
 
+    // The part's own error follows the save's name.
+    const auto located = [&](const char* part, const auto& load) {
+        try {
+            return load();
+        } catch (const Error& e) {
+            parts.fail(std::string(part) + ": " + e.what());
+        }
+    };
     // Everything but the state comes from the level file, as the game loaded it.
-    Level level = parseLevel(source, levelFile, registry, options);
+    Level level = located("the level file",
+                          [&] { return parseLevel(source, levelFile, registry, options); });
     if ((hasPhysics == 1) != (level.physics != nullptr)) {
         parts.fail(hasPhysics == 1 ? "holds a Box2D world, but its level file declares no body"
                                    : "holds no Box2D world, but its level file declares bodies");
@@ -189,22 +290,17 @@ Level readLevelSave(std::istream& in, std::string_view file, const Registry& reg
     level.bodies.clear();
     level.physics.reset();
 
-    // The part's own error follows the save's name.
-    const auto located = [&](const char* part, const auto& load) {
-        try {
-            return load();
-        } catch (const Error& e) {
-            parts.fail(std::string(part) + ": " + e.what());
-        }
-    };
     Registry withCoupling = registry;
     if (withCoupling.find("box2d.bodies") == nullptr) {
         box2d::registerCouplingPlugin(withCoupling);
     }
-    level.world = located("the world", [&] {
+    World world = located("the world", [&] {
         std::istringstream s{std::string(worldBytes)};
         return World::load(s, withCoupling, options.workerCount, options.tasks);
     });
+    checkDeclared(level, level.world, world, parts);
+    level.world = std::move(world);
+    nameAddedMaterials(level);
     level.m_goalState = GoalState(goalState);
     if (hasPhysics == 1) {
         const std::string_view physicsBytes = parts.bytes("the Box2D world");

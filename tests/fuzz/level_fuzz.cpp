@@ -13,7 +13,9 @@
 // An input that starts with FLUIDLVL is a level save (Level::save): its checksum is made right
 // before reading (the fuzzer could never match it), so that the mutations reach every part of
 // the reader (readLevelSave: the level text, world snapshot, Box2D world, coupling state and
-// names). scripts/fuzz.sh seeds it with a save of tests/fuzz/seeds/save_seed.json written by
+// names). A save that loads is stepped for 3 frames (when it holds at most 2,000 particles and
+// small bodies, as above, with or without FLUID_FUZZ_STEP), and a particle or Box2D body that is
+// not finite after any of them is a finding (abort). scripts/fuzz.sh seeds it with a save of tests/fuzz/seeds/save_seed.json written by
 // this binary: FLUID_FUZZ_WRITE_SAVE=LEVEL.json=OUT.level makes LLVMFuzzerInitialize load the
 // level, step it twice and save it.
 #include <fluid/level.h>
@@ -21,6 +23,7 @@
 
 #include <box2d/box2d.h>
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -76,6 +79,38 @@ std::string resealed(const uint8_t* data, size_t size) {
     return bytes;
 }
 
+// Frames an accepted save is stepped for (the first steps use the saved forces, debts and poses).
+constexpr int kSaveFrames = 3;
+
+// Aborts (a finding) unless every particle's position and velocity and every Box2D body's pose
+// and velocities are finite after frame `frame` of a loaded save.
+void requireFinite(const fluid::Level& level, int frame) {
+    const fluid::World& world = level.world;
+    for (const auto channel :
+         {world.positionX(), world.positionY(), world.velocityX(), world.velocityY()}) {
+        for (std::size_t i = 0; i < channel.size(); ++i) {
+            if (!std::isfinite(channel[i])) {
+                std::fprintf(stderr, "save stepped %d frames: particle %zu is not finite\n",
+                             frame + 1, i);
+                std::abort();
+            }
+        }
+    }
+    if (!level.physics) {
+        return;
+    }
+    int k = 0;
+    for (const b2Body* b = level.physics->GetBodyList(); b != nullptr; b = b->GetNext(), ++k) {
+        const b2Vec2 p = b->GetPosition(), v = b->GetLinearVelocity();
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(b->GetAngle()) ||
+            !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(b->GetAngularVelocity())) {
+            std::fprintf(stderr, "save stepped %d frames: Box2D body %d is not finite\n",
+                         frame + 1, k);
+            std::abort();
+        }
+    }
+}
+
 bool stepWanted() {
     static const bool step = [] {
         const char* value = std::getenv("FLUID_FUZZ_STEP");
@@ -120,8 +155,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             std::istringstream in(resealed(data, size));
             fluid::Level level = fluid::readLevelSave(in, "fuzz.level", registry(), options);
             (void)level.goalValue();
-            if (stepWanted() && level.world.particleCount() <= 2000 && smallBodies(level)) {
-                level.step();
+            // Whatever a save holds, an accepted one must step without a NaN or an infinity
+            // (a huge finite impulse once turned a body NaN at its first step, silently).
+            if (level.world.particleCount() <= 2000 && smallBodies(level)) {
+                for (int frame = 0; frame < kSaveFrames; ++frame) {
+                    level.step();
+                    requireFinite(level, frame);
+                }
             }
         } catch (const fluid::Error&) {
             // Refused with a message.

@@ -180,6 +180,20 @@ TEST_CASE("fluid-run: bad input exits non-zero with the loader's message", "[flu
     fs::remove_all(dir);
 }
 
+TEST_CASE("fluid-run: an empty or damaged .level file is refused as a save, by its name",
+          "[fluid-run]") {
+    const fs::path dir = fs::temp_directory_path() / "fluid_run_empty_save";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path empty = dir / "empty.level";
+    std::ofstream(empty, std::ios::binary).close();
+    const Run run = fluidRun({empty.string(), "--frames", "1"}, dir);
+    CHECK(run.status == 1);
+    CHECK(run.err ==
+          "level save '" + empty.string() + "': not a level save (no FLUIDLVL header)\n");
+    fs::remove_all(dir);
+}
+
 TEST_CASE("fluid-run writes each Box2D body's pose, velocity and submerged fraction",
           "[fluid-run][bodies]") {
     const fs::path dir = fs::temp_directory_path() / "fluid_run_bodies";

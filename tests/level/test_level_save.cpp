@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "level_support.h"
+#include "virtual_file.h"
 
 #include <fluid/box2d/physics_save.h>
 #include <fluid/level.h>
@@ -80,6 +81,80 @@ std::string resealed(std::string bytes) {
     }
     std::memcpy(bytes.data() + bytes.size() - 8, &h, 8);
     return bytes;
+}
+
+// Where the save's length-prefixed parts lie: the level file name, its text, the world and,
+// with bodies, the Box2D world and the coupling (unit: bytes from the start).
+struct Part {
+    std::size_t at = 0, size = 0;
+};
+
+std::vector<Part> partsOf(const std::string& bytes) {
+    std::vector<Part> parts;
+    std::size_t at = 12; // magic, version
+    const auto next = [&] {
+        uint64_t n = 0;
+        std::memcpy(&n, bytes.data() + at, sizeof(n));
+        parts.push_back({at + 8, std::size_t(n)});
+        at += 8 + std::size_t(n);
+    };
+    next();
+    next();
+    at += 4; // the goal state
+    next();
+    uint32_t physics = 0;
+    std::memcpy(&physics, bytes.data() + at, sizeof(physics));
+    at += 4;
+    if (physics == 1) {
+        next();
+        next();
+    }
+    return parts;
+}
+
+// The save with part `k` (see partsOf) replaced by `content`, resealed.
+std::string withPart(const std::string& bytes, std::size_t k, const std::string& content) {
+    const Part part = partsOf(bytes)[k];
+    const uint64_t n = content.size();
+    std::string out = bytes.substr(0, part.at - 8);
+    out.append(reinterpret_cast<const char*>(&n), sizeof(n));
+    out += content;
+    out += bytes.substr(part.at + part.size);
+    return resealed(out);
+}
+
+// A small tank: water (and oil, a yoghurt, when `oil`), a box, and a sensor with a goal on it
+// when `sensor`.
+std::string tank(bool sensor, bool oil, bool waterFirst = true) {
+    std::string materials = waterFirst ? R"({ "name": "water" })" : R"({ "name": "oil" })";
+    if (oil) {
+        materials += R"(, { "name": "oil", "preset": "yoghurt" })";
+    }
+    std::string text = R"({ "version": 1, "name": "tank", "world": { "gravity": [0, -9.81] },
+        "materials": [ )" + materials + R"( ],
+        "plugins": [ { "type": "boundary.box", "name": "room",
+                       "params": { "minX": 0, "minY": 0, "maxX": 1, "maxY": 1 } } ],
+        "emitters": [ { "name": "tap", "material": ")" +
+                       std::string(waterFirst ? "water" : "oil") + R"(", "position": [0.5, 0.8],
+                        "direction": [0, -1], "speed": 1, "width": 0.03, "rate": 50 } ])";
+    if (sensor) {
+        text += R"(, "sensors": [ { "name": "cup", "shape": "box", "min": [0.4, 0.0],
+                                   "max": [0.6, 0.2] } ],
+                    "goal": { "sensor": "cup", "material": "water", "fraction": 0.8 })";
+    }
+    return text + "}";
+}
+
+// Whether every Box2D body of the level has a finite pose and velocity.
+bool finiteBodies(const Level& level) {
+    for (const b2Body* b = level.physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
+        const b2Vec2 p = b->GetPosition(), v = b->GetLinearVelocity();
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(b->GetAngle()) ||
+            !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(b->GetAngularVelocity())) {
+            return false;
+        }
+    }
+    return true;
 }
 
 } // namespace
@@ -338,4 +413,196 @@ TEST_CASE("Box2D world saves keep order, fixtures and joints, and refuse bad one
     CHECK_THROWS_WITH(box2d::savePhysics(mouse, refused),
                       "fluid::box2d::savePhysics: joint type 3 (b2JointType) cannot be saved; "
                       "only revolute joints can");
+}
+
+TEST_CASE("a coupling save with a huge finite impulse is refused, naming the body and field",
+          "[save][bad-input]") {
+    Level level = parseLevel(readLevel("paddle_wheel.json"), "paddle_wheel.json", builtins());
+    for (int f = 0; f < 5; ++f) {
+        level.step();
+    }
+    const std::string bytes = saveOf(level);
+    const Part coupling = partsOf(bytes)[4];
+    // The coupling's first body state: magic, version, count, then body index, wet flag,
+    // material and the unpaid impulse (debt x, y: doubles).
+    uint32_t states = 0, body = 0;
+    std::memcpy(&states, bytes.data() + coupling.at + 12, sizeof(states));
+    REQUIRE(states > 0);
+    std::memcpy(&body, bytes.data() + coupling.at + 16, sizeof(body));
+    std::string altered = bytes;
+    const double huge = 5.28e237;
+    std::memcpy(altered.data() + coupling.at + 23, &huge, sizeof(huge));
+    CHECK_THROWS_MATCHES(restore(resealed(altered)), Error,
+                         Catch::Message("level save 's.sav': the coupling: coupling save: body " +
+                                        std::to_string(body) +
+                                        " debt x = 5.28e+237 is not finite or out of [-1e+12, "
+                                        "1e+12] (unit: N s)"));
+}
+
+TEST_CASE("mutated coupling sections are refused or step without NaN", "[save][bad-input]") {
+    Level level = parseLevel(readLevel("paddle_wheel.json"), "paddle_wheel.json", builtins());
+    for (int f = 0; f < 5; ++f) {
+        level.step();
+    }
+    const std::string bytes = saveOf(level);
+    const Part coupling = partsOf(bytes)[4];
+    uint32_t states = 0;
+    std::memcpy(&states, bytes.data() + coupling.at + 12, sizeof(states));
+    REQUIRE(states > 0);
+    // Each body state: u32 index, u8 wet, u16 material, 3 doubles (debt, torque debt), 3 floats
+    // (applied force, torque). One value of one state set to a huge or tiny finite number.
+    std::mt19937 random(31);
+    int refused = 0, nonFinite = 0;
+    for (int trial = 0; trial < 150; ++trial) {
+        std::string altered = bytes;
+        const std::size_t state = coupling.at + 16 + (random() % states) * 43;
+        const std::size_t field = random() % 6;
+        const double sign = random() % 2 == 0 ? 1.0 : -1.0;
+        if (field < 3) {
+            const double v = sign * std::pow(10.0, double(random() % 300));
+            std::memcpy(altered.data() + state + 7 + field * 8, &v, sizeof(v));
+        } else {
+            const float v = float(sign * std::pow(10.0, double(random() % 38)));
+            std::memcpy(altered.data() + state + 31 + (field - 3) * 4, &v, sizeof(v));
+        }
+        try {
+            Level l = restore(resealed(altered));
+            for (int f = 0; f < 5; ++f) {
+                l.step();
+            }
+            nonFinite += finiteBodies(l) ? 0 : 1;
+        } catch (const Error&) {
+            ++refused;
+        }
+    }
+    INFO(refused << " of 150 refused");
+    CHECK(nonFinite == 0);
+    CHECK(refused > 0);
+}
+
+TEST_CASE("a save whose world lacks a sensor its level file declares is refused",
+          "[save][bad-input]") {
+    Level plain = parseLevel(tank(false, false), "tank.json", builtins());
+    plain.step();
+    const std::string bytes = withPart(saveOf(plain), 1, tank(true, false));
+    // Before, it loaded and failed at the first step: World::sensorReading: unknown sensor id 0.
+    CHECK_THROWS_MATCHES(restore(bytes), Error,
+                         Catch::Message("level save 's.sav': its level file declares sensor "
+                                        "'cup' (0), but the world holds 0 sensors"));
+}
+
+TEST_CASE("a save's world must hold its level file's materials and plugins by name and type",
+          "[save][bad-input]") {
+    Level oil = parseLevel(tank(false, false, false), "tank.json", builtins());
+    CHECK_THROWS_MATCHES(restore(withPart(saveOf(oil), 1, tank(false, false))), Error,
+                         Catch::Message("level save 's.sav': its level file declares material "
+                                        "'water' (0), but the world's material 0 is 'oil'"));
+    std::string circle = tank(false, false);
+    const std::string box = R"("type": "boundary.box", "name": "room",
+                       "params": { "minX": 0, "minY": 0, "maxX": 1, "maxY": 1 })";
+    REQUIRE(circle.find(box) != std::string::npos);
+    circle.replace(circle.find(box), box.size(),
+                   R"("type": "boundary.circle", "name": "room", "params": { "radius": 1 })");
+    Level round = parseLevel(circle, "tank.json", builtins());
+    CHECK_THROWS_MATCHES(
+        restore(withPart(saveOf(round), 1, tank(false, false))), Error,
+        Catch::Message("level save 's.sav': its level file declares boundary 'room' (0) of type "
+                       "'boundary.box', but the world's boundary 0 is of type 'boundary.circle'"));
+}
+
+TEST_CASE("a material the game added to the world comes back named, with the file's",
+          "[save]") {
+    // The world holds water and oil; the level file declares water only (the game added oil,
+    // as the demo adds its materials): oil is listed too, so tools (fluid-run's CSV) see it.
+    Level both = parseLevel(tank(false, true), "tank.json", builtins());
+    both.step();
+    const Level restored = restore(withPart(saveOf(both), 1, tank(false, false)));
+    REQUIRE(restored.materials.size() == 2);
+    CHECK(restored.materials[0].first == "water");
+    CHECK(restored.materials[0].second.index == 0);
+    CHECK(restored.materials[1].first == "oil");
+    CHECK(restored.materials[1].second.index == 1);
+}
+
+TEST_CASE("a huge level save of another version is refused from its header", "[save][bad-input]") {
+    std::string head("FLUIDLVL", 8);
+    const uint32_t version = 2;
+    head.append(reinterpret_cast<const char*>(&version), sizeof(version));
+    VirtualFile file(head, uint64_t(256) << 20); // 256 MiB of body that is never needed
+    std::istream in(&file);
+    CHECK_THROWS_MATCHES(
+        readLevelSave(in, "big.level", builtins()), Error,
+        Catch::Message("level save 'big.level': format version 2 is not supported; this fluid "
+                       "reads version 1"));
+    CHECK(file.served() <= 65536); // the first window only
+}
+
+TEST_CASE("errors of a save's level text name the save", "[save][bad-input]") {
+    Level level = parseLevel(readLevel("fill_the_cup.json"), "fill_the_cup.json", builtins());
+    const std::string bytes = saveOf(level);
+    // A registry without boundary.box, which the level file uses.
+    Registry lacking;
+    for (const PluginInfo& info : builtins().types()) {
+        if (info.type != "boundary.box") {
+            lacking.add(info);
+        }
+    }
+    std::string text;
+    try {
+        parseLevel(readLevel("fill_the_cup.json"), "fill_the_cup.json", lacking);
+    } catch (const LevelError& e) {
+        text = e.what();
+    }
+    REQUIRE(text.rfind("fill_the_cup.json:", 0) == 0);
+    std::istringstream in(bytes);
+    CHECK_THROWS_MATCHES(readLevelSave(in, "cup.level", lacking), Error,
+                         Catch::Message("level save 'cup.level': the level file: " + text));
+}
+
+TEST_CASE("Box2D world saves refuse values that would turn a body NaN, and counts past the end",
+          "[save][bad-input]") {
+    b2World physics(b2Vec2(0.0f, -9.81f));
+    b2BodyDef def;
+    def.type = b2_dynamicBody;
+    b2Body* body = physics.CreateBody(&def);
+    b2CircleShape disc;
+    disc.m_radius = 0.1f;
+    body->CreateFixture(&disc, 2.0f);
+    std::ostringstream out;
+    box2d::savePhysics(physics, out);
+    const std::string bytes = out.str();
+    const auto refuse = [](const std::string& b) {
+        std::istringstream s(b);
+        try {
+            box2d::loadPhysics(s);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    // Magic, version, gravity, 5 settings, the body count; then the body's type, position,
+    // angle, velocity, angular velocity, damping (2), gravity scale.
+    const std::size_t bodyAt = 8 + 4 + 8 + 5 + 4;
+    std::string scaled = bytes;
+    const float huge = 1e30f;
+    std::memcpy(scaled.data() + bodyAt + 33, &huge, sizeof(huge));
+    CHECK(refuse(scaled) ==
+          "box2d save: gravity scale = 1e+30 is not finite or out of [-1000, 1000]");
+    std::string fast = bytes;
+    std::memcpy(fast.data() + bodyAt + 13, &huge, sizeof(huge)); // velocity x
+    CHECK(refuse(fast) == "box2d save: body velocity = 1e+30 is not finite or out of [-1e+06, "
+                          "1e+06]");
+    // The disc moved far from the body's origin: Box2D's CreateFixture would assert (the
+    // inertia about the centre of mass cancels to 0 in float); the body's fixture follows its
+    // mass data, count and the fixture kind and radius.
+    std::string far = bytes;
+    const b2Vec2 centre(1e4f, 1e4f);
+    std::memcpy(far.data() + bodyAt + 62 + 5, &centre, sizeof(centre));
+    CHECK(refuse(far) == "box2d save: a body's fixtures give it no positive rotational inertia "
+                         "about its centre of mass");
+    std::string many = bytes;
+    const uint32_t count = 1u << 20;
+    std::memcpy(many.data() + bodyAt - 4, &count, sizeof(count));
+    CHECK(refuse(many) == "box2d save: body count = 1048576 needs at least 65011712 bytes; " +
+                              std::to_string(bytes.size() - bodyAt) + " remain");
 }

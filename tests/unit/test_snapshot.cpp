@@ -1,5 +1,6 @@
 // Snapshots: a restored world continues bit-identically; damaged files are refused clearly.
 #include "test_support.h"
+#include "virtual_file.h"
 
 #include <catch2/catch.hpp>
 
@@ -199,4 +200,36 @@ TEST_CASE("snapshot: truncated, corrupt or foreign data is refused", "[snapshot]
     CHECK_THROWS_WITH(restored(bytes, empty),
                       "snapshot: plugin type 'force.gravity' is not in the registry; register it "
                       "(or load its plugin library) before loading the snapshot");
+}
+
+TEST_CASE("snapshot: a huge file is refused from its header, before its body is read",
+          "[snapshot]") {
+    const Registry registry = builtins();
+    const auto header = [](uint32_t version, uint64_t size) {
+        std::string head("FLUIDSNP", 8);
+        head.append(reinterpret_cast<const char*>(&version), sizeof(version));
+        head.append(reinterpret_cast<const char*>(&size), sizeof(size));
+        return head;
+    };
+    const uint64_t body = uint64_t(256) << 20; // 256 MiB that are never needed
+    {
+        test::VirtualFile file(header(9, body - 8), body);
+        std::istream in(&file);
+        CHECK_THROWS_MATCHES(
+            World::load(in, registry), Error,
+            Catch::Message("snapshot: format version 9 is not supported; this fluid reads "
+                           "version 4"));
+        CHECK(file.served() <= 65536); // the first window only
+    }
+    {
+        // The right version, but the header promises more than the file holds.
+        test::VirtualFile file(header(4, uint64_t(1) << 40), body);
+        std::istream in(&file);
+        CHECK_THROWS_MATCHES(
+            World::load(in, registry), Error,
+            Catch::Message("snapshot: truncated or padded: the header promises 1099511627776 "
+                           "bytes of data and a checksum, the file holds 268435456 bytes after "
+                           "the header"));
+        CHECK(file.served() <= 65536);
+    }
 }

@@ -339,8 +339,12 @@ public:
     void saveFile(const std::string& path) const;
     /// Reads a snapshot written by `save`. Plugins are re-created by type from `registry`
     /// (load your own plugin libraries into it first). `workerCount` 0 keeps the saved count;
-    /// a set `tasks.enqueue` lends the host's threads instead. Throws `fluid::Error` for a
-    /// truncated or corrupt snapshot (checksum), an unknown version or plugin type.
+    /// a set `tasks.enqueue` lends the host's threads instead. The header (magic, version,
+    /// payload size) is read and checked first, the size against the bytes the stream holds
+    /// when it can tell (a seekable stream), before the payload is read or allocated. Throws
+    /// `fluid::Error` for a truncated, padded or corrupt snapshot (checksum), an unknown version
+    /// or plugin type, or a value out of range (naming it: "particle 3 vx = inf is not
+    /// finite"). Thread rule: any thread (the new world is the caller's).
     static World load(std::istream& in, const Registry& registry, uint32_t workerCount = 0,
                       const TaskHook& tasks = {});
     /// `load` from the file `path`; errors name the file.

@@ -123,7 +123,9 @@ struct Level {
     float frameRate = 60.0f;
     /// The world: materials, blobs, plugins, emitters, drains and sensors added.
     World world;
-    /// Materials by name, in file order.
+    /// Materials by name, in file order. A level read from a save lists after them the
+    /// materials the game had added to the world (by their `Material::name`, or "material<k>"
+    /// when that is empty or taken), so that every material the world holds has a name here.
     std::vector<std::pair<std::string, MaterialId>> materials;
     /// Emitters by name, in file order.
     std::vector<std::pair<std::string, EmitterId>> emitters;
@@ -236,9 +238,17 @@ Level parseLevel(std::string_view text, std::string_view file, const Registry& r
 /// Reads a save written by `Level::save`: the level is rebuilt from the saved file text (with
 /// `options`; `workerCount` 0 keeps the saved world's count), then the world, Box2D world and
 /// coupling state are restored. `registry` must know the world's plugin types (the coupling's
-/// own, "box2d.bodies", is added here). Throws `fluid::Error` naming `file` for a save that is
-/// not one, truncated or corrupt (checksum), of another version, or whose parts fail to load
-/// (their message follows). Thread rule: any thread; the registry is only read.
+/// own, "box2d.bodies", is added here). The header (magic and version) is checked from the
+/// first 12 bytes, before the rest is read. The world must hold what the level text declares,
+/// at the ids the text gives them: each material (by name), force and boundary plugin (by
+/// type), emitter, drain and sensor; what the game added after loading (materials, plugins,
+/// ...) is kept. Throws `fluid::Error` "level save 'FILE': ..." naming `file` for a save that is
+/// not one, truncated or corrupt (checksum), of another version, whose world lacks or differs
+/// from what its level text declares ("its level file declares sensor 'cup' (0), but the world
+/// holds 0 sensors"), or whose parts fail to load, naming the part and its field ("the level
+/// file: ...", "the world: snapshot: ...", "the Box2D world: box2d save: ...", "the coupling:
+/// coupling save: body 2 debt x = ... is not finite or out of [...]"). Thread rule: any
+/// thread; the registry is only read.
 Level readLevelSave(std::istream& in, std::string_view file, const Registry& registry,
                     const LevelOptions& options = {});
 

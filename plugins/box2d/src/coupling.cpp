@@ -616,6 +616,19 @@ void Coupling::makeReports(const World& world) {
 namespace {
 constexpr char kStateMagic[8] = {'F', 'L', 'C', 'O', 'U', 'P', 'L', 'E'};
 constexpr uint32_t kStateVersion = 1;
+// Bounds of a saved body state, from the live limits: a coupled body is at most 1e5 m from the
+// origin and at most 1e3 m/s fast (BodyBoundary: faster or farther bodies are skipped), and of
+// at most 1e9 kg (the fluid's RigidBody::mass). The momentum such a body can hold bounds what
+// the relaxation owes it (unit: N s), with the lever arm its angular impulse (unit: N m s);
+// paid over the shortest frame, 1 ms (a level's frame rate is at most 1000 Hz), they bound the
+// force and torque handed to Box2D (unit: N, N m). Past these a body turns NaN at its first
+// step. The seen angle is a Box2D body angle (a float; unit: rad).
+constexpr double kMaxPosition = 1e5;
+constexpr double kMaxImpulse = 1e9 * 1e3;
+constexpr double kMaxAngularImpulse = kMaxImpulse * kMaxPosition;
+constexpr double kMaxForce = kMaxImpulse / 1e-3;
+constexpr double kMaxTorque = kMaxAngularImpulse / 1e-3;
+constexpr double kMaxAngle = 3.4e38;
 } // namespace
 
 void Coupling::save(std::ostream& out) const {
@@ -675,42 +688,42 @@ void Coupling::load(std::istream& in) {
         r.fail("version " + std::to_string(version) + " is not supported (this build reads " +
                std::to_string(kStateVersion) + ")");
     }
-    const auto body = [&](const char* field) {
+    const auto bodyIndex = [&](const char* field) {
         const auto k = r.get<uint32_t>(field);
         if (k >= bodies.size()) {
             r.fail(std::string(field) + " " + std::to_string(k) + " is beyond the Box2D world's " +
                    std::to_string(bodies.size()) + " bodies");
         }
-        return bodies[k];
-    };
-    const auto finite = [&](auto value, const char* field) {
-        if (!std::isfinite(value)) {
-            r.fail(std::string(field) + " is not finite");
-        }
-        return value;
+        return k;
     };
     std::vector<Previous> previous(r.count("body state count", uint32_t(bodies.size())));
     for (Previous& p : previous) {
-        p.body = body("body index");
+        const uint32_t k = bodyIndex("body index");
+        p.body = bodies[k];
+        const std::string of = "body " + std::to_string(k) + " ";
         const auto wet = r.get<uint8_t>("wet flag");
         if (wet > 1) {
-            r.fail("wet flag = " + std::to_string(wet) + " is not 0 or 1");
+            r.fail(of + "wet flag = " + std::to_string(wet) + " is not 0 or 1");
         }
         p.wet = wet != 0;
         p.material = r.get<uint16_t>("material");
-        p.debt.x = finite(r.get<double>("debt"), "debt");
-        p.debt.y = finite(r.get<double>("debt"), "debt");
-        p.torqueDebt = finite(r.get<double>("torque debt"), "torque debt");
-        p.applied.x = finite(r.get<float>("applied force"), "applied force");
-        p.applied.y = finite(r.get<float>("applied force"), "applied force");
-        p.appliedTorque = finite(r.get<float>("applied torque"), "applied torque");
+        p.debt.x = r.number(of + "debt x", -kMaxImpulse, kMaxImpulse, "N s");
+        p.debt.y = r.number(of + "debt y", -kMaxImpulse, kMaxImpulse, "N s");
+        p.torqueDebt = r.number(of + "torque debt", -kMaxAngularImpulse, kMaxAngularImpulse,
+                                "N m s");
+        const auto force = float(kMaxForce), torque = float(kMaxTorque);
+        p.applied.x = r.number(of + "applied force x", -force, force, "N");
+        p.applied.y = r.number(of + "applied force y", -force, force, "N");
+        p.appliedTorque = r.number(of + "applied torque", -torque, torque, "N m");
     }
     std::vector<BodyBoundary::SeenPose> poses(r.count("pose count", uint32_t(bodies.size())));
     for (BodyBoundary::SeenPose& p : poses) {
-        p.body = body("posed body index");
-        p.com.x = finite(r.get<double>("pose"), "pose");
-        p.com.y = finite(r.get<double>("pose"), "pose");
-        p.angle = finite(r.get<double>("pose angle"), "pose angle");
+        const uint32_t k = bodyIndex("posed body index");
+        p.body = bodies[k];
+        const std::string of = "body " + std::to_string(k) + " seen ";
+        p.com.x = r.number(of + "x", -kMaxPosition, kMaxPosition, "m");
+        p.com.y = r.number(of + "y", -kMaxPosition, kMaxPosition, "m");
+        p.angle = r.number(of + "angle", -kMaxAngle, kMaxAngle, "rad");
     }
     // Everything read: now the coupling changes.
     m_previous = std::move(previous);

@@ -22,8 +22,29 @@ constexpr uint32_t kMaxBodies = 1u << 20;
 constexpr uint32_t kMaxFixtures = 1u << 16;
 constexpr uint32_t kMaxChain = 1u << 16;
 constexpr uint32_t kMaxJoints = 1u << 20;
+// The fewest bytes one saved body, fixture, chain vertex and joint take (unit: bytes): a count
+// is checked against the bytes left before anything is sized by it.
+constexpr uint32_t kBodyBytes = 62;
+constexpr uint32_t kFixtureBytes = 36;
+constexpr uint32_t kVertexBytes = 8;
+constexpr uint32_t kJointBytes = 47;
 // The largest coordinate a saved position or vertex may have (unit: m): fluid's own bound.
 constexpr float kMaxCoordinate = 1e5f;
+// Bounds that keep every product Box2D's step forms finite (a value past them turns a body NaN
+// at its first step, silently). Box2D moves a body at most b2_maxTranslation per step whatever
+// its velocity, so the speeds are far above anything a game sets (unit: m/s and rad/s).
+constexpr float kMaxSpeed = 1e6f;
+// The fluid's own bound on a body's mass (unit: kg; RigidBody::mass), and on a fixture's
+// density (unit: kg/m^2).
+constexpr float kMaxMass = 1e9f;
+constexpr float kMaxDensity = 1e9f;
+// The largest mass at the largest coordinate (unit: kg m^2).
+constexpr float kMaxInertia = kMaxMass * kMaxCoordinate * kMaxCoordinate;
+// Gravity scale (unit: 1), friction and restitution (unit: 1): the level format's bound on
+// friction; gravity (at most 1e6 m/s^2) times the scale stays finite times any mass.
+constexpr float kMaxFactor = 1e3f;
+// A revolute joint's motor torque (unit: N m).
+constexpr float kMaxTorque = 1e15f;
 
 enum ShapeKind : uint8_t { kCircle, kEdge, kPolygon, kChain };
 
@@ -94,13 +115,7 @@ void putFixture(binary::Writer& w, const b2Fixture& f) {
 struct In {
     binary::Reader r;
     float number(const char* field, float lo = -3e38f, float hi = 3e38f) {
-        const auto v = r.get<float>(field);
-        if (!std::isfinite(v) || v < lo || v > hi) {
-            std::ostringstream s;
-            s << field << " = " << v << " is not finite or out of [" << lo << ", " << hi << "]";
-            r.fail(s.str());
-        }
-        return v;
+        return r.number<float>(field, lo, hi);
     }
     b2Vec2 vec(const char* field, float bound = 3e38f) {
         const float x = number(field, -bound, bound);
@@ -183,7 +198,7 @@ FixtureRead getFixture(In& in) {
         break;
     }
     case kChain: {
-        const uint32_t count = in.r.count("chain vertex count", kMaxChain);
+        const uint32_t count = in.r.count("chain vertex count", kMaxChain, kVertexBytes);
         if (count < 2) {
             in.r.fail("a chain has " + std::to_string(count) + " vertices (at least 2)");
         }
@@ -205,9 +220,9 @@ FixtureRead getFixture(In& in) {
         in.r.fail("unknown shape type " + std::to_string(kind));
     }
     f.kind = ShapeKind(kind);
-    f.def.density = in.number("density", 0.0f);
-    f.def.friction = in.number("friction", 0.0f);
-    f.def.restitution = in.number("restitution", 0.0f);
+    f.def.density = in.number("density", 0.0f, kMaxDensity);
+    f.def.friction = in.number("friction", 0.0f, kMaxFactor);
+    f.def.restitution = in.number("restitution", 0.0f, kMaxFactor);
     f.def.restitutionThreshold = in.number("restitution threshold", 0.0f);
     f.def.isSensor = in.flag("sensor");
     f.def.filter.categoryBits = in.r.get<uint16_t>("category bits");
@@ -222,6 +237,45 @@ struct BodyRead {
     b2MassData mass{};
     std::vector<FixtureRead> fixtures;
 };
+
+// Box2D recomputes a dynamic body's mass from its fixtures at each CreateFixture of a fixture
+// with density (b2Body::ResetMassData, over the fixtures made so far: the loader makes them
+// from the last to the first) and asserts that the rotational inertia about the centre of mass
+// is positive. The same sums, in the same order and float arithmetic, refuse a body that would
+// fail it (a small disc far from the body's origin, say) before anything is built.
+void checkFixtureMass(In& in, const BodyRead& b) {
+    if (b.def.type != b2_dynamicBody || b.def.fixedRotation) {
+        return;
+    }
+    for (std::size_t made = b.fixtures.size(); made-- > 0;) {
+        if (!(b.fixtures[made].def.density > 0.0f)) {
+            continue; // CreateFixture resets the mass only for a fixture with density
+        }
+        float mass = 0.0f, inertia = 0.0f;
+        b2Vec2 center(0.0f, 0.0f);
+        for (std::size_t k = made; k < b.fixtures.size(); ++k) {
+            const FixtureRead& f = b.fixtures[k];
+            if (f.def.density == 0.0f || f.kind == kChain) {
+                continue; // a chain has no mass
+            }
+            const b2Shape& shape = f.kind == kCircle ? static_cast<const b2Shape&>(f.circle)
+                                   : f.kind == kEdge ? static_cast<const b2Shape&>(f.edge)
+                                                     : static_cast<const b2Shape&>(f.polygon);
+            b2MassData data;
+            shape.ComputeMass(&data, f.def.density);
+            mass += data.mass;
+            center += data.mass * data.center;
+            inertia += data.I;
+        }
+        if (mass > 0.0f) {
+            center *= 1.0f / mass;
+        }
+        if (inertia > 0.0f && !(inertia - mass * b2Dot(center, center) > 0.0f)) {
+            in.r.fail("a body's fixtures give it no positive rotational inertia about its "
+                      "centre of mass");
+        }
+    }
+}
 
 struct JointRead {
     uint32_t bodyA = 0, bodyB = 0;
@@ -315,7 +369,7 @@ std::unique_ptr<b2World> loadPhysics(std::istream& stream) {
         s = in.flag("world setting");
     }
 
-    std::vector<BodyRead> bodies(in.r.count("body count", kMaxBodies));
+    std::vector<BodyRead> bodies(in.r.count("body count", kMaxBodies, kBodyBytes));
     for (BodyRead& b : bodies) {
         const auto type = in.r.get<uint8_t>("body type");
         if (type > uint8_t(b2_dynamicBody)) {
@@ -324,31 +378,33 @@ std::unique_ptr<b2World> loadPhysics(std::istream& stream) {
         b.def.type = b2BodyType(type);
         b.def.position = in.vec("body position", kMaxCoordinate);
         b.def.angle = in.number("body angle");
-        b.def.linearVelocity = in.vec("body velocity");
-        b.def.angularVelocity = in.number("body angular velocity");
+        b.def.linearVelocity = in.vec("body velocity", kMaxSpeed);
+        b.def.angularVelocity = in.number("body angular velocity", -kMaxSpeed, kMaxSpeed);
         b.def.linearDamping = in.number("linear damping", 0.0f);
         b.def.angularDamping = in.number("angular damping", 0.0f);
-        b.def.gravityScale = in.number("gravity scale");
+        b.def.gravityScale = in.number("gravity scale", -kMaxFactor, kMaxFactor);
         b.def.awake = in.flag("awake");
         b.enabled = in.flag("enabled");
         b.def.bullet = in.flag("bullet");
         b.def.fixedRotation = in.flag("fixed rotation");
         b.def.allowSleep = in.flag("sleep allowed");
-        b.mass.mass = in.number("mass", 0.0f);
+        b.mass.mass = in.number("mass", 0.0f, kMaxMass);
         b.mass.center = in.vec("mass centre", kMaxCoordinate);
-        b.mass.I = in.number("rotational inertia", 0.0f);
+        b.mass.I = in.number("rotational inertia", 0.0f, kMaxInertia);
         // SetMassData keeps I - m |c|^2, the inertia about the centre of mass: it must be
-        // positive for a body that turns.
-        if (b.def.type == b2_dynamicBody && b.mass.mass > 0.0f && b.mass.I > 0.0f &&
-            !b.def.fixedRotation && b.mass.I - b.mass.mass * b2Dot(b.mass.center, b.mass.center) <= 0.0f) {
+        // positive for a body that turns (a mass of 0 counts as 1 there).
+        const float m = b.mass.mass > 0.0f ? b.mass.mass : 1.0f;
+        if (b.def.type == b2_dynamicBody && b.mass.I > 0.0f && !b.def.fixedRotation &&
+            !(b.mass.I - m * b2Dot(b.mass.center, b.mass.center) > 0.0f)) {
             in.r.fail("a body's rotational inertia about its centre of mass is not positive");
         }
-        b.fixtures.resize(in.r.count("fixture count", kMaxFixtures));
+        b.fixtures.resize(in.r.count("fixture count", kMaxFixtures, kFixtureBytes));
         for (FixtureRead& f : b.fixtures) {
             f = getFixture(in);
         }
+        checkFixtureMass(in, b);
     }
-    std::vector<JointRead> joints(in.r.count("joint count", kMaxJoints));
+    std::vector<JointRead> joints(in.r.count("joint count", kMaxJoints, kJointBytes));
     for (JointRead& j : joints) {
         j.bodyA = in.r.get<uint32_t>("joint body A");
         j.bodyB = in.r.get<uint32_t>("joint body B");
@@ -367,8 +423,8 @@ std::unique_ptr<b2World> loadPhysics(std::istream& stream) {
         if (j.def.lowerAngle > j.def.upperAngle) {
             in.r.fail("a joint's lower limit is above its upper limit");
         }
-        j.def.motorSpeed = in.number("joint motor speed");
-        j.def.maxMotorTorque = in.number("joint motor torque", 0.0f);
+        j.def.motorSpeed = in.number("joint motor speed", -kMaxSpeed, kMaxSpeed);
+        j.def.maxMotorTorque = in.number("joint motor torque", 0.0f, kMaxTorque);
     }
 
     // Box2D puts each new body, fixture and joint at the head of its list: created from the last

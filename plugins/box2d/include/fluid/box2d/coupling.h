@@ -287,7 +287,11 @@ public:
     /// Reads what `save` wrote into this coupling, whose Box2D world has just been restored
     /// (before any step): replaces the state above and applies the saved forces and torques to
     /// their bodies. Throws `fluid::Error` ("coupling save: ...") for a truncated or malformed
-    /// save, or a body index beyond the Box2D world's bodies; the coupling is unchanged then.
+    /// save, a body index beyond the Box2D world's bodies, or a value that is not finite or out
+    /// of its range, naming the body and field ("coupling save: body 1 debt x = 5e+237 is not
+    /// finite or out of [-1e+12, 1e+12] (unit: N s)"): unpaid impulse at most 1e12 N s (1e9 kg
+    /// at 1e3 m/s), angular impulse 1e17 N m s, force 1e15 N and torque 1e20 N m (those over
+    /// 1 ms), seen position 1e5 m; the coupling is unchanged then.
     /// Stepping thread, between frames.
     void load(std::istream& in);
 

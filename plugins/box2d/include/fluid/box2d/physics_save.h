@@ -22,9 +22,12 @@ void savePhysics(const b2World& physics, std::ostream& out);
 
 /// Reads what `savePhysics` wrote and builds a new `b2World` whose bodies, fixtures and joints
 /// keep their saved order in `GetBodyList()`, `GetFixtureList()` and `GetJointList()`. Throws
-/// `fluid::Error` ("box2d save: ...") for a truncated or malformed save: a count out of range,
-/// a non-finite or out-of-range value (|coordinate| above 1e5 m, a polygon not of 3 to 8
-/// vertices), an unknown shape or joint type. Any thread (the new world is the caller's).
+/// `fluid::Error` ("box2d save: ...") for a truncated or malformed save: a count out of range or
+/// larger than the bytes left could hold (checked before anything is sized by it), a non-finite
+/// or out-of-range value, naming the field (|coordinate| above 1e5 m, speeds above 1e6 m/s or
+/// rad/s, mass above 1e9 kg, density above 1e9 kg/m^2, gravity scale, friction or restitution
+/// above 1e3, motor torque above 1e15 N m, a polygon not of 3 to 8 vertices), an unknown shape
+/// or joint type. Any thread (the new world is the caller's).
 std::unique_ptr<b2World> loadPhysics(std::istream& in);
 
 } // namespace fluid::box2d
