@@ -49,8 +49,8 @@ std::string errorOfSave(const std::string& bytes) {
 // Every particle's position and velocity, in slot order.
 std::vector<float> state(const World& world) {
     std::vector<float> out;
-    for (const auto span : {world.positionX(), world.positionY(), world.velocityX(),
-                            world.velocityY()}) {
+    for (const auto span :
+         {world.positionX(), world.positionY(), world.velocityX(), world.velocityY()}) {
         out.insert(out.end(), span.begin(), span.end());
     }
     return out;
@@ -131,7 +131,8 @@ std::string tank(bool sensor, bool oil, bool waterFirst = true) {
         materials += R"(, { "name": "oil", "preset": "yoghurt" })";
     }
     std::string text = R"({ "version": 1, "name": "tank", "world": { "gravity": [0, -9.81] },
-        "materials": [ )" + materials + R"( ],
+        "materials": [ )" +
+                       materials + R"( ],
         "plugins": [ { "type": "boundary.box", "name": "room",
                        "params": { "minX": 0, "minY": 0, "maxX": 1, "maxY": 1 } } ],
         "emitters": [ { "name": "tap", "material": ")" +
@@ -155,6 +156,17 @@ bool finiteBodies(const Level& level) {
         }
     }
     return true;
+}
+
+// What loadPhysics says about `bytes`: its error, or "no error".
+std::string physicsError(const std::string& bytes) {
+    std::istringstream s(bytes);
+    try {
+        box2d::loadPhysics(s);
+    } catch (const Error& e) {
+        return std::string(e.what());
+    }
+    return std::string("no error");
 }
 
 } // namespace
@@ -365,22 +377,13 @@ TEST_CASE("Box2D world saves keep order, fixtures and joints, and refuse bad one
     CHECK((w2->GetPosition() - wheel->GetPosition()).Length() < 1e-3f);
 
     std::string bytes = out.str();
-    const auto refuse = [](const std::string& b) {
-        std::istringstream s(b);
-        try {
-            box2d::loadPhysics(s);
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
-    CHECK(refuse(bytes.substr(0, 20)) ==
+    CHECK(physicsError(bytes.substr(0, 20)) ==
           "box2d save: truncated (ended while reading world setting)");
-    CHECK(refuse("not a save at all") == "box2d save: not a Box2D world save (bad magic)");
+    CHECK(physicsError("not a save at all") == "box2d save: not a Box2D world save (bad magic)");
     std::string nan = bytes;
     const float bad = std::nanf("");
     std::memcpy(nan.data() + 12, &bad, sizeof(bad)); // gravity x
-    CHECK(refuse(nan) == "box2d save: gravity = nan is not finite or out of [-1e+06, 1e+06]");
+    CHECK(physicsError(nan) == "box2d save: gravity = nan is not finite or out of [-1e+06, 1e+06]");
 
     // Single bytes changed at random: refused with an error, or a world that steps without
     // crashing (ASan runs this too).
@@ -510,8 +513,7 @@ TEST_CASE("a save's world must hold its level file's materials and plugins by na
                        "'boundary.box', but the world's boundary 0 is of type 'boundary.circle'"));
 }
 
-TEST_CASE("a material the game added to the world comes back named, with the file's",
-          "[save]") {
+TEST_CASE("a material the game added to the world comes back named, with the file's", "[save]") {
     // The world holds water and oil; the level file declares water only (the game added oil,
     // as the demo adds its materials): oil is listed too, so tools (fluid-run's CSV) see it.
     Level both = parseLevel(tank(false, true), "tank.json", builtins());
@@ -571,38 +573,31 @@ TEST_CASE("Box2D world saves refuse values that would turn a body NaN, and count
     std::ostringstream out;
     box2d::savePhysics(physics, out);
     const std::string bytes = out.str();
-    const auto refuse = [](const std::string& b) {
-        std::istringstream s(b);
-        try {
-            box2d::loadPhysics(s);
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
     // Magic, version, gravity, 5 settings, the body count; then the body's type, position,
     // angle, velocity, angular velocity, damping (2), gravity scale.
     const std::size_t bodyAt = 8 + 4 + 8 + 5 + 4;
     std::string scaled = bytes;
     const float huge = 1e30f;
     std::memcpy(scaled.data() + bodyAt + 33, &huge, sizeof(huge));
-    CHECK(refuse(scaled) ==
+    CHECK(physicsError(scaled) ==
           "box2d save: gravity scale = 1e+30 is not finite or out of [-1000, 1000]");
     std::string fast = bytes;
     std::memcpy(fast.data() + bodyAt + 13, &huge, sizeof(huge)); // velocity x
-    CHECK(refuse(fast) == "box2d save: body velocity = 1e+30 is not finite or out of [-1e+06, "
-                          "1e+06]");
+    CHECK(physicsError(fast) ==
+          "box2d save: body velocity = 1e+30 is not finite or out of [-1e+06, "
+          "1e+06]");
     // The disc moved far from the body's origin: Box2D's CreateFixture would assert (the
     // inertia about the centre of mass cancels to 0 in float); the body's fixture follows its
     // mass data, count and the fixture kind and radius.
     std::string far = bytes;
     const b2Vec2 centre(1e4f, 1e4f);
     std::memcpy(far.data() + bodyAt + 62 + 5, &centre, sizeof(centre));
-    CHECK(refuse(far) == "box2d save: a body's fixtures give it no positive rotational inertia "
-                         "about its centre of mass");
+    CHECK(physicsError(far) ==
+          "box2d save: a body's fixtures give it no positive rotational inertia "
+          "about its centre of mass");
     std::string many = bytes;
     const uint32_t count = 1u << 20;
     std::memcpy(many.data() + bodyAt - 4, &count, sizeof(count));
-    CHECK(refuse(many) == "box2d save: body count = 1048576 needs at least 65011712 bytes; " +
-                              std::to_string(bytes.size() - bodyAt) + " remain");
+    CHECK(physicsError(many) == "box2d save: body count = 1048576 needs at least 65011712 bytes; " +
+                                    std::to_string(bytes.size() - bodyAt) + " remain");
 }
