@@ -141,9 +141,10 @@ struct Collider {
     uint32_t sampleBegin = 0, sampleEnd = 0;
 };
 
-/// "box2d.bodies": the boundary plugin of a `Coupling`. Not in the registry (it needs the
-/// game's `b2World`). Thread rule: see `BoundaryPlugin`; `attach` and the accessors on the
-/// stepping thread between steps.
+/// "box2d.bodies": the boundary plugin of a `Coupling`. `registerCouplingPlugin` registers it
+/// so that snapshots of coupled worlds load; made by the registry it is detached (an empty
+/// boundary) until a `Coupling` attaches the game's `b2World`. Thread rule: see
+/// `BoundaryPlugin`; `attach` and the accessors on the stepping thread between steps.
 class BodyBoundary final : public BoundaryPlugin {
 public:
     /// Type string.
