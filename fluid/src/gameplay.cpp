@@ -39,8 +39,7 @@ float symmetricUnit(uint64_t& state) {
 // mean compression.) The particles' grid is built at the first question; particles placed
 // since then count as well, so that the rows of a long frame do not each fill the same room.
 // A place inside a solid or outside a container has no room: the boundary would throw the
-// particle into the liquid at the first step, and a nozzle outside a closed box pumped it to
-// 2,500% compression.
+// particle into the liquid at the first step (docs/gameplay.md, "Emitters").
 class Room {
 public:
     explicit Room(WorldState& s) : m_s(s) {}

@@ -646,8 +646,7 @@ constexpr double kLongFrameSlack = 0.1;
 } // namespace
 
 // The setting's count, or for a frame longer than the tuned one as many as keep each sub-step
-// within the setting's at 60 Hz (a 1 s frame at 4 sub-steps takes 240; before, its 0.25 s
-// sub-steps crushed a 0.3 m column by 760%).
+// within the setting's at 60 Hz (a 1 s frame at 4 sub-steps takes 240).
 uint32_t frameSubsteps(uint32_t perFrame, float frameDt) {
     checkFrameDt("fluid::frameSubsteps", frameDt);
     checkRange<uint32_t>("perFrame", perFrame, 1, 64, "count", "fluid::frameSubsteps: ");

@@ -33,17 +33,9 @@ struct YieldLaw {
     float flowStress = 0;    // where the return starts (Pa): tau_y, at most carriedStress
 };
 
-// The largest elastic strain a yielding material stores: its stress returns to the flow
-// surface from G kCarriedStrain when that is below its yield stress, and the walls' adhesion
-// pulls with at most that stress. The stress is advanced as a rate (hypoelastic), which is
-// only true to small strains; with the shear modulus capped (kShearWave), a stiff material
-// stored strains of 10-50 and gave them back as motion. Measured on a 0.15 x 0.3 m block of
-// the yoghurt preset with a yield stress of 1e5 Pa in a closed 0.6 x 0.5 m box, 4 s, default
-// settings (G 2,180 Pa): uncapped, 28 J/kg of kinetic energy against 1.5 J/kg of potential,
-// the block filling the box (the walls' adhesion, half the yield stress, pulled at about
-// 1,000 m/s^2, and stresses reached the yield stress); capped at a strain of 1, 1e-3 J/kg at
-// 4 s and the block's top stands at 0.285 m of 0.29; at a strain of 2, 0.24 m and the block's
-// foot spreads twice as far; at 0.5, its top sinks to 0.21 m.
+// The largest elastic strain a yielding material stores: the stress is advanced as a rate,
+// true to small strains only, and a stiff material under the capped G stored strains of 10-50
+// and gave them back as motion (docs/position_based.md, "No stress above a strain of 1").
 constexpr float kCarriedStrain = 1.0f;
 
 /// The law of a material with yield stress `tauY` (Pa), consistency `k` (Pa s^n), flow index `n`

@@ -50,11 +50,8 @@ double shoelace(std::span<const glm::dvec2> points) {
 }
 
 // Rounds of a 1/60 s frame with the explicit solver (more for a longer frame, fluid::
-// frameSubsteps), each stepping the world by a quarter frame in its own CFL sub-steps: the
-// position-based default's round length. With one round per 1/60 s frame a body answered the
-// fluid a whole frame late: in levels/crates.json the light hull rocked up to 23 rad/s within
-// 0.35 s, was thrown out of the water at 7 m/s at 0.85 s and splashed water over the 1 m tank
-// wall (a particle at x = 2.0039 at frame 97); with 2 rounds it still spun at 22 rad/s.
+// frameSubsteps), each a quarter frame in its own CFL sub-steps: with one round per frame a
+// body answered the fluid a frame late and was thrown out of it (docs/box2d.md, "One frame").
 constexpr uint32_t kExplicitRounds = 4;
 
 // Dry gaps of at most this many probes between wet ones count as wet: a particle may rest a
