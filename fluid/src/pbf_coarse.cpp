@@ -449,15 +449,11 @@ bool moveBodies(WorldState& s, const CoarseGrid& cg, const std::vector<double>& 
 
 } // namespace
 
-bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& settings) {
-    Particles& p = s.particles;
+// The coarse grid over the particles' bounds, a cell beyond them on every side; false when it
+// would hold more than kMaxNodes.
+bool coarseLayout(const WorldState& s, float cellSize, Layout& g) {
+    const Particles& p = s.particles;
     const uint32_t n = p.size();
-    const float share = settings.share, cellSize = settings.cellSize;
-    const float tolerance = settings.tolerance;
-    const uint32_t maxIterations = settings.maxIterations;
-    if (n == 0 || !(share > 0.0f)) {
-        return false;
-    }
     struct Bounds {
         float lx, hx, ly, hy;
     };
@@ -479,7 +475,6 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
                           std::max(a.hy, b.hy)};
         });
     const float lx = bounds.lx, hx = bounds.hx, ly = bounds.ly, hy = bounds.hy;
-    Layout g;
     g.invH = 1.0f / cellSize;
     g.x0 = lx - cellSize;
     g.y0 = ly - cellSize;
@@ -489,10 +484,15 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
     }
     g.nx = int(spanX);
     g.ny = int(spanY);
-    const size_t nodes = size_t(g.nx) * size_t(g.ny);
+    return true;
+}
+
+// The particles' volume splatted bilinearly onto the nodes (cg.fluid), with each particle's
+// cell and fractions kept for the move.
+void fillFluid(WorldState& s, const Layout& g) {
+    Particles& p = s.particles;
+    const uint32_t n = p.size();
     CoarseGrid& cg = s.coarse;
-    cg.fluid.assign(nodes, 0.0f);
-    cg.solid.assign(nodes, 0.0f);
     const float invArea = g.invH * g.invH;
     // Each particle's cell and bilinear fractions (the move below reads them too: the positions
     // do not change in between), then the fill band by band of node rows: a band adds the
@@ -531,29 +531,14 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
             }
         }
     });
-    const Samples& w = s.samples;
-    const float gx1 = g.x0 + float(g.nx - 1) * cellSize, gy1 = g.y0 + float(g.ny - 1) * cellSize;
-    for (size_t k = 0; k < w.px.size(); ++k) {
-        const float x = w.px[k], y = w.py[k];
-        if (x >= g.x0 && x <= gx1 && y >= g.y0 && y <= gy1) {
-            splat(cg.solid, g, x, y, c.sampleVolume * invArea);
-        }
-    }
-    const bool bodies = !s.bodies.empty();
-    if (bodies) {
-        markOwners(s, g, c.sampleVolume * invArea, settings.endTime);
-    }
-    if (!classifyNodes(cg, nodes, tolerance, cellSize * cellSize, bodies)) {
-        return false;
-    }
-    const int nx = g.nx, ny = g.ny;
-    buildOperator(cg, g, cellSize, bodies);
+}
+
+// Conjugate gradients for the potential psi of the active unknowns (with the bodies' terms
+// when `coupled`); bodySum gathers the bodies' flux. Returns cg.psi's data.
+float* solvePotential(CoarseGrid& cg, const std::vector<double>& mobility,
+                      std::vector<double>& bodySum, bool coupled, uint32_t maxIterations) {
     const size_t count = cg.active.size();
     const auto none = int32_t(count);
-    const bool coupled = !cg.bodyFaces.empty();
-    const std::vector<double> mobility = coupled ? bodyMobility(s) : std::vector<double>();
-    std::vector<double> bodySum(coupled ? 2 * s.bodies.size() : 0);
-
     // Conjugate gradients on A psi = rhs: (A psi)_a = diagonal_a psi_a - sum of the fluid
     // neighbours' psi (air holds 0); the diagonal's small shift keeps a closed container full
     // of fluid solvable. The dot products sum in double over kDotLanes interleaved partial sums
@@ -623,6 +608,11 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
             d[a] = r[a] + beta * d[a];
         }
     }
+    return psi;
+}
+
+// The node values the move reads, into cg.rhs (free after the solve).
+const std::vector<float>& nodeValues(CoarseGrid& cg, int nx, int ny) {
     // Node values for the gradient: fluid nodes their potential, solid nodes the mean of their
     // fluid neighbours' (no flux through solids), air 0.
     std::vector<float>& value = cg.rhs; // free now
@@ -652,6 +642,49 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
             value[k] = fluidNeighbours > 0 ? sum / float(fluidNeighbours) : 0.0f;
         }
     }
+    return value;
+}
+
+bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& settings) {
+    Particles& p = s.particles;
+    const uint32_t n = p.size();
+    const float share = settings.share, cellSize = settings.cellSize;
+    const float tolerance = settings.tolerance;
+    const uint32_t maxIterations = settings.maxIterations;
+    if (n == 0 || !(share > 0.0f)) {
+        return false;
+    }
+    Layout g;
+    if (!coarseLayout(s, cellSize, g)) {
+        return false;
+    }
+    const size_t nodes = size_t(g.nx) * size_t(g.ny);
+    CoarseGrid& cg = s.coarse;
+    cg.fluid.assign(nodes, 0.0f);
+    cg.solid.assign(nodes, 0.0f);
+    fillFluid(s, g);
+    const float invArea = g.invH * g.invH;
+    const Samples& w = s.samples;
+    const float gx1 = g.x0 + float(g.nx - 1) * cellSize, gy1 = g.y0 + float(g.ny - 1) * cellSize;
+    for (size_t k = 0; k < w.px.size(); ++k) {
+        const float x = w.px[k], y = w.py[k];
+        if (x >= g.x0 && x <= gx1 && y >= g.y0 && y <= gy1) {
+            splat(cg.solid, g, x, y, c.sampleVolume * invArea);
+        }
+    }
+    const bool bodies = !s.bodies.empty();
+    if (bodies) {
+        markOwners(s, g, c.sampleVolume * invArea, settings.endTime);
+    }
+    if (!classifyNodes(cg, nodes, tolerance, cellSize * cellSize, bodies)) {
+        return false;
+    }
+    buildOperator(cg, g, cellSize, bodies);
+    const bool coupled = !cg.bodyFaces.empty();
+    const std::vector<double> mobility = coupled ? bodyMobility(s) : std::vector<double>();
+    std::vector<double> bodySum(coupled ? 2 * s.bodies.size() : 0);
+    float* psi = solvePotential(cg, mobility, bodySum, coupled, maxIterations);
+    const std::vector<float>& value = nodeValues(cg, g.nx, g.ny);
     // Each particle's move reads only the node values: the particles split over the workers.
     parallelFor(s.tasks, n, kMoveGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
