@@ -252,6 +252,85 @@ void updateVelocity(WorldState& s, float dt) {
     });
 }
 
+// Adds the pending velocity changes (Particles::kx, ky) and clears them.
+void applyPendingKicks(WorldState& s) {
+    Particles& p = s.particles;
+    each(s, [&](uint32_t i) {
+        p.vx[i] += p.kx[i];
+        p.vy[i] += p.ky[i];
+        p.kx[i] = 0.0f;
+        p.ky[i] = 0.0f;
+    });
+}
+
+// Whether this step is a yielding one (some particle of a yielding material): then its
+// channels are sized; else the last yielding step's pending changes go in first.
+void beginYielding(WorldState& s) {
+    Particles& p = s.particles;
+    const uint32_t n = p.size();
+    if (s.yielding) {
+        // Only particles of a yielding material make this a yielding step.
+        const std::vector<MaterialConstants>& mc = s.constants;
+        s.yielding = std::any_of(p.material.begin(), p.material.end(),
+                                 [&](uint16_t m) { return mc[m].yielding; });
+    }
+    if (s.yielding) {
+        p.tx.resize(n);
+        p.ty.resize(n);
+        p.rigidity.resize(n);
+        p.wallNx.resize(n);
+        p.wallNy.resize(n);
+        p.wallAdhesion.resize(n);
+    } else if (s.kicksPending) {
+        // The last yielding step's changes go in before this Newtonian one.
+        applyPendingKicks(s);
+        s.kicksPending = false;
+    }
+}
+
+// The sweeps' constants for sub-steps of dt.
+PbfConstants pbfConstants(const WorldState& s, const SceneFacts& facts, float dt) {
+    PbfConstants c;
+    c.dt = dt;
+    c.sampleVolume = facts.sampleSpacing * facts.sampleSpacing;
+    c.artificial = 2.0f * s.def.depth * dt * dt;
+    const float tq = 1.0f - kDeltaQ;
+    c.invWdq = 1.0f / ((tq * tq) * (tq * tq) * (1.0f + 4.0f * kDeltaQ));
+    // The denominator's regulariser: 1e-6 of a full neighbourhood's w |grad C|^2, about
+    // 40 / (m h^2) for the heaviest particle with the largest support; only an isolated
+    // particle comes near it.
+    float heaviest = 0.0f;
+    for (const Material& m : s.materials) {
+        heaviest = std::max(heaviest, m.mass);
+    }
+    c.epsilon = 1e-6f * 40.0f / (heaviest * facts.maxSupport * facts.maxSupport);
+    c.floorShare = kDiagonalFloor;
+    return c;
+}
+
+// One viscosity run over `span` sub-steps of the frame frameDt, in `passes` passes: viscosity
+// (and the samples' friction), then vorticity, surface tension and the yield stress.
+void runViscosity(WorldState& s, const PbfConstants& c, uint32_t span, float frameDt,
+                  uint32_t passes, float vorticity, const SceneFacts& facts) {
+    Particles& p = s.particles;
+    PbfConstants spanned = c;
+    spanned.dt = c.dt * float(span);
+    const float weight = spanned.dt / frameDt;
+    const float passScale = 1.0f / float(passes);
+    for (uint32_t pass = 0; pass < passes; ++pass) {
+        if (facts.wantsForces) {
+            pbfSampleFriction(s, spanned, passScale, weight);
+        }
+        pbfViscosity(s, spanned, passScale, pass == 0, vorticity > 0.0f);
+        p.vx.swap(p.ax);
+        p.vy.swap(p.ay);
+    }
+    pbfSurface(s, spanned, vorticity, facts.surfaceTension);
+    if (facts.wantsForces && s.yielding) {
+        pbfSampleStress(s, spanned, weight);
+    }
+}
+
 } // namespace
 
 void stepPositionBased(WorldState& s, float frameDt) {
@@ -280,47 +359,11 @@ void stepPositionBased(WorldState& s, float frameDt) {
     // Some rigid body was moved by the coarse solve in this step: its samples are placed again
     // every sub-step from then on.
     bool corrected = false;
-    if (s.yielding) {
-        // Only particles of a yielding material make this a yielding step.
-        const std::vector<MaterialConstants>& mc = s.constants;
-        s.yielding = std::any_of(p.material.begin(), p.material.end(),
-                                 [&](uint16_t m) { return mc[m].yielding; });
-    }
-    if (s.yielding) {
-        p.tx.resize(n);
-        p.ty.resize(n);
-        p.rigidity.resize(n);
-        p.wallNx.resize(n);
-        p.wallNy.resize(n);
-        p.wallAdhesion.resize(n);
-    } else if (s.kicksPending) {
-        // The last yielding step's changes go in before this Newtonian one.
-        each(s, [&](uint32_t i) {
-            p.vx[i] += p.kx[i];
-            p.vy[i] += p.ky[i];
-            p.kx[i] = 0.0f;
-            p.ky[i] = 0.0f;
-        });
-        s.kicksPending = false;
-    }
+    beginYielding(s);
 
     const uint32_t substeps = fluid::frameSubsteps(settings.substeps, frameDt);
     const float dt = frameDt / float(substeps);
-    PbfConstants c;
-    c.dt = dt;
-    c.sampleVolume = facts.sampleSpacing * facts.sampleSpacing;
-    c.artificial = 2.0f * s.def.depth * dt * dt;
-    const float tq = 1.0f - kDeltaQ;
-    c.invWdq = 1.0f / ((tq * tq) * (tq * tq) * (1.0f + 4.0f * kDeltaQ));
-    // The denominator's regulariser: 1e-6 of a full neighbourhood's w |grad C|^2, about
-    // 40 / (m h^2) for the heaviest particle with the largest support; only an isolated
-    // particle comes near it.
-    float heaviest = 0.0f;
-    for (const Material& m : s.materials) {
-        heaviest = std::max(heaviest, m.mass);
-    }
-    c.epsilon = 1e-6f * 40.0f / (heaviest * facts.maxSupport * facts.maxSupport);
-    c.floorShare = kDiagonalFloor;
+    const PbfConstants c = pbfConstants(s, facts, dt);
     // Viscosity, vorticity and surface tension run every `interval` sub-steps, each time over
     // the time since the last run (the frame's last sub-step closes a shorter run).
     const uint32_t interval = std::min(settings.viscosityInterval, substeps);
@@ -346,13 +389,7 @@ void stepPositionBased(WorldState& s, float frameDt) {
         timed(prof.external, [&] { externalForces(s, dt, s.time + double(inStep), p.ax, p.ay); });
         timed(prof.integrate, [&] {
             if (s.yielding) {
-                // The last surface pass's velocity change (see Particles::kx).
-                each(s, [&](uint32_t i) {
-                    p.vx[i] += p.kx[i];
-                    p.vy[i] += p.ky[i];
-                    p.kx[i] = 0.0f;
-                    p.ky[i] = 0.0f;
-                });
+                applyPendingKicks(s); // the last surface pass's velocity change
             }
             const IntegrateStats st = integrate(s, p.ax, p.ay, dt, speedCap, p.cx, p.cy);
             prof.nonFiniteRepaired += st.repaired;
@@ -394,23 +431,7 @@ void stepPositionBased(WorldState& s, float frameDt) {
             }
             // This run covers `span` sub-steps: the interval, or what the frame has left.
             const uint32_t span = sub + 1 - (sub / interval) * interval;
-            PbfConstants spanned = c;
-            spanned.dt = dt * float(span);
-            const float weight = spanned.dt / frameDt;
-            const uint32_t viscosityPasses = spanPasses(span);
-            const float passScale = 1.0f / float(viscosityPasses);
-            for (uint32_t pass = 0; pass < viscosityPasses; ++pass) {
-                if (facts.wantsForces) {
-                    pbfSampleFriction(s, spanned, passScale, weight);
-                }
-                pbfViscosity(s, spanned, passScale, pass == 0, settings.vorticity > 0.0f);
-                p.vx.swap(p.ax);
-                p.vy.swap(p.ay);
-            }
-            pbfSurface(s, spanned, settings.vorticity, facts.surfaceTension);
-            if (facts.wantsForces && s.yielding) {
-                pbfSampleStress(s, spanned, weight);
-            }
+            runViscosity(s, c, span, frameDt, spanPasses(span), settings.vorticity, facts);
         });
         timed(prof.boundaries, [&] {
             projectBoundaries(s, dt, endInStep, endInStep, facts.sampleSpacing, p.ox, p.oy);
