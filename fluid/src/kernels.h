@@ -10,11 +10,11 @@
 // gradient vanishes at r = 0: what keeps two particles apart is pressure, not the kernel.
 #pragma once
 
+#include "kernel_constants.h"
+
 #include <cmath>
 
 namespace fluid::kernel {
-
-inline constexpr float kPi = 3.14159265358979323846f;
 
 /// Wendland C2, support radius h: W = 7/(pi h^2) (1-q)^4 (1+4q), q = r/h < 1 [Wendland 1995].
 inline float wendland(float r, float h) {
@@ -50,13 +50,10 @@ inline float viscosityLaplacian(float r, float h) {
     return 40.0f / (kPi * h2 * h2 * h) * (h - r);
 }
 
-/// Normalisation of the cohesion spline below so that it integrates to 1 over the disc:
-/// the integral of the unnormalised spline is 2 pi h^2 * 209/71680 (exact), so K = 35840/(209 pi).
-inline constexpr float kCohesionNorm = 35840.0f / (209.0f * kPi);
-
 /// Cohesion spline of [Akinci 2013, eq. 2] in 2D, normalised so that its integral over the disc
 /// of radius h is 1 (unit: 1/m^2). Akinci's 32/(pi h^9) is the 3D normalisation; in 2D it would
-/// make gamma depend on h and on the dimension, so we fix the integral instead.
+/// make gamma depend on h and on the dimension, so we fix the integral instead (kC, in
+/// kernel_constants.h).
 inline float cohesion(float r, float h) {
     if (r >= h || r <= 0.0f) {
         return 0.0f;
@@ -65,7 +62,7 @@ inline float cohesion(float r, float h) {
     const float a = (1.0f - u) * u;
     const float a3 = a * a * a;
     const float s = (2.0f * u > 1.0f) ? a3 : 2.0f * a3 - 1.0f / 64.0f;
-    return kCohesionNorm / (h * h) * s;
+    return kC / (h * h) * s;
 }
 
 } // namespace fluid::kernel

@@ -1,8 +1,8 @@
-// fluid — the branch-free lane loop the neighbour passes share, and the kernels' constants in
-// the form the passes use (see kernels.h for the reference formulas and their derivations).
+// fluid — the branch-free lane loop the neighbour passes share, with the kernels' constants
+// (kernel_constants.h; kernels.h has the reference formulas and their derivations).
 #pragma once
 
-#include "kernels.h"
+#include "kernel_constants.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -10,11 +10,11 @@
 namespace fluid::detail {
 
 inline constexpr int kLanes = 8;
-inline constexpr uint32_t kPairGrain = 256;        // smallest particle range per worker task
-inline constexpr float kW = 7.0f / kernel::kPi;    // Wendland C2: W = kW / h^2 (1-q)^4 (1+4q)
-inline constexpr float kG = -140.0f / kernel::kPi; // dW/dr / r = kG / h^4 (1-q)^3
-inline constexpr float kL = 40.0f / kernel::kPi;   // viscosity Laplacian = kL / h^4 (1-q)
-inline constexpr float kC = kernel::kCohesionNorm; // cohesion = kC / h^2 spline(q)
+inline constexpr uint32_t kPairGrain = 256; // smallest particle range per worker task
+using kernel::kC;
+using kernel::kG;
+using kernel::kL;
+using kernel::kW;
 
 /// Sum of the lane accumulators as a fixed tree (lanes l and l + 4, then l and l + 2, then the
 /// last two): the same result every run, without a chain of dependent adds.
