@@ -1,14 +1,14 @@
 // fluid — the position-based solver's neighbour passes.
 //
 // The particle passes run in simd/pbf_pairs.inc, compiled per instruction set; the sample passes
-// (reactions on reporting boundary samples) here use the scheme of sph_loops.cpp: each sample
-// gathers over the grid's contiguous ranges in branch-free blocks of kLanes, lanes summed in a
-// fixed order. Every pass writes only its own slots, so results do not depend on the number of
-// workers.
+// (reactions on reporting boundary samples) here run in sample_pass.h: each sample gathers over
+// the grid's contiguous ranges in branch-free blocks of kLanes, lanes summed in a fixed order.
+// Every pass writes only its own slots, so results do not depend on the number of workers.
 #include "pbf_loops.h"
 
 #include "lanes.h"
 #include "parallel.h"
+#include "sample_pass.h"
 
 #include <algorithm>
 #include <cmath>
@@ -201,39 +201,37 @@ void pbfSamplePush(WorldState& s, const PbfConstants& c, std::span<const float> 
         w.pushPrevY.assign(count, 0.0f);
     }
     const float invDt2 = 1.0f / (c.dt * c.dt);
-    parallelFor(s.tasks, count, kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
-        for (uint32_t r = b; r < e; ++r) {
-            const uint32_t k = w.reporting[r];
+    samplePass<2>(
+        s, count, w.reporting.data(),
+        [&](uint32_t k) {
             const float xw = w.px[k], yw = w.py[k];
-            float accX[kLanes] = {}, accY[kLanes] = {};
-            s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
-                lanes(jb, je, [&](size_t j, int l) {
-                    const float dx = px[j] - xw, dy = py[j] - yw;
-                    const float invH = 1.0f / hs[j];
-                    const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
-                    const float invH4 = (invH * invH) * (invH * invH);
-                    // pbfDisplace's wall term moves j by w_j kG dl_j V_w L_j h^-4 t^3 (x_j - x_w).
-                    const float f = -dl[j] * il[j] * kG * invH4 * (t * t * t);
-                    accX[l] += f * dx;
-                    accY[l] += f * dy;
-                });
-            });
-            const float fx = c.sampleVolume * invDt2 * laneSum(accX);
-            const float fy = c.sampleVolume * invDt2 * laneSum(accY);
+            return [&, xw, yw](size_t j, SampleLane<2> a) {
+                const float dx = px[j] - xw, dy = py[j] - yw;
+                const float invH = 1.0f / hs[j];
+                const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
+                const float invH4 = (invH * invH) * (invH * invH);
+                // pbfDisplace's wall term moves j by w_j kG dl_j V_w L_j h^-4 t^3 (x_j - x_w).
+                const float f = -dl[j] * il[j] * kG * invH4 * (t * t * t);
+                a[0] += f * dx;
+                a[1] += f * dy;
+            };
+        },
+        [&](uint32_t r, uint32_t, const float(&sum)[2]) {
+            const float fx = c.sampleVolume * invDt2 * sum[0];
+            const float fy = c.sampleVolume * invDt2 * sum[1];
             if (first) {
                 w.pushX[r] = fx;
                 w.pushY[r] = fy;
-            } else {
-                // As the positions: x_k+1 = omega (x_k + d_k - x_k-1) + x_k-1.
-                const float x = omega * (w.pushX[r] + fx - w.pushPrevX[r]) + w.pushPrevX[r];
-                const float y = omega * (w.pushY[r] + fy - w.pushPrevY[r]) + w.pushPrevY[r];
-                w.pushPrevX[r] = w.pushX[r];
-                w.pushPrevY[r] = w.pushY[r];
-                w.pushX[r] = x;
-                w.pushY[r] = y;
+                return;
             }
-        }
-    });
+            // As the positions: x_k+1 = omega (x_k + d_k - x_k-1) + x_k-1.
+            const float x = omega * (w.pushX[r] + fx - w.pushPrevX[r]) + w.pushPrevX[r];
+            const float y = omega * (w.pushY[r] + fy - w.pushPrevY[r]) + w.pushPrevY[r];
+            w.pushPrevX[r] = w.pushX[r];
+            w.pushPrevY[r] = w.pushY[r];
+            w.pushX[r] = x;
+            w.pushY[r] = y;
+        });
 }
 
 void pbfDeliverPush(WorldState& s, float weight) {
@@ -257,32 +255,31 @@ void pbfSampleFriction(WorldState& s, const PbfConstants& c, float scale, float 
     const float* __restrict vol = p.volume.data();
     const float depth = s.def.depth;
     const auto count = static_cast<uint32_t>(w.reporting.size());
-    parallelFor(s.tasks, count, kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
-        for (uint32_t r = b; r < e; ++r) {
-            const uint32_t k = w.reporting[r];
+    // Channels: the force's x and y, and its derivative in the sample's velocity (drag).
+    samplePass<3>(
+        s, count, w.reporting.data(),
+        [&](uint32_t k) {
             const float xw = w.px[k], yw = w.py[k];
             const float vxw = w.vx[k], vyw = w.vy[k], friction = w.friction[k];
-            float accX[kLanes] = {}, accY[kLanes] = {}, accD[kLanes] = {};
-            s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
-                lanes(jb, je, [&](size_t j, int l) {
-                    const float dx = px[j] - xw, dy = py[j] - yw;
-                    const float invH = 1.0f / hs[j];
-                    const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
-                    const float invH4 = (invH * invH) * (invH * invH);
-                    // pbfViscosity's wall friction on j: m_j mu_j/rho0_j f V_w L (v_w - v_j),
-                    // m_j/rho0_j = V_j depth.
-                    const float fv = depth * vol[j] * friction * mu[j] * kL * invH4 * t;
-                    accX[l] -= fv * (vxw - vx[j]);
-                    accY[l] -= fv * (vyw - vy[j]);
-                    accD[l] += fv;
-                });
-            });
+            return [&, xw, yw, vxw, vyw, friction](size_t j, SampleLane<3> a) {
+                const float dx = px[j] - xw, dy = py[j] - yw;
+                const float invH = 1.0f / hs[j];
+                const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
+                const float invH4 = (invH * invH) * (invH * invH);
+                // pbfViscosity's wall friction on j: m_j mu_j/rho0_j f V_w L (v_w - v_j),
+                // m_j/rho0_j = V_j depth.
+                const float fv = depth * vol[j] * friction * mu[j] * kL * invH4 * t;
+                a[0] -= fv * (vxw - vx[j]);
+                a[1] -= fv * (vyw - vy[j]);
+                a[2] += fv;
+            };
+        },
+        [&](uint32_t, uint32_t k, const float(&sum)[3]) {
             const float share = weight * scale * c.sampleVolume;
-            w.fx[w.source[k]] += share * laneSum(accX);
-            w.fy[w.source[k]] += share * laneSum(accY);
-            w.drag[w.source[k]] += share * laneSum(accD);
-        }
-    });
+            w.fx[w.source[k]] += share * sum[0];
+            w.fy[w.source[k]] += share * sum[1];
+            w.drag[w.source[k]] += share * sum[2];
+        });
 }
 
 void pbfSampleStress(WorldState& s, const PbfConstants& c, float weight) {
@@ -299,38 +296,36 @@ void pbfSampleStress(WorldState& s, const PbfConstants& c, float weight) {
     const float* __restrict rho0 = p.restDensity.data();
     const float* __restrict adhesion = p.wallAdhesion.data();
     const auto count = static_cast<uint32_t>(w.reporting.size());
-    parallelFor(s.tasks, count, kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
-        for (uint32_t r = b; r < e; ++r) {
-            const uint32_t k = w.reporting[r];
+    samplePass<2>(
+        s, count, w.reporting.data(),
+        [&](uint32_t k) {
             const float xw = w.px[k], yw = w.py[k];
-            const float friction = std::min(w.friction[k], 1.0f);
-            float accX[kLanes] = {}, accY[kLanes] = {};
-            s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
-                lanes(jb, je, [&](size_t j, int l) {
-                    const float dx = px[j] - xw, dy = py[j] - yw;
-                    const float invH = 1.0f / hs[j];
-                    const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
-                    const float invH4 = (invH * invH) * (invH * invH);
-                    // pbfSurface's wall terms on j from this sample, the sample takes the
-                    // opposite: the traction m_j kG 2 rho0_j V_w f h^-4 t^3 (s_j/rho0_j^2) .
-                    // (x_j - x_w) along the wall, and this sample's share of j's adhesion
-                    // (its part of the walls' gradient sum along the normal).
-                    float fx = tx[j] * dx + ty[j] * dy, fy = ty[j] * dx - tx[j] * dy;
-                    const float normal = fx * nx[j] + fy * ny[j];
-                    fx -= normal * nx[j];
-                    fy -= normal * ny[j];
-                    const float t3 = t * t * t;
-                    const float f = mass[j] * 2.0f * rho0[j] * invH4 * t3;
-                    const float share = mass[j] * adhesion[j] * t3 * (dx * nx[j] + dy * ny[j]);
-                    accX[l] -= f * fx + share * nx[j] / (c.sampleVolume * kG);
-                    accY[l] -= f * fy + share * ny[j] / (c.sampleVolume * kG);
-                });
-            });
-            const float share = weight * c.sampleVolume * kG * friction;
-            w.fx[w.source[k]] += share * laneSum(accX);
-            w.fy[w.source[k]] += share * laneSum(accY);
-        }
-    });
+            return [&, xw, yw](size_t j, SampleLane<2> a) {
+                const float dx = px[j] - xw, dy = py[j] - yw;
+                const float invH = 1.0f / hs[j];
+                const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
+                const float invH4 = (invH * invH) * (invH * invH);
+                // pbfSurface's wall terms on j from this sample, the sample takes the
+                // opposite: the traction m_j kG 2 rho0_j V_w f h^-4 t^3 (s_j/rho0_j^2) .
+                // (x_j - x_w) along the wall, and this sample's share of j's adhesion
+                // (its part of the walls' gradient sum along the normal).
+                float fx = tx[j] * dx + ty[j] * dy, fy = ty[j] * dx - tx[j] * dy;
+                const float normal = fx * nx[j] + fy * ny[j];
+                fx -= normal * nx[j];
+                fy -= normal * ny[j];
+                const float t3 = t * t * t;
+                const float f = mass[j] * 2.0f * rho0[j] * invH4 * t3;
+                const float share = mass[j] * adhesion[j] * t3 * (dx * nx[j] + dy * ny[j]);
+                a[0] -= f * fx + share * nx[j] / (c.sampleVolume * kG);
+                a[1] -= f * fy + share * ny[j] / (c.sampleVolume * kG);
+            };
+        },
+        [&](uint32_t, uint32_t k, const float(&sum)[2]) {
+            // The friction (at most 1) the wall terms were weighted with, per sample.
+            const float share = weight * c.sampleVolume * kG * std::min(w.friction[k], 1.0f);
+            w.fx[w.source[k]] += share * sum[0];
+            w.fy[w.source[k]] += share * sum[1];
+        });
 }
 
 } // namespace fluid::detail

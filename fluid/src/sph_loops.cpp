@@ -15,6 +15,7 @@
 
 #include "lanes.h"
 #include "parallel.h"
+#include "sample_pass.h"
 
 #include <algorithm>
 #include <cmath>
@@ -221,26 +222,25 @@ void computeSamplePressure(WorldState& s) {
     const float* __restrict pressure = p.pressure.data();
     const float* __restrict ex = p.ex.data();
     const float* __restrict ey = p.ey.data();
-    parallelFor(s.tasks, w.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
-        for (uint32_t k = b; k < e; ++k) {
+    // Channels: the kernel-weighted pressures with their hydrostatic terms, the kernel weights.
+    samplePass<2>(
+        s, w.size(), nullptr,
+        [&](uint32_t k) {
             const float xw = w.px[k], yw = w.py[k];
-            float accP[kLanes] = {}, accW[kLanes] = {};
-            s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
-                lanes(jb, je, [&](size_t j, int l) {
-                    const float dx = xw - px[j], dy = yw - py[j];
-                    const float invH = 1.0f / hs[j];
-                    const float q = std::sqrt(dx * dx + dy * dy) * invH;
-                    const float t = std::max(1.0f - q, 0.0f);
-                    const float t2 = t * t;
-                    const float wk = (invH * invH) * (t2 * t2) * (1.0f + 4.0f * q);
-                    accP[l] += (pressure[j] + rho[j] * (ex[j] * dx + ey[j] * dy)) * wk;
-                    accW[l] += wk;
-                });
-            });
-            const float sumW = laneSum(accW);
-            w.pressure[k] = sumW > 0.0f ? std::max(0.0f, laneSum(accP) / sumW) : 0.0f;
-        }
-    });
+            return [&, xw, yw](size_t j, SampleLane<2> a) {
+                const float dx = xw - px[j], dy = yw - py[j];
+                const float invH = 1.0f / hs[j];
+                const float q = std::sqrt(dx * dx + dy * dy) * invH;
+                const float t = std::max(1.0f - q, 0.0f);
+                const float t2 = t * t;
+                const float wk = (invH * invH) * (t2 * t2) * (1.0f + 4.0f * q);
+                a[0] += (pressure[j] + rho[j] * (ex[j] * dx + ey[j] * dy)) * wk;
+                a[1] += wk;
+            };
+        },
+        [&](uint32_t, uint32_t k, const float(&sum)[2]) {
+            w.pressure[k] = sum[1] > 0.0f ? std::max(0.0f, sum[0] / sum[1]) : 0.0f;
+        });
 }
 
 void computeSampleForces(WorldState& s, float sampleVolume, float weight) {
@@ -256,30 +256,30 @@ void computeSampleForces(WorldState& s, float sampleVolume, float weight) {
     const float* __restrict mu = p.viscosity.data();
     const float* __restrict invRho = p.invRho.data();
     const float* __restrict pressure = p.pressure.data();
-    parallelFor(s.tasks, w.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
-        for (uint32_t k = b; k < e; ++k) {
+    // Channels: the force's x and y, and its derivative in the sample's velocity (drag).
+    samplePass<3>(
+        s, w.size(), nullptr,
+        [&](uint32_t k) {
             const float xw = w.px[k], yw = w.py[k], pw = w.pressure[k];
             const float vxw = w.vx[k], vyw = w.vy[k], friction = w.friction[k];
-            float accX[kLanes] = {}, accY[kLanes] = {}, accD[kLanes] = {};
-            s.grid.forEachRange(xw, yw, [&](uint32_t jb, uint32_t je) {
-                lanes(jb, je, [&](size_t j, int l) {
-                    const float dx = px[j] - xw, dy = py[j] - yw;
-                    const float invH = 1.0f / hs[j];
-                    const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
-                    const float invH4 = (invH * invH) * (invH * invH);
-                    const float fp = mass[j] * rho0[j] * (pressure[j] + pw) * invRho[j] *
-                                     invRho[j] * kG * invH4 * (t * t * t);
-                    const float fv = mass[j] * friction * mu[j] * invRho[j] * kL * invH4 * t;
-                    accX[l] += fp * dx - fv * (vxw - vx[j]);
-                    accY[l] += fp * dy - fv * (vyw - vy[j]);
-                    accD[l] += fv;
-                });
-            });
-            w.fx[w.source[k]] += weight * sampleVolume * laneSum(accX);
-            w.fy[w.source[k]] += weight * sampleVolume * laneSum(accY);
-            w.drag[w.source[k]] += weight * sampleVolume * laneSum(accD);
-        }
-    });
+            return [&, xw, yw, pw, vxw, vyw, friction](size_t j, SampleLane<3> a) {
+                const float dx = px[j] - xw, dy = py[j] - yw;
+                const float invH = 1.0f / hs[j];
+                const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
+                const float invH4 = (invH * invH) * (invH * invH);
+                const float fp = mass[j] * rho0[j] * (pressure[j] + pw) * invRho[j] * invRho[j] *
+                                 kG * invH4 * (t * t * t);
+                const float fv = mass[j] * friction * mu[j] * invRho[j] * kL * invH4 * t;
+                a[0] += fp * dx - fv * (vxw - vx[j]);
+                a[1] += fp * dy - fv * (vyw - vy[j]);
+                a[2] += fv;
+            };
+        },
+        [&](uint32_t, uint32_t k, const float(&sum)[3]) {
+            w.fx[w.source[k]] += weight * sampleVolume * sum[0];
+            w.fy[w.source[k]] += weight * sampleVolume * sum[1];
+            w.drag[w.source[k]] += weight * sampleVolume * sum[2];
+        });
 }
 
 void computeForces(WorldState& s, float sampleVolume, bool surfaceTension) {
