@@ -161,27 +161,48 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first,
 }
 
 void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surfaceTension) {
-    if (!(vorticity > 0.0f) && !surfaceTension && !s.yielding) {
+    Particles& p = s.particles;
+    const bool forces = vorticity > 0.0f || surfaceTension;
+    if (s.yielding && !forces) {
+        // The stress pass starts from no acceleration: exactly +0, as a sum of no terms.
+        p.surfaceAx.assign(p.size(), 0.0f);
+        p.surfaceAy.assign(p.size(), 0.0f);
         return;
     }
-    Particles& p = s.particles;
-    PbfView v = makeView(s, c);
+    if (!forces) {
+        return;
+    }
+    const PbfView v = makeView(s, c);
     PbfOut o;
     o.vx = p.vx.data();
     o.vy = p.vy.data();
-    std::vector<YieldLaw> laws;
     if (s.yielding) {
-        // The velocity change waits in kx, ky for the next prediction (see Particles::kx).
-        laws = yieldLaws(s, c.dt);
-        v.yield = laws.data();
-        o.vx = p.kx.data();
-        o.vy = p.ky.data();
-        o.wallNx = p.wallNx.data();
-        o.wallNy = p.wallNy.data();
-        o.wallAdhesion = p.wallAdhesion.data();
+        // The acceleration waits for the stress pass's terms (pbfStress).
+        p.surfaceAx.resize(p.size());
+        p.surfaceAy.resize(p.size());
+        o.ax = p.surfaceAx.data();
+        o.ay = p.surfaceAy.data();
     }
     const PbfPairs& k = pbfPairs();
     pairs(s, [&](uint32_t b, uint32_t e) { k.surface(v, o, vorticity, surfaceTension, b, e); });
+}
+
+void pbfStress(WorldState& s, const PbfConstants& c) {
+    Particles& p = s.particles;
+    PbfView v = makeView(s, c);
+    const std::vector<YieldLaw> laws = yieldLaws(s, c.dt);
+    v.yield = laws.data();
+    v.surfaceAx = p.surfaceAx.data();
+    v.surfaceAy = p.surfaceAy.data();
+    PbfOut o;
+    // The velocity change waits in kx, ky for the next prediction (see Particles::kx).
+    o.vx = p.kx.data();
+    o.vy = p.ky.data();
+    o.wallNx = p.wallNx.data();
+    o.wallNy = p.wallNy.data();
+    o.wallAdhesion = p.wallAdhesion.data();
+    const PbfPairs& k = pbfPairs();
+    pairs(s, [&](uint32_t b, uint32_t e) { k.stress(v, o, b, e); });
 }
 
 void pbfSamplePush(WorldState& s, const PbfConstants& c, std::span<const float> change, float omega,
@@ -305,7 +326,7 @@ void pbfSampleStress(WorldState& s, const PbfConstants& c, float weight) {
                 const float invH = 1.0f / hs[j];
                 const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
                 const float invH4 = (invH * invH) * (invH * invH);
-                // pbfSurface's wall terms on j from this sample, the sample takes the
+                // pbfStress's wall terms on j from this sample, the sample takes the
                 // opposite: the traction m_j kG 2 rho0_j V_w f h^-4 t^3 (s_j/rho0_j^2) .
                 // (x_j - x_w) along the wall, and this sample's share of j's adhesion
                 // (its part of the walls' gradient sum along the normal).

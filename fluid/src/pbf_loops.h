@@ -44,17 +44,23 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
 /// over rho0^2 into tx, ty).
 void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first, bool curl);
 
-/// Vorticity confinement (strength `vorticity`), when `surfaceTension` cohesion and curvature
-/// [Akinci 2013], and in a yielding world the divergence of the deviatoric stress, added to vx,
-/// vy over dt. Needs vorticity, normals and density, and the stress pbfViscosity's first pass
-/// advanced.
+/// Vorticity confinement (strength `vorticity`) and, when `surfaceTension`, cohesion and
+/// curvature [Akinci 2013], added to vx, vy over dt; in a yielding world the acceleration goes
+/// to surfaceAx, surfaceAy instead (0 without either force), for `pbfStress`. Needs vorticity,
+/// normals and density from pbfViscosity's first pass.
 void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surfaceTension);
+
+/// Yielding worlds, after `pbfSurface`: the divergence of the deviatoric stress pbfViscosity's
+/// first pass advanced, the rigid motion of unyielded pairs, and the walls' traction and
+/// adhesion (into wallNx, wallNy, wallAdhesion), added to the surface pass's acceleration; the
+/// velocity change over dt waits in kx, ky for the next prediction (Particles::kx).
+void pbfStress(WorldState& s, const PbfConstants& c);
 
 /// Share of the support a shear wave may cross per viscosity run: the solver's cap on a
 /// yielding material's shear modulus, G <= rho0 (kShearWave h / dt)^2.
 inline constexpr float kShearWave = 0.15f;
 
-/// The reaction of each reporting sample to pbfSurface's wall stress (N), at the positions and
+/// The reaction of each reporting sample to pbfStress's wall stress (N), at the positions and
 /// stresses that pass reads, times `weight`, added to the sample's force.
 void pbfSampleStress(WorldState& s, const PbfConstants& c, float weight);
 

@@ -326,6 +326,9 @@ void runViscosity(WorldState& s, const PbfConstants& c, uint32_t span, float fra
         p.vy.swap(p.ay);
     }
     pbfSurface(s, spanned, vorticity, facts.surfaceTension);
+    if (s.yielding) {
+        pbfStress(s, spanned);
+    }
     if (facts.wantsForces && s.yielding) {
         pbfSampleStress(s, spanned, weight);
     }

@@ -63,6 +63,8 @@ struct Particles {
     // over the length of the walls' kernel gradient sum; <= 0), which the walls' reaction
     // (pbfSampleStress) reads.
     std::vector<float> wallNx, wallNy, wallAdhesion;
+    /// Position-based, yielding worlds: the surface pass's acceleration, for the stress pass.
+    std::vector<float> surfaceAx, surfaceAy;
 
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }
     /// The float channels that persist between steps (besides material, slot and expiry).

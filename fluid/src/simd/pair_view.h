@@ -127,6 +127,8 @@ struct PbfView {
     const float *sxx = nullptr, *sxy = nullptr, *tx = nullptr, *ty = nullptr;
     const float* rigidity = nullptr; // 1 - |s| / tau_y in [0, 1]; 0 for Newtonian particles
     const YieldLaw* yield = nullptr;
+    // ... and the surface pass's acceleration (m/s^2), which the stress pass adds to.
+    const float *surfaceAx = nullptr, *surfaceAy = nullptr;
     bool yielding = false; // some material yields: the stress passes run
     GridView grid;
     // Boundary samples (sorted by their own grid): positions, velocities, friction.
@@ -162,6 +164,7 @@ struct PbfPairs {
                       uint32_t e);
     void (*surface)(const PbfView&, const PbfOut&, float vorticity, bool surfaceTension, uint32_t b,
                     uint32_t e);
+    void (*stress)(const PbfView&, const PbfOut&, uint32_t b, uint32_t e);
 };
 
 /// The passes of each instruction set (pbf_pairs_*.cpp; "sse2" is plain C++ off x86).
