@@ -123,6 +123,9 @@ void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> mu
 }
 
 std::vector<YieldLaw> yieldLaws(const WorldState& s, float dt) {
+    if (!s.yielding) {
+        return {};
+    }
     std::vector<YieldLaw> laws(s.constants.size());
     for (size_t m = 0; m < laws.size(); ++m) {
         const MaterialConstants& mc = s.constants[m];
@@ -136,7 +139,8 @@ std::vector<YieldLaw> yieldLaws(const WorldState& s, float dt) {
     return laws;
 }
 
-void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first, bool curl) {
+void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first, bool curl,
+                  std::span<const YieldLaw> laws) {
     Particles& p = s.particles;
     PbfView v = makeView(s, c);
     PbfOut o;
@@ -146,9 +150,7 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first,
     o.nx = p.prevX.data();
     o.ny = p.prevY.data();
     o.density = p.density.data();
-    std::vector<YieldLaw> laws;
     if (first && s.yielding) {
-        laws = yieldLaws(s, c.dt);
         v.yield = laws.data();
         o.sxx = p.sxx.data();
         o.sxy = p.sxy.data();
@@ -187,10 +189,9 @@ void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surf
     pairs(s, [&](uint32_t b, uint32_t e) { k.surface(v, o, vorticity, surfaceTension, b, e); });
 }
 
-void pbfStress(WorldState& s, const PbfConstants& c) {
+void pbfStress(WorldState& s, const PbfConstants& c, std::span<const YieldLaw> laws) {
     Particles& p = s.particles;
     PbfView v = makeView(s, c);
-    const std::vector<YieldLaw> laws = yieldLaws(s, c.dt);
     v.yield = laws.data();
     v.surfaceAx = p.surfaceAx.data();
     v.surfaceAy = p.surfaceAy.data();

@@ -2,8 +2,10 @@
 #pragma once
 
 #include "world_state.h"
+#include "yield_law.h"
 
 #include <span>
+#include <vector>
 
 namespace fluid::detail {
 
@@ -35,14 +37,24 @@ void pbfConstraint(WorldState& s, const PbfConstants& c, const float* relaxation
 void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> multiplier,
                  bool sCorr);
 
+/// Share of the support a shear wave may cross per viscosity run: the solver's cap on a
+/// yielding material's shear modulus, G <= rho0 (kShearWave h / dt)^2.
+inline constexpr float kShearWave = 0.15f;
+
+/// Each material's Herschel-Bulkley law (yield_law.h) over a viscosity run of `dt`, its shear
+/// modulus capped by kShearWave; empty in a world without a yielding material. Built once per
+/// run, for `pbfViscosity`'s first pass and `pbfStress`.
+std::vector<YieldLaw> yieldLaws(const WorldState& s, float dt);
+
 /// Viscosity, seed eq. 2.6 with rest volumes, as an explicit velocity update over dt * `scale`
 /// into ax, ay (wall friction from the boundary samples). When `first`, also each particle's
 /// Akinci surface normals (from invRho of the last constraint sweep) and density at the current
 /// positions (over the lattice sum, as the constraint reads it), with `curl` its vorticity
 /// (for vorticity confinement; without it the vorticity is left unwritten), and in a yielding
-/// world the stress of its yielding particles advanced over dt (yield_law.h; into sxx, sxy and
-/// over rho0^2 into tx, ty).
-void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first, bool curl);
+/// world the stress of its yielding particles advanced over dt under `laws` (yieldLaws; into
+/// sxx, sxy and over rho0^2 into tx, ty).
+void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first, bool curl,
+                  std::span<const YieldLaw> laws);
 
 /// Vorticity confinement (strength `vorticity`) and, when `surfaceTension`, cohesion and
 /// curvature [Akinci 2013], added to vx, vy over dt; in a yielding world the acceleration goes
@@ -53,12 +65,9 @@ void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surf
 /// Yielding worlds, after `pbfSurface`: the divergence of the deviatoric stress pbfViscosity's
 /// first pass advanced, the rigid motion of unyielded pairs, and the walls' traction and
 /// adhesion (into wallNx, wallNy, wallAdhesion), added to the surface pass's acceleration; the
-/// velocity change over dt waits in kx, ky for the next prediction (Particles::kx).
-void pbfStress(WorldState& s, const PbfConstants& c);
-
-/// Share of the support a shear wave may cross per viscosity run: the solver's cap on a
-/// yielding material's shear modulus, G <= rho0 (kShearWave h / dt)^2.
-inline constexpr float kShearWave = 0.15f;
+/// velocity change over dt waits in kx, ky for the next prediction (Particles::kx). `laws` as
+/// for pbfViscosity.
+void pbfStress(WorldState& s, const PbfConstants& c, std::span<const YieldLaw> laws);
 
 /// The reaction of each reporting sample to pbfStress's wall stress (N), at the positions and
 /// stresses that pass reads, times `weight`, added to the sample's force.

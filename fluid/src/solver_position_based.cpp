@@ -317,17 +317,18 @@ void runViscosity(WorldState& s, const PbfConstants& c, uint32_t span, float fra
     spanned.dt = c.dt * float(span);
     const float weight = spanned.dt / frameDt;
     const float passScale = 1.0f / float(passes);
+    const std::vector<YieldLaw> laws = yieldLaws(s, spanned.dt);
     for (uint32_t pass = 0; pass < passes; ++pass) {
         if (facts.wantsForces) {
             pbfSampleFriction(s, spanned, passScale, weight);
         }
-        pbfViscosity(s, spanned, passScale, pass == 0, vorticity > 0.0f);
+        pbfViscosity(s, spanned, passScale, pass == 0, vorticity > 0.0f, laws);
         p.vx.swap(p.ax);
         p.vy.swap(p.ay);
     }
     pbfSurface(s, spanned, vorticity, facts.surfaceTension);
     if (s.yielding) {
-        pbfStress(s, spanned);
+        pbfStress(s, spanned, laws);
     }
     if (facts.wantsForces && s.yielding) {
         pbfSampleStress(s, spanned, weight);
