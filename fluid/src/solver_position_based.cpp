@@ -6,7 +6,7 @@
 //   per sub-step:
 //     external    force plugins' accelerations at the current positions
 //     predict     v += dt a_ext, x* = x + dt v (step_common's integrate: non-finite
-//                 accelerations zeroed, at most kMaxMove supports per sub-step); boundary
+//                 accelerations zeroed, at most kMaxPredictedMove supports per sub-step); boundary
 //                 plugins project x* out of solids, so the constraint starts from admissible
 //                 positions
 //     sort        counting sort by grid cell of x*; the grid serves every pass below
@@ -28,6 +28,7 @@
 #include "frame.h"
 #include "parallel.h"
 #include "pbf_loops.h"
+#include "pbf_tuning.h"
 #include "sph_loops.h"
 #include "step_common.h"
 
@@ -37,75 +38,7 @@
 namespace fluid::detail {
 namespace {
 
-// The artificial pressure s_corr stands for, as a share of the cohesion's pressure scale
-// rho0 a_gamma h (a_gamma = gamma m / A [Akinci 2013]; the explicit solver's background
-// pressure uses the same bound), and the distance where its kernel ratio is 1 (Macklin &
-// Mueller use 0.1-0.3 h).
-constexpr float kArtificial = 0.1f;
-constexpr float kDeltaQ = 0.2f;
-// Share of a Jacobi update taken per sweep. A sweep moves every particle at once, so the full
-// update overshoots where many neighbours push together (a resting 30 x 30 block in zero
-// gravity compressed itself further with 1 and relaxed with 0.5).
-constexpr float kRelax = 0.5f;
-// ... when a sub-step has a single sweep. With several sweeps a later one takes back what an
-// earlier one overdid; a single sweep's overshoot goes straight into the velocity. Resting
-// 0.5 m tank at 8 sub-steps x 1 sweep, 5 s (mean / max compression, surface): 0.5 boiled
-// (2.8% / 96%, surface +55%, 852 of 1,500 particles thrown above the water), 0.35 rests
-// (3.0% / 11%, -4.4%), 0.25 rests more compressed (4.5% / 11%, -6.1%).
-constexpr float kRelaxSingle = 0.35f;
-// ... for a material with at most this many lattice neighbours within its support (water: 36).
-// The pushes of more neighbours add up to more: a material with n > kRelaxNeighbours relaxes
-// by kRelax (kRelaxNeighbours / n)^2. Measured on a resting tank 0.3 m wide, 0.4 m of yoghurt
-// (44 neighbours), 5 s: with 0.5 it boiled (mean v^2 0.36 m^2/s^2, particles thrown to 1 m),
-// with 0.41 (the linear ratio) it still stirred (8.6e-3 m^2/s^2), with 0.3 it rests
-// (4.5e-5 m^2/s^2, max compression 1.5%).
-constexpr float kRelaxNeighbours = 36.0f;
-// Estimated spectral radius of a sweep for the Chebyshev acceleration. Measured on the 0.5 m
-// water tank at 4 sub-steps x 8 sweeps (max / mean compression): 0 (plain Jacobi) 2.6% / 1.4%,
-// 0.8 2.3% / 0.85%, 0.9 1.6% / 0.62%; but yoghurt (50 neighbours, against water's 32) blew up
-// in a dam break at 0.85 and 0.9 (8-9 m/s within 0.1 s) and stays calm at 0.8.
-constexpr float kChebyshev = 0.8f;
-// Sweeps before the acceleration starts [Wang 2015 delays it too]: the first sweeps' errors are
-// not yet the slow modes the recurrence assumes, and accelerating them overshoots. With 2-4
-// sweeps per sub-step, accelerating from the first one boiled a resting tank (2 x 4: 156 of
-// 1,500 particles thrown above the water, max compression 52%); from the second one it rests
-// (2 x 4: 7.9% / 42%; 4 x 4: 1.6% / 9.8% mean / max, against 2.5% / 16% with no acceleration).
-// With 8 sweeps or more, starting from the first one is a little more accurate (4 x 8: 0.68% /
-// 2.3%, against 0.71% / 2.4% from the second) and stays calm, so those keep it.
-constexpr uint32_t kChebyshevStart = 1;
-constexpr uint32_t kChebyshevEarly = 8;
-// The coarse correction (pbf_coarse.cpp): grid cells of 0.75 of the smallest support (2.4
-// water spacings), compression above 5% on that grid corrected, at most 100 conjugate-gradient
-// iterations to a residual of 1e-4 of the start. Measured on the resting 0.5 m tank (mean /
-// max compression, surface): with cells of one support (4% tolerance, share 0.5) 1 x 1 ended
-// 4% above its start with 38 particles thrown, with 0.75 (5%, share 0.4) at 4.3% / 20%, -0.2%;
-// a 3% tolerance let the correction push the water above its start (2 x 1: +0.5%, 11
-// particles thrown), 10% left 8 x 1 at -3.5%; 20 iterations to a residual of 1e-3 left 3 x 1
-// at -3.2% (share 0.5), 100 to 1e-5 at -1.4%.
-constexpr float kCoarseCell = 0.75f;
-constexpr float kCoarseTolerance = 0.05f;
-constexpr uint32_t kCoarseIterations = 100;
-// Largest share of the coarse correction over one frame's sub-steps together: a sub-step's
-// correction becomes velocity over its dt, and at 6-8 sub-steps x 1 sweep with 0.4 per sub-step
-// (0.95-0.98 per frame) a water-and-yoghurt tank threw 18-23 particles above its surface while
-// settling; with at most 0.9 per frame none.
-constexpr float kCoarseFrame = 0.9f;
-// Least denominator of a multiplier, as a share of the material's lattice value (the least
-// in a resting tank is 0.35 of it for water, 0.27 for yoghurt). A particle squeezed between
-// two solids, or between a solid and one neighbour, has pushes that cancel: its gradient sum
-// nears zero, and without this its multiplier grew up to 1e6 times a normal one. That
-// multiplier is the pressure on the solids: in the 16k crates dam break it threw a crate at
-// 50 m/s and the whole scene blew up within 1.3 s; with 0.1 it settles over 15 s.
-constexpr float kDiagonalFloor = 0.1f;
-// Longest move of one correction, in supports: a bad sweep cannot fling a particle across
-// the grid.
-constexpr float kMaxCorrection = 0.5f;
-// Fastest predicted move per sub-step, in supports (the neighbour grid is rebuilt once per
-// sub-step; beyond this a particle could skip a wall's sample layers in one sub-step).
-constexpr float kMaxMove = 2.0f;
-// Largest viscosity factor dt nu sum_j V_j L_ij per pass (sum ~ 40 / (3 h^2)): below 0.5 the
-// explicit update only smooths, never overshoots.
-constexpr float kViscosityFactor = 0.5f;
+using namespace tuning;
 
 template <class F> void each(WorldState& s, F&& f) {
     parallelFor(s.tasks, s.particles.size(), 1024, [&](uint32_t b, uint32_t e, uint32_t) {
@@ -331,7 +264,7 @@ public:
         m_viscosityFactor = plan.dt * float(m_interval) * facts.maxNu *
                             std::max(1.0f, facts.maxFriction) * (40.0f / 3.0f) /
                             (facts.minSupport * facts.minSupport);
-        m_speedCap = kMaxMove * facts.minSupport / plan.dt;
+        m_speedCap = kMaxPredictedMove * facts.minSupport / plan.dt;
         // The coarse correction's share per sub-step: the setting, but at most kCoarseFrame
         // over a frame's sub-steps together.
         m_coarse.share =
