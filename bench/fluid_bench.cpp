@@ -496,9 +496,9 @@ int run(const Options& opt) {
 
     std::vector<double> frameMs;
     frameMs.reserve(opt.frames);
-    // Stage sums over the timed frames (unit: ms): sort, external, density, pressure, forces,
-    // integrate, boundaries, whole step.
-    double stage[8] = {};
+    // Stage sums over the timed frames, in the profile's order (unit: ms), and the whole step's.
+    std::vector<std::pair<std::string, double>> stages;
+    double stepMs = 0.0;
     uint64_t substeps = 0;
     float worstError = 0.0f;
     const uint32_t report = std::max<uint32_t>(1, opt.frames / 5);
@@ -529,11 +529,15 @@ int run(const Options& opt) {
             cpuTicks += std::clock() - c0;
             frameMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
             const fluid::Profile& p = profile();
-            const float parts[8] = {p.sort,   p.external,  p.density,    p.pressure,
-                                    p.forces, p.integrate, p.boundaries, p.step};
-            for (int k = 0; k < 8; ++k) {
-                stage[k] += parts[k];
+            for (const fluid::StageTime& t : p.stageTimes()) {
+                auto it = std::find_if(stages.begin(), stages.end(),
+                                       [&](const auto& e) { return e.first == t.name; });
+                if (it == stages.end()) {
+                    it = stages.emplace(stages.end(), t.name, 0.0);
+                }
+                it->second += t.ms;
             }
+            stepMs += p.step;
             substeps += p.substeps;
             worstError = std::max(worstError, p.densityErrorMax);
         }
@@ -580,14 +584,13 @@ int run(const Options& opt) {
                 opt.solver.c_str(), opt.eos.c_str(), double(world.profile().soundSpeed),
                 fluid::instructionSet());
     std::printf("stages (ms per frame, mean over timed frames):\n");
-    const char* names[8] = {"sort",   "external",  "density",    "pressure",
-                            "forces", "integrate", "boundaries", "step (total)"};
-    for (int k = 0; k < 8; ++k) {
-        std::printf("  %-13s %10.3f\n", names[k], stage[k] / frames);
+    for (const auto& [name, ms] : stages) {
+        std::printf("  %-15s %10.3f\n", name.c_str(), ms / frames);
     }
+    std::printf("  %-15s %10.3f\n", "step (total)", stepMs / frames);
     // For the crates scene: Box2D's step, and with coupling the coupling's own work around
     // World::step (sampling bodies, applying forces, reports).
-    std::printf("  %-13s %10.3f\n", "outside step", mean - stage[7] / frames);
+    std::printf("  %-15s %10.3f\n", "outside step", mean - stepMs / frames);
     std::printf("frame wall time (ms): median %.3f, mean %.3f, p90 %.3f, min %.3f, max %.3f; "
                 "CPU time (all threads) %.3f ms per frame\n",
                 m, mean, quantile(frameMs, 0.9), *std::min_element(frameMs.begin(), frameMs.end()),

@@ -340,6 +340,12 @@ void solverSection(Level& level, FieldErrors& errors) {
     const Profile& profile = level.coupling ? level.coupling->profile() : world.profile();
     ImGui::Text("last frame: %u sub-steps, %.2f ms", profile.substeps,
                 static_cast<double>(profile.step));
+    if (ImGui::TreeNode("stages (ms)")) {
+        for (const StageTime& stage : profile.stageTimes()) {
+            ImGui::Text("%-15s %7.3f", stage.name, static_cast<double>(stage.ms));
+        }
+        ImGui::TreePop();
+    }
     ImGui::Text("compression: max %.2f%%, mean %.2f%%",
                 100.0 * static_cast<double>(profile.densityErrorMax),
                 100.0 * static_cast<double>(profile.densityErrorAvg));

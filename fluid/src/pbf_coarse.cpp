@@ -9,7 +9,7 @@
 //   types     air (F < 1/2: the potential is 0 there, a free surface), solid (samples fill more
 //             than particles: no flux through it), fluid (the unknowns)
 //   solve     -lap psi = max(F - 1 - tolerance, 0) H^2 on the fluid nodes, conjugate gradients
-//   move      each particle by -share grad psi (bilinear), at most kMaxMove of its support
+//   move      each particle by -share grad psi (bilinear), at most kCoarseMaxMove of its support
 //   bodies    rigid bodies of boundary plugins (WorldState::bodies) are unknowns of the same
 //             solve [Batty, Bertails & Bridson 2007]: the operator gains G M^-1 G^T, G the flux
 //             a body's displacement (x, y) drives through the faces of its nodes, and each body
@@ -18,6 +18,7 @@
 // work runs serially in a fixed order and the particles' moves are independent of each other,
 // so results do not depend on the number of workers.
 #include "pbf_loops.h"
+#include "pbf_tuning.h"
 
 #include "parallel.h"
 
@@ -31,14 +32,8 @@ namespace fluid::detail {
 namespace {
 
 constexpr uint8_t kAir = 0, kFluid = 1, kSolid = 2;
-// Longest coarse move, in supports of the particle.
-constexpr float kMaxMove = 0.25f;
 // Most nodes the grid may have; a world spread wider skips the pass that sub-step.
 constexpr size_t kMaxNodes = size_t(1) << 22;
-// Diagonal shift of the coarse operator (a closed container full of fluid has no free surface
-// to anchor the potential), and the residual, relative to the start, that ends the solve.
-constexpr float kShift = 1e-3f;
-constexpr float kResidual = 1e-4f;
 // Lattice points per cell side at which a body's inside test is read for its fill.
 constexpr int kSubcells = 4;
 // Most lattice points one body's outline is read at per sub-step.
@@ -96,7 +91,7 @@ void splat(std::vector<float>& fill, const Layout& g, float x, float y, float am
 }
 
 // Particle i's coarse move: share times minus the bilinear gradient of the node values (in its
-// cell, with its fractions, as the fill found them), at most kMaxMove of its support, into
+// cell, with its fractions, as the fill found them), at most kCoarseMaxMove of its support, into
 // (cx, cy) and onto its position.
 void moveParticle(Particles& p, const CoarseGrid& cg, const Layout& g, const float* value,
                   float share, uint32_t i) {
@@ -106,7 +101,7 @@ void moveParticle(Particles& p, const CoarseGrid& cg, const Layout& g, const flo
     const float v01 = value[k + size_t(g.nx)], v11 = value[k + size_t(g.nx) + 1];
     float ux = -share * ((1.0f - fy) * (v10 - v00) + fy * (v11 - v01)) * g.invH;
     float uy = -share * ((1.0f - fx) * (v01 - v00) + fx * (v11 - v10)) * g.invH;
-    const float limit = kMaxMove * p.h[i];
+    const float limit = tuning::kCoarseMaxMove * p.h[i];
     const float len2 = ux * ux + uy * uy;
     if (!(len2 <= limit * limit)) {
         const float scale = std::isfinite(len2) ? limit / std::sqrt(len2) : 0.0f;
@@ -359,7 +354,7 @@ void buildOperator(CoarseGrid& cg, const Layout& g, float cellSize, bool bodies)
     }
     const size_t count = cg.active.size();
     const auto none = int32_t(count);
-    cg.diagonal.assign(count, kShift);
+    cg.diagonal.assign(count, tuning::kCoarseShift);
     cg.neighbours.assign(4 * count, none);
     cg.bodyFaces.clear();
     for (size_t a = 0; a < count; ++a) {
@@ -411,7 +406,7 @@ void addBodyFlux(const CoarseGrid& cg, const std::vector<double>& mobility, cons
 }
 
 // The bodies' share of the solve: each moves by share M^-1 G^T psi (rho0 depth over its mass), at
-// most kMaxMove of a coarse cell per sub-step, taken as a velocity change from the sub-step's
+// most kCoarseMaxMove of a coarse cell per sub-step, taken as a velocity change from the sub-step's
 // start (placeSamples offsets its samples from then on) and an impulse. Returns true when some
 // body moved.
 bool moveBodies(WorldState& s, const CoarseGrid& cg, const std::vector<double>& mobility,
@@ -421,7 +416,7 @@ bool moveBodies(WorldState& s, const CoarseGrid& cg, const std::vector<double>& 
     if (!(span > 0.0)) {
         return false;
     }
-    const double limit = double(kMaxMove) * double(settings.cellSize);
+    const double limit = double(tuning::kCoarseMaxMove) * double(settings.cellSize);
     bool moved = false;
     for (size_t b = 0; b < s.bodies.size(); ++b) {
         BodyState& body = s.bodies[b];
@@ -559,7 +554,7 @@ float* solvePotential(CoarseGrid& cg, const std::vector<double>& mobility,
     cg.diagonal.resize(padded, 0.0f);
     cg.neighbours.resize(4 * padded, none);
     double rr = laneDot(cg.r.data(), cg.r.data(), padded);
-    const double stop = rr * double(kResidual) * double(kResidual);
+    const double stop = rr * double(tuning::kCoarseResidual) * double(tuning::kCoarseResidual);
     const int32_t* nb = cg.neighbours.data();
     float* psi = cg.psi.data();
     float* r = cg.r.data();

@@ -33,6 +33,61 @@ namespace {
 constexpr char kMagic[8] = {'F', 'L', 'U', 'I', 'D', 'S', 'N', 'P'};
 constexpr uint32_t kVersion = 4; // 4: Herschel-Bulkley fields, stress and pending kicks
 
+// The last step's profile as a snapshot holds it: its counts and figures, in the order of the
+// format since version 2. The eight floats where the stage times once stood are written as 0
+// and skipped on reading: stage times are wall-clock readings, not state, so two saves of the
+// same state give the same bytes and a loaded world reads no stages.
+struct ProfileRecord {
+    float times[8] = {};
+    uint32_t substeps = 0, iterations = 0;
+    float cflDt = 0, soundSpeed = 0, densityErrorMax = 0, densityErrorAvg = 0;
+    uint32_t speedClamped = 0, nonFiniteRepaired = 0, forceDropped = 0;
+    int32_t forceDroppedPlugin = -1;
+    uint32_t separated = 0, particles = 0, emitted = 0, emitBlocked = 0, emitSkipped = 0,
+             removed = 0;
+
+    static ProfileRecord of(const Profile& p) {
+        return {{},
+                p.substeps,
+                p.iterations,
+                p.cflDt,
+                p.soundSpeed,
+                p.densityErrorMax,
+                p.densityErrorAvg,
+                p.speedClamped,
+                p.nonFiniteRepaired,
+                p.forceDropped,
+                p.forceDroppedPlugin,
+                p.separated,
+                p.particles,
+                p.emitted,
+                p.emitBlocked,
+                p.emitSkipped,
+                p.removed};
+    }
+    Profile profile() const {
+        Profile p;
+        p.substeps = substeps;
+        p.iterations = iterations;
+        p.cflDt = cflDt;
+        p.soundSpeed = soundSpeed;
+        p.densityErrorMax = densityErrorMax;
+        p.densityErrorAvg = densityErrorAvg;
+        p.speedClamped = speedClamped;
+        p.nonFiniteRepaired = nonFiniteRepaired;
+        p.forceDropped = forceDropped;
+        p.forceDroppedPlugin = forceDroppedPlugin;
+        p.separated = separated;
+        p.particles = particles;
+        p.emitted = emitted;
+        p.emitBlocked = emitBlocked;
+        p.emitSkipped = emitSkipped;
+        p.removed = removed;
+        return p;
+    }
+};
+static_assert(sizeof(ProfileRecord) == 24 * 4, "the snapshot's profile record has no padding");
+
 uint64_t fnv1a(const std::byte* data, size_t size) {
     uint64_t h = 0xcbf29ce484222325ull;
     for (size_t i = 0; i < size; ++i) {
@@ -344,21 +399,14 @@ void World::save(std::ostream& out) const {
     }
     o.array(s.sensorReadings); // the last step's removal events are not kept: they describe it
 
-    // Solver state carried from step to step, and the last profile's counts and figures. Its
-    // stage times are wall-clock readings, not state: they are saved as 0, so two saves of the
-    // same state give the same bytes.
+    // Solver state carried from step to step, and the last profile's counts and figures
+    // (ProfileRecord: no stage times).
     o.put(s.time);
     o.put(s.soundSpeed);
     o.put(s.fieldGH);
     o.put(uint8_t(s.fieldMeasured));
     o.put(s.lastMaxAccel);
-    Profile figures = s.profile;
-    for (float* time : {&figures.step, &figures.sort, &figures.external, &figures.density,
-                        &figures.pressure, &figures.forces, &figures.integrate,
-                        &figures.boundaries}) {
-        *time = 0.0f;
-    }
-    o.put(figures);
+    o.put(ProfileRecord::of(s.profile));
 
     out.write(kMagic, sizeof(kMagic));
     const uint32_t version = kVersion;
@@ -583,7 +631,7 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
     s.fieldGH = in.get<float>();
     s.fieldMeasured = in.small(true, "the field flag");
     s.lastMaxAccel = in.get<float>();
-    s.profile = in.get<Profile>();
+    s.profile = in.get<ProfileRecord>().profile();
     checkSolverState(s);
     if (!in.done()) {
         In::fail("unexpected data after the last section");

@@ -11,6 +11,7 @@
 //     forces      symmetric pressure force (2.5), viscosity (2.6), surface tension [Akinci 2013]
 //     integrate   v += dt a, x += dt v: symplectic Euler                        (seed eq. 2.8, 2.9)
 //     boundaries  boundary plugins keep particles out of solids (safety net)
+#include "frame.h"
 #include "parallel.h"
 #include "sph_loops.h"
 #include "step_common.h"
@@ -181,164 +182,181 @@ void computePressure(WorldState& s, const SubstepConstants& c) {
     computeSamplePressure(s);
 }
 
-} // namespace
+// The explicit solver's frame: its plan (sound speed, CFL sub-steps) and its sub-step.
+class ExplicitSolver final : public Solver {
+public:
+    explicit ExplicitSolver(WorldState& s) : m_s(s), m_p(s.particles) {}
 
-void stepExplicit(WorldState& s, float frameDt) {
-    const Clock::time_point start = Clock::now();
-    Profile& prof = s.profile;
-    prof = Profile{};
-    Particles& p = s.particles;
-    const uint32_t n = p.size();
-    for (auto* channel : {&p.ax, &p.ay, &p.ex, &p.ey, &p.nx, &p.ny, &p.pOverRho2, &p.invRho}) {
-        channel->resize(n);
-    }
+    std::span<const char* const> stageNames() const override { return kStageNames; }
 
-    const SceneFacts facts = sceneFacts(s);
-    const float minSupport = facts.minSupport, maxSupport = facts.maxSupport;
-    const float minSpacing = facts.minSpacing, maxNu = facts.maxNu, maxK = facts.maxK;
-    const float maxFriction = facts.maxFriction, sampleSpacing = facts.sampleSpacing;
-    const bool surfaceTension = facts.surfaceTension;
-
-    // Prepare: plugins, boundary samples, sound speed, sub-step count.
-    const StepContext context{frameDt, s.time, sampleSpacing, maxSupport};
-    for (const auto& plugin : s.forces) {
-        plugin->prepare(context);
-    }
-    gatherSamples(s, context);
-    const bool tait = s.def.equationOfState == EquationOfState::Tait;
-    const bool derived = tait && s.def.soundSpeed <= 0.0f;
-    float soundSpeed = 0.0f;
-    if (tait) {
-        soundSpeed = derived ? sceneSoundSpeed(s) : s.def.soundSpeed;
-    }
-    refreshConstants(s);
-    setEquationOfState(s, soundSpeed);
-
-    const float maxSpeed = std::sqrt(blockReduce<float>(
-        s.tasks, n, 0.0f,
-        [&](uint32_t b, uint32_t e) {
-            float v2 = 0.0f;
-            for (uint32_t i = b; i < e; ++i) {
-                v2 = std::max(v2, p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i]);
-            }
-            return v2;
-        },
-        [](float a, float b) { return std::max(a, b); }));
-    // CFL: sound and flow speed [Monaghan 1992], acceleration, and explicit viscous diffusion
-    // (the 2D viscosity Laplacian's largest eigenvalue is about 27/h^2, so 0.06 h^2/nu keeps
-    // forward Euler stable with margin); wall friction adds to the viscosity.
-    auto cflDt = [&] {
-        const float speed = tait ? soundSpeed : std::sqrt(maxK);
-        float dt = s.def.courant * minSpacing / (speed + maxSpeed);
-        if (s.lastMaxAccel > 0.0f) {
-            dt = std::min(dt, 0.25f * std::sqrt(minSupport / s.lastMaxAccel));
+    FramePlan plan(const SceneFacts& facts, float frameDt) override {
+        WorldState& s = m_s;
+        Particles& p = m_p;
+        for (auto* channel :
+             {&p.ax, &p.ay, &p.ex, &p.ey, &p.nx, &p.ny, &p.pOverRho2, &p.invRho}) {
+            channel->resize(p.size());
         }
-        if (maxNu > 0.0f) {
-            dt = std::min(dt,
-                          0.06f * minSupport * minSupport / (maxNu * std::max(1.0f, maxFriction)));
+        m_facts = facts;
+        m_frameDt = frameDt;
+        m_tait = s.def.equationOfState == EquationOfState::Tait;
+        const bool derived = m_tait && s.def.soundSpeed <= 0.0f;
+        if (m_tait) {
+            m_soundSpeed = derived ? sceneSoundSpeed(s) : s.def.soundSpeed;
         }
-        return dt;
-    };
-    // Equal sub-steps over `span` seconds, at most `cap` of them.
-    auto plan = [](float span, float dt, uint32_t cap) {
-        const auto wanted = static_cast<uint32_t>(std::min(1e6, std::ceil(double(span) / dt)));
-        return std::clamp(wanted, 1u, cap);
-    };
+        setEquationOfState(s, m_soundSpeed);
+        m_maxSpeed = maxSpeed();
+        m_c.mat = s.constants.data();
+        m_c.sampleVolume = facts.sampleSpacing * facts.sampleSpacing;
+        m_c.tait = m_tait;
+        m_c.surfaceTension = facts.surfaceTension;
+        m_moving = samplesMove(s);
 
-    // A world whose sound speed is derived but whose external field was never measured (its
-    // first step with particles) starts with one short probe sub-step at the CFL limit of the
-    // largest sound speed the sub-step cap allows; its external stage measures the field, and
-    // the rest of the frame is planned with the sound speed that field asks for. So the first
-    // frame is as stiff as the others, and plugins still see one apply per sub-step.
-    const bool probe = derived && !s.fieldMeasured && n > 0 && s.def.maxSubsteps >= 2;
-    float dt = cflDt();
-    uint32_t total = plan(frameDt, dt, s.def.maxSubsteps);
-    float h = frameDt / float(total);
-    if (probe) {
-        h = std::min(h, frameDt / float(s.def.maxSubsteps));
-        total = s.def.maxSubsteps; // provisional, replanned after the probe
+        // A world whose sound speed is derived but whose external field was never measured (its
+        // first step with particles) starts with one short probe sub-step at the CFL limit of
+        // the largest sound speed the sub-step cap allows; its external stage measures the
+        // field, and the rest of the frame is planned with the sound speed that field asks for
+        // (the probe stage). So the first frame is as stiff as the others, and plugins still
+        // see one apply per sub-step.
+        m_probe = derived && !s.fieldMeasured && p.size() > 0 && s.def.maxSubsteps >= 2;
+        m_cflDt = cflDt();
+        FramePlan plan;
+        plan.lastTakesRest = true;
+        plan.count = substepsFor(frameDt, m_cflDt, s.def.maxSubsteps);
+        plan.dt = frameDt / float(plan.count);
+        if (m_probe) {
+            plan.dt = std::min(plan.dt, frameDt / float(s.def.maxSubsteps));
+            plan.count = s.def.maxSubsteps; // provisional, replanned by the probe stage
+        }
+        return plan;
     }
 
-    SubstepConstants c;
-    c.mat = s.constants.data();
-    c.sampleVolume = sampleSpacing * sampleSpacing;
-    c.tait = tait;
-    c.surfaceTension = surfaceTension;
-    const bool moving = samplesMove(s);
-    const bool wantsForces = facts.wantsForces;
-
-    double elapsed = 0.0; // time into the step (s); double so that the last sub-step's
-                          // rounding correction stays at float precision
-    for (uint32_t sub = 0; sub < total; ++sub) {
-        const bool last = sub + 1 == total;
-        if (last) {
-            h = float(double(frameDt) - elapsed); // the frame ends exactly at frameDt
-        }
-        const float inStep = float(elapsed);
-        const double t = s.time + elapsed;
-        timed(prof.sort, [&] {
-            sortParticles(s, maxSupport);
-            prof.separated += separateStacked(s, maxSupport);
+    // Seed section 2.3, in order.
+    void substep(Stages& stages, FramePlan& plan, const Substep& sub) override {
+        WorldState& s = m_s;
+        Particles& p = m_p;
+        const float h = sub.dt;
+        stages.run(kSort, [&] {
+            sortParticles(s, m_facts.maxSupport);
+            s.profile.separated += separateStacked(s, m_facts.maxSupport);
             fillMaterialChannels(s);
-            placeSamples(s, inStep, maxSupport, moving || sub == 0);
+            placeSamples(s, sub.begin, m_facts.maxSupport, m_moving || sub.index == 0);
         });
-        timed(prof.external, [&] {
-            externalForces(s, h, t, p.ex, p.ey);
-            if (last || (probe && sub == 0)) {
+        stages.run(kExternal, [&] {
+            externalForces(s, h, s.time + sub.elapsed, p.ex, p.ey);
+            if (sub.last) {
                 measureField(s);
                 s.fieldMeasured = true;
             }
         });
-        if (probe && sub == 0) {
-            soundSpeed = sceneSoundSpeed(s);
-            setEquationOfState(s, soundSpeed);
-            dt = cflDt();
-            const uint32_t rest = plan(frameDt - h, dt, s.def.maxSubsteps - 1);
-            total = 1 + rest;
+        if (m_probe && sub.index == 0) {
+            stages.run(kProbe, [&] { replan(plan, h); });
         }
-        timed(prof.density, [&] { computeDensity(s, c.sampleVolume); });
-        timed(prof.pressure, [&] {
-            computePressure(s, c);
-            if (surfaceTension) {
+        stages.run(kDensity, [&] { computeDensity(s, m_c.sampleVolume); });
+        stages.run(kPressure, [&] {
+            computePressure(s, m_c);
+            if (m_c.surfaceTension) {
                 computeNormals(s);
             }
         });
-        timed(prof.forces, [&] {
-            computeForces(s, c.sampleVolume, surfaceTension);
-            if (wantsForces) {
-                computeSampleForces(s, c.sampleVolume, h / frameDt);
+        stages.run(kForces, [&] {
+            computeForces(s, m_c.sampleVolume, m_c.surfaceTension);
+            if (m_facts.wantsForces) {
+                computeSampleForces(s, m_c.sampleVolume, h / m_frameDt);
             }
         });
-        if (last) {
-            densityError(s);
-        }
-        IntegrateStats st;
-        // The speed cap: half a support radius per sub-step.
-        timed(prof.integrate,
-              [&] { st = integrate(s, p.ax, p.ay, h, 0.5f * minSupport / h, p.qx, p.qy); });
-        prof.speedClamped += st.clamped;
-        prof.nonFiniteRepaired += st.repaired;
-        s.lastMaxAccel = std::sqrt(st.maxAccel2);
-        elapsed += double(h);
-        timed(prof.boundaries,
-              [&] { projectBoundaries(s, h, inStep, float(elapsed), sampleSpacing, p.qx, p.qy); });
-        if (probe && sub == 0) {
-            h = float((double(frameDt) - elapsed) / double(total - 1));
-        }
+        stages.run(kIntegrate, [&] {
+            // The speed cap: half a support radius per sub-step.
+            const IntegrateStats st =
+                integrate(s, p.ax, p.ay, h, 0.5f * m_facts.minSupport / h, p.qx, p.qy);
+            s.profile.speedClamped += st.clamped;
+            s.profile.nonFiniteRepaired += st.repaired;
+            s.lastMaxAccel = std::sqrt(st.maxAccel2);
+        });
+        stages.run(kBoundaries, [&] {
+            projectBoundaries(s, h, sub.begin, sub.end, m_facts.sampleSpacing, p.qx, p.qy);
+        });
     }
-    prof.cflDt = dt;
-    prof.substeps = total;
-    prof.soundSpeed = soundSpeed;
 
-    deliverBodyImpulses(s, frameDt); // zeros: no coarse solve here
-    if (wantsForces) {
-        deliverSampleForces(s);
+    void close(Profile& profile) override {
+        profile.cflDt = m_cflDt;
+        profile.soundSpeed = m_soundSpeed;
     }
-    finishPlugins(s, context);
-    s.time += frameDt;
-    prof.iterations = 0;
-    prof.particles = n;
-    prof.step = std::chrono::duration<float, std::milli>(Clock::now() - start).count();
+
+private:
+    enum Stage : uint32_t { kSort, kExternal, kProbe, kDensity, kPressure, kForces, kIntegrate,
+                            kBoundaries };
+    static constexpr const char* kStageNames[] = {"sort",     "external", "probe",
+                                                  "density",  "pressure", "forces",
+                                                  "integrate", "boundaries"};
+
+    // The probe sub-step's field measured: the frame's sound speed, and the rest of the frame
+    // planned with it (after this sub-step of h seconds).
+    void replan(FramePlan& plan, float h) {
+        measureField(m_s);
+        m_s.fieldMeasured = true;
+        m_soundSpeed = sceneSoundSpeed(m_s);
+        setEquationOfState(m_s, m_soundSpeed);
+        m_cflDt = cflDt();
+        plan.count = 1 + substepsFor(m_frameDt - h, m_cflDt, m_s.def.maxSubsteps - 1);
+        plan.respread = true;
+    }
+
+    // Equal sub-steps of at most dt over `span` seconds, at most `cap` of them.
+    static uint32_t substepsFor(float span, float dt, uint32_t cap) {
+        const auto wanted = static_cast<uint32_t>(std::min(1e6, std::ceil(double(span) / dt)));
+        return std::clamp(wanted, 1u, cap);
+    }
+
+    // The largest particle speed at the frame's start (m/s).
+    float maxSpeed() const {
+        const Particles& p = m_p;
+        return std::sqrt(blockReduce<float>(
+            m_s.tasks, p.size(), 0.0f,
+            [&](uint32_t b, uint32_t e) {
+                float v2 = 0.0f;
+                for (uint32_t i = b; i < e; ++i) {
+                    v2 = std::max(v2, p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i]);
+                }
+                return v2;
+            },
+            [](float a, float b) { return std::max(a, b); }));
+    }
+
+    // CFL: sound and flow speed [Monaghan 1992], acceleration, and explicit viscous diffusion
+    // (the 2D viscosity Laplacian's largest eigenvalue is about 27/h^2, so 0.06 h^2/nu keeps
+    // forward Euler stable with margin); wall friction adds to the viscosity.
+    float cflDt() const {
+        const SceneFacts& f = m_facts;
+        const float speed = m_tait ? m_soundSpeed : std::sqrt(f.maxK);
+        float dt = m_s.def.courant * f.minSpacing / (speed + m_maxSpeed);
+        if (m_s.lastMaxAccel > 0.0f) {
+            dt = std::min(dt, 0.25f * std::sqrt(f.minSupport / m_s.lastMaxAccel));
+        }
+        if (f.maxNu > 0.0f) {
+            dt = std::min(dt, 0.06f * f.minSupport * f.minSupport /
+                                  (f.maxNu * std::max(1.0f, f.maxFriction)));
+        }
+        return dt;
+    }
+
+    WorldState& m_s;
+    Particles& m_p;
+    SceneFacts m_facts;
+    SubstepConstants m_c;
+    float m_frameDt = 0.0f;
+    bool m_tait = true;
+    float m_soundSpeed = 0.0f;
+    float m_maxSpeed = 0.0f;
+    float m_cflDt = 0.0f;
+    bool m_moving = false;
+    bool m_probe = false;
+};
+
+} // namespace
+
+void stepExplicit(WorldState& s, float frameDt) {
+    ExplicitSolver solver(s);
+    runFrame(s, frameDt, solver);
 }
 
 } // namespace fluid::detail

@@ -6,7 +6,7 @@
 //   per sub-step:
 //     external    force plugins' accelerations at the current positions
 //     predict     v += dt a_ext, x* = x + dt v (step_common's integrate: non-finite
-//                 accelerations zeroed, at most kMaxMove supports per sub-step); boundary
+//                 accelerations zeroed, at most kMaxPredictedMove supports per sub-step); boundary
 //                 plugins project x* out of solids, so the constraint starts from admissible
 //                 positions
 //     sort        counting sort by grid cell of x*; the grid serves every pass below
@@ -25,8 +25,10 @@
 //     boundaries  boundary plugins project out of solids (safety net)
 // Pressure for readers is p = -lambda rho0 / (m dt^2): the multipliers' displacement
 // dx = -dt^2 grad p / rho0 read back.
+#include "frame.h"
 #include "parallel.h"
 #include "pbf_loops.h"
+#include "pbf_tuning.h"
 #include "sph_loops.h"
 #include "step_common.h"
 
@@ -36,75 +38,7 @@
 namespace fluid::detail {
 namespace {
 
-// The artificial pressure s_corr stands for, as a share of the cohesion's pressure scale
-// rho0 a_gamma h (a_gamma = gamma m / A [Akinci 2013]; the explicit solver's background
-// pressure uses the same bound), and the distance where its kernel ratio is 1 (Macklin &
-// Mueller use 0.1-0.3 h).
-constexpr float kArtificial = 0.1f;
-constexpr float kDeltaQ = 0.2f;
-// Share of a Jacobi update taken per sweep. A sweep moves every particle at once, so the full
-// update overshoots where many neighbours push together (a resting 30 x 30 block in zero
-// gravity compressed itself further with 1 and relaxed with 0.5).
-constexpr float kRelax = 0.5f;
-// ... when a sub-step has a single sweep. With several sweeps a later one takes back what an
-// earlier one overdid; a single sweep's overshoot goes straight into the velocity. Resting
-// 0.5 m tank at 8 sub-steps x 1 sweep, 5 s (mean / max compression, surface): 0.5 boiled
-// (2.8% / 96%, surface +55%, 852 of 1,500 particles thrown above the water), 0.35 rests
-// (3.0% / 11%, -4.4%), 0.25 rests more compressed (4.5% / 11%, -6.1%).
-constexpr float kRelaxSingle = 0.35f;
-// ... for a material with at most this many lattice neighbours within its support (water: 36).
-// The pushes of more neighbours add up to more: a material with n > kRelaxNeighbours relaxes
-// by kRelax (kRelaxNeighbours / n)^2. Measured on a resting tank 0.3 m wide, 0.4 m of yoghurt
-// (44 neighbours), 5 s: with 0.5 it boiled (mean v^2 0.36 m^2/s^2, particles thrown to 1 m),
-// with 0.41 (the linear ratio) it still stirred (8.6e-3 m^2/s^2), with 0.3 it rests
-// (4.5e-5 m^2/s^2, max compression 1.5%).
-constexpr float kRelaxNeighbours = 36.0f;
-// Estimated spectral radius of a sweep for the Chebyshev acceleration. Measured on the 0.5 m
-// water tank at 4 sub-steps x 8 sweeps (max / mean compression): 0 (plain Jacobi) 2.6% / 1.4%,
-// 0.8 2.3% / 0.85%, 0.9 1.6% / 0.62%; but yoghurt (50 neighbours, against water's 32) blew up
-// in a dam break at 0.85 and 0.9 (8-9 m/s within 0.1 s) and stays calm at 0.8.
-constexpr float kChebyshev = 0.8f;
-// Sweeps before the acceleration starts [Wang 2015 delays it too]: the first sweeps' errors are
-// not yet the slow modes the recurrence assumes, and accelerating them overshoots. With 2-4
-// sweeps per sub-step, accelerating from the first one boiled a resting tank (2 x 4: 156 of
-// 1,500 particles thrown above the water, max compression 52%); from the second one it rests
-// (2 x 4: 7.9% / 42%; 4 x 4: 1.6% / 9.8% mean / max, against 2.5% / 16% with no acceleration).
-// With 8 sweeps or more, starting from the first one is a little more accurate (4 x 8: 0.68% /
-// 2.3%, against 0.71% / 2.4% from the second) and stays calm, so those keep it.
-constexpr uint32_t kChebyshevStart = 1;
-constexpr uint32_t kChebyshevEarly = 8;
-// The coarse correction (pbf_coarse.cpp): grid cells of 0.75 of the smallest support (2.4
-// water spacings), compression above 5% on that grid corrected, at most 100 conjugate-gradient
-// iterations to a residual of 1e-4 of the start. Measured on the resting 0.5 m tank (mean /
-// max compression, surface): with cells of one support (4% tolerance, share 0.5) 1 x 1 ended
-// 4% above its start with 38 particles thrown, with 0.75 (5%, share 0.4) at 4.3% / 20%, -0.2%;
-// a 3% tolerance let the correction push the water above its start (2 x 1: +0.5%, 11
-// particles thrown), 10% left 8 x 1 at -3.5%; 20 iterations to a residual of 1e-3 left 3 x 1
-// at -3.2% (share 0.5), 100 to 1e-5 at -1.4%.
-constexpr float kCoarseCell = 0.75f;
-constexpr float kCoarseTolerance = 0.05f;
-constexpr uint32_t kCoarseIterations = 100;
-// Largest share of the coarse correction over one frame's sub-steps together: a sub-step's
-// correction becomes velocity over its dt, and at 6-8 sub-steps x 1 sweep with 0.4 per sub-step
-// (0.95-0.98 per frame) a water-and-yoghurt tank threw 18-23 particles above its surface while
-// settling; with at most 0.9 per frame none.
-constexpr float kCoarseFrame = 0.9f;
-// Least denominator of a multiplier, as a share of the material's lattice value (the least
-// in a resting tank is 0.35 of it for water, 0.27 for yoghurt). A particle squeezed between
-// two solids, or between a solid and one neighbour, has pushes that cancel: its gradient sum
-// nears zero, and without this its multiplier grew up to 1e6 times a normal one. That
-// multiplier is the pressure on the solids: in the 16k crates dam break it threw a crate at
-// 50 m/s and the whole scene blew up within 1.3 s; with 0.1 it settles over 15 s.
-constexpr float kDiagonalFloor = 0.1f;
-// Longest move of one correction, in supports: a bad sweep cannot fling a particle across
-// the grid.
-constexpr float kMaxCorrection = 0.5f;
-// Fastest predicted move per sub-step, in supports (the neighbour grid is rebuilt once per
-// sub-step; beyond this a particle could skip a wall's sample layers in one sub-step).
-constexpr float kMaxMove = 2.0f;
-// Largest viscosity factor dt nu sum_j V_j L_ij per pass (sum ~ 40 / (3 h^2)): below 0.5 the
-// explicit update only smooths, never overshoots.
-constexpr float kViscosityFactor = 0.5f;
+using namespace tuning;
 
 template <class F> void each(WorldState& s, F&& f) {
     parallelFor(s.tasks, s.particles.size(), 1024, [&](uint32_t b, uint32_t e, uint32_t) {
@@ -152,15 +86,26 @@ void applyCorrections(WorldState& s) {
     });
 }
 
+// The sub-step's solve starts from no correction and no multipliers.
+void resetSolve(WorldState& s) {
+    Particles& p = s.particles;
+    each(s, [&](uint32_t i) {
+        p.lambda[i] = 0.0f;
+        p.lambdaTotal[i] = 0.0f;
+        p.lambdaPrev[i] = 0.0f;
+        p.cx[i] = 0.0f;
+        p.cy[i] = 0.0f;
+    });
+}
+
 // `iterations` Jacobi sweeps of the one-sided density constraint [Macklin & Mueller 2013]:
 // each sweep evaluates C and the diagonal D at the current positions, updates the accumulated
 // multiplier l_i <- min(l_i - kRelax C_i / D_i, 0) (the constraint pushes, and a later sweep
 // may take back a push, never pull), and moves the particles by the displacement of the
 // change. Positions are Chebyshev-accelerated between sweeps [Wang 2015]:
-// x_k+1 = omega_k+1 (x^_k+1 - x_k-1) + x_k-1. Returns true when the coarse correction moved a
-// rigid body (its samples were placed again).
-bool solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations,
-                  const CoarseSettings& coarse, float sampleCell, bool push, Profile& prof) {
+// x_k+1 = omega_k+1 (x^_k+1 - x_k-1) + x_k-1. The sweeps start from the coarse correction
+// (cx, cy; 0 without one). `push`: the reporting samples take the sweeps' reactions.
+void densitySweeps(WorldState& s, const PbfConstants& c, uint32_t iterations, bool push) {
     Particles& p = s.particles;
     // The change shares the constraint's storage: the update reads C_i, then writes dl_i, and
     // the next sweep's constraint pass comes after the last read of dl.
@@ -171,72 +116,51 @@ bool solveDensity(WorldState& s, const PbfConstants& c, uint32_t iterations,
     // displacement is linear in the multipliers): it gives the pressure and the wall forces.
     std::vector<float>& total = p.lambdaTotal;
     std::vector<float>& prevTotal = p.lambdaPrev;
-    each(s, [&](uint32_t i) {
-        p.lambda[i] = 0.0f;
-        total[i] = 0.0f;
-        prevTotal[i] = 0.0f;
-        p.cx[i] = 0.0f;
-        p.cy[i] = 0.0f;
-    });
     std::vector<float> relaxation(s.constants.size());
     for (size_t m = 0; m < relaxation.size(); ++m) {
         const float ratio =
             std::min(1.0f, kRelaxNeighbours / std::max(s.constants[m].neighbours, 1.0f));
         relaxation[m] = (iterations == 1 ? kRelaxSingle : kRelax) * ratio * ratio;
     }
-    bool bodiesMoved = false;
-    if (coarse.share > 0.0f) {
-        timed(prof.density, [&] {
-            bodiesMoved = pbfCoarse(s, c, coarse);
-            if (bodiesMoved) {
-                // The bodies moved with the fluid: the sweeps see them at their new pose.
-                placeSamples(s, coarse.endTime, sampleCell, true);
-            }
-        });
-    }
     float omega = 1.0f;
     for (uint32_t it = 0; it < iterations; ++it) {
         // C and D at the current positions, and the multipliers' update (change = C's storage).
-        timed(prof.density, [&] { pbfConstraint(s, c, relaxation.data()); });
-        timed(prof.pressure, [&] {
-            pbfDisplace(s, c, change, it == 0);
-            const float rho2 = kChebyshev * kChebyshev;
-            const uint32_t start = iterations >= kChebyshevEarly ? 0 : kChebyshevStart;
-            omega = it <= start
-                        ? 1.0f
-                        : (it == start + 1 ? 2.0f / (2.0f - rho2) : 4.0f / (4.0f - rho2 * omega));
-            if (push) {
-                pbfSamplePush(s, c, change, omega, it == 0);
-            }
-            if (it == 0) {
-                each(s, [&](uint32_t i) {
-                    // The sweeps start from the coarse correction (0 without one).
-                    prevX[i] = p.cx[i];
-                    prevY[i] = p.cy[i];
-                    total[i] = change[i];
-                });
-                applyCorrections(s);
-                return;
-            }
+        pbfConstraint(s, c, relaxation.data());
+        pbfDisplace(s, c, change, it == 0);
+        const float rho2 = kChebyshev * kChebyshev;
+        const uint32_t start = iterations >= kChebyshevEarly ? 0 : kChebyshevStart;
+        omega = it <= start
+                    ? 1.0f
+                    : (it == start + 1 ? 2.0f / (2.0f - rho2) : 4.0f / (4.0f - rho2 * omega));
+        if (push) {
+            pbfSamplePush(s, c, change, omega, it == 0);
+        }
+        if (it == 0) {
             each(s, [&](uint32_t i) {
-                // x^_k+1 = x_k + the corrections, accelerated from x_k-1 (prev).
-                float dx = 0.0f, dy = 0.0f;
-                correction(p, i, dx, dy);
-                const float x = omega * ((p.cx[i] + dx) - prevX[i]) + prevX[i];
-                const float y = omega * ((p.cy[i] + dy) - prevY[i]) + prevY[i];
                 prevX[i] = p.cx[i];
                 prevY[i] = p.cy[i];
-                p.cx[i] = x;
-                p.cy[i] = y;
-                p.px[i] = p.ox[i] + x;
-                p.py[i] = p.oy[i] + y;
-                const float l = omega * (total[i] + change[i] - prevTotal[i]) + prevTotal[i];
-                prevTotal[i] = total[i];
-                total[i] = l;
+                total[i] = change[i];
             });
+            applyCorrections(s);
+            continue;
+        }
+        each(s, [&](uint32_t i) {
+            // x^_k+1 = x_k + the corrections, accelerated from x_k-1 (prev).
+            float dx = 0.0f, dy = 0.0f;
+            correction(p, i, dx, dy);
+            const float x = omega * ((p.cx[i] + dx) - prevX[i]) + prevX[i];
+            const float y = omega * ((p.cy[i] + dy) - prevY[i]) + prevY[i];
+            prevX[i] = p.cx[i];
+            prevY[i] = p.cy[i];
+            p.cx[i] = x;
+            p.cy[i] = y;
+            p.px[i] = p.ox[i] + x;
+            p.py[i] = p.oy[i] + y;
+            const float l = omega * (total[i] + change[i] - prevTotal[i]) + prevTotal[i];
+            prevTotal[i] = total[i];
+            total[i] = l;
         });
     }
-    return bodiesMoved;
 }
 
 // v = (x* - x) / dt, computed as v + (total correction) / dt: a particle no constraint moved
@@ -308,151 +232,193 @@ PbfConstants pbfConstants(const WorldState& s, const SceneFacts& facts, float dt
     return c;
 }
 
-// One viscosity run over `span` sub-steps of the frame frameDt, in `passes` passes: viscosity
-// (and the samples' friction), then vorticity, surface tension and the yield stress.
-void runViscosity(WorldState& s, const PbfConstants& c, uint32_t span, float frameDt,
-                  uint32_t passes, float vorticity, const SceneFacts& facts) {
-    Particles& p = s.particles;
-    PbfConstants spanned = c;
-    spanned.dt = c.dt * float(span);
-    const float weight = spanned.dt / frameDt;
-    const float passScale = 1.0f / float(passes);
-    const std::vector<YieldLaw> laws = yieldLaws(s, spanned.dt);
-    for (uint32_t pass = 0; pass < passes; ++pass) {
-        if (facts.wantsForces) {
-            pbfSampleFriction(s, spanned, passScale, weight);
+// The position-based solver's frame: equal sub-steps, each a prediction, the density solve,
+// the velocity update and, every `viscosityInterval` sub-steps, viscosity and the surface pass.
+class PositionBasedSolver final : public Solver {
+public:
+    explicit PositionBasedSolver(WorldState& s) : m_s(s), m_p(s.particles) {}
+
+    std::span<const char* const> stageNames() const override { return kStageNames; }
+
+    FramePlan plan(const SceneFacts& facts, float frameDt) override {
+        WorldState& s = m_s;
+        Particles& p = m_p;
+        for (auto* channel : {&p.ax, &p.ay, &p.invRho, &p.ox, &p.oy, &p.constraint, &p.diagonal,
+                              &p.lambda, &p.prevX, &p.prevY, &p.lambdaTotal, &p.lambdaPrev, &p.cx,
+                              &p.cy}) {
+            channel->resize(p.size());
         }
-        pbfViscosity(s, spanned, passScale, pass == 0, vorticity > 0.0f, laws);
-        p.vx.swap(p.ax);
-        p.vy.swap(p.ay);
+        const PositionBasedDef& settings = s.def.positionBased;
+        m_facts = facts;
+        m_frameDt = frameDt;
+        setArtificialPressure(s);
+        m_moving = samplesMove(s);
+        beginYielding(s);
+        FramePlan plan;
+        plan.count = fluid::frameSubsteps(settings.substeps, frameDt);
+        plan.dt = frameDt / float(plan.count);
+        m_c = pbfConstants(s, facts, plan.dt);
+        // Viscosity, vorticity and surface tension run every `interval` sub-steps, each time
+        // over the time since the last run (the frame's last sub-step closes a shorter run).
+        m_interval = std::min(settings.viscosityInterval, plan.count);
+        m_viscosityFactor = plan.dt * float(m_interval) * facts.maxNu *
+                            std::max(1.0f, facts.maxFriction) * (40.0f / 3.0f) /
+                            (facts.minSupport * facts.minSupport);
+        m_speedCap = kMaxPredictedMove * facts.minSupport / plan.dt;
+        // The coarse correction's share per sub-step: the setting, but at most kCoarseFrame
+        // over a frame's sub-steps together.
+        m_coarse.share =
+            std::min(settings.coarseCorrection,
+                     1.0f - std::pow(1.0f - kCoarseFrame, 1.0f / float(plan.count)));
+        m_coarse.cellSize = kCoarseCell * facts.minSupport;
+        m_coarse.tolerance = kCoarseTolerance;
+        m_coarse.maxIterations = kCoarseIterations;
+        return plan;
     }
-    pbfSurface(s, spanned, vorticity, facts.surfaceTension);
-    if (s.yielding) {
-        pbfStress(s, spanned, laws);
+
+    void substep(Stages& stages, FramePlan&, const Substep& sub) override {
+        WorldState& s = m_s;
+        Particles& p = m_p;
+        const float dt = m_c.dt;
+        // (ax, ay) takes the plugins' accelerations, (cx, cy) the positions before the
+        // prediction: scratch that is free here (resetSolve clears both).
+        stages.run(kExternal,
+                   [&] { externalForces(s, dt, s.time + double(sub.begin), p.ax, p.ay); });
+        stages.run(kPredict, [&] { predict(sub); });
+        stages.run(kSort, [&] {
+            sortParticles(s, m_facts.maxSupport, {&p.ox, &p.oy});
+            s.profile.separated += separateStacked(s, m_facts.maxSupport, &p.ox, &p.oy);
+            fillMaterialChannels(s);
+            placeSamples(s, sub.end, m_facts.maxSupport, m_moving || m_corrected || sub.index == 0);
+        });
+        stages.run(kCoarse, [&] {
+            resetSolve(s);
+            if (m_coarse.share > 0.0f) {
+                coarse(sub);
+            }
+        });
+        stages.run(kSweeps, [&] {
+            densitySweeps(s, m_c, s.def.positionBased.iterations, m_facts.wantsForces);
+        });
+        stages.run(kVelocity, [&] {
+            updateVelocity(s, dt);
+            // Each force on a reporting sample is the reaction to what the solver did to the
+            // particles, with the positions and velocities it did it with: the fluid's momentum
+            // change is the bodies' (up to the correction limit, kMaxCorrection).
+            if (m_facts.wantsForces) {
+                pbfDeliverPush(s, dt / m_frameDt);
+            }
+        });
+        if ((sub.index + 1) % m_interval == 0 || sub.last) {
+            // This run covers `span` sub-steps: the interval, or what the frame has left.
+            const uint32_t span = sub.index + 1 - (sub.index / m_interval) * m_interval;
+            PbfConstants spanned = m_c;
+            spanned.dt = m_c.dt * float(span);
+            const std::vector<YieldLaw> laws = yieldLaws(s, spanned.dt);
+            stages.run(kViscosity, [&] { viscosity(spanned, span, laws); });
+            stages.run(kSurface, [&] { surface(spanned, laws); });
+        }
+        stages.run(kBoundaries, [&] {
+            projectBoundaries(s, dt, sub.end, sub.end, m_facts.sampleSpacing, p.ox, p.oy);
+        });
     }
-    if (facts.wantsForces && s.yielding) {
-        pbfSampleStress(s, spanned, weight);
+
+    void close(Profile& profile) override {
+        m_s.kicksPending = m_s.yielding;
+        profile.iterations = m_s.def.positionBased.iterations;
     }
-}
+
+private:
+    enum Stage : uint32_t { kExternal, kPredict, kSort, kCoarse, kSweeps, kVelocity, kViscosity,
+                            kSurface, kBoundaries };
+    static constexpr const char* kStageNames[] = {
+        "external",       "predict",  "sort",      "coarse",  "density sweeps",
+        "velocity",       "viscosity", "surface", "boundaries"};
+
+    // v += dt a_ext (and the last surface pass's pending change), x* = x + dt v, projected out
+    // of solids: the admissible prediction (ox, oy) that the velocity update measures from.
+    void predict(const Substep& sub) {
+        WorldState& s = m_s;
+        Particles& p = m_p;
+        if (s.yielding) {
+            applyPendingKicks(s);
+        }
+        const IntegrateStats st = integrate(s, p.ax, p.ay, m_c.dt, m_speedCap, p.cx, p.cy);
+        s.profile.nonFiniteRepaired += st.repaired;
+        s.profile.speedClamped += st.clamped;
+        projectBoundaries(s, m_c.dt, sub.begin, sub.end, m_facts.sampleSpacing, p.cx, p.cy);
+        each(s, [&](uint32_t i) {
+            p.ox[i] = p.px[i];
+            p.oy[i] = p.py[i];
+        });
+    }
+
+    // The coarse correction (pbf_coarse.cpp); bodies it moved are placed again at once, and in
+    // every sub-step after this one.
+    void coarse(const Substep& sub) {
+        m_coarse.startTime = sub.begin;
+        m_coarse.endTime = sub.end;
+        if (pbfCoarse(m_s, m_c, m_coarse)) {
+            placeSamples(m_s, m_coarse.endTime, m_facts.maxSupport, true);
+            m_corrected = true;
+        }
+    }
+
+    // Viscosity over `span` sub-steps (spanned.dt), in as many passes as its stability asks,
+    // with the samples' friction.
+    void viscosity(const PbfConstants& spanned, uint32_t span, std::span<const YieldLaw> laws) {
+        WorldState& s = m_s;
+        Particles& p = m_p;
+        const auto passes = static_cast<uint32_t>(
+            std::clamp(std::ceil(m_viscosityFactor * float(span) / float(m_interval) /
+                                 kViscosityFactor),
+                       1.0f, 64.0f));
+        const float weight = spanned.dt / m_frameDt;
+        const float passScale = 1.0f / float(passes);
+        const float vorticity = s.def.positionBased.vorticity;
+        for (uint32_t pass = 0; pass < passes; ++pass) {
+            if (m_facts.wantsForces) {
+                pbfSampleFriction(s, spanned, passScale, weight);
+            }
+            pbfViscosity(s, spanned, passScale, pass == 0, vorticity > 0.0f, laws);
+            p.vx.swap(p.ax);
+            p.vy.swap(p.ay);
+        }
+    }
+
+    // Vorticity confinement, surface tension and the yield stress over spanned.dt, with the
+    // walls' reaction to the stress.
+    void surface(const PbfConstants& spanned, std::span<const YieldLaw> laws) {
+        WorldState& s = m_s;
+        pbfSurface(s, spanned, s.def.positionBased.vorticity, m_facts.surfaceTension);
+        if (s.yielding) {
+            pbfStress(s, spanned, laws);
+        }
+        if (m_facts.wantsForces && s.yielding) {
+            pbfSampleStress(s, spanned, spanned.dt / m_frameDt);
+        }
+    }
+
+    WorldState& m_s;
+    Particles& m_p;
+    SceneFacts m_facts;
+    PbfConstants m_c;
+    CoarseSettings m_coarse;
+    float m_frameDt = 0.0f;
+    uint32_t m_interval = 1;
+    float m_viscosityFactor = 0.0f;
+    float m_speedCap = 0.0f;
+    bool m_moving = false;
+    // Some rigid body was moved by the coarse solve in this frame: its samples are placed
+    // again every sub-step from then on.
+    bool m_corrected = false;
+};
 
 } // namespace
 
 void stepPositionBased(WorldState& s, float frameDt) {
-    const Clock::time_point start = Clock::now();
-    Profile& prof = s.profile;
-    prof = Profile{};
-    Particles& p = s.particles;
-    const uint32_t n = p.size();
-    for (auto* channel :
-         {&p.ax, &p.ay, &p.invRho, &p.ox, &p.oy, &p.constraint, &p.diagonal, &p.lambda, &p.prevX,
-          &p.prevY, &p.lambdaTotal, &p.lambdaPrev, &p.cx, &p.cy}) {
-        channel->resize(n);
-    }
-    const PositionBasedDef& settings = s.def.positionBased;
-    const SceneFacts facts = sceneFacts(s);
-
-    // Prepare: plugins, boundary samples, constants.
-    const StepContext context{frameDt, s.time, facts.sampleSpacing, facts.maxSupport};
-    for (const auto& plugin : s.forces) {
-        plugin->prepare(context);
-    }
-    gatherSamples(s, context);
-    refreshConstants(s);
-    setArtificialPressure(s);
-    const bool moving = samplesMove(s);
-    // Some rigid body was moved by the coarse solve in this step: its samples are placed again
-    // every sub-step from then on.
-    bool corrected = false;
-    beginYielding(s);
-
-    const uint32_t substeps = fluid::frameSubsteps(settings.substeps, frameDt);
-    const float dt = frameDt / float(substeps);
-    const PbfConstants c = pbfConstants(s, facts, dt);
-    // Viscosity, vorticity and surface tension run every `interval` sub-steps, each time over
-    // the time since the last run (the frame's last sub-step closes a shorter run).
-    const uint32_t interval = std::min(settings.viscosityInterval, substeps);
-    const float viscosityFactor = dt * float(interval) * facts.maxNu *
-                                  std::max(1.0f, facts.maxFriction) * (40.0f / 3.0f) /
-                                  (facts.minSupport * facts.minSupport);
-    const auto spanPasses = [&](uint32_t span) {
-        return static_cast<uint32_t>(std::clamp(
-            std::ceil(viscosityFactor * float(span) / float(interval) / kViscosityFactor), 1.0f,
-            64.0f));
-    };
-    const float speedCap = kMaxMove * facts.minSupport / dt;
-    // The coarse correction's share per sub-step: the setting, but at most kCoarseFrame over a
-    // frame's sub-steps together.
-    const float coarseShare = std::min(
-        settings.coarseCorrection, 1.0f - std::pow(1.0f - kCoarseFrame, 1.0f / float(substeps)));
-
-    for (uint32_t sub = 0; sub < substeps; ++sub) {
-        const float inStep = float(sub) * dt;
-        const float endInStep = sub + 1 == substeps ? frameDt : float(sub + 1) * dt;
-        // Scratch that is free here: (ax, ay) takes the plugins' accelerations, (cx, cy) the
-        // positions before the prediction (solveDensity resets both).
-        timed(prof.external, [&] { externalForces(s, dt, s.time + double(inStep), p.ax, p.ay); });
-        timed(prof.integrate, [&] {
-            if (s.yielding) {
-                applyPendingKicks(s); // the last surface pass's velocity change
-            }
-            const IntegrateStats st = integrate(s, p.ax, p.ay, dt, speedCap, p.cx, p.cy);
-            prof.nonFiniteRepaired += st.repaired;
-            prof.speedClamped += st.clamped;
-            projectBoundaries(s, dt, inStep, endInStep, facts.sampleSpacing, p.cx, p.cy);
-            // The admissible prediction: the velocity update adds only what the constraint
-            // moves from here.
-            each(s, [&](uint32_t i) {
-                p.ox[i] = p.px[i];
-                p.oy[i] = p.py[i];
-            });
-        });
-        timed(prof.sort, [&] {
-            sortParticles(s, facts.maxSupport, {&p.ox, &p.oy});
-            prof.separated += separateStacked(s, facts.maxSupport, &p.ox, &p.oy);
-            fillMaterialChannels(s);
-            placeSamples(s, endInStep, facts.maxSupport, moving || corrected || sub == 0);
-        });
-        CoarseSettings coarse;
-        coarse.share = coarseShare;
-        coarse.cellSize = kCoarseCell * facts.minSupport;
-        coarse.tolerance = kCoarseTolerance;
-        coarse.maxIterations = kCoarseIterations;
-        coarse.startTime = inStep;
-        coarse.endTime = endInStep;
-        corrected = solveDensity(s, c, settings.iterations, coarse, facts.maxSupport,
-                                 facts.wantsForces, prof) ||
-                    corrected;
-        timed(prof.integrate, [&] { updateVelocity(s, dt); });
-        timed(prof.forces, [&] {
-            // Each force on a reporting sample is the reaction to what the solver did to the
-            // particles, with the positions and velocities it did it with: the fluid's
-            // momentum change is the bodies' (up to the correction limit, kMaxCorrection).
-            if (facts.wantsForces) {
-                pbfDeliverPush(s, dt / frameDt);
-            }
-            if ((sub + 1) % interval != 0 && sub + 1 != substeps) {
-                return;
-            }
-            // This run covers `span` sub-steps: the interval, or what the frame has left.
-            const uint32_t span = sub + 1 - (sub / interval) * interval;
-            runViscosity(s, c, span, frameDt, spanPasses(span), settings.vorticity, facts);
-        });
-        timed(prof.boundaries, [&] {
-            projectBoundaries(s, dt, endInStep, endInStep, facts.sampleSpacing, p.ox, p.oy);
-        });
-    }
-    s.kicksPending = s.yielding;
-    densityError(s);
-    deliverBodyImpulses(s, frameDt);
-    if (facts.wantsForces) {
-        deliverSampleForces(s);
-    }
-    finishPlugins(s, context);
-    s.time += frameDt;
-    prof.substeps = substeps;
-    prof.iterations = settings.iterations;
-    prof.particles = n;
-    prof.step = std::chrono::duration<float, std::milli>(Clock::now() - start).count();
+    PositionBasedSolver solver(s);
+    runFrame(s, frameDt, solver);
 }
 
 } // namespace fluid::detail

@@ -695,6 +695,15 @@ std::span<const float> World::pressure() const {
 std::span<const uint16_t> World::materialIndex() const {
     return m_state->particles.material;
 }
+float Profile::stage(std::string_view name) const {
+    for (const StageTime& t : stageTimes()) {
+        if (name == t.name) {
+            return t.ms;
+        }
+    }
+    return 0.0f;
+}
+
 const Profile& World::profile() const {
     return m_state->profile;
 }

@@ -258,3 +258,35 @@ TEST_CASE("particles stacked on one point are parted, by either solver, the same
         CHECK(world.position(alone) == glm::vec2(0.1f, 0.2f));
     }
 }
+
+TEST_CASE("the profile names each solver's stages in the order a step runs them",
+          "[unit][profile]") {
+    const std::vector<std::string> positionBased = {
+        "prepare",  "external",  "predict", "sort",       "coarse", "density sweeps",
+        "velocity", "viscosity", "surface", "boundaries", "finish"};
+    const std::vector<std::string> explicitSph = {"prepare",  "sort",      "external",
+                                                  "probe",    "density",   "pressure",
+                                                  "forces",   "integrate", "boundaries",
+                                                  "finish"};
+    for (const Solver solver : {Solver::PositionBased, Solver::Explicit}) {
+        INFO(solverName(solver));
+        WorldDef def;
+        def.solver = solver;
+        World world = tank(10, def);
+        CHECK(world.profile().stageTimes().empty());
+        world.step(kFrame);
+        const Profile& profile = world.profile();
+        std::vector<std::string> names;
+        double sum = 0.0;
+        for (const StageTime& t : profile.stageTimes()) {
+            names.emplace_back(t.name);
+            CHECK(t.ms >= 0.0f);
+            sum += t.ms;
+        }
+        CHECK(names == (solver == Solver::PositionBased ? positionBased : explicitSph));
+        // The stages are parts of the step: together no longer than it.
+        CHECK(sum <= double(profile.step) + 1e-3);
+        CHECK(profile.stage("sort") == profile.stages[names[1] == "sort" ? 1 : 3].ms);
+        CHECK(profile.stage("no such stage") == 0.0f);
+    }
+}

@@ -9,12 +9,14 @@
 
 #include <glm/vec2.hpp>
 
+#include <array>
 #include <cstdint>
 #include <iosfwd>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace fluid {
@@ -163,25 +165,32 @@ struct BlobDef {
     float lifetime = 0.0f;
 };
 
+/// The most stages a step's profile names (unit: count).
+inline constexpr uint32_t kMaxProfileStages = 12;
+
+/// One named stage of a step and the wall-clock time it took.
+struct StageTime {
+    /// The stage's name, fixed by the solver ("prepare", "sort", "density sweeps"...; static
+    /// storage, never freed; docs/architecture.md lists each solver's stages).
+    const char* name = nullptr;
+    /// Wall-clock time summed over the step's sub-steps (unit: ms; >= 0).
+    float ms = 0.0f;
+};
+
 /// Timings and counters of the last `World::step`. Times are wall-clock milliseconds summed over
-/// the step's sub-steps; counters describe the last step.
+/// the step's sub-steps; counters describe the last step. Read it on the thread that steps.
 struct Profile {
     /// Whole step (unit: ms).
     float step = 0.0f;
-    /// Counting sort by grid cell and reordering of all channels (unit: ms).
-    float sort = 0.0f;
-    /// Force plugins' accelerations (unit: ms).
-    float external = 0.0f;
-    /// Density sums, fluid and boundary (unit: ms).
-    float density = 0.0f;
-    /// Equation of state and boundary pressure extrapolation (unit: ms).
-    float pressure = 0.0f;
-    /// Pressure, viscosity and surface-tension forces, and forces on boundaries (unit: ms).
-    float forces = 0.0f;
-    /// Symplectic Euler update (unit: ms).
-    float integrate = 0.0f;
-    /// Boundary plugins' projection (unit: ms).
-    float boundaries = 0.0f;
+    /// The step's stages in the order they run: "prepare", the solver's sub-step stages, then
+    /// "finish"; entries [0, stageCount) are filled.
+    std::array<StageTime, kMaxProfileStages> stages{};
+    /// Filled entries of `stages` (unit: count; 0 before the first step, <= kMaxProfileStages).
+    uint32_t stageCount = 0;
+    /// The filled stages (a view into this profile).
+    std::span<const StageTime> stageTimes() const { return {stages.data(), stageCount}; }
+    /// The time of the stage called `name` (unit: ms; 0 when the solver has no such stage).
+    float stage(std::string_view name) const;
     /// Sub-steps taken (unit: count).
     uint32_t substeps = 0;
     /// Density-constraint iterations per sub-step (unit: count; 0 for the explicit solver).

@@ -280,13 +280,22 @@ const Profile& Coupling::profile() const {
 void Coupling::addProfile(const Profile& round) {
     Profile& p = m_profile;
     p.step += round.step;
-    p.sort += round.sort;
-    p.external += round.external;
-    p.density += round.density;
-    p.pressure += round.pressure;
-    p.forces += round.forces;
-    p.integrate += round.integrate;
-    p.boundaries += round.boundaries;
+    // Every round runs the same solver, so the same stages; a stage new to the frame (the
+    // explicit solver's probe) is added after the others.
+    for (const StageTime& t : round.stageTimes()) {
+        uint32_t k = 0;
+        while (k < p.stageCount && std::string_view(p.stages[k].name) != t.name) {
+            ++k;
+        }
+        if (k == p.stageCount) {
+            if (k == kMaxProfileStages) {
+                continue;
+            }
+            p.stages[k].name = t.name;
+            ++p.stageCount;
+        }
+        p.stages[k].ms += t.ms;
+    }
     p.substeps += round.substeps;
     p.speedClamped += round.speedClamped;
     p.nonFiniteRepaired += round.nonFiniteRepaired;

@@ -1,0 +1,74 @@
+// fluid — every tuning constant of the position-based solver, each with its reason in one line.
+// The measurements that chose them are in docs/position_based.md, "Tuning constants", under the
+// constant's name; change one only with a measurement there.
+#pragma once
+
+#include <cstdint>
+
+namespace fluid::detail::tuning {
+
+// ---- the density constraint (solver_position_based.cpp) -----------------------------------
+
+/// s_corr's artificial pressure as a share of the cohesion's pressure scale rho0 a_gamma h
+/// (a_gamma = gamma m / A [Akinci 2013], the explicit solver's background-pressure bound).
+inline constexpr float kArtificial = 0.1f;
+/// Where s_corr's kernel ratio is 1, in supports (Macklin & Mueller use 0.1-0.3).
+inline constexpr float kDeltaQ = 0.2f;
+/// Share of a Jacobi update a sweep takes: the full update overshoots where many neighbours
+/// push together.
+inline constexpr float kRelax = 0.5f;
+/// ... with a single sweep per sub-step, whose overshoot goes straight into the velocity.
+inline constexpr float kRelaxSingle = 0.35f;
+/// Lattice neighbours up to which a material relaxes by kRelax; above, by kRelax (this / n)^2.
+inline constexpr float kRelaxNeighbours = 36.0f;
+/// Estimated spectral radius of a sweep for the Chebyshev acceleration [Wang 2015]: higher
+/// boils yoghurt.
+inline constexpr float kChebyshev = 0.8f;
+/// Sweeps before the acceleration starts, with fewer than kChebyshevEarly sweeps per sub-step.
+inline constexpr uint32_t kChebyshevStart = 1;
+/// From this many sweeps per sub-step the acceleration starts with the first one.
+inline constexpr uint32_t kChebyshevEarly = 8;
+/// Least denominator of a multiplier, as a share of the material's lattice value: a particle
+/// squeezed between solids otherwise gets an unbounded multiplier.
+inline constexpr float kDiagonalFloor = 0.1f;
+/// Longest move of one correction, in supports: a bad sweep cannot fling a particle across the
+/// grid.
+inline constexpr float kMaxCorrection = 0.5f;
+/// Fastest predicted move per sub-step, in supports: the grid is rebuilt once per sub-step, and
+/// faster a particle could skip a wall's sample layers.
+inline constexpr float kMaxPredictedMove = 2.0f;
+
+// ---- viscosity and the yield stress (pbf_loops.cpp, simd/pbf_pairs.inc, yield_law.h) -------
+
+/// Largest viscosity factor dt nu sum_j V_j L_ij per pass: below 0.5 the explicit update only
+/// smooths, never overshoots.
+inline constexpr float kViscosityFactor = 0.5f;
+/// Share of the support a shear wave may cross per viscosity run: the cap on a yielding
+/// material's shear modulus, G <= rho0 (kShearWave h / dt)^2.
+inline constexpr float kShearWave = 0.15f;
+/// Share of the yield stress a yielding material holds on to a wall with at rest.
+inline constexpr float kAdhesion = 0.5f;
+/// The largest elastic strain a yielding material stores: the stress is advanced as a rate,
+/// true to small strains only.
+inline constexpr float kCarriedStrain = 1.0f;
+
+// ---- the coarse correction (pbf_coarse.cpp) -------------------------------------------------
+
+/// Coarse grid cell, in the smallest support (2.4 water spacings).
+inline constexpr float kCoarseCell = 0.75f;
+/// Compression the coarse correction leaves to the sweeps (1).
+inline constexpr float kCoarseTolerance = 0.05f;
+/// Conjugate-gradient iterations at most per solve.
+inline constexpr uint32_t kCoarseIterations = 100;
+/// Residual, relative to the start, that ends the solve.
+inline constexpr float kCoarseResidual = 1e-4f;
+/// Diagonal shift of the coarse operator: a closed container full of fluid has no free surface
+/// to anchor the potential.
+inline constexpr float kCoarseShift = 1e-3f;
+/// Largest share of the coarse correction over one frame's sub-steps together: a sub-step's
+/// correction becomes velocity over its dt.
+inline constexpr float kCoarseFrame = 0.9f;
+/// Longest coarse move of a particle per sub-step, in its supports.
+inline constexpr float kCoarseMaxMove = 0.25f;
+
+} // namespace fluid::detail::tuning
