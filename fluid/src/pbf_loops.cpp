@@ -130,7 +130,7 @@ std::vector<YieldLaw> yieldLaws(const WorldState& s, float dt) {
     for (size_t m = 0; m < laws.size(); ++m) {
         const MaterialConstants& mc = s.constants[m];
         // The stiffest shear modulus whose wave crosses kShearWave of the support per step.
-        const float speed = kShearWave * mc.support / dt;
+        const float speed = tuning::kShearWave * mc.support / dt;
         const float stiffest = mc.restDensity * speed * speed;
         laws[m] =
             makeYieldLaw(mc.yielding, mc.yieldStress, mc.consistency, mc.flowIndex,

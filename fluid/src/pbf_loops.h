@@ -1,6 +1,7 @@
 // fluid — the neighbour passes of the position-based solver (pbf_loops.cpp).
 #pragma once
 
+#include "pbf_tuning.h"
 #include "world_state.h"
 #include "yield_law.h"
 
@@ -36,10 +37,6 @@ void pbfConstraint(WorldState& s, const PbfConstants& c, const float* relaxation
 /// pair term is antisymmetric times m_i, so displacements conserve momentum.
 void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> multiplier,
                  bool sCorr);
-
-/// Share of the support a shear wave may cross per viscosity run: the solver's cap on a
-/// yielding material's shear modulus, G <= rho0 (kShearWave h / dt)^2.
-inline constexpr float kShearWave = 0.15f;
 
 /// Each material's Herschel-Bulkley law (yield_law.h) over a viscosity run of `dt`, its shear
 /// modulus capped by kShearWave; empty in a world without a yielding material. Built once per

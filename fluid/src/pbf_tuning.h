@@ -1,6 +1,7 @@
 // fluid — every tuning constant of the position-based solver, each with its reason in one line.
 // The measurements that chose them are in docs/position_based.md, "Tuning constants", under the
-// constant's name; change one only with a measurement there.
+// constant's name; change one only with a measurement there. Only <cstdint> (types, no
+// functions), so the per-instruction-set pair passes may include it (simd/pair_view.h).
 #pragma once
 
 #include <cstdint>

@@ -10,7 +10,7 @@
 //   else            |s| = |s*| - G dt g = tau_y + K g^n      (g: the plastic shear rate)
 // so under a steady shear rate g the stress settles at tau_y + K g^n, the Herschel-Bulkley law,
 // and a material left alone keeps a stress of at most tau_y: it holds its shape. No stress
-// above G times an elastic strain of kCarriedStrain (below) is stored: the return starts
+// above G times an elastic strain of kCarriedStrain (pbf_tuning.h) is stored: the return starts
 // at tau_y or there, whichever is less, and returns at most to there. The return is
 // implicit in g, so it is stable for any K and n; only G's elastic wave limits the step (the
 // solver caps G). Scalar code, compiled into every instruction set's pair passes with the same
@@ -19,6 +19,8 @@
 // (compiler builtins for the maths), so no copy built for a wider instruction set can be
 // linked in place of another.
 #pragma once
+
+#include "pbf_tuning.h"
 
 namespace fluid::detail {
 
@@ -33,11 +35,6 @@ struct YieldLaw {
     float flowStress = 0;    // where the return starts (Pa): tau_y, at most carriedStress
 };
 
-// The largest elastic strain a yielding material stores: the stress is advanced as a rate,
-// true to small strains only, and a stiff material under the capped G stored strains of 10-50
-// and gave them back as motion (docs/position_based.md, "No stress above a strain of 1").
-constexpr float kCarriedStrain = 1.0f;
-
 /// The law of a material with yield stress `tauY` (Pa), consistency `k` (Pa s^n), flow index `n`
 /// and shear modulus `g` (Pa, as the solver caps it): the stress the step carries follows.
 static inline YieldLaw makeYieldLaw(bool yielding, float tauY, float k, float n, float g) {
@@ -47,7 +44,7 @@ static inline YieldLaw makeYieldLaw(bool yielding, float tauY, float k, float n,
     law.consistency = k;
     law.flowIndex = n;
     law.shearModulus = g;
-    law.carriedStress = kCarriedStrain * g;
+    law.carriedStress = tuning::kCarriedStrain * g;
     law.flowStress = __builtin_fminf(tauY, law.carriedStress);
     return law;
 }

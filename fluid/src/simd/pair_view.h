@@ -2,8 +2,8 @@
 // and the table of those passes for the instruction set the machine has.
 //
 // The passes are compiled once per instruction set (pbf_pairs_*.cpp). Their object files
-// include nothing but this header (with ../yield_law.h), ../kernel_constants.h, <immintrin.h>
-// and <cstdint>, and define everything they use with internal linkage, so no inline function of
+// include nothing but this header (with ../yield_law.h), ../kernel_constants.h,
+// ../pbf_tuning.h, <immintrin.h> and <cstdint>, and define everything they use with internal linkage, so no inline function of
 // the standard library can be linked from a wider instruction set than the machine runs.
 #pragma once
 
