@@ -5,7 +5,7 @@
 set -euo pipefail
 
 PACKAGES=(
-    build-essential cmake ninja-build pkg-config
+    build-essential cmake ninja-build pkg-config ccache
     libbox2d-dev libsfml-dev libglm-dev catch2 libglew-dev libimgui-dev
     nlohmann-json3-dev libbenchmark-dev libcli11-dev
     xvfb xauth x11-utils mesa-utils

@@ -31,7 +31,7 @@ endif()
 # Build the consumer the way the parent tree was built.
 load_cache("${BINARY_DIR}" READ_WITH_PREFIX PARENT_
     CMAKE_GENERATOR CMAKE_MAKE_PROGRAM CMAKE_BUILD_TYPE CMAKE_CXX_COMPILER CMAKE_CXX_FLAGS
-    CMAKE_EXE_LINKER_FLAGS FLUID_INSTALL)
+    CMAKE_EXE_LINKER_FLAGS FLUID_INSTALL FLUID_CCACHE FLUID_CCACHE_PROGRAM)
 if(NOT DEFINED GENERATOR OR GENERATOR STREQUAL "")
     set(GENERATOR "${PARENT_CMAKE_GENERATOR}")
 endif()
@@ -51,6 +51,12 @@ foreach(_var IN ITEMS CMAKE_MAKE_PROGRAM CMAKE_CXX_COMPILER CMAKE_CXX_FLAGS CMAK
         list(APPEND _common_args "-D${_var}=${PARENT_${_var}}")
     endif()
 endforeach()
+
+# Through the parent's compiler cache, when it has one: the subdirectory mode compiles the core
+# with the parent's flags, so it costs cache lookups rather than a second build.
+if(PARENT_FLUID_CCACHE AND PARENT_FLUID_CCACHE_PROGRAM)
+    list(APPEND _common_args "-DCMAKE_CXX_COMPILER_LAUNCHER=${PARENT_FLUID_CCACHE_PROGRAM}")
+endif()
 
 set(_config_args)
 if(BUILD_TYPE)
