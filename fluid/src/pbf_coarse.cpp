@@ -92,8 +92,8 @@ void splat(std::vector<float>& fill, const Layout& g, float x, float y, float am
 
 // Particle i's coarse move: share times minus the bilinear gradient of the node values (in its
 // cell, with its fractions, as the fill found them), at most kCoarseMaxMove of its support, into
-// (cx, cy) and onto its position.
-void moveParticle(Particles& p, const CoarseGrid& cg, const Layout& g, const float* value,
+// the correction (cx, cy) and onto its position.
+void moveParticle(Particles& p, PositionBasedScratch& x, const CoarseGrid& cg, const Layout& g, const float* value,
                   float share, uint32_t i) {
     const float fx = cg.fx[i], fy = cg.fy[i];
     const size_t k = cg.cell[i];
@@ -108,10 +108,10 @@ void moveParticle(Particles& p, const CoarseGrid& cg, const Layout& g, const flo
         ux = std::isfinite(len2) ? ux * scale : 0.0f;
         uy = std::isfinite(len2) ? uy * scale : 0.0f;
     }
-    p.cx[i] = ux;
-    p.cy[i] = uy;
-    p.px[i] = p.ox[i] + ux;
-    p.py[i] = p.oy[i] + uy;
+    x.cx[i] = ux;
+    x.cy[i] = uy;
+    p.px[i] = x.ox[i] + ux;
+    p.py[i] = x.oy[i] + uy;
 }
 
 // G^T v: per body, the sums of its faces' fluxes times v (x, y), in face order (the faces are
@@ -683,7 +683,7 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
     // Each particle's move reads only the node values: the particles split over the workers.
     parallelFor(s.tasks, n, kMoveGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
-            moveParticle(p, cg, g, value.data(), share, i);
+            moveParticle(p, s.pbfScratch, cg, g, value.data(), share, i);
         }
     });
     return coupled && moveBodies(s, cg, mobility, bodySum, settings, psi);

@@ -20,6 +20,8 @@ namespace {
 // The particles, samples and grids as plain data for the pair passes (simd/pbf_pairs.inc).
 PbfView makeView(const WorldState& s, const PbfConstants& c) {
     const Particles& p = s.particles;
+    const PositionBasedScratch& x = s.pbfScratch;
+    const YieldScratch& y = s.yieldScratch;
     const Samples& w = s.samples;
     PbfView v;
     v.n = p.size();
@@ -41,15 +43,15 @@ PbfView makeView(const WorldState& s, const PbfConstants& c) {
     v.density = p.density.data();
     // After the density solve its scratch holds the viscosity pass's outputs for the surface
     // pass: the vorticity in `diagonal`, the normals in `prevX`, `prevY` (see world_state.h).
-    v.vorticity = p.diagonal.data();
-    v.nx = p.prevX.data();
-    v.ny = p.prevY.data();
+    v.vorticity = x.vorticity.data();
+    v.nx = x.normalX.data();
+    v.ny = x.normalY.data();
     v.material = p.material.data();
     v.sxx = p.sxx.data();
     v.sxy = p.sxy.data();
-    v.tx = p.tx.data();
-    v.ty = p.ty.data();
-    v.rigidity = p.rigidity.data();
+    v.tx = y.tx.data();
+    v.ty = y.ty.data();
+    v.rigidity = y.rigidity.data();
     v.yielding = s.yielding;
     v.grid = s.grid.view();
     v.samples = w.size();
@@ -85,6 +87,7 @@ template <class F> void pairs(WorldState& s, F&& f) {
 
 void pbfConstraint(WorldState& s, const PbfConstants& c, const float* relaxation) {
     Particles& p = s.particles;
+    PositionBasedScratch& x = s.pbfScratch;
     PbfView v = makeView(s, c);
     std::vector<float> least(s.constants.size());
     for (size_t m = 0; m < least.size(); ++m) {
@@ -92,8 +95,8 @@ void pbfConstraint(WorldState& s, const PbfConstants& c, const float* relaxation
     }
     v.leastDiagonal = least.data();
     PbfOut o;
-    o.constraint = p.constraint.data();
-    o.diagonal = p.diagonal.data();
+    o.constraint = x.constraint.data();
+    o.diagonal = x.diagonal.data();
     o.density = p.density.data();
     o.invRho = p.invRho.data();
     const PbfPairs& k = pbfPairs();
@@ -104,9 +107,9 @@ void pbfConstraint(WorldState& s, const PbfConstants& c, const float* relaxation
         }
         for (uint32_t i = b; i < e; ++i) {
             const float updated = std::min(
-                p.lambda[i] - relaxation[p.material[i]] * p.constraint[i] / p.diagonal[i], 0.0f);
-            p.constraint[i] = updated - p.lambda[i];
-            p.lambda[i] = updated;
+                x.lambda[i] - relaxation[p.material[i]] * x.constraint[i] / x.diagonal[i], 0.0f);
+            x.change[i] = updated - x.lambda[i];
+            x.lambda[i] = updated;
         }
     });
 }
@@ -114,10 +117,11 @@ void pbfConstraint(WorldState& s, const PbfConstants& c, const float* relaxation
 void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> multiplier,
                  bool sCorr) {
     Particles& p = s.particles;
+    PositionBasedScratch& x = s.pbfScratch;
     const PbfView v = makeView(s, c);
     PbfOut o;
-    o.ax = p.ax.data();
-    o.ay = p.ay.data();
+    o.ax = x.dx.data();
+    o.ay = x.dy.data();
     const PbfPairs& k = pbfPairs();
     pairs(s, [&](uint32_t b, uint32_t e) { k.displace(v, o, multiplier.data(), sCorr, b, e); });
 }
@@ -142,21 +146,23 @@ std::vector<YieldLaw> yieldLaws(const WorldState& s, float dt) {
 void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first, bool curl,
                   std::span<const YieldLaw> laws) {
     Particles& p = s.particles;
+    PositionBasedScratch& x = s.pbfScratch;
+    YieldScratch& y = s.yieldScratch;
     PbfView v = makeView(s, c);
     PbfOut o;
-    o.ax = p.ax.data();
-    o.ay = p.ay.data();
-    o.vorticity = p.diagonal.data(); // see makeView
-    o.nx = p.prevX.data();
-    o.ny = p.prevY.data();
+    o.ax = x.nextVx.data();
+    o.ay = x.nextVy.data();
+    o.vorticity = x.vorticity.data();
+    o.nx = x.normalX.data();
+    o.ny = x.normalY.data();
     o.density = p.density.data();
     if (first && s.yielding) {
         v.yield = laws.data();
         o.sxx = p.sxx.data();
         o.sxy = p.sxy.data();
-        o.tx = p.tx.data();
-        o.ty = p.ty.data();
-        o.rigidity = p.rigidity.data();
+        o.tx = y.tx.data();
+        o.ty = y.ty.data();
+        o.rigidity = y.rigidity.data();
     }
     const PbfPairs& k = pbfPairs();
     pairs(s, [&](uint32_t b, uint32_t e) { k.viscosity(v, o, scale, first, curl, b, e); });
@@ -164,11 +170,12 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first,
 
 void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surfaceTension) {
     Particles& p = s.particles;
+    YieldScratch& y = s.yieldScratch;
     const bool forces = vorticity > 0.0f || surfaceTension;
     if (s.yielding && !forces) {
         // The stress pass starts from no acceleration: exactly +0, as a sum of no terms.
-        p.surfaceAx.assign(p.size(), 0.0f);
-        p.surfaceAy.assign(p.size(), 0.0f);
+        y.surfaceAx.assign(p.size(), 0.0f);
+        y.surfaceAy.assign(p.size(), 0.0f);
         return;
     }
     if (!forces) {
@@ -180,10 +187,10 @@ void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surf
     o.vy = p.vy.data();
     if (s.yielding) {
         // The acceleration waits for the stress pass's terms (pbfStress).
-        p.surfaceAx.resize(p.size());
-        p.surfaceAy.resize(p.size());
-        o.ax = p.surfaceAx.data();
-        o.ay = p.surfaceAy.data();
+        y.surfaceAx.resize(p.size());
+        y.surfaceAy.resize(p.size());
+        o.ax = y.surfaceAx.data();
+        o.ay = y.surfaceAy.data();
     }
     const PbfPairs& k = pbfPairs();
     pairs(s, [&](uint32_t b, uint32_t e) { k.surface(v, o, vorticity, surfaceTension, b, e); });
@@ -191,17 +198,18 @@ void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surf
 
 void pbfStress(WorldState& s, const PbfConstants& c, std::span<const YieldLaw> laws) {
     Particles& p = s.particles;
+    YieldScratch& y = s.yieldScratch;
     PbfView v = makeView(s, c);
     v.yield = laws.data();
-    v.surfaceAx = p.surfaceAx.data();
-    v.surfaceAy = p.surfaceAy.data();
+    v.surfaceAx = y.surfaceAx.data();
+    v.surfaceAy = y.surfaceAy.data();
     PbfOut o;
     // The velocity change waits in kx, ky for the next prediction (see Particles::kx).
     o.vx = p.kx.data();
     o.vy = p.ky.data();
-    o.wallNx = p.wallNx.data();
-    o.wallNy = p.wallNy.data();
-    o.wallAdhesion = p.wallAdhesion.data();
+    o.wallNx = y.wallNx.data();
+    o.wallNy = y.wallNy.data();
+    o.wallAdhesion = y.wallAdhesion.data();
     const PbfPairs& k = pbfPairs();
     pairs(s, [&](uint32_t b, uint32_t e) { k.stress(v, o, b, e); });
 }
@@ -306,17 +314,18 @@ void pbfSampleFriction(WorldState& s, const PbfConstants& c, float scale, float 
 
 void pbfSampleStress(WorldState& s, const PbfConstants& c, float weight) {
     const Particles& p = s.particles;
+    const YieldScratch& y = s.yieldScratch;
     Samples& w = s.samples;
     const float* __restrict px = p.px.data();
     const float* __restrict py = p.py.data();
     const float* __restrict hs = p.h.data();
-    const float* __restrict tx = p.tx.data();
-    const float* __restrict ty = p.ty.data();
-    const float* __restrict nx = p.wallNx.data();
-    const float* __restrict ny = p.wallNy.data();
+    const float* __restrict tx = y.tx.data();
+    const float* __restrict ty = y.ty.data();
+    const float* __restrict nx = y.wallNx.data();
+    const float* __restrict ny = y.wallNy.data();
     const float* __restrict mass = p.mass.data();
     const float* __restrict rho0 = p.restDensity.data();
-    const float* __restrict adhesion = p.wallAdhesion.data();
+    const float* __restrict adhesion = y.wallAdhesion.data();
     const auto count = static_cast<uint32_t>(w.reporting.size());
     samplePass<2>(
         s, count, w.reporting.data(),

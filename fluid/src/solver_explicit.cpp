@@ -69,6 +69,7 @@ void setEquationOfState(WorldState& s, float soundSpeed) {
 // uses it, so plugins' apply runs exactly once per sub-step.
 void measureField(WorldState& s) {
     const Particles& p = s.particles;
+    const ExplicitScratch& x = s.explicitScratch;
     if (p.size() == 0) {
         s.fieldGH = 0.0f;
         return;
@@ -84,9 +85,9 @@ void measureField(WorldState& s) {
         [&](uint32_t b, uint32_t e) {
             Acc a;
             for (uint32_t i = b; i < e; ++i) {
-                const float g = std::sqrt(p.ex[i] * p.ex[i] + p.ey[i] * p.ey[i]);
-                a.sx += p.ex[i];
-                a.sy += p.ey[i];
+                const float g = std::sqrt(x.ex[i] * x.ex[i] + x.ey[i] * x.ey[i]);
+                a.sx += x.ex[i];
+                a.sy += x.ey[i];
                 a.sabs += g;
                 a.gmax = std::max(a.gmax, g);
                 a.x0 = std::min(a.x0, p.px[i]);
@@ -161,6 +162,7 @@ float sceneSoundSpeed(WorldState& s) {
 // fluid presses, with no pressure mirroring (which pumps energy into a resting tank).
 void computePressure(WorldState& s, const SubstepConstants& c) {
     Particles& p = s.particles;
+    ExplicitScratch& x = s.explicitScratch;
     parallelFor(s.tasks, p.size(), 1024, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
             const MaterialConstants& mc = c.mat[p.material[i]];
@@ -176,7 +178,7 @@ void computePressure(WorldState& s, const SubstepConstants& c) {
             // The pair term's pressure carries the background pressure (fluid-fluid pairs only:
             // walls and readers see the equation of state's pressure).
             const float pair = p.pressure[i] + (c.tait ? mc.backgroundPressure : 0.0f);
-            p.pOverRho2[i] = pair * p.invRho[i] * p.invRho[i];
+            x.pOverRho2[i] = pair * p.invRho[i] * p.invRho[i];
         }
     });
     computeSamplePressure(s);
@@ -192,8 +194,9 @@ public:
     FramePlan plan(const SceneFacts& facts, float frameDt) override {
         WorldState& s = m_s;
         Particles& p = m_p;
+        ExplicitScratch& x = s.explicitScratch;
         for (auto* channel :
-             {&p.ax, &p.ay, &p.ex, &p.ey, &p.nx, &p.ny, &p.pOverRho2, &p.invRho}) {
+             {&x.ax, &x.ay, &x.ex, &x.ey, &x.nx, &x.ny, &x.pOverRho2, &p.invRho}) {
             channel->resize(p.size());
         }
         m_facts = facts;
@@ -233,7 +236,7 @@ public:
     // Seed section 2.3, in order.
     void substep(Stages& stages, FramePlan& plan, const Substep& sub) override {
         WorldState& s = m_s;
-        Particles& p = m_p;
+        ExplicitScratch& x = s.explicitScratch;
         const float h = sub.dt;
         stages.run(kSort, [&] {
             sortParticles(s, m_facts.maxSupport);
@@ -242,7 +245,7 @@ public:
             placeSamples(s, sub.begin, m_facts.maxSupport, m_moving || sub.index == 0);
         });
         stages.run(kExternal, [&] {
-            externalForces(s, h, s.time + sub.elapsed, p.ex, p.ey);
+            externalForces(s, h, s.time + sub.elapsed, x.ex, x.ey);
             if (sub.last) {
                 measureField(s);
                 s.fieldMeasured = true;
@@ -267,13 +270,13 @@ public:
         stages.run(kIntegrate, [&] {
             // The speed cap: half a support radius per sub-step.
             const IntegrateStats st =
-                integrate(s, p.ax, p.ay, h, 0.5f * m_facts.minSupport / h, p.qx, p.qy);
+                integrate(s, x.ax, x.ay, h, 0.5f * m_facts.minSupport / h, x.qx, x.qy);
             s.profile.speedClamped += st.clamped;
             s.profile.nonFiniteRepaired += st.repaired;
             s.lastMaxAccel = std::sqrt(st.maxAccel2);
         });
         stages.run(kBoundaries, [&] {
-            projectBoundaries(s, h, sub.begin, sub.end, m_facts.sampleSpacing, p.qx, p.qy);
+            projectBoundaries(s, h, sub.begin, sub.end, m_facts.sampleSpacing, x.qx, x.qy);
         });
     }
 

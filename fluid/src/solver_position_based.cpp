@@ -58,9 +58,10 @@ void setArtificialPressure(WorldState& s) {
 }
 
 // The last pass's correction of particle i, at most kMaxCorrection h long (NaN: none).
-inline void correction(const Particles& p, uint32_t i, float& dx, float& dy) {
-    dx = p.ax[i];
-    dy = p.ay[i];
+inline void correction(const Particles& p, const PositionBasedScratch& x, uint32_t i, float& dx,
+                       float& dy) {
+    dx = x.dx[i];
+    dy = x.dy[i];
     const float limit = kMaxCorrection * p.h[i];
     const float len2 = dx * dx + dy * dy;
     if (!(len2 <= limit * limit)) { // also catches NaN
@@ -70,31 +71,32 @@ inline void correction(const Particles& p, uint32_t i, float& dx, float& dy) {
     }
 }
 
-// The corrections of the last pass (ax, ay), each at most kMaxCorrection h long, added to the
+// The corrections of the last pass (dx, dy), each at most kMaxCorrection h long, added to the
 // sub-step's total correction (cx, cy); x* = predicted + total. The total is kept apart from the
 // position: far from the origin (16 m) a float position rounds a 1e-6 m correction away, and
 // the velocity update would turn that rounding into momentum.
 void applyCorrections(WorldState& s) {
     Particles& p = s.particles;
+    PositionBasedScratch& x = s.pbfScratch;
     each(s, [&](uint32_t i) {
         float dx = 0.0f, dy = 0.0f;
-        correction(p, i, dx, dy);
-        p.cx[i] += dx;
-        p.cy[i] += dy;
-        p.px[i] = p.ox[i] + p.cx[i];
-        p.py[i] = p.oy[i] + p.cy[i];
+        correction(p, x, i, dx, dy);
+        x.cx[i] += dx;
+        x.cy[i] += dy;
+        p.px[i] = x.ox[i] + x.cx[i];
+        p.py[i] = x.oy[i] + x.cy[i];
     });
 }
 
 // The sub-step's solve starts from no correction and no multipliers.
 void resetSolve(WorldState& s) {
-    Particles& p = s.particles;
+    PositionBasedScratch& x = s.pbfScratch;
     each(s, [&](uint32_t i) {
-        p.lambda[i] = 0.0f;
-        p.lambdaTotal[i] = 0.0f;
-        p.lambdaPrev[i] = 0.0f;
-        p.cx[i] = 0.0f;
-        p.cy[i] = 0.0f;
+        x.lambda[i] = 0.0f;
+        x.lambdaTotal[i] = 0.0f;
+        x.lambdaPrev[i] = 0.0f;
+        x.cx[i] = 0.0f;
+        x.cy[i] = 0.0f;
     });
 }
 
@@ -107,15 +109,14 @@ void resetSolve(WorldState& s) {
 // (cx, cy; 0 without one). `push`: the reporting samples take the sweeps' reactions.
 void densitySweeps(WorldState& s, const PbfConstants& c, uint32_t iterations, bool push) {
     Particles& p = s.particles;
-    // The change shares the constraint's storage: the update reads C_i, then writes dl_i, and
-    // the next sweep's constraint pass comes after the last read of dl.
-    std::vector<float>& change = p.constraint;
-    std::vector<float>& prevX = p.prevX;
-    std::vector<float>& prevY = p.prevY;
+    PositionBasedScratch& x = s.pbfScratch;
+    std::vector<float>& change = x.change;
+    std::vector<float>& prevX = x.prevX;
+    std::vector<float>& prevY = x.prevY;
     // The multiplier the accelerated positions stand for follows the same recurrence (the
     // displacement is linear in the multipliers): it gives the pressure and the wall forces.
-    std::vector<float>& total = p.lambdaTotal;
-    std::vector<float>& prevTotal = p.lambdaPrev;
+    std::vector<float>& total = x.lambdaTotal;
+    std::vector<float>& prevTotal = x.lambdaPrev;
     std::vector<float> relaxation(s.constants.size());
     for (size_t m = 0; m < relaxation.size(); ++m) {
         const float ratio =
@@ -124,7 +125,7 @@ void densitySweeps(WorldState& s, const PbfConstants& c, uint32_t iterations, bo
     }
     float omega = 1.0f;
     for (uint32_t it = 0; it < iterations; ++it) {
-        // C and D at the current positions, and the multipliers' update (change = C's storage).
+        // C and D at the current positions, and the multipliers' update (their change).
         pbfConstraint(s, c, relaxation.data());
         pbfDisplace(s, c, change, it == 0);
         const float rho2 = kChebyshev * kChebyshev;
@@ -137,8 +138,8 @@ void densitySweeps(WorldState& s, const PbfConstants& c, uint32_t iterations, bo
         }
         if (it == 0) {
             each(s, [&](uint32_t i) {
-                prevX[i] = p.cx[i];
-                prevY[i] = p.cy[i];
+                prevX[i] = x.cx[i];
+                prevY[i] = x.cy[i];
                 total[i] = change[i];
             });
             applyCorrections(s);
@@ -147,15 +148,15 @@ void densitySweeps(WorldState& s, const PbfConstants& c, uint32_t iterations, bo
         each(s, [&](uint32_t i) {
             // x^_k+1 = x_k + the corrections, accelerated from x_k-1 (prev).
             float dx = 0.0f, dy = 0.0f;
-            correction(p, i, dx, dy);
-            const float x = omega * ((p.cx[i] + dx) - prevX[i]) + prevX[i];
-            const float y = omega * ((p.cy[i] + dy) - prevY[i]) + prevY[i];
-            prevX[i] = p.cx[i];
-            prevY[i] = p.cy[i];
-            p.cx[i] = x;
-            p.cy[i] = y;
-            p.px[i] = p.ox[i] + x;
-            p.py[i] = p.oy[i] + y;
+            correction(p, x, i, dx, dy);
+            const float cx = omega * ((x.cx[i] + dx) - prevX[i]) + prevX[i];
+            const float cy = omega * ((x.cy[i] + dy) - prevY[i]) + prevY[i];
+            prevX[i] = x.cx[i];
+            prevY[i] = x.cy[i];
+            x.cx[i] = cx;
+            x.cy[i] = cy;
+            p.px[i] = x.ox[i] + cx;
+            p.py[i] = x.oy[i] + cy;
             const float l = omega * (total[i] + change[i] - prevTotal[i]) + prevTotal[i];
             prevTotal[i] = total[i];
             total[i] = l;
@@ -168,11 +169,12 @@ void densitySweeps(WorldState& s, const PbfConstants& c, uint32_t iterations, bo
 // multipliers stand for.
 void updateVelocity(WorldState& s, float dt) {
     Particles& p = s.particles;
+    const PositionBasedScratch& x = s.pbfScratch;
     const float invDt = 1.0f / dt;
     each(s, [&](uint32_t i) {
-        p.vx[i] += p.cx[i] * invDt;
-        p.vy[i] += p.cy[i] * invDt;
-        p.pressure[i] = -p.lambdaTotal[i] * p.restDensity[i] * p.invMass[i] * invDt * invDt;
+        p.vx[i] += x.cx[i] * invDt;
+        p.vy[i] += x.cy[i] * invDt;
+        p.pressure[i] = -x.lambdaTotal[i] * p.restDensity[i] * p.invMass[i] * invDt * invDt;
     });
 }
 
@@ -199,12 +201,10 @@ void beginYielding(WorldState& s) {
                                  [&](uint16_t m) { return mc[m].yielding; });
     }
     if (s.yielding) {
-        p.tx.resize(n);
-        p.ty.resize(n);
-        p.rigidity.resize(n);
-        p.wallNx.resize(n);
-        p.wallNy.resize(n);
-        p.wallAdhesion.resize(n);
+        YieldScratch& y = s.yieldScratch;
+        for (auto* channel : {&y.tx, &y.ty, &y.rigidity, &y.wallNx, &y.wallNy, &y.wallAdhesion}) {
+            channel->resize(n);
+        }
     } else if (s.kicksPending) {
         // The last yielding step's changes go in before this Newtonian one.
         applyPendingKicks(s);
@@ -243,9 +243,12 @@ public:
     FramePlan plan(const SceneFacts& facts, float frameDt) override {
         WorldState& s = m_s;
         Particles& p = m_p;
-        for (auto* channel : {&p.ax, &p.ay, &p.invRho, &p.ox, &p.oy, &p.constraint, &p.diagonal,
-                              &p.lambda, &p.prevX, &p.prevY, &p.lambdaTotal, &p.lambdaPrev, &p.cx,
-                              &p.cy}) {
+        PositionBasedScratch& x = s.pbfScratch;
+        for (auto* channel :
+             {&x.extX,   &x.extY,     &x.startX,     &x.startY,     &x.ox,        &x.oy,
+              &x.constraint, &x.diagonal, &x.lambda, &x.change,    &x.dx,        &x.dy,
+              &x.cx,     &x.cy,       &x.prevX,      &x.prevY,      &x.lambdaTotal, &x.lambdaPrev,
+              &x.vorticity, &x.normalX, &x.normalY,  &x.nextVx,     &x.nextVy,    &p.invRho}) {
             channel->resize(p.size());
         }
         const PositionBasedDef& settings = s.def.positionBased;
@@ -278,16 +281,14 @@ public:
 
     void substep(Stages& stages, FramePlan&, const Substep& sub) override {
         WorldState& s = m_s;
-        Particles& p = m_p;
+        PositionBasedScratch& x = s.pbfScratch;
         const float dt = m_c.dt;
-        // (ax, ay) takes the plugins' accelerations, (cx, cy) the positions before the
-        // prediction: scratch that is free here (resetSolve clears both).
         stages.run(kExternal,
-                   [&] { externalForces(s, dt, s.time + double(sub.begin), p.ax, p.ay); });
+                   [&] { externalForces(s, dt, s.time + double(sub.begin), x.extX, x.extY); });
         stages.run(kPredict, [&] { predict(sub); });
         stages.run(kSort, [&] {
-            sortParticles(s, m_facts.maxSupport, {&p.ox, &p.oy});
-            s.profile.separated += separateStacked(s, m_facts.maxSupport, &p.ox, &p.oy);
+            sortParticles(s, m_facts.maxSupport, {&x.ox, &x.oy});
+            s.profile.separated += separateStacked(s, m_facts.maxSupport, &x.ox, &x.oy);
             fillMaterialChannels(s);
             placeSamples(s, sub.end, m_facts.maxSupport, m_moving || m_corrected || sub.index == 0);
         });
@@ -319,7 +320,7 @@ public:
             stages.run(kSurface, [&] { surface(spanned, laws); });
         }
         stages.run(kBoundaries, [&] {
-            projectBoundaries(s, dt, sub.end, sub.end, m_facts.sampleSpacing, p.ox, p.oy);
+            projectBoundaries(s, dt, sub.end, sub.end, m_facts.sampleSpacing, x.ox, x.oy);
         });
     }
 
@@ -340,16 +341,19 @@ private:
     void predict(const Substep& sub) {
         WorldState& s = m_s;
         Particles& p = m_p;
+        PositionBasedScratch& x = s.pbfScratch;
         if (s.yielding) {
             applyPendingKicks(s);
         }
-        const IntegrateStats st = integrate(s, p.ax, p.ay, m_c.dt, m_speedCap, p.cx, p.cy);
+        const IntegrateStats st =
+            integrate(s, x.extX, x.extY, m_c.dt, m_speedCap, x.startX, x.startY);
         s.profile.nonFiniteRepaired += st.repaired;
         s.profile.speedClamped += st.clamped;
-        projectBoundaries(s, m_c.dt, sub.begin, sub.end, m_facts.sampleSpacing, p.cx, p.cy);
+        projectBoundaries(s, m_c.dt, sub.begin, sub.end, m_facts.sampleSpacing, x.startX,
+                          x.startY);
         each(s, [&](uint32_t i) {
-            p.ox[i] = p.px[i];
-            p.oy[i] = p.py[i];
+            x.ox[i] = p.px[i];
+            x.oy[i] = p.py[i];
         });
     }
 
@@ -381,8 +385,8 @@ private:
                 pbfSampleFriction(s, spanned, passScale, weight);
             }
             pbfViscosity(s, spanned, passScale, pass == 0, vorticity > 0.0f, laws);
-            p.vx.swap(p.ax);
-            p.vy.swap(p.ay);
+            p.vx.swap(s.pbfScratch.nextVx);
+            p.vy.swap(s.pbfScratch.nextVy);
         }
     }
 

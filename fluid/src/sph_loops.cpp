@@ -90,6 +90,7 @@ void computeDensity(WorldState& s, float sampleVolume) {
 
 void computeNormals(WorldState& s) {
     Particles& p = s.particles;
+    ExplicitScratch& x = s.explicitScratch;
     const float* __restrict px = p.px.data();
     const float* __restrict py = p.py.data();
     const float* __restrict hs = p.h.data();
@@ -111,8 +112,8 @@ void computeNormals(WorldState& s) {
                     accY[l] += g * dy;
                 });
             });
-            p.nx[i] = hi * kG * laneSum(accX);
-            p.ny[i] = hi * kG * laneSum(accY);
+            x.nx[i] = hi * kG * laneSum(accX);
+            x.ny[i] = hi * kG * laneSum(accY);
         }
     });
 }
@@ -121,6 +122,7 @@ namespace {
 
 template <bool kSurface> void forces(WorldState& s, float sampleVolume) {
     Particles& p = s.particles;
+    ExplicitScratch& x = s.explicitScratch;
     const Samples& w = s.samples;
     const float* __restrict px = p.px.data();
     const float* __restrict py = p.py.data();
@@ -134,9 +136,9 @@ template <bool kSurface> void forces(WorldState& s, float sampleVolume) {
     const float* __restrict gamma = p.gamma.data();
     const float* __restrict rho = p.density.data();
     const float* __restrict invRho = p.invRho.data();
-    const float* __restrict p2 = p.pOverRho2.data();
-    const float* __restrict nx = p.nx.data();
-    const float* __restrict ny = p.ny.data();
+    const float* __restrict p2 = x.pOverRho2.data();
+    const float* __restrict nx = x.nx.data();
+    const float* __restrict ny = x.ny.data();
     parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
             const float xi = px[i], yi = py[i], vxi = vx[i], vyi = vy[i], hi = hs[i];
@@ -182,8 +184,8 @@ template <bool kSurface> void forces(WorldState& s, float sampleVolume) {
                     accY[l] += fy;
                 });
             });
-            float ax = p.ex[i] + laneSum(accX);
-            float ay = p.ey[i] + laneSum(accY);
+            float ax = x.ex[i] + laneSum(accX);
+            float ay = x.ey[i] + laneSum(accY);
 
             // Boundary samples: pressure (the sample's density taken equal to the particle's)
             // and friction, with the particle's own support.
@@ -204,8 +206,8 @@ template <bool kSurface> void forces(WorldState& s, float sampleVolume) {
                     wY[l] += fp * dy + fv * (w.vy[k] - vyi);
                 });
             });
-            p.ax[i] = ax + laneSum(wX);
-            p.ay[i] = ay + laneSum(wY);
+            x.ax[i] = ax + laneSum(wX);
+            x.ay[i] = ay + laneSum(wY);
         }
     });
 }
@@ -214,14 +216,15 @@ template <bool kSurface> void forces(WorldState& s, float sampleVolume) {
 
 void computeSamplePressure(WorldState& s) {
     const Particles& p = s.particles;
+    const ExplicitScratch& x = s.explicitScratch;
     Samples& w = s.samples;
     const float* __restrict px = p.px.data();
     const float* __restrict py = p.py.data();
     const float* __restrict hs = p.h.data();
     const float* __restrict rho = p.density.data();
     const float* __restrict pressure = p.pressure.data();
-    const float* __restrict ex = p.ex.data();
-    const float* __restrict ey = p.ey.data();
+    const float* __restrict ex = x.ex.data();
+    const float* __restrict ey = x.ey.data();
     // Channels: the kernel-weighted pressures with their hydrostatic terms, the kernel weights.
     samplePass<2>(
         s, w.size(), nullptr,

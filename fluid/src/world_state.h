@@ -34,37 +34,13 @@ struct Particles {
     // Simulated time (s) at which the particle is removed; +infinity for those that live
     // forever. Absolute and double, so that a long lifetime neither stalls nor drifts.
     std::vector<double> expiry;
-    // Per sub-step scratch, in sorted order.
-    std::vector<float> ax, ay;            // total acceleration
-    std::vector<float> ex, ey;            // explicit: external (plugin) acceleration
-    std::vector<float> nx, ny;            // explicit: surface normals [Akinci 2013]
-    std::vector<float> pOverRho2, invRho; // p/rho^2 and 1/rho, so pair loops do not divide
-    std::vector<float> ox, oy;            // position-based: positions at the start of the sub-step
-    std::vector<float> qx, qy; // explicit: positions before the last integrate (boundaries'
-                               // prevX/Y; the position-based solver uses cx, cy for them)
-    // Position-based: density constraint C (then, within a sweep, the multiplier's change: see
-    // solveDensity) and the diagonal D of its system, the accumulated multiplier (kg m^2, <= 0),
-    // the sub-step's total position correction and its value one sweep back, the multiplier
-    // the accelerated corrections stand for and its value one sweep back. The plugins'
-    // accelerations go to ax, ay; after the solve `diagonal` holds the vorticity and `prevX`,
-    // `prevY` the surface normals (pbf_loops.cpp), so no channel is kept for them.
-    std::vector<float> constraint, diagonal, lambda, cx, cy, prevX, prevY, lambdaTotal, lambdaPrev;
-    // Material properties per particle (sorted order), so pair loops read contiguous arrays
+    // Derived every sub-step, in sorted order, for both solvers: 1/rho, so pair loops do not
+    // divide, and material properties per particle, so pair loops read contiguous arrays
     // instead of indexing the material table: support h, mass/depth, viscosity, mass, rest
     // density, surface tension, 1/mass, rest area V = m/(depth rho0), pair pressure.
+    std::vector<float> invRho;
     std::vector<float> h, massPerDepth, viscosity, mass, restDensity, gamma;
     std::vector<float> invMass, volume, pairPressure, invLattice;
-    // Position-based, yielding worlds: the stress over rho0^2 (sxx, sxy; m^2/s^2) and how far
-    // below its yield stress each particle is (rigidity, 1 - |s| / tau_y in [0, 1]; 0 for a
-    // Newtonian one), written by the viscosity pass for the surface pass to read.
-    std::vector<float> tx, ty, rigidity;
-    // ... and, written by the surface pass, the unit direction from the walls within reach to
-    // the particle (0, 0 with none) and its adhesion to them (acceleration along that direction
-    // over the length of the walls' kernel gradient sum; <= 0), which the walls' reaction
-    // (pbfSampleStress) reads.
-    std::vector<float> wallNx, wallNy, wallAdhesion;
-    /// Position-based, yielding worlds: the surface pass's acceleration, for the stress pass.
-    std::vector<float> surfaceAx, surfaceAy;
 
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }
     /// The float channels that persist between steps (besides material, slot and expiry).
@@ -75,6 +51,51 @@ struct Particles {
     std::array<const std::vector<float>*, 10> keptFloats() const {
         return {&px, &py, &vx, &vy, &density, &pressure, &sxx, &sxy, &kx, &ky};
     }
+};
+
+/// The explicit solver's scratch (solver_explicit.cpp, sph_loops.cpp): per sub-step channels
+/// in sorted order, sized at the start of each step, never saved.
+struct ExplicitScratch {
+    std::vector<float> ax, ay;     // total acceleration (m/s^2)
+    std::vector<float> ex, ey;     // the force plugins' acceleration (m/s^2)
+    std::vector<float> nx, ny;     // surface normals [Akinci 2013] (1)
+    std::vector<float> pOverRho2;  // the pair term's pressure over rho^2 (m^5/(kg s^2))
+    std::vector<float> qx, qy;     // positions before the last integrate, for the boundaries (m)
+};
+
+/// The position-based solver's scratch (solver_position_based.cpp, pbf_loops.cpp,
+/// pbf_coarse.cpp): per sub-step channels in sorted order, sized at the start of each step,
+/// never saved. Each holds one thing for the whole sub-step.
+struct PositionBasedScratch {
+    std::vector<float> extX, extY;     // the force plugins' acceleration (m/s^2)
+    std::vector<float> startX, startY; // positions before the prediction, for the boundaries (m)
+    std::vector<float> ox, oy;         // the admissible prediction x* (m; sorted with particles)
+    std::vector<float> constraint;     // the density constraint C (1)
+    std::vector<float> diagonal;       // the diagonal D of its system (1/(kg m^2))
+    std::vector<float> lambda;         // the accumulated multiplier (kg m^2, <= 0)
+    std::vector<float> change;         // the multiplier's change in the current sweep (kg m^2)
+    std::vector<float> dx, dy;         // the last sweep's displacement (m)
+    std::vector<float> cx, cy;         // the sub-step's total correction of x* (m) ...
+    std::vector<float> prevX, prevY;   // ... and its value one sweep back (Chebyshev)
+    std::vector<float> lambdaTotal;    // the multiplier the accelerated corrections stand for
+    std::vector<float> lambdaPrev;     // ... and its value one sweep back
+    std::vector<float> vorticity;      // the viscosity pass's vorticity, for the surface pass (1/s)
+    std::vector<float> normalX, normalY; // its surface normals, for the surface pass (1)
+    std::vector<float> nextVx, nextVy; // a viscosity pass's new velocity (m/s), swapped into v
+};
+
+/// The yield model's scratch in a yielding world (position-based: pbf_loops.cpp,
+/// simd/pbf_pairs.inc), sorted order, never saved; its state (Particles::sxx, sxy, kx, ky) is.
+struct YieldScratch {
+    // The stress over rho0^2 (m^2/s^2) and how far below its yield stress each particle is
+    // (1 - |s| / tau_y in [0, 1]; 0 for a Newtonian one), from the viscosity pass.
+    std::vector<float> tx, ty, rigidity;
+    // From the stress pass: the unit direction from the walls within reach to the particle
+    // (0, 0 with none) and its adhesion to them (acceleration along that direction over the
+    // length of the walls' kernel gradient sum; <= 0), which the walls' reaction reads.
+    std::vector<float> wallNx, wallNy, wallAdhesion;
+    // The surface pass's acceleration (m/s^2), which the stress pass adds to.
+    std::vector<float> surfaceAx, surfaceAy;
 };
 
 /// Per-material constants the hot loops read, refreshed at the start of every step.
@@ -213,6 +234,9 @@ struct WorldState {
     Samples samples;
     std::vector<BodyState> bodies;
     CoarseGrid coarse;
+    ExplicitScratch explicitScratch;
+    PositionBasedScratch pbfScratch;
+    YieldScratch yieldScratch;
     std::vector<float> sortScratch;   // also carries slots and materials (sortParticles)
     std::vector<double> sortScratchD; // expiry, only when some particle has a lifetime
     uint64_t sorts = 0; // particle sorts so far (EmissionUndo: has this step reordered them?)
