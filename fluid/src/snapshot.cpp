@@ -512,6 +512,65 @@ std::vector<char> readBody(std::istream& input, uint64_t& size) {
     return body;
 }
 
+// The world's settings as `World::save` wrote them (the task hook not included).
+WorldDef getWorldDef(In& in) {
+    WorldDef def;
+    def.solver = in.small(Solver::Explicit, "the solver");
+    def.positionBased = in.get<PositionBasedDef>();
+    def.equationOfState = in.small(EquationOfState::Tait, "the equation of state");
+    def.soundSpeed = in.get<float>();
+    def.depth = in.get<float>();
+    def.courant = in.get<float>();
+    def.maxSubsteps = in.get<uint32_t>();
+    def.maxParticles = in.get<uint32_t>();
+    def.workerCount = in.get<uint32_t>();
+    return def;
+}
+
+// One material (checked by World::addMaterial).
+Material getMaterial(In& in) {
+    Material m;
+    m.mass = in.get<float>();
+    m.restDensity = in.get<float>();
+    m.viscosity = in.get<float>();
+    m.stiffness = in.get<float>();
+    m.smoothingDistance = in.get<float>();
+    m.kernelParticles = in.get<float>();
+    m.surfaceTension = in.get<float>();
+    m.yieldStress = in.get<float>();
+    m.consistency = in.get<float>();
+    m.flowIndex = in.get<float>();
+    m.shearModulus = in.get<float>();
+    m.name = in.string("a material name");
+    return m;
+}
+
+// One emitter's settings (checked by World::addEmitter) ...
+EmitterDef getEmitterDef(In& in) {
+    EmitterDef ed;
+    ed.position = in.get<glm::vec2>();
+    ed.direction = in.get<glm::vec2>();
+    ed.speed = in.get<float>();
+    ed.width = in.get<float>();
+    ed.rate = in.get<float>();
+    ed.material = in.get<MaterialId>();
+    ed.maxCount = in.get<uint32_t>();
+    ed.lifetime = in.get<float>();
+    ed.jitter = in.get<float>();
+    ed.seed = in.get<uint64_t>();
+    return ed;
+}
+
+// ... and its clock and random state.
+void getEmitterClock(In& in, detail::EmitterState& e) {
+    e.carry = in.get<double>();
+    e.emitted = in.get<uint32_t>();
+    e.random = in.get<uint64_t>();
+    if (!(e.carry >= 0.0 && e.carry < 1.0)) {
+        In::fail("an emitter's clock is outside [0, 1)");
+    }
+}
+
 } // namespace
 
 World World::load(std::istream& input, const Registry& registry, uint32_t workerCount,
@@ -526,16 +585,7 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
     }
     In in(std::span<const std::byte>(payload, size));
 
-    WorldDef def;
-    def.solver = in.small(Solver::Explicit, "the solver");
-    def.positionBased = in.get<PositionBasedDef>();
-    def.equationOfState = in.small(EquationOfState::Tait, "the equation of state");
-    def.soundSpeed = in.get<float>();
-    def.depth = in.get<float>();
-    def.courant = in.get<float>();
-    def.maxSubsteps = in.get<uint32_t>();
-    def.maxParticles = in.get<uint32_t>();
-    def.workerCount = in.get<uint32_t>();
+    WorldDef def = getWorldDef(in);
     if (workerCount > 0) {
         def.workerCount = workerCount;
     }
@@ -545,20 +595,7 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
 
     const auto materials = in.get<uint64_t>();
     for (uint64_t k = 0; k < materials; ++k) {
-        Material m;
-        m.mass = in.get<float>();
-        m.restDensity = in.get<float>();
-        m.viscosity = in.get<float>();
-        m.stiffness = in.get<float>();
-        m.smoothingDistance = in.get<float>();
-        m.kernelParticles = in.get<float>();
-        m.surfaceTension = in.get<float>();
-        m.yieldStress = in.get<float>();
-        m.consistency = in.get<float>();
-        m.flowIndex = in.get<float>();
-        m.shearModulus = in.get<float>();
-        m.name = in.string("a material name");
-        world.addMaterial(m);
+        world.addMaterial(getMaterial(in));
     }
     detail::Particles& p = s.particles;
     for (std::vector<float>* channel : p.keptFloats()) {
@@ -588,25 +625,8 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
 
     const auto emitters = in.get<uint64_t>();
     for (uint64_t k = 0; k < emitters; ++k) {
-        EmitterDef ed;
-        ed.position = in.get<glm::vec2>();
-        ed.direction = in.get<glm::vec2>();
-        ed.speed = in.get<float>();
-        ed.width = in.get<float>();
-        ed.rate = in.get<float>();
-        ed.material = in.get<MaterialId>();
-        ed.maxCount = in.get<uint32_t>();
-        ed.lifetime = in.get<float>();
-        ed.jitter = in.get<float>();
-        ed.seed = in.get<uint64_t>();
-        const EmitterId id = world.addEmitter(ed);
-        detail::EmitterState& e = s.emitters[id.index];
-        e.carry = in.get<double>();
-        e.emitted = in.get<uint32_t>();
-        e.random = in.get<uint64_t>();
-        if (!(e.carry >= 0.0 && e.carry < 1.0)) {
-            In::fail("an emitter's clock is outside [0, 1)");
-        }
+        const EmitterId id = world.addEmitter(getEmitterDef(in));
+        getEmitterClock(in, s.emitters[id.index]);
     }
     const auto drains = in.get<uint64_t>();
     for (uint64_t k = 0; k < drains; ++k) {
