@@ -1,16 +1,17 @@
 // fluid — the explicit solver: the seed's SPH loop, sub-stepped by a CFL condition.
 //
-// One World::step(frameDt):
-//   prepare      plugins' prepare hooks, boundary samples, scene sound speed, CFL sub-steps
-//   per sub-step (seed section 2.3, in order):
-//     sort        counting sort by grid cell; every channel follows (grid.cpp)
-//     external    force plugins' accelerations (seed step 5, computed first: the boundary
-//                 pressure extrapolation needs them)
-//     density     rho_i = (m_i/depth) sum_j W_ij + boundary samples            (seed eq. 2.3)
-//     pressure    p_i = k (rho_i - rho0) or Tait; boundary pressure [Adami 2012] (seed eq. 2.4)
-//     forces      symmetric pressure force (2.5), viscosity (2.6), surface tension [Akinci 2013]
-//     integrate   v += dt a, x += dt v: symplectic Euler                        (seed eq. 2.8, 2.9)
-//     boundaries  boundary plugins keep particles out of solids (safety net)
+// The frame driver (frame.cpp) runs its opening ("prepare"), then the plan (scene sound speed,
+// CFL sub-steps) and, per sub-step, these stages (seed section 2.3, in order), then "finish":
+//   sort        counting sort by grid cell; every channel follows (grid.cpp)
+//   external    force plugins' accelerations (seed step 5, computed first: the boundary
+//               pressure extrapolation needs them)
+//   probe       the first frame's first sub-step only: the field measured, the frame replanned
+//   density     rho_i = (m_i/depth) sum_j W_ij + boundary samples            (seed eq. 2.3)
+//   pressure    p_i = k (rho_i - rho0) or Tait; boundary pressure [Adami 2012] (seed eq. 2.4)
+//   forces      symmetric pressure force (2.5), viscosity (2.6), surface tension [Akinci 2013]
+//   integrate   v += dt a, x += dt v: symplectic Euler                        (seed eq. 2.8, 2.9)
+//   boundaries  boundary plugins keep particles out of solids (safety net)
+// Its scratch channels are WorldState::explicitScratch.
 #include "frame.h"
 #include "parallel.h"
 #include "sph_loops.h"
@@ -23,19 +24,9 @@
 namespace fluid::detail {
 namespace {
 
-// Background pressure of the Tait equation of state in fluid-fluid pairs. Where the fluid thins
-// out (splashes, free surfaces) the clamped Tait pressure is 0 and nothing but the weak
-// repulsive core of the cohesion kernel keeps two particles apart: they pair up, a few
-// hundredths of a spacing apart. A uniform background pressure has no gradient inside the
-// fluid (the bulk is unchanged) and keeps such pairs apart (at least 0.3 spacing in the
-// yoghurt-drop test), but it pushes the free surface outward by about 2 p_b / (rho0 h). So it
-// is bounded twice: by kBackground rho0 a_gamma h, a_gamma = gamma m/A the cohesion's
-// acceleration scale [Akinci 2013], so the surface push stays at most 2 kBackground a_gamma
-// (2.6 m/s^2 for water, a fifth of its cohesion scale) however stiff the scene, and 0 without
-// surface tension; and by kBackgroundStiff rho0 c^2, so a soft fluid (a zero-g blob, c =
-// 6.4 m/s) is not inflated: with the first bound alone a zero-g water square threw particles
-// beyond 2 R and stalled at circularity 0.90. Walls do not feel it: a lone droplet still rests
-// on the floor.
+// Background pressure of the Tait equation of state in fluid-fluid pairs, p_b = min(kBackground
+// rho0 a_gamma h, kBackgroundStiff rho0 c^2): it keeps the particles of a splash apart without
+// pushing the free surface out or inflating a soft blob (docs/solver.md, "Background pressure").
 constexpr float kBackground = 0.1f;
 constexpr float kBackgroundStiff = 2e-4f;
 

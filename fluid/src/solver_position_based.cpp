@@ -1,30 +1,29 @@
 // fluid — the position-based solver [Macklin & Mueller 2013], the default.
 //
-// One World::step(frameDt) = PositionBasedDef::substeps equal sub-steps of dt (more for a frame
-// longer than 1/60 s: fluid::frameSubsteps):
-//   prepare       plugins' prepare hooks, boundary samples, material constants
-//   per sub-step:
-//     external    force plugins' accelerations at the current positions
-//     predict     v += dt a_ext, x* = x + dt v (step_common's integrate: non-finite
-//                 accelerations zeroed, at most kMaxPredictedMove supports per sub-step); boundary
-//                 plugins project x* out of solids, so the constraint starts from admissible
-//                 positions
-//     sort        counting sort by grid cell of x*; the grid serves every pass below
-//     coarse      with PositionBasedDef::coarseCorrection, the large-scale compression
-//                 removed on a coarse grid (pbf_coarse.cpp)
-//     density     `iterations` Jacobi sweeps of the one-sided density constraint: multipliers
-//                 (density pass), then the position corrections (pressure pass; s_corr in the
-//                 first), Chebyshev-accelerated [Wang 2015]
-//     velocity    v = (x* - x) / dt, as v + (corrections) / dt
-//     viscosity   (every PositionBasedDef::viscosityInterval sub-steps, over their time)
-//                 seed eq. 2.6 as an explicit velocity update, split into as many passes as
-//                 its stability asks; vorticity, normals and density at x* on the way
-//     surface     vorticity confinement and surface tension [Akinci 2013] into v, and in a
-//                 world with a yielding material the stress the viscosity run advanced
-//                 (Herschel-Bulkley, yield_law.h): its divergence into v
-//     boundaries  boundary plugins project out of solids (safety net)
+// The frame driver (frame.cpp) runs its opening ("prepare"), then PositionBasedDef::substeps
+// equal sub-steps of dt (more for a frame longer than 1/60 s: fluid::frameSubsteps), each these
+// stages, then "finish":
+//   external        force plugins' accelerations at the current positions
+//   predict         v += dt a_ext, x* = x + dt v (step_common's integrate: non-finite
+//                   accelerations zeroed, at most kMaxPredictedMove supports per sub-step);
+//                   boundary plugins project x* out of solids, so the constraint starts from
+//                   admissible positions
+//   sort            counting sort by grid cell of x*; the grid serves every pass below
+//   coarse          with PositionBasedDef::coarseCorrection, the large-scale compression
+//                   removed on a coarse grid, bodies included (pbf_coarse.cpp)
+//   density sweeps  `iterations` Jacobi sweeps of the one-sided density constraint:
+//                   multipliers, then the position corrections (s_corr in the first),
+//                   Chebyshev-accelerated [Wang 2015]
+//   velocity        v = (x* - x) / dt, as v + (corrections) / dt
+//   viscosity       every PositionBasedDef::viscosityInterval sub-steps, over their time: seed
+//                   eq. 2.6 as an explicit velocity update, in as many passes as its stability
+//                   asks; vorticity, normals, density and the yield stress at x* on the way
+//   surface         then vorticity confinement and surface tension [Akinci 2013] into v, and
+//                   in a yielding world the stress pass: the stress's divergence, rigid plugs
+//                   and the walls' grip (yield_law.h), as a pending change
+//   boundaries      boundary plugins project out of solids (safety net)
 // Pressure for readers is p = -lambda rho0 / (m dt^2): the multipliers' displacement
-// dx = -dt^2 grad p / rho0 read back.
+// dx = -dt^2 grad p / rho0 read back. Scratch: WorldState::pbfScratch and yieldScratch.
 #include "frame.h"
 #include "parallel.h"
 #include "pbf_loops.h"

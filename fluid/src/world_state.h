@@ -26,10 +26,11 @@ struct Particles {
     // (= -syy) and sxy of the symmetric traceless 2D tensor. 0 for Newtonian particles, and not
     // permuted by the sort in a step without yielding particles (all zeros then).
     std::vector<float> sxx, sxy;
-    // Yielding worlds, position-based: the velocity change of the last surface pass (m/s),
-    // applied before the next prediction instead of at once, so that the density solve meets
-    // the cohesion and stress forces in the same sub-step as gravity: a resting particle then
-    // reads a velocity of 0, not the dt * force the next solve takes back. 0 elsewhere.
+    // Yielding worlds, position-based: the velocity change of the last surface and stress
+    // passes (m/s), applied before the next prediction instead of at once, so that the density
+    // solve meets the cohesion and stress forces in the same sub-step as gravity: a resting
+    // particle then reads a velocity of 0, not the dt * force the next solve takes back. 0
+    // elsewhere.
     std::vector<float> kx, ky;
     // Simulated time (s) at which the particle is removed; +infinity for those that live
     // forever. Absolute and double, so that a long lifetime neither stalls nor drifts.
