@@ -116,7 +116,6 @@ void pbfConstraint(WorldState& s, const PbfConstants& c, const float* relaxation
 
 void pbfDisplace(WorldState& s, const PbfConstants& c, std::span<const float> multiplier,
                  bool sCorr) {
-    Particles& p = s.particles;
     PositionBasedScratch& x = s.pbfScratch;
     const PbfView v = makeView(s, c);
     PbfOut o;
