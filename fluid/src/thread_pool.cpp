@@ -1,10 +1,22 @@
 // fluid — the default thread pool.
+//
+// A task is claimed in ranges from one atomic cursor by whichever thread is running: the
+// calling thread works too, and it waits only for the ranges other threads have claimed and
+// not yet finished, never for a worker to wake up. So a worker that another process keeps off
+// its core (a game's render or audio thread, the OS) costs at most the range it holds, not a
+// scheduler time slice per hand-over. Every fluid task writes only its own items, so which
+// thread runs which range does not change any result.
 #include <fluid/error.h>
 #include <fluid/task.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace fluid {
 
@@ -38,110 +50,147 @@ template <class Done> bool spinUntil(Done&& done) {
 
 } // namespace
 
+struct ThreadPool::Impl {
+    std::vector<std::thread> threads;
+    std::mutex mutex;
+    std::condition_variable wake; // a new task (or stop) for the workers
+    std::condition_variable done; // the last claimed range finished, for the caller
+    // The running task. Its fields are atomics because a worker that woke for an earlier task
+    // may still read them while the next one is set up; its claim then fails on the cursor's
+    // generation, so it never runs a range of a task it did not see start. All accesses are
+    // sequentially consistent: a claim that succeeds read the fields of its own task.
+    std::atomic<TaskCallback*> callback{nullptr};
+    std::atomic<void*> context{nullptr};
+    std::atomic<uint32_t> itemCount{0};
+    std::atomic<uint32_t> rangeSize{1};
+    // The task's generation (high 32 bits) and its first unclaimed item (low 32 bits).
+    std::atomic<uint64_t> cursor{0};
+    // Threads between a claim attempt and the end of the range it claimed (if any).
+    std::atomic<uint32_t> inFlight{0};
+    std::atomic<uint32_t> generation{0}; // tasks started; workers wait for it to change
+    std::atomic<bool> stop{false};
+
+    // Claims ranges of task `gen` and runs them as `worker` until none is left. A worker (not
+    // the caller) wakes the caller when it finishes the last range in flight.
+    void runRanges(uint32_t gen, uint32_t worker, bool notify) {
+        for (;;) {
+            inFlight.fetch_add(1);
+            uint64_t cur = cursor.load();
+            uint32_t begin = 0, end = 0;
+            bool claimed = false;
+            while (uint32_t(cur >> 32) == gen) {
+                begin = uint32_t(cur);
+                const uint32_t count = itemCount.load();
+                if (begin >= count) {
+                    break;
+                }
+                const uint32_t size = rangeSize.load();
+                end = count - begin <= size ? count : begin + size;
+                if (cursor.compare_exchange_weak(cur, (uint64_t(gen) << 32) | end)) {
+                    claimed = true;
+                    break;
+                }
+            }
+            if (claimed) {
+                callback.load()(begin, end, worker, context.load());
+            }
+            if (inFlight.fetch_sub(1) == 1 && notify) {
+                // The caller may be asleep in finish: take the lock so that the notification
+                // cannot fall between its check and its wait.
+                std::lock_guard<std::mutex> lock(mutex);
+                done.notify_one();
+            }
+            if (!claimed) {
+                return;
+            }
+        }
+    }
+
+    void workerMain(uint32_t worker) {
+        uint32_t seen = 0;
+        for (;;) {
+            const auto woken = [&] {
+                return stop.load(std::memory_order_relaxed) ||
+                       generation.load(std::memory_order_acquire) != seen;
+            };
+            if (!spinUntil(woken)) {
+                std::unique_lock<std::mutex> lock(mutex);
+                wake.wait(lock, woken);
+            }
+            if (stop.load()) {
+                return;
+            }
+            seen = generation.load(std::memory_order_acquire);
+            runRanges(seen, worker, true);
+        }
+    }
+};
+
 ThreadPool::ThreadPool(uint32_t workerCount) : m_workerCount(workerCount) {
     if (workerCount < 1 || workerCount > 256) {
         throw Error("ThreadPool: workerCount = " + std::to_string(workerCount) +
                     " is out of range [1, 256]");
     }
-    m_threads.reserve(workerCount - 1);
+    m_impl = std::make_unique<Impl>();
+    m_impl->threads.reserve(workerCount - 1);
     for (uint32_t w = 1; w < workerCount; ++w) {
-        m_threads.emplace_back([this, w] { workerMain(w); });
+        m_impl->threads.emplace_back([impl = m_impl.get(), w] { impl->workerMain(w); });
     }
 }
 
 ThreadPool::~ThreadPool() {
     {
-        std::lock_guard<std::mutex> lock(m_mutex);
-        m_stop.store(true);
+        std::lock_guard<std::mutex> lock(m_impl->mutex);
+        m_impl->stop.store(true);
     }
-    m_wake.notify_all();
-    for (std::thread& thread : m_threads) {
+    m_impl->wake.notify_all();
+    for (std::thread& thread : m_impl->threads) {
         thread.join();
     }
 }
 
 TaskHook ThreadPool::hook() {
     TaskHook hook;
-    hook.enqueue = &ThreadPool::enqueueTask;
-    hook.finish = &ThreadPool::finishTask;
+    hook.enqueue = [](TaskCallback* callback, uint32_t itemCount, uint32_t minRange,
+                      void* taskContext, void* userContext) -> void* {
+        Impl& pool = *static_cast<Impl*>(userContext);
+        if (pool.threads.empty()) {
+            callback(0, itemCount, 0, taskContext);
+            return nullptr;
+        }
+        const uint32_t gen = pool.generation.load() + 1;
+        // Stragglers of the last task stop claiming before its fields change.
+        pool.cursor.store(uint64_t(gen) << 32);
+        pool.callback.store(callback);
+        pool.context.store(taskContext);
+        pool.itemCount.store(itemCount);
+        // About four ranges per thread balances load without much claiming overhead.
+        const auto threads = uint32_t(pool.threads.size() + 1);
+        const uint32_t target = (itemCount + threads * 4 - 1) / (threads * 4);
+        pool.rangeSize.store(std::max(std::max(minRange, target), 1u));
+        {
+            std::lock_guard<std::mutex> lock(pool.mutex);
+            pool.generation.store(gen, std::memory_order_release);
+        }
+        pool.wake.notify_all();
+        return &pool;
+    };
+    hook.finish = [](void* userTask, void*) {
+        if (userTask == nullptr) {
+            return;
+        }
+        Impl& pool = *static_cast<Impl*>(userTask);
+        // The caller works until no range is left, then waits for the ranges still running.
+        pool.runRanges(pool.generation.load(), 0, false);
+        const auto idle = [&pool] { return pool.inFlight.load() == 0; };
+        if (!spinUntil(idle)) {
+            std::unique_lock<std::mutex> lock(pool.mutex);
+            pool.done.wait(lock, idle);
+        }
+    };
     hook.workerCount = m_workerCount;
-    hook.userContext = this;
+    hook.userContext = m_impl.get();
     return hook;
-}
-
-void* ThreadPool::enqueueTask(TaskCallback* callback, uint32_t itemCount, uint32_t minRange,
-                              void* taskContext, void* userContext) {
-    auto* pool = static_cast<ThreadPool*>(userContext);
-    if (pool->m_threads.empty()) {
-        callback(0, itemCount, 0, taskContext);
-        return nullptr;
-    }
-    {
-        std::lock_guard<std::mutex> lock(pool->m_mutex);
-        pool->m_callback = callback;
-        pool->m_context = taskContext;
-        pool->m_itemCount = itemCount;
-        // About four ranges per worker balances load without much claiming overhead.
-        const uint32_t target =
-            (itemCount + pool->m_workerCount * 4 - 1) / (pool->m_workerCount * 4);
-        pool->m_rangeSize = std::max(std::max(minRange, target), 1u);
-        pool->m_nextBegin.store(0, std::memory_order_relaxed);
-        pool->m_busy.store(static_cast<uint32_t>(pool->m_threads.size()),
-                           std::memory_order_relaxed);
-        pool->m_generation.fetch_add(1, std::memory_order_release);
-    }
-    pool->m_wake.notify_all();
-    return pool;
-}
-
-void ThreadPool::finishTask(void* userTask, void* userContext) {
-    auto* pool = static_cast<ThreadPool*>(userContext);
-    if (userTask == nullptr) {
-        return;
-    }
-    pool->runRanges(0);
-    const auto idle = [pool] { return pool->m_busy.load(std::memory_order_acquire) == 0; };
-    if (!spinUntil(idle)) {
-        std::unique_lock<std::mutex> lock(pool->m_mutex);
-        pool->m_done.wait(lock, idle);
-    }
-    std::lock_guard<std::mutex> lock(pool->m_mutex);
-    pool->m_callback = nullptr;
-}
-
-void ThreadPool::runRanges(uint32_t worker) {
-    for (;;) {
-        const uint32_t begin = m_nextBegin.fetch_add(m_rangeSize, std::memory_order_relaxed);
-        if (begin >= m_itemCount) {
-            return;
-        }
-        m_callback(begin, std::min(m_itemCount, begin + m_rangeSize), worker, m_context);
-    }
-}
-
-void ThreadPool::workerMain(uint32_t worker) {
-    uint64_t seen = 0;
-    for (;;) {
-        const auto woken = [&] {
-            return m_stop.load(std::memory_order_relaxed) ||
-                   m_generation.load(std::memory_order_acquire) != seen;
-        };
-        if (!spinUntil(woken)) {
-            std::unique_lock<std::mutex> lock(m_mutex);
-            m_wake.wait(lock, woken);
-        }
-        if (m_stop.load()) {
-            return;
-        }
-        seen = m_generation.load(std::memory_order_acquire);
-        runRanges(worker);
-        if (m_busy.fetch_sub(1, std::memory_order_acq_rel) == 1) {
-            // The caller may be asleep in finishTask: take the lock so that the notification
-            // cannot fall between its check and its wait.
-            std::lock_guard<std::mutex> lock(m_mutex);
-            m_done.notify_one();
-        }
-    }
 }
 
 } // namespace fluid

@@ -1,12 +1,8 @@
 // fluid — 2D SPH liquid for games.
 #pragma once
 
-#include <atomic>
-#include <condition_variable>
 #include <cstdint>
-#include <mutex>
-#include <thread>
-#include <vector>
+#include <memory>
 
 namespace fluid {
 
@@ -52,27 +48,9 @@ public:
     uint32_t workerCount() const { return m_workerCount; }
 
 private:
-    static void* enqueueTask(TaskCallback* callback, uint32_t itemCount, uint32_t minRange,
-                             void* taskContext, void* userContext);
-    static void finishTask(void* userTask, void* userContext);
-    void workerMain(uint32_t worker);
-    void runRanges(uint32_t worker);
-
+    struct Impl; // threads and the running task (thread_pool.cpp)
     uint32_t m_workerCount = 1;
-    std::vector<std::thread> m_threads;
-    std::mutex m_mutex;
-    std::condition_variable m_wake;
-    std::condition_variable m_done;
-    // The running task: written under m_mutex before m_generation is bumped (release), read by
-    // the workers after they see the new generation (acquire); ranges are claimed atomically.
-    TaskCallback* m_callback = nullptr;
-    void* m_context = nullptr;
-    uint32_t m_itemCount = 0;
-    uint32_t m_rangeSize = 1;
-    std::atomic<uint32_t> m_nextBegin{0};
-    std::atomic<uint32_t> m_busy{0};       // workers still on the task
-    std::atomic<uint64_t> m_generation{0}; // tasks started
-    std::atomic<bool> m_stop{false};
+    std::unique_ptr<Impl> m_impl;
 };
 
 } // namespace fluid
