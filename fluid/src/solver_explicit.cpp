@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 namespace fluid::detail {
@@ -282,6 +283,7 @@ private:
     static constexpr const char* kStageNames[] = {"sort",     "external", "probe",
                                                   "density",  "pressure", "forces",
                                                   "integrate", "boundaries"};
+    static_assert(std::size(kStageNames) == kBoundaries + 1, "a name for every stage");
 
     // The probe sub-step's field measured: the frame's sound speed, and the rest of the frame
     // planned with it (after this sub-step of h seconds).

@@ -33,6 +33,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace fluid::detail {
 namespace {
@@ -334,6 +335,7 @@ private:
     static constexpr const char* kStageNames[] = {
         "external",       "predict",  "sort",      "coarse",  "density sweeps",
         "velocity",       "viscosity", "surface", "boundaries"};
+    static_assert(std::size(kStageNames) == kBoundaries + 1, "a name for every stage");
 
     // v += dt a_ext (and the last surface pass's pending change), x* = x + dt v, projected out
     // of solids: the admissible prediction (ox, oy) that the velocity update measures from.
