@@ -76,7 +76,7 @@ TEST_CASE("a ball dropped into a pool makes one Begin and one splash, lifted out
                 beginFrame, speedAtBegin, contacts.size(), splashes.size());
     for (const SplashEvent& e : splashes) {
         std::printf("; splash at (%.3f, %.3f) speed %.2f m/s material %u", e.position.x,
-                    e.position.y, e.speed, unsigned(e.material));
+                    e.position.y, e.speed, unsigned(e.material.index));
     }
     std::printf("; at the end %.2f submerged\n", rep->submergedFraction);
 
@@ -85,7 +85,7 @@ TEST_CASE("a ball dropped into a pool makes one Begin and one splash, lifted out
     uint32_t fastBegins = 0, slowBegins = 0;
     for (const ContactEvent& e : contacts) {
         CHECK(e.phase == ContactPhase::Begin);
-        CHECK(e.material == yog.index);
+        CHECK(e.material == yog);
         fastBegins += e.body == fast ? 1 : 0;
         slowBegins += e.body == slow ? 1 : 0;
     }
@@ -95,14 +95,14 @@ TEST_CASE("a ball dropped into a pool makes one Begin and one splash, lifted out
     REQUIRE(splashes.size() == 1);
     const SplashEvent& splash = splashes[0];
     CHECK(splash.body == fast);
-    CHECK(splash.material == yog.index);
+    CHECK(splash.material == yog);
     CHECK(splash.speed > def.splashSpeed);
     CHECK(splash.speed == Approx(speedAtBegin).epsilon(0.01));
     CHECK(splash.speed == Approx(std::sqrt(2.0f * kG * 0.4f)).epsilon(0.1));
     CHECK(std::fabs(splash.position.x - 0.2f) < r);
     CHECK(std::fabs(splash.position.y - surface) < r + s);
     CHECK(rep->wetPoints > 0);
-    CHECK(rep->material == yog.index);
+    CHECK(rep->material == yog);
 
     // Lifted out (teleported 0.5 m above the pool, at rest): one End, with the material it was
     // in, at the next step; nothing for the other ball.
@@ -113,7 +113,7 @@ TEST_CASE("a ball dropped into a pool makes one Begin and one splash, lifted out
     REQUIRE(coupling.contacts().size() == 1);
     CHECK(coupling.contacts()[0].body == fast);
     CHECK(coupling.contacts()[0].phase == ContactPhase::End);
-    CHECK(coupling.contacts()[0].material == yog.index);
+    CHECK(coupling.contacts()[0].material == yog);
     CHECK(coupling.splashes().empty());
     REQUIRE(coupling.report(fast) != nullptr);
     CHECK(coupling.report(fast)->wetPoints == 0);

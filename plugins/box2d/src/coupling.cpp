@@ -553,12 +553,13 @@ void Coupling::makeReports(const World& world) {
         r.submergedArea = float(submerged);
         r.submergedFraction = area > 0.0 ? float(std::clamp(submerged / area, 0.0, 1.0)) : 0.0f;
         if (!counts.empty()) {
-            r.material = uint16_t(std::max_element(counts.begin(), counts.end()) - counts.begin());
+            r.material =
+                MaterialId{uint16_t(std::max_element(counts.begin(), counts.end()) - counts.begin())};
         }
         // The added mass the relaxation assumes (see the class comment): the submerged area's,
         // or, entering the fluid, a plate's as wide as the wet chord at a free surface.
-        if (r.wetPoints > 0 && r.material < world.materialCount()) {
-            const double rho = arealDensity(world, MaterialId{r.material});
+        if (r.wetPoints > 0 && r.material.index < world.materialCount()) {
+            const double rho = arealDensity(world, r.material);
             m_addedMass[b] = rho * std::max(submerged, std::numbers::pi / 8.0 * chords);
             m_displaced[b] = rho * submerged;
         }
@@ -658,7 +659,7 @@ void Coupling::save(std::ostream& out) const {
         }
         w.put(found->second);
         w.put(uint8_t(p.wet ? 1 : 0));
-        w.put(p.material);
+        w.put(p.material.index);
         w.put(p.debt.x);
         w.put(p.debt.y);
         w.put(p.torqueDebt);
@@ -712,7 +713,7 @@ void Coupling::load(std::istream& in) {
             r.fail(of + "wet flag = " + std::to_string(wet) + " is not 0 or 1");
         }
         p.wet = wet != 0;
-        p.material = r.get<uint16_t>("material");
+        p.material = MaterialId{r.get<uint16_t>("material")};
         p.debt.x = r.number(of + "debt x", -kMaxImpulse, kMaxImpulse, "N s");
         p.debt.y = r.number(of + "debt y", -kMaxImpulse, kMaxImpulse, "N s");
         p.torqueDebt = r.number(of + "torque debt", -kMaxAngularImpulse, kMaxAngularImpulse,

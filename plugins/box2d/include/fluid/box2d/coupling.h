@@ -64,9 +64,9 @@ struct BodyReport {
     float submergedFraction = 0.0f;
     /// Coupled outline points of the body with fluid next to them (unit: count): 0 = dry.
     uint32_t wetPoints = 0;
-    /// The material most of the wet points touch (index in the world's materials; meaningful
-    /// when `wetPoints > 0`).
-    uint16_t material = 0;
+    /// The material most of the wet points touch (one of the world's; meaningful when
+    /// `wetPoints > 0`).
+    MaterialId material{};
 };
 
 /// A body entered fluid fast: it was dry at the end of the previous step, is wet now, and its
@@ -79,8 +79,8 @@ struct SplashEvent {
     /// Speed of the body's centre of mass during the fluid's step (unit: m/s): from where the
     /// previous step left it to where Box2D put it, over dt.
     float speed = 0.0f;
-    /// The material it hit (index in the world's materials).
-    uint16_t material = 0;
+    /// The material it hit (one of the world's).
+    MaterialId material{};
 };
 
 /// Whether a contact began or ended.
@@ -99,7 +99,7 @@ struct ContactEvent {
     /// Begin or end.
     ContactPhase phase = ContactPhase::Begin;
     /// The material touched most (Begin: now; End: at the last wet step).
-    uint16_t material = 0;
+    MaterialId material{};
 };
 
 /// The areal density of a material (unit: kg/m^2): rest density x the world's slab depth. A
@@ -309,7 +309,7 @@ private:
     struct Previous {
         b2Body* body = nullptr;
         bool wet = false;
-        uint16_t material = 0;
+        MaterialId material{};
         glm::dvec2 debt{0.0, 0.0}; // impulse measured but not applied yet (N s)
         double torqueDebt = 0.0;   // angular impulse likewise (N m s)
         glm::vec2 applied{0.0f, 0.0f}; // force handed to Box2D for its next step (N)
