@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 
+// [docs/plugins.md: A force] (docs/plugins.md quotes the lines up to the end marker; a test
+// checks that they match.)
 /// "force.whirlpool": a counter-clockwise swirl around (cx, cy). The tangential acceleration
 /// rises linearly from 0 at the centre to `strength` at `radius`, then eases smoothly to 0 at
 /// twice the radius; `pull` adds the same profile pointing inward. Thread rule: see ForcePlugin.
@@ -24,6 +26,7 @@ public:
         {"radius", "m", 0.2, 1e-3, 1e3, "Where the swirl peaks; it is 0 beyond twice this."},
         {"pull", "m/s^2", 0.0, -1e3, 1e3, "Inward acceleration at the radius (optional)."},
     }};
+// [end]
     /// A whirlpool with the default parameters.
     WhirlpoolForce() : fluid::ForcePlugin(kType, kParams) {}
     /// Adds the swirl to particles [begin, end), writing only their own slots.

@@ -333,3 +333,32 @@ TEST_CASE("the plugin ABI declaration hash is current", "[level][plugin-library]
     CHECK(pluginAbiDeclHash("int  a; // note\n") == pluginAbiDeclHash("int a;"));
     CHECK(pluginAbiDeclHash("int a;") != pluginAbiDeclHash("int b;"));
 }
+
+TEST_CASE("docs/plugins.md quotes the example's whirlpool as it is", "[level][docs]") {
+    // The example marks the lines the page quotes; the page's block after "### A force" must be
+    // exactly those lines, so the two cannot drift apart.
+    const std::string root = FLUID_SOURCE_DIR;
+    const std::string example = readFile(root + "/examples/custom_force.cpp");
+    const std::string page = readFile(root + "/docs/plugins.md");
+    const std::string begin = "// [docs/plugins.md: A force]";
+    const size_t marker = example.find(begin);
+    REQUIRE(marker != std::string::npos);
+    const size_t from = example.find("///", marker); // the quote starts at the doc comment
+    const size_t to = example.find("// [end]\n", from);
+    REQUIRE(from != std::string::npos);
+    REQUIRE(to != std::string::npos);
+    const std::string quoted = example.substr(from, to - from);
+
+    const size_t section = page.find("### A force");
+    REQUIRE(section != std::string::npos);
+    const size_t open = page.find("```cpp\n", section);
+    REQUIRE(open != std::string::npos);
+    const size_t start = open + 7;
+    const size_t close = page.find("```\n", start);
+    REQUIRE(close != std::string::npos);
+    const std::string block = page.substr(start, close - start);
+    INFO("docs/plugins.md, \"A force\": copy the lines of examples/custom_force.cpp between its "
+         "markers into the block");
+    CHECK(block == quoted);
+    CHECK(quoted.find("class WhirlpoolForce") != std::string::npos);
+}
