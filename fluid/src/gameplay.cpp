@@ -34,9 +34,8 @@ float symmetricUnit(uint64_t& state) {
 // crushing the liquid. The fill at a point is the constraint's density, (sum_j V_j W + V_w
 // sum_w W) / L, over the particles as they stand before the step and the boundary samples of
 // the last step (1 inside the material's resting lattice); a new particle is placed only if
-// the fill with its own term stays at or below 1. (Placing it wherever the fill without it is
-// below 1 let a faucet's rows pile into a closed box: 3,582 particles in room for 820, 830%
-// mean compression.) The particles' grid is built at the first question; particles placed
+// the fill with its own term stays at or below 1 (without its own term a faucet's rows piled
+// into a closed box: docs/gameplay.md, "Emitters"). The particles' grid is built at the first question; particles placed
 // since then count as well, so that the rows of a long frame do not each fill the same room.
 // A place inside a solid or outside a container has no room: the boundary would throw the
 // particle into the liquid at the first step (docs/gameplay.md, "Emitters").

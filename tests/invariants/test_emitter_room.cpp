@@ -102,11 +102,8 @@ TEST_CASE("a faucet in a closed box stops when the box is full, at the preset's 
 }
 
 // Emitters pointed anywhere, at any speed and rate the API takes, placed inside, at a wall and
-// outside, over the same box. Before, a nozzle 3 cm under the lid pointing up at 5 m/s placed
-// its rows of a frame above the lid (outside the box) where nothing was in the way, and the lid
-// pushed them in: 2,652 particles at 10 s against the 841 the box holds; a nozzle outside the
-// closed box pushed 500/s into it the same way. Rows placed in one frame also did not see each
-// other.
+// outside, over the same box: no row placed outside the box or inside a solid may be pushed
+// into it (the overfilled boxes this caught: docs/gameplay.md, "Emitters").
 TEST_CASE("emitters of any direction, speed, rate and place never overfill a closed box",
           "[invariants][slow][emitter]") {
     struct Case {

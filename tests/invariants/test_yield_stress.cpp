@@ -316,14 +316,9 @@ TEST_CASE("yoghurt keeps momentum in zero gravity and gives bit-identical states
 }
 
 // A 0.15 x 0.3 m block released in a closed box, at the corners of every yielding field's
-// documented range, thrown sideways at 3 m/s or let go. The stress is advanced as a rate with
-// the shear modulus the step allows (about 2,200 Pa at the precise settings, 540 Pa at the game
-// preset's), so a stiff material stored strains of 10-50 and gave them back: with a yield
-// stress of 1e5 Pa the block reached 28 J/kg against the 1.5 J/kg it could lose, and filled the
-// box. The step now stores at most the stress of a strain of 1 (yield_law.h, kCarriedStrain):
-// measured, the energy never rises above the start's; at the precise settings the 1e5 Pa
-// block's top stands at 0.285 m of 0.29 after 4 s (at the game preset's it carries 540 Pa, less
-// than the block's weight asks at its foot, and the block slumps to 0.12 m).
+// documented range, thrown sideways at 3 m/s or let go: a stiff material must not give back
+// more energy than it lost, since the step stores no stress above a strain of 1 (kCarriedStrain;
+// the figures before and after: docs/position_based.md, "No stress above a strain of 1").
 TEST_CASE("a block at the corners of the yield-stress ranges never gains energy, and a stiff "
           "block stands",
           "[slow][invariants][yield]") {
@@ -371,7 +366,7 @@ TEST_CASE("a block at the corners of the yield-stress ranges never gains energy,
     CHECK(world.particleCount() == count);
     CHECK(countOutside(world, 0.0f, 0.0f, 0.6f, 0.5f) == 0);
     if (corner.tauY == 1e5f && corner.vx == 0.0f && quality == Quality::Precise) {
-        // Stands: 0.285 m of the block's 0.29 (the top particle's centre) measured.
+        // The stiff block stands at the precise settings (its measured top: the docs above).
         CHECK(top > 0.27f);
     }
 }

@@ -1,9 +1,8 @@
 // fluid tests — levels/crates.json at 1, 2, 10 and 60 frames a second with both solvers: a
 // coupled frame of any length keeps the water in its tank and the bodies calm, at the cost per
 // simulated second of 60 Hz (box2d::Coupling::step splits a long frame into as many rounds as
-// World::step would take sub-steps, fluid::frameSubsteps). Before, a 1 s frame took 60 fluid
-// sub-steps in 4 rounds and threw the water to x = -0.56..3.64 m, y = 4 m; the explicit solver's
-// single round per frame let the light hull rock, and water went over the wall at 60 Hz.
+// World::step would take sub-steps, fluid::frameSubsteps; what long rounds did before:
+// docs/box2d.md, "Why rounds").
 #include <catch2/catch.hpp>
 
 #include "level_support.h"
