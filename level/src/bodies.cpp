@@ -330,6 +330,12 @@ private:
             b.failAt("fixtures", "a dynamic body needs mass: expected a box, circle or polygon "
                                  "fixture with a density above 0");
         }
+        if (mass < box2d::kMinBodyMass) {
+            b.failAt("fixtures", "the fixtures weigh " + formatNumber(mass) +
+                                     " kg, less than the " + formatNumber(box2d::kMinBodyMass) +
+                                     " kg a dynamic body needs (Box2D divides by its mass); raise "
+                                     "their density or size");
+        }
         center *= 1.0f / mass;
         if (!fixedRotation && inertia > 0.0f) {
             const float centred = inertia - mass * b2Dot(center, center);
@@ -339,6 +345,13 @@ private:
                                          " m from the body's position, too far for Box2D's "
                                          "single-precision inertia; move the body's position to "
                                          "its fixtures");
+            }
+            if (centred < box2d::kMinBodyInertia) {
+                b.failAt("fixtures", "the fixtures' rotational inertia about their centre of "
+                                     "mass is " + formatNumber(centred) + " kg m^2, less than the " +
+                                     formatNumber(box2d::kMinBodyInertia) +
+                                     " kg m^2 a dynamic body that turns needs (Box2D divides by "
+                                     "it); make them wider or set 'fixedRotation'");
             }
         }
     }

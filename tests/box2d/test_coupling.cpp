@@ -212,6 +212,53 @@ TEST_CASE("stepFluid leaves the Box2D step to the game", "[box2d]") {
     CHECK(ball->GetPosition().x > 0.3f);
 }
 
+TEST_CASE("a dynamic body lighter than kMinBodyMass or kMinBodyInertia is refused, nothing moves",
+          "[box2d][bad-input]") {
+    Pool pool;
+    b2Body* ball = addCircle(pool.physics, b2_dynamicBody, {0.3f, 0.4f}, 0.03f, 50.0f);
+    Coupling coupling(pool.world, pool.physics);
+    coupling.step(pool.world, kFrame);
+    const uint64_t before = stateHash(pool.world);
+    const uint64_t bodiesBefore = bodiesHash(pool.physics);
+    const double time = pool.world.time();
+    b2MassData data;
+    ball->GetMassData(&data);
+    const b2MassData kept = data;
+    // Box2D's inverse of 4.7e-40 kg overflows a float: the body would turn NaN at its first step.
+    data.mass = 4.7e-40f;
+    ball->SetMassData(&data);
+    CHECK_THROWS_MATCHES(coupling.step(pool.world, kFrame), Error,
+                         Catch::Matchers::Message(
+                             "fluid::box2d::Coupling::step: dynamic body 0 (in GetBodyList() "
+                             "order) has a mass of 4.7e-40 kg, less than kMinBodyMass (1e-06 kg)"));
+    data = kept;
+    data.I = kept.mass * b2Dot(kept.center, kept.center) + 1e-20f;
+    ball->SetMassData(&data);
+    CHECK_THROWS_MATCHES(
+        coupling.stepFluid(pool.world, kFrame), Error,
+        Catch::Matchers::Message("fluid::box2d::Coupling::stepFluid: dynamic body 0 (in "
+                                 "GetBodyList() order) has a rotational inertia of 1e-20 kg m^2 "
+                                 "about its centre of mass, less than kMinBodyInertia (1e-12 kg "
+                                 "m^2)"));
+    CHECK(stateHash(pool.world) == before);
+    CHECK(bodiesHash(pool.physics) == bodiesBefore);
+    CHECK(pool.world.time() == time);
+    // A body that does not turn needs no inertia; the milligram itself is allowed, and the water
+    // it floats in throws it up without turning it or anything else NaN.
+    data = kept;
+    data.mass = box2d::kMinBodyMass;
+    ball->SetMassData(&data);
+    ball->SetFixedRotation(true);
+    for (int frame = 0; frame < 30; ++frame) {
+        coupling.step(pool.world, kFrame);
+    }
+    CHECK(std::isfinite(ball->GetPosition().x));
+    CHECK(std::isfinite(ball->GetPosition().y));
+    CHECK(std::isfinite(ball->GetLinearVelocity().y));
+    CHECK(allFinite(pool.world));
+    CHECK(pool.world.time() == Approx(time + 30.0 * kFrame));
+}
+
 TEST_CASE("a body created mid-run pushes fluid, a destroyed one disappears", "[box2d]") {
     Pool pool;
     b2Body* anchor = addBox(pool.physics, b2_staticBody, {0.05f, 0.45f}, 0.02f, 0.02f, 0.0f);

@@ -175,6 +175,18 @@ TEST_CASE("level bodies: densities: exactly one of density and densityRatio, and
     CHECK(errorOf(withFixture(R"("shape": "circle", "radius": 1, "density": 0)")) ==
           "t.json:1:74: at /bodies/0/fixtures: a dynamic body needs mass: expected a box, circle "
           "or polygon fixture with a density above 0");
+    // So light that Box2D's inverse mass would overflow or the fluid's impulses throw it out.
+    CHECK(errorOf(withFixture(R"("shape": "circle", "radius": 0.02, "density": 1e-40)")) ==
+          "t.json:1:74: at /bodies/0/fixtures: the fixtures weigh 1.26e-43 kg, less than the "
+          "1e-06 kg a dynamic body needs (Box2D divides by its mass); raise their density or "
+          "size");
+    CHECK(errorOf(withFixture(
+              R"("shape": "box", "width": 0.01, "height": 0.01, "density": 0.009)")) ==
+          "t.json:1:74: at /bodies/0/fixtures: the fixtures weigh 8.999999e-07 kg, less than the "
+          "1e-06 kg a dynamic body needs (Box2D divides by its mass); raise their density or "
+          "size");
+    CHECK(errorOf(withFixture(
+              R"("shape": "box", "width": 0.01, "height": 0.01, "density": 0.01)")) == "no error");
     // Static and kinematic bodies need no density.
     CHECK(errorOf(withBodies(
               R"({"type": "static", "fixtures": [{"shape": "circle", "radius": 1}]})")) ==

@@ -586,6 +586,19 @@ TEST_CASE("Box2D world saves refuse values that would turn a body NaN, and count
     CHECK(physicsError(fast) ==
           "box2d save: body velocity = 1e+30 is not finite or out of [-1e+06, "
           "1e+06]");
+    // A mass or rotational inertia so small that Box2D's inverse overflows a float (a fuzzed
+    // save's 4.7e-40 kg turned a body NaN at its first step): refused below kMinBodyMass and
+    // kMinBodyInertia.
+    std::string light = bytes;
+    const float denormal = 4.7e-40f;
+    std::memcpy(light.data() + bodyAt + 42, &denormal, sizeof(denormal)); // mass
+    CHECK(physicsError(light) ==
+          "box2d save: a dynamic body's mass = 4.7e-40 kg is less than kMinBodyMass (1e-06 kg)");
+    std::string spinning = bytes;
+    std::memcpy(spinning.data() + bodyAt + 54, &denormal, sizeof(denormal)); // inertia
+    CHECK(physicsError(spinning) ==
+          "box2d save: a dynamic body's rotational inertia about its centre of mass = 4.7e-40 kg "
+          "m^2 is less than kMinBodyInertia (1e-12 kg m^2)");
     // The disc moved far from the body's origin: Box2D's CreateFixture would assert (the
     // inertia about the centre of mass cancels to 0 in float); the body's fixture follows its
     // mass data, count and the fixture kind and radius.

@@ -220,8 +220,38 @@ void Coupling::checkWorld(const World& world, const char* function) const {
                 ": the world is not the one this coupling was made with");
 }
 
+// Box2D divides by a dynamic body's mass and by its rotational inertia about its centre of mass
+// (b2Body::m_I, which GetInertia reports about the body's origin); see kMinBodyMass.
+void Coupling::checkBodies(const char* function) const {
+    uint32_t index = 0;
+    for (const b2Body* b = m_physics->GetBodyList(); b != nullptr; b = b->GetNext(), ++index) {
+        if (b->GetType() != b2_dynamicBody) {
+            continue;
+        }
+        const float mass = b->GetMass();
+        const b2Vec2 c = b->GetLocalCenter();
+        const float centred = b->GetInertia() - mass * b2Dot(c, c);
+        const bool light = !(mass >= kMinBodyMass);
+        if (light || (!b->IsFixedRotation() && centred > 0.0f && centred < kMinBodyInertia)) {
+            std::ostringstream s;
+            s << "fluid::box2d::Coupling::" << function << ": dynamic body " << index
+              << " (in GetBodyList() order) has ";
+            if (light) {
+                s << "a mass of " << mass << " kg, less than kMinBodyMass (" << kMinBodyMass
+                  << " kg)";
+            } else {
+                s << "a rotational inertia of " << centred
+                  << " kg m^2 about its centre of mass, less than kMinBodyInertia ("
+                  << kMinBodyInertia << " kg m^2)";
+            }
+            throw Error(s.str());
+        }
+    }
+}
+
 void Coupling::step(World& world, float dt) {
     checkWorld(world, "step");
+    checkBodies("step");
     if (!(dt > 0.0f && dt <= 1.0f)) {
         world.step(dt); // throws World::step's own message, before Box2D moves anything
     }
@@ -262,6 +292,7 @@ void Coupling::step(World& world, float dt) {
 
 void Coupling::stepFluid(World& world, float dt) {
     checkWorld(world, "stepFluid");
+    checkBodies("stepFluid");
     m_splashes.clear();
     m_contacts.clear();
     m_removed.clear();

@@ -1,6 +1,8 @@
 // fluid::box2d — saving and restoring a Box2D world (see physics_save.h).
 #include <fluid/box2d/physics_save.h>
 
+#include <fluid/box2d/coupling.h>
+
 #include "binary.h"
 
 #include <box2d/box2d.h>
@@ -391,12 +393,26 @@ std::unique_ptr<b2World> loadPhysics(std::istream& stream) {
         b.mass.mass = in.number("mass", 0.0f, kMaxMass);
         b.mass.center = in.vec("mass centre", kMaxCoordinate);
         b.mass.I = in.number("rotational inertia", 0.0f, kMaxInertia);
-        // SetMassData keeps I - m |c|^2, the inertia about the centre of mass: it must be
-        // positive for a body that turns (a mass of 0 counts as 1 there).
+        // SetMassData keeps the mass and I - m |c|^2, the inertia about the centre of mass, and
+        // Box2D divides by both: each at least its kMinBody... bound (the inertia positive and
+        // bounded for a body that turns; a mass of 0 counts as 1 there).
         const float m = b.mass.mass > 0.0f ? b.mass.mass : 1.0f;
-        if (b.def.type == b2_dynamicBody && b.mass.I > 0.0f && !b.def.fixedRotation &&
-            !(b.mass.I - m * b2Dot(b.mass.center, b.mass.center) > 0.0f)) {
+        const float centred = b.mass.I - m * b2Dot(b.mass.center, b.mass.center);
+        const bool turns = b.mass.I > 0.0f && !b.def.fixedRotation;
+        if (b.def.type == b2_dynamicBody && turns && !(centred > 0.0f)) {
             in.r.fail("a body's rotational inertia about its centre of mass is not positive");
+        }
+        const bool light = m < kMinBodyMass || (turns && centred < kMinBodyInertia);
+        if (b.def.type == b2_dynamicBody && light) {
+            std::ostringstream s;
+            if (m < kMinBodyMass) {
+                s << "a dynamic body's mass = " << m << " kg is less than kMinBodyMass ("
+                  << kMinBodyMass << " kg)";
+            } else {
+                s << "a dynamic body's rotational inertia about its centre of mass = " << centred
+                  << " kg m^2 is less than kMinBodyInertia (" << kMinBodyInertia << " kg m^2)";
+            }
+            in.r.fail(s.str());
         }
         b.fixtures.resize(in.r.count("fixture count", kMaxFixtures, kFixtureBytes));
         for (FixtureRead& f : b.fixtures) {

@@ -107,6 +107,18 @@ struct ContactEvent {
 /// it floats half submerged. Any thread.
 float arealDensity(const World& world, MaterialId material);
 
+/// The least mass a coupled dynamic body may have (unit: kg). Box2D divides by a body's mass:
+/// under about 3e-39 kg the inverse overflows a float and the body turns NaN at its first step,
+/// and the fluid's impulses throw a body of, say, 1e-30 kg to an infinite speed. A milligram is
+/// far below any body a game floats (a 5 mm box at a hundredth of water's areal density weighs
+/// 3e-5 kg). Level files, Box2D saves and `Coupling::step` refuse lighter dynamic bodies. Any
+/// thread.
+inline constexpr float kMinBodyMass = 1e-6f;
+/// The least rotational inertia about its centre of mass a coupled dynamic body that turns may
+/// have (unit: kg m^2): Box2D divides by it as by the mass. A body of `kMinBodyMass` the size of
+/// Box2D's linear slop (5 mm) has 4e-12. Refused where `kMinBodyMass` is. Any thread.
+inline constexpr float kMinBodyInertia = 1e-12f;
+
 class BodyBoundary;
 
 /// Registers the type "box2d.bodies", the coupling's boundary plugin, in `registry` so that
@@ -236,9 +248,10 @@ public:
     /// time), and `World::profile()` and `World::removedEvents()` afterwards describe the last
     /// round: read the frame's from `profile()` and `removedEvents()` here.
     /// `world` must be the world given to the constructor (it may have been moved since);
-    /// `dt` as `World::step` (unit: s; range (0, 1]). Throws `fluid::Error` for another world or
-    /// a bad dt (before anything moves), and what `World::step` throws (Box2D has stepped by
-    /// then; the fluid is left unchanged).
+    /// `dt` as `World::step` (unit: s; range (0, 1]). Throws `fluid::Error` for another world, a
+    /// bad dt or a dynamic body lighter than `kMinBodyMass` or `kMinBodyInertia` (naming its
+    /// index in `GetBodyList()`; all before anything moves), and what `World::step` throws (Box2D
+    /// has stepped by then; the fluid is left unchanged).
     void step(World& world, float dt);
     /// Steps 2 to 4 of `step`, for games that call `b2World::Step(dt, ...)` themselves: call
     /// it right after that. Same arguments and errors.
@@ -297,6 +310,7 @@ public:
 
 private:
     void checkWorld(const World& world, const char* function) const;
+    void checkBodies(const char* function) const;
     void fluidRound(World& world, float dt);
     void addProfile(const Profile& round);
     void applyForces(float dt);

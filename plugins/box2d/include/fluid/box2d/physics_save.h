@@ -26,8 +26,9 @@ void savePhysics(const b2World& physics, std::ostream& out);
 /// larger than the bytes left could hold (checked before anything is sized by it), a non-finite
 /// or out-of-range value, naming the field (|coordinate| above 1e5 m, speeds above 1e6 m/s or
 /// rad/s, mass above 1e9 kg, density above 1e9 kg/m^2, gravity scale, friction or restitution
-/// above 1e3, motor torque above 1e15 N m, a polygon not of 3 to 8 vertices), an unknown shape
-/// or joint type. Any thread (the new world is the caller's).
+/// above 1e3, motor torque above 1e15 N m, a polygon not of 3 to 8 vertices, a dynamic body
+/// lighter than `kMinBodyMass` or `kMinBodyInertia` of coupling.h), an unknown shape or joint
+/// type. Any thread (the new world is the caller's).
 std::unique_ptr<b2World> loadPhysics(std::istream& in);
 
 } // namespace fluid::box2d
