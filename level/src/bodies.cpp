@@ -347,11 +347,13 @@ private:
                                          "its fixtures");
             }
             if (centred < box2d::kMinBodyInertia) {
-                b.failAt("fixtures", "the fixtures' rotational inertia about their centre of "
-                                     "mass is " + formatNumber(centred) + " kg m^2, less than the " +
-                                     formatNumber(box2d::kMinBodyInertia) +
-                                     " kg m^2 a dynamic body that turns needs (Box2D divides by "
-                                     "it); make them wider or set 'fixedRotation'");
+                b.failAt("fixtures",
+                         "the fixtures' rotational inertia about their centre of "
+                         "mass is " +
+                             formatNumber(centred) + " kg m^2, less than the " +
+                             formatNumber(box2d::kMinBodyInertia) +
+                             " kg m^2 a dynamic body that turns needs (Box2D divides by "
+                             "it); make them wider or set 'fixedRotation'");
             }
         }
     }

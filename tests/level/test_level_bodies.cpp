@@ -180,8 +180,8 @@ TEST_CASE("level bodies: densities: exactly one of density and densityRatio, and
           "t.json:1:74: at /bodies/0/fixtures: the fixtures weigh 1.26e-43 kg, less than the "
           "1e-06 kg a dynamic body needs (Box2D divides by its mass); raise their density or "
           "size");
-    CHECK(errorOf(withFixture(
-              R"("shape": "box", "width": 0.01, "height": 0.01, "density": 0.009)")) ==
+    CHECK(errorOf(
+              withFixture(R"("shape": "box", "width": 0.01, "height": 0.01, "density": 0.009)")) ==
           "t.json:1:74: at /bodies/0/fixtures: the fixtures weigh 8.999999e-07 kg, less than the "
           "1e-06 kg a dynamic body needs (Box2D divides by its mass); raise their density or "
           "size");
