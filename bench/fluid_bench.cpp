@@ -123,10 +123,10 @@ std::pair<float, float> spawnBlock(fluid::World& world, fluid::MaterialId water,
     const float s = world.spacing(water); // lattice spacing (m): one particle per s^2
     const float width = float(nx) * s, height = float(ny) * s;
     fluid::BlobDef block;
-    block.shape = fluid::BlobShape::Rectangle;
-    block.center = {0.5f * width, 0.5f * height};
+    block.shape.type = fluid::ShapeType::Rectangle;
+    block.shape.center = {0.5f * width, 0.5f * height};
     // Half a spacing of slack so floor(extent / spacing) gives exactly nx by ny points.
-    block.halfExtents = {0.5f * (width + 0.5f * s), 0.5f * (height + 0.5f * s)};
+    block.shape.halfExtents = {0.5f * (width + 0.5f * s), 0.5f * (height + 0.5f * s)};
     block.material = water;
     world.spawnBlob(block);
     return {width, height};
@@ -171,12 +171,13 @@ Scene buildBlob(fluid::World& world, uint32_t n, const fluid::Material& liquid) 
     const fluid::MaterialId water = world.addMaterial(liquid);
     const float s = world.spacing(water);
     fluid::BlobDef blob;
-    blob.shape = fluid::BlobShape::Circle;
-    blob.radius = s * float(std::sqrt(n / std::numbers::pi)); // area n s^2
+    blob.shape.type = fluid::ShapeType::Circle;
+    blob.shape.radius = s * float(std::sqrt(n / std::numbers::pi)); // area n s^2
     blob.material = water;
     world.spawnBlob(blob);
     char text[160];
-    std::snprintf(text, sizeof text, "blob: radius %.3f m, zero gravity, no boundary", blob.radius);
+    std::snprintf(text, sizeof text, "blob: radius %.3f m, zero gravity, no boundary",
+                  blob.shape.radius);
     Scene scene;
     scene.text = text;
     scene.water = water;

@@ -164,13 +164,13 @@ int main(int argc, char** argv) {
     // The liquid: water over the floor, a yoghurt block on the right.
     fluid::BlobDef pool;
     pool.material = water;
-    pool.center = {0.95f, 0.4f};
-    pool.halfExtents = {0.945f, 0.395f};
+    pool.shape.center = {0.95f, 0.4f};
+    pool.shape.halfExtents = {0.945f, 0.395f};
     world.spawnBlob(pool);
     fluid::BlobDef block;
     block.material = yoghurt;
-    block.center = {2.2f, 0.4f};
-    block.halfExtents = {0.295f, 0.395f};
+    block.shape.center = {2.2f, 0.4f};
+    block.shape.halfExtents = {0.295f, 0.395f};
     world.spawnBlob(block);
 
     // Faucets, overflow drains in the side walls 0.8 m up, and the yoghurt's particles live
@@ -304,11 +304,11 @@ int main(int argc, char** argv) {
             if (clear) {
                 fluid::BlobDef drop;
                 drop.material = (frame / 150) % 2 == 0 ? water : yoghurt;
-                drop.shape = fluid::BlobShape::Circle;
-                drop.radius = 0.05f;
-                drop.center = {x, y - 0.07f};
+                drop.shape.type = fluid::ShapeType::Circle;
+                drop.shape.radius = 0.05f;
+                drop.shape.center = {x, y - 0.07f};
                 dropped += world.spawnBlob(drop);
-                drop.center = {x, y + 0.07f};
+                drop.shape.center = {x, y + 0.07f};
                 drop.velocity = {0.0f, -1.0f};
                 dropped += world.spawnBlob(drop);
             }

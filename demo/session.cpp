@@ -183,10 +183,8 @@ const std::string& Session::dropMaterialName() const {
 
 uint32_t Session::dropBlob(glm::vec2 center) {
     BlobDef blob;
-    blob.shape = BlobShape::Circle;
-    blob.center = center;
-    blob.radius = 0.05f * std::max(m_bounds.hi.x - m_bounds.lo.x, m_bounds.hi.y - m_bounds.lo.y);
-    blob.radius = std::clamp(blob.radius, 0.02f, 0.08f);
+    const float extent = std::max(m_bounds.hi.x - m_bounds.lo.x, m_bounds.hi.y - m_bounds.lo.y);
+    blob.shape = Shape::circle(center, std::clamp(0.05f * extent, 0.02f, 0.08f));
     blob.material = m_materials[m_drop];
     return m_level.world.spawnBlob(blob);
 }

@@ -61,7 +61,7 @@ int main() {
     const fluid::ParamValue swirl[] = {{"strength", 1.0}, {"radius", 0.3}, {"pull", 2.0}};
     world.addForce(registry.createForce("force.whirlpool", swirl));
     fluid::BlobDef blob; // a round blob of water, radius 0.15 m, centred on the whirlpool
-    blob.shape = fluid::BlobShape::Circle, blob.radius = 0.15f, blob.material = water;
+    blob.shape = fluid::Shape::circle({0.0f, 0.0f}, 0.15f), blob.material = water;
     std::printf("custom_force: %u water particles in zero gravity, whirlpool at (0, 0), 2 s\n"
                 "t [s]  Lz [kg m^2/s] (angular momentum about the centre)\n",
                 world.spawnBlob(blob));

@@ -16,8 +16,7 @@ int main() {
     world.addBoundary(std::make_unique<fluid::BoxContainer>(0.0f, 0.0f, 1.2f, 1.0f));
     fluid::BlobDef pool;
     pool.material = water;
-    pool.center = {0.6f, 0.2f};
-    pool.halfExtents = {0.595f, 0.2f};
+    pool.shape = fluid::Shape::box({0.005f, 0.0f}, {1.195f, 0.4f});
     world.spawnBlob(pool);
 
     // The rigid bodies: the same gravity, a floor for the stone to rest on. The floor and

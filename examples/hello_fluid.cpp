@@ -37,17 +37,13 @@ int main() {
     // square lattice at the material's spacing (about 0.01 m, one particle per ~1 cm^2). Cost
     // grows with the particle count: this block is kept small so the demo runs in seconds.
     fluid::BlobDef block;
-    block.shape = fluid::BlobShape::Rectangle;
-    block.center = {0.05f, 0.1f};      // m
-    block.halfExtents = {0.05f, 0.1f}; // m: half width, half height
+    block.shape = fluid::Shape::box({0.0f, 0.0f}, {0.1f, 0.2f}); // m: lower-left, upper-right
     block.material = water;
     const uint32_t waterCount = world.spawnBlob(block);
 
     // A yoghurt ball of radius 5 cm, centred 0.45 m up on the right, falling from rest.
     fluid::BlobDef ball;
-    ball.shape = fluid::BlobShape::Circle;
-    ball.center = {0.4f, 0.45f}; // m
-    ball.radius = 0.05f;         // m
+    ball.shape = fluid::Shape::circle({0.4f, 0.45f}, 0.05f); // m: centre, radius
     ball.material = yoghurt;
     const uint32_t yoghurtCount = world.spawnBlob(ball);
 
@@ -59,7 +55,7 @@ int main() {
     std::printf("hello_fluid: a 0.6 m x 0.8 m tank with a water block (%u particles) on the left\n"
                 "and a yoghurt ball (%u particles) dropped from y = %.2f m; 2 s in 120 frames of "
                 "1/60 s\n\n",
-                waterCount, yoghurtCount, ball.center.y);
+                waterCount, yoghurtCount, ball.shape.center.y);
     // Columns: simulated time, particle count, sub-steps of the last frame, fastest particle,
     // lowest and highest particle, mean density per material, wall time of the last step.
     std::printf("%5s %9s %9s %10s %8s %8s %13s %13s %8s\n", "t [s]", "particles", "sub-steps",

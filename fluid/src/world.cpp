@@ -85,17 +85,6 @@ void validate(const WorldDef& def) {
     }
 }
 
-// A blob's region as a Shape.
-Shape blobShape(const BlobDef& blob) {
-    Shape shape;
-    shape.type = blob.shape;
-    shape.center = blob.center;
-    shape.halfExtents = blob.halfExtents;
-    shape.radius = blob.radius;
-    shape.vertices = blob.vertices;
-    return shape;
-}
-
 void checkLifetime(const char* function, float seconds) {
     checkRange("lifetime", seconds, 0.0f, 1e6f, "s", function);
 }
@@ -305,21 +294,21 @@ uint32_t World::spawnBlob(const BlobDef& blob, uint32_t* insideSolids) {
     const Material& mat = material(blob.material);
     checkVec("spawnBlob", "velocity", blob.velocity);
     checkLifetime("spawnBlob: ", blob.lifetime);
-    const Shape shape = blobShape(blob);
+    const Shape& shape = blob.shape;
     validate(shape, "spawnBlob");
     glm::vec2 lo{}, hi{};
-    switch (blob.shape) {
-    case BlobShape::Rectangle:
-        lo = blob.center - blob.halfExtents;
-        hi = blob.center + blob.halfExtents;
+    switch (shape.type) {
+    case ShapeType::Rectangle:
+        lo = shape.center - shape.halfExtents;
+        hi = shape.center + shape.halfExtents;
         break;
-    case BlobShape::Circle:
-        lo = blob.center - glm::vec2(blob.radius);
-        hi = blob.center + glm::vec2(blob.radius);
+    case ShapeType::Circle:
+        lo = shape.center - glm::vec2(shape.radius);
+        hi = shape.center + glm::vec2(shape.radius);
         break;
-    case BlobShape::Polygon:
-        lo = hi = blob.vertices[0];
-        for (glm::vec2 v : blob.vertices) {
+    case ShapeType::Polygon:
+        lo = hi = shape.vertices[0];
+        for (glm::vec2 v : shape.vertices) {
             lo = glm::min(lo, v);
             hi = glm::max(hi, v);
         }
@@ -347,7 +336,7 @@ uint32_t World::spawnBlob(const BlobDef& blob, uint32_t* insideSolids) {
         for (uint32_t i = 0; i < nx; ++i) {
             const glm::vec2 p = origin + spacing * glm::vec2(float(i), float(j));
             // Every lattice point of a rectangle's bounding box is inside it.
-            if (blob.shape == BlobShape::Rectangle || contains(shape, p)) {
+            if (shape.type == ShapeType::Rectangle || contains(shape, p)) {
                 points.push_back(p);
             }
         }

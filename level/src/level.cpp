@@ -442,11 +442,7 @@ private:
             const ObjectReader b(m_doc, (*list)[i], at, "a blob");
             const Shape shape = readShape(b, {"material", "velocity", "lifetime"});
             BlobDef blob;
-            blob.shape = shape.type;
-            blob.center = shape.center;
-            blob.halfExtents = shape.halfExtents;
-            blob.radius = shape.radius;
-            blob.vertices = shape.vertices;
+            blob.shape = shape;
             blob.material =
                 m_materials.find(m_doc, b.requiredString("material", "the name of a material"),
                                  b.pointer("material"));

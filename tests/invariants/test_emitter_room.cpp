@@ -42,9 +42,9 @@ World box(Quality quality, const EmitterDef* emitter) {
     world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 0.3f, 0.3f));
     if (emitter == nullptr) {
         BlobDef b;
-        b.shape = BlobShape::Rectangle;
-        b.center = {0.15f, 0.15f};
-        b.halfExtents = {0.15f, 0.15f};
+        b.shape.type = ShapeType::Rectangle;
+        b.shape.center = {0.15f, 0.15f};
+        b.shape.halfExtents = {0.15f, 0.15f};
         b.material = water;
         world.spawnBlob(b);
     }

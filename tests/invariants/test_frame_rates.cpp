@@ -25,9 +25,9 @@ TEST_CASE("a frame longer than 1/60 s takes more sub-steps and holds the 60 Hz c
     world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
     world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 0.6f, 0.5f));
     BlobDef column;
-    column.shape = BlobShape::Rectangle;
-    column.center = {0.075f, 0.15f};
-    column.halfExtents = {0.075f, 0.15f};
+    column.shape.type = ShapeType::Rectangle;
+    column.shape.center = {0.075f, 0.15f};
+    column.shape.halfExtents = {0.075f, 0.15f};
     column.material = water;
     world.spawnBlob(column);
     const int frames = int(10.0f * rate);

@@ -70,9 +70,9 @@ TEST_CASE("a yoghurt blob dropped into water: both materials interact",
         world.step(kFrame);
     }
     BlobDef drop;
-    drop.shape = BlobShape::Circle;
-    drop.center = {0.5f * width, depth + 0.1f};
-    drop.radius = 0.05f;
+    drop.shape.type = ShapeType::Circle;
+    drop.shape.center = {0.5f * width, depth + 0.1f};
+    drop.shape.radius = 0.05f;
     drop.material = y;
     const uint32_t ny = world.spawnBlob(drop);
     REQUIRE(ny > 50);

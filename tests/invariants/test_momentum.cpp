@@ -59,8 +59,8 @@ TEST_CASE("zero-g blob launched at 1 m/s keeps its momentum over 1,000 steps",
     World world(physicsDef(solver));
     const MaterialId w = world.addMaterial(water());
     BlobDef blob;
-    blob.shape = BlobShape::Circle;
-    blob.radius = 0.125f;
+    blob.shape.type = ShapeType::Circle;
+    blob.shape.radius = 0.125f;
     blob.velocity = {1.0f, 0.0f};
     blob.material = w;
     const uint32_t n = world.spawnBlob(blob);
@@ -95,13 +95,13 @@ TEST_CASE("zero-g water and yoghurt blobs collide and keep their momentum over 1
     const MaterialId w = world.addMaterial(water());
     const MaterialId y = world.addMaterial(forSolver(yoghurt(), solver));
     BlobDef a;
-    a.shape = BlobShape::Circle;
-    a.center = {-0.12f, 0.02f};
-    a.radius = 0.08f;
+    a.shape.type = ShapeType::Circle;
+    a.shape.center = {-0.12f, 0.02f};
+    a.shape.radius = 0.08f;
     a.velocity = {1.0f, 0.0f};
     a.material = w;
     BlobDef b = a;
-    b.center = {0.12f, -0.02f};
+    b.shape.center = {0.12f, -0.02f};
     b.velocity = {-0.3f, 0.0f};
     b.material = y;
     const uint32_t n = world.spawnBlob(a) + world.spawnBlob(b);

@@ -23,8 +23,8 @@ std::unique_ptr<BoundaryPlugin> movingShape(const std::string& type, double spee
     if (type == "boundary.circle") {
         shape->setParam("radius", 0.06);
     } else if (type == "boundary.polygon") {
-        const std::vector<glm::vec2> square{{-0.05f, -0.05f}, {0.05f, -0.05f}, {0.05f, 0.05f},
-                                            {-0.05f, 0.05f}};
+        const std::vector<glm::vec2> square{
+            {-0.05f, -0.05f}, {0.05f, -0.05f}, {0.05f, 0.05f}, {-0.05f, 0.05f}};
         shape->setPoints("vertices", square);
     } else {
         const std::vector<glm::vec2> blade{{0.0f, -0.08f}, {0.0f, 0.08f}};
@@ -56,9 +56,9 @@ TEST_CASE("a solid moving through a closed tank at 2-600 m/s carries no particle
         world.addBoundary(movingShape(type, speed));
     }
     BlobDef block;
-    block.shape = BlobShape::Rectangle;
-    block.center = {0.2f, 0.1f};
-    block.halfExtents = {0.2f, 0.1f};
+    block.shape.type = ShapeType::Rectangle;
+    block.shape.center = {0.2f, 0.1f};
+    block.shape.halfExtents = {0.2f, 0.1f};
     block.material = water;
     world.spawnBlob(block);
     const uint32_t count = world.particleCount();

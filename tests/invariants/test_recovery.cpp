@@ -33,9 +33,9 @@ World tank(Quality quality, BlobDef& block) {
     const MaterialId water = world.addMaterial(fluid::water());
     world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
     world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 0.5f, 0.6f));
-    block.shape = BlobShape::Rectangle;
-    block.center = {0.15f, 0.15f};
-    block.halfExtents = {0.15f, 0.15f};
+    block.shape.type = ShapeType::Rectangle;
+    block.shape.center = {0.15f, 0.15f};
+    block.shape.halfExtents = {0.15f, 0.15f};
     block.material = water;
     world.spawnBlob(block);
     return world;

@@ -188,9 +188,9 @@ TEST_CASE("thick yoghurt thrown at a wall sticks to it, water runs down",
     world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 1.0f, 1.5f));
     // A 6 cm ball flying at 2 m/s towards the right wall, 1 m above the floor.
     BlobDef ball;
-    ball.shape = BlobShape::Circle;
-    ball.center = {0.8f, 1.0f};
-    ball.radius = 3.0f * s;
+    ball.shape.type = ShapeType::Circle;
+    ball.shape.center = {0.8f, 1.0f};
+    ball.shape.radius = 3.0f * s;
     ball.velocity = {2.0f, 0.0f};
     ball.material = id;
     REQUIRE(world.spawnBlob(ball) > 20);
@@ -282,13 +282,13 @@ TEST_CASE("yoghurt keeps momentum in zero gravity and gives bit-identical states
         const MaterialId y = world.addMaterial(yoghurt());
         const MaterialId w = world.addMaterial(water());
         BlobDef a;
-        a.shape = BlobShape::Circle;
-        a.center = {-0.12f, 0.0f};
-        a.radius = 0.08f;
+        a.shape.type = ShapeType::Circle;
+        a.shape.center = {-0.12f, 0.0f};
+        a.shape.radius = 0.08f;
         a.velocity = {1.0f, 0.2f};
         a.material = y;
         BlobDef b = a;
-        b.center = {0.12f, 0.03f};
+        b.shape.center = {0.12f, 0.03f};
         b.velocity = {-0.5f, 0.0f};
         b.material = w;
         world.spawnBlob(a);
@@ -345,8 +345,8 @@ TEST_CASE("a block at the corners of the yield-stress ranges never gains energy,
     world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 0.6f, 0.5f));
     BlobDef blob;
     blob.material = id;
-    blob.center = {0.125f, 0.15f};
-    blob.halfExtents = {0.075f, 0.15f};
+    blob.shape.center = {0.125f, 0.15f};
+    blob.shape.halfExtents = {0.075f, 0.15f};
     blob.velocity = {corner.vx, 0.0f};
     const uint32_t count = world.spawnBlob(blob);
     const Energy start = energy(world, kG);

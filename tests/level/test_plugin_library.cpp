@@ -55,9 +55,9 @@ SpinResult spin(const Registry& registry) {
         {"cx", 0.1}, {"cy", -0.05}, {"strength", 1.5}, {"radius", 0.08}};
     world.addForce(registry.createForce("force.whirlpool", params));
     BlobDef disc;
-    disc.shape = BlobShape::Circle;
-    disc.center = {0.1f, -0.05f};
-    disc.radius = 0.08f;
+    disc.shape.type = ShapeType::Circle;
+    disc.shape.center = {0.1f, -0.05f};
+    disc.shape.radius = 0.08f;
     disc.material = w;
     REQUIRE(world.spawnBlob(disc) > 150);
     SpinResult result;
@@ -146,8 +146,8 @@ TEST_CASE("plugins from a library outlive the registry that made them", "[level]
     const MaterialId w = world.addMaterial(water());
     world.addForce(std::move(force));
     BlobDef disc;
-    disc.shape = BlobShape::Circle;
-    disc.radius = 0.05f;
+    disc.shape.type = ShapeType::Circle;
+    disc.shape.radius = 0.05f;
     disc.material = w;
     world.spawnBlob(disc);
     for (int frame = 0; frame < 6; ++frame) {

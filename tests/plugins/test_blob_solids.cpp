@@ -60,8 +60,8 @@ TEST_CASE("spawnBlob leaves out the lattice points inside solids and outside the
 
         BlobDef blob;
         blob.material = water;
-        blob.center = {0.25f, 0.15f};
-        blob.halfExtents = {0.15f, 0.1f};
+        blob.shape.center = {0.25f, 0.15f};
+        blob.shape.halfExtents = {0.15f, 0.1f};
         uint32_t inside = 0;
         const uint32_t added = world.spawnBlob(blob, &inside);
         const float s = world.spacing(water);
@@ -76,8 +76,8 @@ TEST_CASE("spawnBlob leaves out the lattice points inside solids and outside the
 
         // Half over the tank's right wall: the outer half is left out.
         BlobDef over = blob;
-        over.center = {0.5f, 0.4f};
-        over.halfExtents = {0.05f, 0.05f};
+        over.shape.center = {0.5f, 0.4f};
+        over.shape.halfExtents = {0.05f, 0.05f};
         uint32_t outside = 0;
         const uint32_t kept = world.spawnBlob(over, &outside);
         CHECK(kept == Approx(outside).margin(uint32_t(0.1f / s) + 1));
@@ -85,7 +85,7 @@ TEST_CASE("spawnBlob leaves out the lattice points inside solids and outside the
 
         // Wholly inside the disc: nothing added, every point counted.
         BlobDef buried = blob;
-        buried.halfExtents = {0.03f, 0.03f};
+        buried.shape.halfExtents = {0.03f, 0.03f};
         uint32_t all = 0;
         CHECK(world.spawnBlob(buried, &all) == 0);
         CHECK(all > 0);

@@ -41,9 +41,9 @@ TEST_CASE("the whirlpool makes angular momentum about its centre grow",
     const MaterialId w = world.addMaterial(water());
     world.addForce(registry.createForce("force.whirlpool", params));
     BlobDef blob;
-    blob.shape = BlobShape::Circle;
-    blob.center = {float(cx), float(cy)};
-    blob.radius = 0.12f;
+    blob.shape.type = ShapeType::Circle;
+    blob.shape.center = {float(cx), float(cy)};
+    blob.shape.radius = 0.12f;
     blob.material = w;
     const uint32_t n = world.spawnBlob(blob);
     REQUIRE(n > 300);

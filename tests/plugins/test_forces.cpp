@@ -625,8 +625,8 @@ TEST_CASE("explosion in a world: one kick of the chosen falloff, zero net moment
 TEST_CASE("explosion centred on a blob keeps its net momentum ~0", "[unit][forces]") {
     Scene s;
     BlobDef blob;
-    blob.shape = BlobShape::Circle;
-    blob.radius = 0.08f;
+    blob.shape.type = ShapeType::Circle;
+    blob.shape.radius = 0.08f;
     blob.material = s.water;
     const uint32_t n = s.world.spawnBlob(blob);
     REQUIRE(n > 50);
@@ -957,10 +957,10 @@ TEST_CASE("a world with every force continues bit-identically from a snapshot", 
     registerBuiltinPlugins(registry);
     Scene s;
     BlobDef blob;
-    blob.shape = BlobShape::Circle;
-    blob.radius = 0.06f;
+    blob.shape.type = ShapeType::Circle;
+    blob.shape.radius = 0.06f;
     blob.material = s.water;
-    blob.center = {0.05f, 0.02f};
+    blob.shape.center = {0.05f, 0.02f};
     REQUIRE(s.world.spawnBlob(blob) > 20);
     const std::vector<ParamValue> gravity{{"x", 0.0}, {"y", -0.3}, {"strength", 3.0}};
     s.world.addForce(registry.createForce("force.point_gravity", gravity));

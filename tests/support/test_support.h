@@ -279,12 +279,12 @@ inline BlobDef latticeBlock(const World& world, MaterialId material, float x0, f
                             uint32_t cols, uint32_t rows, glm::vec2 velocity = {0.0f, 0.0f}) {
     const float s = world.spacing(material);
     BlobDef b;
-    b.shape = BlobShape::Rectangle;
+    b.shape.type = ShapeType::Rectangle;
     b.material = material;
     b.velocity = velocity;
     // A quarter spacing of slack on each side so that floor(width / s) is exactly cols.
-    b.halfExtents = {0.5f * s * (float(cols) + 0.5f), 0.5f * s * (float(rows) + 0.5f)};
-    b.center = {x0 + 0.5f * s * float(cols), y0 + 0.5f * s * float(rows)};
+    b.shape.halfExtents = {0.5f * s * (float(cols) + 0.5f), 0.5f * s * (float(rows) + 0.5f)};
+    b.shape.center = {x0 + 0.5f * s * float(cols), y0 + 0.5f * s * float(rows)};
     return b;
 }
 

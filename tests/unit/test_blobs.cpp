@@ -65,9 +65,9 @@ TEST_CASE("rectangle blob: count, placement, velocity, material", "[unit][blob]"
     const MaterialId y = world.addMaterial(yoghurt());
     const float s = world.spacing(y);
     BlobDef b;
-    b.shape = BlobShape::Rectangle;
-    b.center = {-0.3f, 0.7f};
-    b.halfExtents = {0.25f, 0.2f};
+    b.shape.type = ShapeType::Rectangle;
+    b.shape.center = {-0.3f, 0.7f};
+    b.shape.halfExtents = {0.25f, 0.2f};
     b.velocity = {0.5f, -1.0f};
     b.material = y;
     const uint32_t n = world.spawnBlob(b);
@@ -86,7 +86,7 @@ TEST_CASE("rectangle blob: count, placement, velocity, material", "[unit][blob]"
     // A lattice at the material's spacing: nearest neighbours are one spacing apart.
     CHECK(std::fabs(px[1] - px[0]) == Approx(s).epsilon(1e-4));
     // A shape smaller than one spacing holds no lattice point.
-    b.halfExtents = {0.2f * s, 0.2f * s};
+    b.shape.halfExtents = {0.2f * s, 0.2f * s};
     CHECK(world.spawnBlob(b) == 0);
     CHECK(world.particleCount() == n);
 }
@@ -96,9 +96,9 @@ TEST_CASE("circle blob: count and placement", "[unit][blob]") {
     const MaterialId w = world.addMaterial(water());
     const float s = world.spacing(w);
     BlobDef b;
-    b.shape = BlobShape::Circle;
-    b.center = {1.0f, -2.0f};
-    b.radius = 0.25f;
+    b.shape.type = ShapeType::Circle;
+    b.shape.center = {1.0f, -2.0f};
+    b.shape.radius = 0.25f;
     b.material = w;
     const uint32_t n = world.spawnBlob(b);
     checkCount(n, 3.14159265 * 0.25 * 0.25, 2 * 3.14159265 * 0.25, s, 0.04);
@@ -117,8 +117,8 @@ TEST_CASE("polygon blobs: convex and concave", "[unit][blob]") {
     SECTION("convex triangle, clockwise") {
         const std::vector<glm::vec2> tri{{0.0f, 0.0f}, {0.3f, 0.5f}, {0.6f, 0.0f}};
         BlobDef b;
-        b.shape = BlobShape::Polygon;
-        b.vertices = tri;
+        b.shape.type = ShapeType::Polygon;
+        b.shape.vertices = tri;
         b.material = w;
         const uint32_t n = world.spawnBlob(b);
         checkCount(n, shoelace(tri), perimeter(tri), s, 0.05);
@@ -130,8 +130,8 @@ TEST_CASE("polygon blobs: convex and concave", "[unit][blob]") {
         const std::vector<glm::vec2> l{{-0.2f, -0.2f},   {0.3f, -0.2f},  {0.3f, -0.05f},
                                        {-0.05f, -0.05f}, {-0.05f, 0.3f}, {-0.2f, 0.3f}};
         BlobDef b;
-        b.shape = BlobShape::Polygon;
-        b.vertices = l;
+        b.shape.type = ShapeType::Polygon;
+        b.shape.vertices = l;
         b.material = w;
         const uint32_t n = world.spawnBlob(b);
         checkCount(n, shoelace(l), perimeter(l), s, 0.05);
@@ -152,54 +152,55 @@ TEST_CASE("blob geometry errors", "[unit][blob][bad-input]") {
     World world;
     const MaterialId w = world.addMaterial(water());
     BlobDef b;
-    b.shape = BlobShape::Polygon;
+    b.shape.type = ShapeType::Polygon;
     b.material = w;
 
     SECTION("two vertices") {
-        b.vertices = {{0.0f, 0.0f}, {1.0f, 0.0f}};
+        b.shape.vertices = {{0.0f, 0.0f}, {1.0f, 0.0f}};
         CHECK_THROWS_MATCHES(
             world.spawnBlob(b), Error,
             Catch::Message("spawnBlob: polygon has 2 vertices; expected 3 or more"));
     }
     SECTION("self-intersecting bow tie") {
-        b.vertices = {{0.0f, 0.0f}, {0.1f, 0.1f}, {0.1f, 0.0f}, {0.0f, 0.2f}};
+        b.shape.vertices = {{0.0f, 0.0f}, {0.1f, 0.1f}, {0.1f, 0.0f}, {0.0f, 0.2f}};
         CHECK_THROWS_MATCHES(
             world.spawnBlob(b), Error,
             Catch::Message("spawnBlob: polygon edges 0 and 2 cross; expected a simple polygon"));
     }
     SECTION("NaN vertex") {
-        b.vertices = {{0.0f, 0.0f}, {std::numeric_limits<float>::quiet_NaN(), 0.0f}, {0.0f, 0.1f}};
+        b.shape.vertices = {
+            {0.0f, 0.0f}, {std::numeric_limits<float>::quiet_NaN(), 0.0f}, {0.0f, 0.1f}};
         CHECK_THROWS_MATCHES(
             world.spawnBlob(b), Error,
             Catch::Message("spawnBlob: polygon vertex 1 = (nan, 0) is not finite"));
     }
     SECTION("degenerate (zero area)") {
-        b.vertices = {{0.0f, 0.0f}, {0.1f, 0.1f}, {0.2f, 0.2f}};
+        b.shape.vertices = {{0.0f, 0.0f}, {0.1f, 0.1f}, {0.2f, 0.2f}};
         CHECK_THROWS_MATCHES(world.spawnBlob(b), Error,
                              Catch::Message("spawnBlob: polygon has zero area"));
     }
     SECTION("negative rectangle extents") {
-        b.shape = BlobShape::Rectangle;
-        b.halfExtents = {-0.1f, 0.1f};
+        b.shape.type = ShapeType::Rectangle;
+        b.shape.halfExtents = {-0.1f, 0.1f};
         CHECK_THROWS_MATCHES(world.spawnBlob(b), Error,
                              Catch::Message("spawnBlob: halfExtents = (-0.1, 0.1) must be finite "
                                             "and > 0 (unit: m)"));
     }
     SECTION("NaN circle radius") {
-        b.shape = BlobShape::Circle;
-        b.radius = std::numeric_limits<float>::quiet_NaN();
+        b.shape.type = ShapeType::Circle;
+        b.shape.radius = std::numeric_limits<float>::quiet_NaN();
         CHECK_THROWS_MATCHES(
             world.spawnBlob(b), Error,
             Catch::Message("spawnBlob: radius = nan must be finite and > 0 (unit: m)"));
     }
     SECTION("infinite velocity") {
-        b.shape = BlobShape::Circle;
+        b.shape.type = ShapeType::Circle;
         b.velocity = {std::numeric_limits<float>::infinity(), 0.0f};
         CHECK_THROWS_MATCHES(world.spawnBlob(b), Error,
                              Catch::Message("spawnBlob: velocity = (inf, 0) is not finite"));
     }
     SECTION("unknown material") {
-        b.shape = BlobShape::Circle;
+        b.shape.type = ShapeType::Circle;
         b.material = MaterialId{3};
         CHECK_THROWS_AS(world.spawnBlob(b), Error);
     }

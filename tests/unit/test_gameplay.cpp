@@ -294,10 +294,10 @@ TEST_CASE("emitters and blobs refuse absurd sizes without undefined behaviour", 
                       "spacing; at most 10000");
     // A blob thinner than one spacing holds no lattice point, however long it is.
     BlobDef sliver;
-    sliver.halfExtents = {1e30f, 0.001f};
+    sliver.shape.halfExtents = {1e30f, 0.001f};
     CHECK(world.spawnBlob(sliver) == 0);
     BlobDef huge;
-    huge.halfExtents = {1e20f, 1e20f};
+    huge.shape.halfExtents = {1e20f, 1e20f};
     CHECK_THROWS_WITH(world.spawnBlob(huge),
                       "spawnBlob: particle cap exceeded: the blob needs about 3.97887e+44 "
                       "particles; maxParticles = 1048576");

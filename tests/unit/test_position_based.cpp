@@ -162,8 +162,8 @@ TEST_CASE("vorticity confinement keeps a spinning zero-g blob spinning longer",
         World world(def);
         const MaterialId w = world.addMaterial(water());
         BlobDef blob;
-        blob.shape = BlobShape::Circle;
-        blob.radius = 0.1f;
+        blob.shape.type = ShapeType::Circle;
+        blob.shape.radius = 0.1f;
         blob.material = w;
         world.spawnBlob(blob);
         // Rigid rotation at 10 rad/s about the centre.

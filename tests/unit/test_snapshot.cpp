@@ -31,9 +31,9 @@ World scene(Solver solver, uint32_t workers) {
     world.addBoundary(registry.createBoundary("boundary.box", tank));
     world.spawnBlob(fluid::test::latticeBlock(world, water, 0.0f, 0.0f, 12, 10));
     BlobDef ball;
-    ball.shape = BlobShape::Circle;
-    ball.center = {0.3f, 0.2f};
-    ball.radius = 0.05f;
+    ball.shape.type = ShapeType::Circle;
+    ball.shape.center = {0.3f, 0.2f};
+    ball.shape.radius = 0.05f;
     ball.material = yoghurt;
     ball.lifetime = 0.4f;
     world.spawnBlob(ball);

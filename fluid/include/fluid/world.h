@@ -141,22 +141,11 @@ struct WorldDef {
     TaskHook tasks{};
 };
 
-/// Shape of a spawned blob (the same kinds as `Shape`).
-using BlobShape = ShapeType;
-
 /// A block of liquid to spawn: the shape is filled on a square lattice at the material's spacing
-/// (lattice points whose position lies inside the shape).
+/// (lattice points whose position lies inside the shape). Plain data.
 struct BlobDef {
-    /// Which shape fields are read.
-    BlobShape shape = BlobShape::Rectangle;
-    /// Centre of a rectangle or circle (unit: m).
-    glm::vec2 center{0.0f, 0.0f};
-    /// Half width and half height of a rectangle (unit: m; each > 0). Typical: 0.25.
-    glm::vec2 halfExtents{0.25f, 0.25f};
-    /// Radius of a circle (unit: m; > 0). Typical: 0.2.
-    float radius = 0.2f;
-    /// Polygon vertices in world space (unit: m; 3 or more, no self-intersection).
-    std::vector<glm::vec2> vertices;
+    /// The region filled (see `Shape`; `Shape::box`, `Shape::circle`, `Shape::polygon`).
+    Shape shape;
     /// Initial velocity of every particle (unit: m/s; finite).
     glm::vec2 velocity{0.0f, 0.0f};
     /// Material of the particles (from `World::addMaterial`).

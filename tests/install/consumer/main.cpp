@@ -14,8 +14,8 @@ int main() {
     world.addForce(std::make_unique<fluid::GravityForce>());
     world.addBoundary(std::make_unique<fluid::BoxContainer>(-0.2f, 0.0f, 0.2f, 0.4f));
     fluid::BlobDef blob;
-    blob.halfExtents = {0.05f, 0.05f};
-    blob.center = {0.0f, 0.06f};
+    blob.shape.halfExtents = {0.05f, 0.05f};
+    blob.shape.center = {0.0f, 0.06f};
     blob.material = water;
     const unsigned count = world.spawnBlob(blob);
     world.step(1.0f / 60.0f);
