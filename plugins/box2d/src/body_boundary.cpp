@@ -47,15 +47,6 @@ void addEdgeProbes(glm::dvec2 a, glm::dvec2 b, double spacing, std::vector<glm::
     }
 }
 
-double shoelace(std::span<const glm::dvec2> points) {
-    double twice = 0.0;
-    for (std::size_t k = 0; k < points.size(); ++k) {
-        const glm::dvec2 a = points[k], b = points[(k + 1) % points.size()];
-        twice += a.x * b.y - a.y * b.x;
-    }
-    return 0.5 * twice;
-}
-
 int64_t cellKey(glm::dvec2 p, double cell) {
     const auto ix = static_cast<int64_t>(std::floor(p.x / cell));
     const auto iy = static_cast<int64_t>(std::floor(p.y / cell));
@@ -68,6 +59,15 @@ std::string where(uint32_t bodyIndex, uint32_t fixtureIndex) {
 }
 
 } // namespace
+
+double shoelace(std::span<const glm::dvec2> points) {
+    double twice = 0.0;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        const glm::dvec2 a = points[k], b = points[(k + 1) % points.size()];
+        twice += a.x * b.y - a.y * b.x;
+    }
+    return 0.5 * twice;
+}
 
 // ---- BoxGrid ------------------------------------------------------------------------------
 

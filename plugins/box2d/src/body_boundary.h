@@ -22,6 +22,10 @@ class b2World;
 
 namespace fluid::box2d {
 
+/// Signed area of the closed polygon `points` (unit: m^2; positive when counter-clockwise). Any
+/// thread.
+double shoelace(std::span<const glm::dvec2> points);
+
 /// Axis-aligned box in world coordinates (unit: m).
 struct Box {
     float loX = 0.0f, loY = 0.0f, hiX = 0.0f, hiY = 0.0f;

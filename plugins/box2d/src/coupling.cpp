@@ -40,15 +40,6 @@ void validate(const CouplingDef& def) {
     checkRange("positionIterations", def.positionIterations, 1.0, 1000.0, "count");
 }
 
-double shoelace(std::span<const glm::dvec2> points) {
-    double twice = 0.0;
-    for (std::size_t k = 0; k < points.size(); ++k) {
-        const glm::dvec2 a = points[k], b = points[(k + 1) % points.size()];
-        twice += a.x * b.y - a.y * b.x;
-    }
-    return 0.5 * twice;
-}
-
 // Rounds of a 1/60 s frame with the explicit solver (more for a longer frame, fluid::
 // frameSubsteps), each a quarter frame in its own CFL sub-steps: with one round per frame a
 // body answered the fluid a frame late and was thrown out of it (docs/box2d.md, "One frame").
