@@ -1,5 +1,6 @@
 // fluid — shapes: validation, containment and area.
 #include <fluid/error.h>
+#include <fluid/internal/checks.h>
 #include <fluid/shape.h>
 
 #include <glm/vec2.hpp>
@@ -12,9 +13,7 @@ namespace fluid {
 
 namespace {
 
-bool finite(glm::vec2 v) {
-    return std::isfinite(v.x) && std::isfinite(v.y);
-}
+using internal::finite;
 
 // In double: differences of float coordinates are exact there, so the signs are right far
 // from the origin too.

@@ -12,6 +12,7 @@
 #include "world_state.h"
 
 #include <fluid/error.h>
+#include <fluid/internal/binary.h>
 #include <fluid/registry.h>
 
 #include <algorithm>
@@ -88,86 +89,13 @@ struct ProfileRecord {
 };
 static_assert(sizeof(ProfileRecord) == 24 * 4, "the snapshot's profile record has no padding");
 
-uint64_t fnv1a(const std::byte* data, size_t size) {
-    uint64_t h = 0xcbf29ce484222325ull;
-    for (size_t i = 0; i < size; ++i) {
-        h ^= uint64_t(data[i]);
-        h *= 0x100000001b3ull;
-    }
-    return h;
+using In = internal::ByteReader;
+using Out = internal::ByteWriter;
+
+// Throws "snapshot: corrupt: <message>", as the reader does.
+[[noreturn]] void corrupt(const std::string& message) {
+    throw Error("snapshot: corrupt: " + message);
 }
-
-class Out {
-public:
-    template <class T> void put(const T& v) {
-        static_assert(std::is_trivially_copyable_v<T>);
-        const auto* b = reinterpret_cast<const std::byte*>(&v);
-        bytes.insert(bytes.end(), b, b + sizeof(T));
-    }
-    template <class T> void array(const std::vector<T>& v) {
-        put<uint64_t>(v.size());
-        const auto* b = reinterpret_cast<const std::byte*>(v.data());
-        bytes.insert(bytes.end(), b, b + v.size() * sizeof(T));
-    }
-    void string(const std::string& s) {
-        put<uint64_t>(s.size());
-        const auto* b = reinterpret_cast<const std::byte*>(s.data());
-        bytes.insert(bytes.end(), b, b + s.size());
-    }
-    std::vector<std::byte> bytes;
-};
-
-class In {
-public:
-    explicit In(std::span<const std::byte> data) : m_data(data) {}
-    template <class T> T get() {
-        static_assert(std::is_trivially_copyable_v<T>);
-        need(sizeof(T), "a value");
-        T v;
-        std::memcpy(&v, m_data.data() + m_at, sizeof(T));
-        m_at += sizeof(T);
-        return v;
-    }
-    template <class T> void array(std::vector<T>& v, const char* what) {
-        const auto n = get<uint64_t>();
-        if (n > (m_data.size() - m_at) / sizeof(T)) {
-            fail(std::string(what) + " claims " + std::to_string(n) +
-                 " entries, more than the file holds");
-        }
-        v.resize(n);
-        if (n > 0) { // memcpy into an empty vector's null data() is undefined
-            std::memcpy(v.data(), m_data.data() + m_at, n * sizeof(T));
-        }
-        m_at += n * sizeof(T);
-    }
-    std::string string(const char* what) {
-        std::vector<char> chars;
-        array(chars, what);
-        return std::string(chars.begin(), chars.end());
-    }
-    [[noreturn]] static void fail(const std::string& what) {
-        throw Error("snapshot: corrupt: " + what);
-    }
-    bool done() const { return m_at == m_data.size(); }
-    /// An enum or bool stored as one byte, checked against its largest value (a byte that is
-    /// not a valid value must never be loaded into the type).
-    template <class E> E small(E largest, const char* what) {
-        const auto raw = get<uint8_t>();
-        if (raw > uint8_t(largest)) {
-            fail(std::string(what) + " = " + std::to_string(raw) + " is not a valid value");
-        }
-        return E(raw);
-    }
-
-private:
-    void need(size_t n, const char* what) {
-        if (m_data.size() - m_at < n) {
-            fail(std::string("ends inside ") + what);
-        }
-    }
-    std::span<const std::byte> m_data;
-    size_t m_at = 0;
-};
 
 void putShape(Out& o, const Shape& s) {
     o.put(uint8_t(s.type));
@@ -215,7 +143,7 @@ std::unique_ptr<Plugin> getPlugin(In& in, const Registry& registry, PluginKind k
     }
     std::unique_ptr<Plugin> plugin = registry.create(type);
     if (plugin->kind() != kind) {
-        In::fail("plugin '" + type + "' is stored as the wrong kind");
+        corrupt("plugin '" + type + "' is stored as the wrong kind");
     }
     const auto count = in.get<uint64_t>();
     if (count != plugin->params().size()) {
@@ -241,8 +169,8 @@ std::unique_ptr<Plugin> getPlugin(In& in, const Registry& registry, PluginKind k
     StateReader reader(state);
     plugin->restoreState(reader);
     if (reader.remaining() != 0) {
-        In::fail("plugin '" + type + "' left " + std::to_string(reader.remaining()) +
-                 " bytes of its state unread");
+        corrupt("plugin '" + type + "' left " + std::to_string(reader.remaining()) +
+                " bytes of its state unread");
     }
     return plugin;
 }
@@ -255,12 +183,12 @@ void checkParticles(const detail::WorldState& s) {
     const size_t n = p.px.size();
     for (const std::vector<float>* channel : p.keptFloats()) {
         if (channel->size() != n) {
-            In::fail("particle channels of different lengths");
+            corrupt("particle channels of different lengths");
         }
     }
     if (p.material.size() != n || p.slot.size() != n || p.expiry.size() != n ||
         s.slotGeneration.size() != s.slotIndex.size() || n > s.def.maxParticles) {
-        In::fail("particle channels or handle table of inconsistent sizes");
+        corrupt("particle channels or handle table of inconsistent sizes");
     }
     const std::pair<const char*, const std::vector<float>*> state[] = {
         {"x", &p.px}, {"y", &p.py},     {"vx", &p.vx}, {"vy", &p.vy},
@@ -271,23 +199,23 @@ void checkParticles(const detail::WorldState& s) {
                 std::ostringstream text;
                 text << "particle " << i << " " << name << " = " << (*channel)[i]
                      << " is not finite";
-                In::fail(text.str());
+                corrupt(text.str());
             }
         }
         if (std::isnan(p.expiry[i]) || p.material[i] >= s.materials.size() ||
             p.slot[i] >= s.slotIndex.size() || s.slotIndex[p.slot[i]] != i) {
-            In::fail("particle " + std::to_string(i) +
-                     " has a non-finite state, a bad material or a bad handle");
+            corrupt("particle " + std::to_string(i) +
+                    " has a non-finite state, a bad material or a bad handle");
         }
         if ((p.sxx[i] != 0.0f || p.sxy[i] != 0.0f) && !hasYield(s.materials[p.material[i]])) {
-            In::fail("particle " + std::to_string(i) +
-                     " holds a stress, but its material has no yield stress or consistency");
+            corrupt("particle " + std::to_string(i) +
+                    " holds a stress, but its material has no yield stress or consistency");
         }
     }
     std::vector<uint8_t> free(s.slotIndex.size(), 0);
     for (uint32_t slot : s.freeSlots) {
         if (slot >= s.slotIndex.size() || s.slotIndex[slot] != UINT32_MAX || free[slot] != 0) {
-            In::fail("a free slot is in use or listed twice");
+            corrupt("a free slot is in use or listed twice");
         }
         free[slot] = 1;
     }
@@ -295,7 +223,7 @@ void checkParticles(const detail::WorldState& s) {
         const uint32_t index = s.slotIndex[slot];
         const bool used = index != UINT32_MAX && index < n && p.slot[index] == slot;
         if (!(used || (index == UINT32_MAX && free[slot] != 0)) || s.slotGeneration[slot] == 0) {
-            In::fail("handle slot " + std::to_string(slot) + " is neither used nor free");
+            corrupt("handle slot " + std::to_string(slot) + " is neither used nor free");
         }
     }
 }
@@ -312,7 +240,7 @@ void checkSolverState(const detail::WorldState& s) {
         if (!std::isfinite(value) || value < lowest) {
             std::ostringstream text;
             text << "the solver state is not finite: " << name << " = " << value;
-            In::fail(text.str());
+            corrupt(text.str());
         }
     }
 }
@@ -411,7 +339,7 @@ void World::save(std::ostream& out) const {
     out.write(kMagic, sizeof(kMagic));
     const uint32_t version = kVersion;
     const uint64_t size = o.bytes.size();
-    const uint64_t sum = fnv1a(o.bytes.data(), o.bytes.size());
+    const uint64_t sum = internal::fnv1a(o.bytes);
     out.write(reinterpret_cast<const char*>(&version), sizeof(version));
     out.write(reinterpret_cast<const char*>(&size), sizeof(size));
     out.write(reinterpret_cast<const char*>(o.bytes.data()), std::streamsize(o.bytes.size()));
@@ -567,7 +495,7 @@ void getEmitterClock(In& in, detail::EmitterState& e) {
     e.emitted = in.get<uint32_t>();
     e.random = in.get<uint64_t>();
     if (!(e.carry >= 0.0 && e.carry < 1.0)) {
-        In::fail("an emitter's clock is outside [0, 1)");
+        corrupt("an emitter's clock is outside [0, 1)");
     }
 }
 
@@ -577,13 +505,12 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
                   const TaskHook& tasks) {
     uint64_t size = 0;
     const std::vector<char> body = readBody(input, size);
-    const auto* payload = reinterpret_cast<const std::byte*>(body.data());
     uint64_t sum = 0;
     std::memcpy(&sum, body.data() + size, sizeof(sum));
-    if (fnv1a(payload, size) != sum) {
-        throw Error("snapshot: corrupt: checksum mismatch");
+    if (internal::fnv1a(std::string_view(body.data(), size)) != sum) {
+        corrupt("checksum mismatch");
     }
-    In in(std::span<const std::byte>(payload, size));
+    In in(std::string_view(body.data(), size), "snapshot: corrupt");
 
     WorldDef def = getWorldDef(in);
     if (workerCount > 0) {
@@ -644,7 +571,7 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
     }
     in.array(s.sensorReadings, "the sensor readings");
     if (s.sensorReadings.size() != s.sensors.size() * s.materials.size()) {
-        In::fail("sensor readings of the wrong size");
+        corrupt("sensor readings of the wrong size");
     }
     s.time = in.get<double>();
     s.soundSpeed = in.get<float>();
@@ -654,7 +581,7 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
     s.profile = in.get<ProfileRecord>().profile();
     checkSolverState(s);
     if (!in.done()) {
-        In::fail("unexpected data after the last section");
+        corrupt("unexpected data after the last section");
     }
     return world;
 }

@@ -2,6 +2,7 @@
 #include "world_state.h"
 
 #include <fluid/error.h>
+#include <fluid/internal/checks.h>
 
 #include <glm/common.hpp>
 
@@ -21,9 +22,7 @@ std::string describe(ParticleHandle h) {
     return s.str();
 }
 
-bool finite(glm::vec2 v) {
-    return std::isfinite(v.x) && std::isfinite(v.y);
-}
+using internal::finite;
 
 void checkVec(const char* function, const char* what, glm::vec2 v) {
     if (!finite(v)) {
@@ -42,15 +41,11 @@ void checkFrameDt(const char* function, float frameDt) {
     }
 }
 
+// internal::checkRange with the settings' prefix by default.
 template <class T>
 void checkRange(const char* field, T value, T lo, T hi, const char* unit,
                 const char* prefix = "WorldDef: ") {
-    if (!(value >= lo && value <= hi)) { // NaN fails too
-        std::ostringstream s;
-        s << prefix << field << " = " << value << " is out of range [" << lo << ", " << hi
-          << "] (unit: " << unit << ")";
-        throw Error(s.str());
-    }
+    internal::checkRange<T>(prefix, field, value, lo, hi, unit);
 }
 
 void validatePositionBased(const PositionBasedDef& pb, const char* prefix) {

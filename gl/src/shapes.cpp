@@ -1,6 +1,7 @@
 // fluid::gl — CPU tessellation of shapes into triangles: ear clipping for polygons, fans for
 // discs, quads with mitred (or bevelled) joints for thick lines.
 #include <fluid/gl/shapes.h>
+#include <fluid/internal/checks.h>
 
 #include <glm/geometric.hpp>
 
@@ -26,9 +27,7 @@ float cross(glm::vec2 a, glm::vec2 b) {
     return a.x * b.y - a.y * b.x;
 }
 
-bool finite(glm::vec2 p) {
-    return std::isfinite(p.x) && std::isfinite(p.y);
-}
+using internal::finite;
 
 // Scratch buffers for one tessellation, reused across calls so a frame's shapes do not
 // allocate once warm. thread_local: batches may be built on several threads at once.

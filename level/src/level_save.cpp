@@ -1,5 +1,6 @@
 // fluid::level — saving and restoring a level between frames (Level::save, readLevelSave).
 #include <fluid/box2d/physics_save.h>
+#include <fluid/internal/binary.h>
 #include <fluid/level.h>
 
 #include <algorithm>
@@ -17,80 +18,32 @@ constexpr uint32_t kVersion = 1;
 // A name that refers to nothing any more (the game destroyed the body or joint).
 constexpr uint32_t kGone = 0xFFFFFFFFu;
 
-uint64_t fnv1a(std::string_view bytes) {
-    uint64_t h = 0xcbf29ce484222325ull;
-    for (const char c : bytes) {
-        h ^= uint8_t(c);
-        h *= 0x100000001b3ull;
-    }
-    return h;
+using Parts = internal::ByteReader;
+
+// Where a save's errors start: "level save '<file>'".
+std::string saveName(std::string_view file) {
+    return "level save '" + std::string(file) + "'";
 }
-
-void putU32(std::string& out, uint32_t v) {
-    out.append(reinterpret_cast<const char*>(&v), sizeof(v));
-}
-
-void putBytes(std::string& out, std::string_view bytes) {
-    const uint64_t n = bytes.size();
-    out.append(reinterpret_cast<const char*>(&n), sizeof(n));
-    out.append(bytes);
-}
-
-// Reads the parts of a save whose checksum held.
-class Parts {
-public:
-    Parts(std::string_view data, std::string file) : m_data(data), m_file(std::move(file)) {}
-    uint32_t u32(const char* field) {
-        uint32_t v = 0;
-        std::memcpy(&v, take(sizeof(v), field).data(), sizeof(v));
-        return v;
-    }
-    std::string_view bytes(const char* field) {
-        uint64_t n = 0;
-        std::memcpy(&n, take(sizeof(n), field).data(), sizeof(n));
-        if (n > m_data.size() - m_offset) {
-            fail(std::string(field) + " promises " + std::to_string(n) + " bytes; " +
-                 std::to_string(m_data.size() - m_offset) + " remain");
-        }
-        return take(std::size_t(n), field);
-    }
-    bool done() const { return m_offset == m_data.size(); }
-    [[noreturn]] void fail(const std::string& message) const {
-        throw Error("level save '" + m_file + "': " + message);
-    }
-
-private:
-    std::string_view take(std::size_t n, const char* field) {
-        if (n > m_data.size() - m_offset) {
-            fail(std::string("truncated (ended while reading ") + field + ")");
-        }
-        const std::string_view out = m_data.substr(m_offset, n);
-        m_offset += n;
-        return out;
-    }
-    std::string_view m_data;
-    std::size_t m_offset = 0;
-    std::string m_file;
-};
 
 } // namespace
 
 void Level::save(std::ostream& out) const {
-    std::string data(kMagic, sizeof(kMagic));
-    putU32(data, kVersion);
-    putBytes(data, file);
-    putBytes(data, source);
-    putU32(data, uint32_t(m_goalState));
+    internal::ByteWriter w;
+    w.bytes.assign(kMagic, sizeof(kMagic));
+    w.put<uint32_t>(kVersion);
+    w.string(file);
+    w.string(source);
+    w.put<uint32_t>(uint32_t(m_goalState));
     std::ostringstream worldBytes;
     world.save(worldBytes);
-    putBytes(data, worldBytes.str());
-    putU32(data, physics ? 1 : 0);
+    w.string(worldBytes.str());
+    w.put<uint32_t>(physics ? 1 : 0);
     if (physics) {
         std::ostringstream physicsBytes, couplingBytes;
         box2d::savePhysics(*physics, physicsBytes);
         coupling->save(couplingBytes);
-        putBytes(data, physicsBytes.str());
-        putBytes(data, couplingBytes.str());
+        w.string(physicsBytes.str());
+        w.string(couplingBytes.str());
         // The level's names by position in Box2D's lists.
         std::unordered_map<const b2Body*, uint32_t> bodyIndex; // lookup only
         for (const b2Body* b = physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
@@ -100,20 +53,19 @@ void Level::save(std::ostream& out) const {
         for (const b2Joint* j = physics->GetJointList(); j != nullptr; j = j->GetNext()) {
             jointIndex.emplace(j, uint32_t(jointIndex.size()));
         }
-        putU32(data, uint32_t(bodies.size()));
+        w.put<uint32_t>(uint32_t(bodies.size()));
         for (const auto& [bodyName, body] : bodies) {
             const auto found = bodyIndex.find(body);
-            putU32(data, found != bodyIndex.end() ? found->second : kGone);
+            w.put<uint32_t>(found != bodyIndex.end() ? found->second : kGone);
         }
-        putU32(data, uint32_t(joints.size()));
+        w.put<uint32_t>(uint32_t(joints.size()));
         for (const auto& [jointName, joint] : joints) {
             const auto found = jointIndex.find(joint);
-            putU32(data, found != jointIndex.end() ? found->second : kGone);
+            w.put<uint32_t>(found != jointIndex.end() ? found->second : kGone);
         }
     }
-    const uint64_t sum = fnv1a(data);
-    data.append(reinterpret_cast<const char*>(&sum), sizeof(sum));
-    out.write(data.data(), std::streamsize(data.size()));
+    w.put(internal::fnv1a(w.bytes));
+    out.write(w.bytes.data(), std::streamsize(w.bytes.size()));
     if (!out) {
         throw Error("Level::save: the stream failed while writing the save of '" + file + "'");
     }
@@ -243,23 +195,23 @@ void nameAddedMaterials(Level& level) {
 
 Level readLevelSave(std::istream& in, std::string_view file, const Registry& registry,
                     const LevelOptions& options) {
-    const Parts check{std::string_view(), std::string(file)};
+    const Parts check(std::string_view(), saveName(file));
     const std::string raw = readSave(in, check);
     const std::string_view data = std::string_view(raw).substr(0, raw.size() - sizeof(uint64_t));
     uint64_t sum = 0;
     std::memcpy(&sum, raw.data() + data.size(), sizeof(sum));
-    if (sum != fnv1a(data)) {
+    if (sum != internal::fnv1a(data)) {
         check.fail("corrupt or truncated (checksum mismatch)");
     }
-    Parts parts(data.substr(sizeof(kMagic) + sizeof(uint32_t)), std::string(file));
+    Parts parts(data.substr(sizeof(kMagic) + sizeof(uint32_t)), saveName(file));
     const std::string levelFile(parts.bytes("the level file name"));
     const std::string_view source = parts.bytes("the level file text");
-    const uint32_t goalState = parts.u32("the goal state");
+    const uint32_t goalState = parts.get<uint32_t>("the goal state");
     if (goalState > uint32_t(GoalState::Lost)) {
         parts.fail("goal state " + std::to_string(goalState) + " is not one");
     }
     const std::string_view worldBytes = parts.bytes("the world");
-    const uint32_t hasPhysics = parts.u32("the Box2D flag");
+    const uint32_t hasPhysics = parts.get<uint32_t>("the Box2D flag");
 
     // The part's own error follows the save's name.
     const auto located = [&](const char* part, const auto& load) {
@@ -319,13 +271,13 @@ Level readLevelSave(std::istream& in, std::string_view file, const Registry& reg
         }
         const auto names = [&](const char* what, const std::vector<std::string>& fileNames,
                                const auto& list, auto& out) {
-            const uint32_t count = parts.u32(what);
+            const uint32_t count = parts.get<uint32_t>(what);
             if (count != fileNames.size()) {
                 parts.fail(std::string("names ") + std::to_string(count) + " " + what +
                            "; its level file declares " + std::to_string(fileNames.size()));
             }
             for (uint32_t k = 0; k < count; ++k) {
-                const uint32_t index = parts.u32(what);
+                const uint32_t index = parts.get<uint32_t>(what);
                 if (index == kGone) {
                     continue; // destroyed by the game before the save
                 }

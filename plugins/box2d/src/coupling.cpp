@@ -1,10 +1,11 @@
 // fluid::box2d — the coupling's frame: fluid step, forces to bodies, Box2D step, reports.
 #include <fluid/box2d/coupling.h>
 
-#include "binary.h"
 #include "body_boundary.h"
 
 #include <fluid/error.h>
+#include <fluid/internal/binary.h>
+#include <fluid/internal/checks.h>
 #include <fluid/registry.h>
 
 #include <box2d/box2d.h>
@@ -24,13 +25,7 @@ namespace fluid::box2d {
 namespace {
 
 void checkRange(const char* field, double value, double lo, double hi, const char* unit) {
-    if (std::isfinite(value) && value >= lo && value <= hi) {
-        return;
-    }
-    std::ostringstream s;
-    s << "fluid::box2d::CouplingDef: " << field << " = " << value << " is out of range [" << lo
-      << ", " << hi << "] (unit: " << unit << ")";
-    throw Error(s.str());
+    internal::checkRange("fluid::box2d::CouplingDef: ", field, value, lo, hi, unit);
 }
 
 void validate(const CouplingDef& def) {
@@ -665,7 +660,7 @@ void Coupling::save(std::ostream& out) const {
     for (const b2Body* b = m_physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
         index.emplace(b, uint32_t(index.size()));
     }
-    binary::Writer w(out);
+    internal::StreamWriter w(out);
     out.write(kStateMagic, sizeof(kStateMagic));
     w.put(kStateVersion);
     // Bodies destroyed since the last frame are left out.
@@ -707,7 +702,7 @@ void Coupling::load(std::istream& in) {
     for (b2Body* b = m_physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
         bodies.push_back(b);
     }
-    binary::Reader r(in, "coupling save");
+    internal::StreamReader r(in, "coupling save");
     char magic[sizeof(kStateMagic)];
     if (!in.read(magic, sizeof(magic)) || std::memcmp(magic, kStateMagic, sizeof(magic)) != 0) {
         r.fail("not a coupling save (bad magic)");

@@ -3,7 +3,7 @@
 
 #include <fluid/box2d/coupling.h>
 
-#include "binary.h"
+#include <fluid/internal/binary.h>
 
 #include <box2d/box2d.h>
 
@@ -50,12 +50,12 @@ constexpr float kMaxTorque = 1e15f;
 
 enum ShapeKind : uint8_t { kCircle, kEdge, kPolygon, kChain };
 
-void putVec(binary::Writer& w, b2Vec2 v) {
+void putVec(internal::StreamWriter& w, b2Vec2 v) {
     w.put(v.x);
     w.put(v.y);
 }
 
-void putFixture(binary::Writer& w, const b2Fixture& f) {
+void putFixture(internal::StreamWriter& w, const b2Fixture& f) {
     const b2Shape* shape = f.GetShape();
     switch (shape->GetType()) {
     case b2Shape::e_circle: {
@@ -115,7 +115,7 @@ void putFixture(binary::Writer& w, const b2Fixture& f) {
 
 // Reads checked values: finite, in range.
 struct In {
-    binary::Reader r;
+    internal::StreamReader r;
     float number(const char* field, float lo = -3e38f, float hi = 3e38f) {
         return r.number<float>(field, lo, hi);
     }
@@ -287,7 +287,7 @@ struct JointRead {
 } // namespace
 
 void savePhysics(const b2World& physics, std::ostream& out) {
-    binary::Writer w(out);
+    internal::StreamWriter w(out);
     out.write(kMagic, sizeof(kMagic));
     w.put(kVersion);
     putVec(w, physics.GetGravity());
@@ -355,7 +355,7 @@ void savePhysics(const b2World& physics, std::ostream& out) {
 }
 
 std::unique_ptr<b2World> loadPhysics(std::istream& stream) {
-    In in{binary::Reader(stream, "box2d save")};
+    In in{internal::StreamReader(stream, "box2d save")};
     char magic[sizeof(kMagic)];
     if (!stream.read(magic, sizeof(magic)) || std::memcmp(magic, kMagic, sizeof(kMagic)) != 0) {
         in.r.fail("not a Box2D world save (bad magic)");
