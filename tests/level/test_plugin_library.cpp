@@ -12,7 +12,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <charconv>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -361,4 +364,90 @@ TEST_CASE("docs/plugins.md quotes the example's whirlpool as it is", "[level][do
          "markers into the block");
     CHECK(block == quoted);
     CHECK(quoted.find("class WhirlpoolForce") != std::string::npos);
+}
+
+namespace {
+
+// A declared number as docs/levels.md prints it: the shortest form that reads back.
+std::string docNumber(double value) {
+    char text[32];
+    const auto [end, error] = std::to_chars(text, text + sizeof text, value);
+    REQUIRE(error == std::errc());
+    std::string out(text, end);
+    // 1e+05 reads 1e5, 1e-03 reads 1e-3.
+    for (const auto& [from, to] : {std::pair{"e+0", "e"}, {"e+", "e"}, {"e-0", "e-"}}) {
+        if (const size_t at = out.find(from); at != std::string::npos) {
+            out.replace(at, std::strlen(from), to);
+        }
+    }
+    return out;
+}
+
+// A description in a table cell (a '|' would end the cell).
+std::string cell(std::string_view text) {
+    std::string out;
+    for (const char c : text) {
+        out += c == '|' ? std::string("\\|") : std::string(1, c);
+    }
+    return out;
+}
+
+// docs/levels.md's table of the built-in plugin types, made from the registry's declarations:
+// one row per parameter, the type named on its first row.
+std::string pluginTable(const Registry& registry) {
+    std::string out = "| type | parameter | unit | default | range | meaning |\n"
+                      "|---|---|---|---|---|---|\n";
+    for (const PluginInfo& info : registry.types()) {
+        bool first = true;
+        for (const ParamDecl& p : info.params) {
+            out += "| " + (first ? "`" + info.type + "`" : std::string()) + " | `" +
+                   std::string(p.name) + "` | ";
+            if (p.type == ParamType::Points) {
+                out += "points | none | " + docNumber(p.minValue) + " to " + docNumber(p.maxValue) +
+                       " points";
+            } else {
+                out += std::string(p.unit) + " | " + docNumber(p.defaultValue) + " | [" +
+                       docNumber(p.minValue) + ", " + docNumber(p.maxValue) + "]";
+            }
+            out += " | " + cell(p.description) + " |\n";
+            first = false;
+        }
+    }
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("docs/levels.md's plugin table is the registry's declarations", "[level][docs]") {
+    // The table between the markers is generated from every built-in type's ParamDecl array, so
+    // a parameter, range, default or unit changed in a plugin's header changes the page. To
+    // write the page anew: FLUID_UPDATE_DOCS=1 fluid-tests-level "docs/levels.md*".
+    const std::string path = std::string(FLUID_SOURCE_DIR) + "/docs/levels.md";
+    const std::string page = readFile(path);
+    const std::string begin = "<!-- plugin table: generated from the registry; see the test "
+                              "\"docs/levels.md's plugin table is the registry's "
+                              "declarations\" -->\n";
+    const std::string end = "<!-- end of the plugin table -->\n";
+    const size_t from = page.find(begin);
+    REQUIRE(from != std::string::npos);
+    const size_t to = page.find(end, from);
+    REQUIRE(to != std::string::npos);
+    const std::string table = page.substr(from + begin.size(), to - from - begin.size());
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    const std::string expected = pluginTable(registry);
+    const char* update = std::getenv("FLUID_UPDATE_DOCS");
+    if (table != expected && update != nullptr && std::string(update) == "1") {
+        std::ofstream(path, std::ios::binary)
+            << page.substr(0, from + begin.size()) + expected + page.substr(to);
+        WARN("docs/levels.md: the plugin table was written anew");
+        return;
+    }
+    INFO("docs/levels.md's plugin table differs from the registry's declarations; write it anew "
+         "with FLUID_UPDATE_DOCS=1 fluid-tests-level \"docs/levels.md*\"");
+    CHECK(table == expected);
+    // Every built-in type is there, with its parameters.
+    CHECK(expected.find("| `force.gravity` | `gx` | m/s^2 | 0 | [-1000, 1000] |") !=
+          std::string::npos);
+    CHECK(expected.find("| `boundary.polygon` |") != std::string::npos);
 }
