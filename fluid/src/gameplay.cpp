@@ -258,9 +258,9 @@ uint32_t finishGameplay(WorldState& s) {
                 ev.particle = s.handleOf(p.slot[i]);
                 ev.position = {p.px[i], p.py[i]};
                 ev.velocity = {p.vx[i], p.vy[i]};
-                ev.material = MaterialId{p.material[i]};
+                ev.material = MaterialId{p.material[i], s.tag.value()};
                 ev.cause = c <= drains ? RemovalCause::Drain : RemovalCause::Lifetime;
-                ev.drain = DrainId{c <= drains ? c - 1 : 0};
+                ev.drain = DrainId{c <= drains ? c - 1 : 0, s.tag.value()};
                 s.removed.push_back(ev);
             }
         }

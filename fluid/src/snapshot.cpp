@@ -306,7 +306,7 @@ void World::save(std::ostream& out) const {
         o.put(ed.speed);
         o.put(ed.width);
         o.put(ed.rate);
-        o.put(ed.material);
+        o.put(ed.material.index);
         o.put(ed.maxCount);
         o.put(ed.lifetime);
         o.put(ed.jitter);
@@ -319,7 +319,7 @@ void World::save(std::ostream& out) const {
     for (const DrainDef& dr : s.drains) {
         putShape(o, dr.shape);
         o.put(uint8_t(dr.onlyMaterial));
-        o.put(dr.material);
+        o.put(dr.material.index);
     }
     o.put<uint64_t>(s.sensors.size());
     for (const SensorDef& se : s.sensors) {
@@ -481,7 +481,7 @@ EmitterDef getEmitterDef(In& in) {
     ed.speed = in.get<float>();
     ed.width = in.get<float>();
     ed.rate = in.get<float>();
-    ed.material = in.get<MaterialId>();
+    ed.material = MaterialId{in.get<uint16_t>("an emitter's material")};
     ed.maxCount = in.get<uint32_t>();
     ed.lifetime = in.get<float>();
     ed.jitter = in.get<float>();
@@ -560,7 +560,7 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
         DrainDef dr;
         dr.shape = getShape(in);
         dr.onlyMaterial = in.small(true, "a drain's material flag");
-        dr.material = in.get<MaterialId>();
+        dr.material = MaterialId{in.get<uint16_t>("a drain's material")};
         world.addDrain(dr);
     }
     const auto sensors = in.get<uint64_t>();

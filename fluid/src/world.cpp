@@ -32,6 +32,17 @@ void checkVec(const char* function, const char* what, glm::vec2 v) {
     }
 }
 
+// Throws unless `id` was made by the world tagged `tag` or by hand (tag 0): "<what> id <index>
+// was made by world <w>; this is world <tag> (...)".
+template <class Id> void checkTag(Id id, const char* what, uint32_t tag) {
+    if (id.world != 0 && id.world != tag) {
+        throw Error(std::string(what) + " id " + std::to_string(id.index) +
+                    " was made by another world (world " + std::to_string(id.world) +
+                    "; this is world " + std::to_string(tag) +
+                    "; an id kept from the world a snapshot was saved from needs World::adopt)");
+    }
+}
+
 void checkFrameDt(const char* function, float frameDt) {
     if (!std::isfinite(frameDt) || !(frameDt > 0.0f) || frameDt > 1.0f) {
         std::ostringstream s;
@@ -227,7 +238,7 @@ MaterialId World::addMaterial(const Material& material) {
     }
     m_state->materials.push_back(material);
     m_state->sensorReadings.assign(m_state->sensors.size() * m_state->materials.size(), {});
-    return MaterialId{static_cast<uint16_t>(m_state->materials.size() - 1)};
+    return MaterialId{static_cast<uint16_t>(m_state->materials.size() - 1), m_state->tag.value()};
 }
 
 void World::setMaterial(MaterialId id, const Material& material) {
@@ -262,6 +273,7 @@ void World::setMaterial(MaterialId id, const Material& material) {
 }
 
 const Material& World::material(MaterialId id) const {
+    checkTag(id, "material", m_state->tag.value());
     if (id.index >= m_state->materials.size()) {
         throw Error("unknown material id " + std::to_string(id.index) + "; the world has " +
                     std::to_string(m_state->materials.size()) + " materials");
@@ -369,6 +381,22 @@ void World::removeParticle(ParticleHandle handle) {
 ParticleHandle World::adopt(ParticleHandle handle) const {
     handle.world = handle.isNull() ? 0 : m_state->tag.value();
     return handle;
+}
+
+MaterialId World::adopt(MaterialId id) const {
+    return MaterialId{id.index, m_state->tag.value()};
+}
+
+EmitterId World::adopt(EmitterId id) const {
+    return EmitterId{id.index, m_state->tag.value()};
+}
+
+DrainId World::adopt(DrainId id) const {
+    return DrainId{id.index, m_state->tag.value()};
+}
+
+SensorId World::adopt(SensorId id) const {
+    return SensorId{id.index, m_state->tag.value()};
 }
 
 bool World::isValid(ParticleHandle handle) const {
@@ -484,7 +512,8 @@ namespace {
 constexpr uint32_t kMaxEmitterLanes = 10000;
 
 template <class Id>
-uint32_t checkedId(Id id, size_t count, const char* function, const char* what) {
+uint32_t checkedId(Id id, size_t count, const char* function, const char* what, uint32_t tag) {
+    checkTag(id, (std::string(function) + ": " + what).c_str(), tag);
     if (id.index >= count) {
         throw Error(std::string(function) + ": unknown " + what + " id " +
                     std::to_string(id.index) + "; the world has " + std::to_string(count) + " " +
@@ -537,11 +566,12 @@ EmitterId World::addEmitter(const EmitterDef& def) {
     e.def = def;
     e.random = def.seed;
     m_state->emitters.push_back(e);
-    return EmitterId{static_cast<uint32_t>(m_state->emitters.size() - 1)};
+    return EmitterId{static_cast<uint32_t>(m_state->emitters.size() - 1), m_state->tag.value()};
 }
 
 void World::setEmitter(EmitterId id, const EmitterDef& def) {
-    const uint32_t i = checkedId(id, m_state->emitters.size(), "World::setEmitter", "emitter");
+    const uint32_t i = checkedId(id, m_state->emitters.size(), "World::setEmitter", "emitter",
+                                 m_state->tag.value());
     validateEmitter(def, "World::setEmitter");
     detail::EmitterState& e = m_state->emitters[i];
     if (def.seed != e.def.seed) {
@@ -551,13 +581,16 @@ void World::setEmitter(EmitterId id, const EmitterDef& def) {
 }
 
 const EmitterDef& World::emitter(EmitterId id) const {
-    return m_state->emitters[checkedId(id, m_state->emitters.size(), "World::emitter", "emitter")]
+    return m_state
+        ->emitters[checkedId(id, m_state->emitters.size(), "World::emitter", "emitter",
+                             m_state->tag.value())]
         .def;
 }
 
 uint32_t World::emittedCount(EmitterId id) const {
     return m_state
-        ->emitters[checkedId(id, m_state->emitters.size(), "World::emittedCount", "emitter")]
+        ->emitters[checkedId(id, m_state->emitters.size(), "World::emittedCount", "emitter",
+                             m_state->tag.value())]
         .emitted;
 }
 
@@ -571,11 +604,12 @@ DrainId World::addDrain(const DrainDef& def) {
         (void)material(def.material);
     }
     m_state->drains.push_back(def);
-    return DrainId{static_cast<uint32_t>(m_state->drains.size() - 1)};
+    return DrainId{static_cast<uint32_t>(m_state->drains.size() - 1), m_state->tag.value()};
 }
 
 const DrainDef& World::drain(DrainId id) const {
-    return m_state->drains[checkedId(id, m_state->drains.size(), "World::drain", "drain")];
+    return m_state->drains[checkedId(id, m_state->drains.size(), "World::drain", "drain",
+                                     m_state->tag.value())];
 }
 
 uint32_t World::drainCount() const {
@@ -587,11 +621,12 @@ SensorId World::addSensor(const SensorDef& def) {
     m_state->sensors.push_back(def);
     // Zeros until the next step measures (the table is sensor-major, one entry per material).
     m_state->sensorReadings.assign(m_state->sensors.size() * m_state->materials.size(), {});
-    return SensorId{static_cast<uint32_t>(m_state->sensors.size() - 1)};
+    return SensorId{static_cast<uint32_t>(m_state->sensors.size() - 1), m_state->tag.value()};
 }
 
 const SensorDef& World::sensor(SensorId id) const {
-    return m_state->sensors[checkedId(id, m_state->sensors.size(), "World::sensor", "sensor")];
+    return m_state->sensors[checkedId(id, m_state->sensors.size(), "World::sensor", "sensor",
+                                      m_state->tag.value())];
 }
 
 uint32_t World::sensorCount() const {
@@ -599,7 +634,8 @@ uint32_t World::sensorCount() const {
 }
 
 std::span<const SensorReading> World::sensorReading(SensorId id) const {
-    const uint32_t i = checkedId(id, m_state->sensors.size(), "World::sensorReading", "sensor");
+    const uint32_t i = checkedId(id, m_state->sensors.size(), "World::sensorReading", "sensor",
+                                 m_state->tag.value());
     const size_t m = m_state->materials.size();
     return std::span<const SensorReading>(m_state->sensorReadings).subspan(i * m, m);
 }

@@ -131,7 +131,7 @@ void checkDeclared(const Level& level, const World& parsed, const World& world,
         if (id.index >= world.materialCount()) {
             missing("material", name, id.index, world.materialCount(), "materials");
         }
-        const std::string& held = world.material(id).name;
+        const std::string& held = world.material(world.adopt(id)).name;
         if (held != name) {
             parts.fail("its level file declares material '" + name + "' (" +
                        std::to_string(id.index) + "), but the world's material " +
@@ -173,7 +173,7 @@ void checkDeclared(const Level& level, const World& parsed, const World& world,
 // lists every material the world holds, so tools see them all.
 void nameAddedMaterials(Level& level) {
     for (uint32_t k = uint32_t(level.materials.size()); k < level.world.materialCount(); ++k) {
-        const MaterialId id{uint16_t(k)};
+        const MaterialId id = level.world.adopt(MaterialId{uint16_t(k)});
         const auto taken = [&](const std::string& name) {
             return name.empty() ||
                    std::any_of(level.materials.begin(), level.materials.end(),
@@ -252,6 +252,21 @@ Level readLevelSave(std::istream& in, std::string_view file, const Registry& reg
     });
     checkDeclared(level, level.world, world, parts);
     level.world = std::move(world);
+    // The ids the level file gave are the loaded world's now (the same indices: checkDeclared).
+    for (auto& entry : level.materials) {
+        entry.second = level.world.adopt(entry.second);
+    }
+    for (auto& entry : level.emitters) {
+        entry.second = level.world.adopt(entry.second);
+    }
+    for (auto& entry : level.drains) {
+        entry.second = level.world.adopt(entry.second);
+    }
+    for (auto& entry : level.sensors) {
+        entry.second = level.world.adopt(entry.second);
+    }
+    level.goal.sensor = level.world.adopt(level.goal.sensor);
+    level.goal.material = level.world.adopt(level.goal.material);
     nameAddedMaterials(level);
     level.m_goalState = GoalState(goalState);
     if (hasPhysics == 1) {

@@ -239,6 +239,23 @@ inline Reading readInterior(const World& world, MaterialId id) {
     return r;
 }
 
+/// A removal event's fields as bytes, without the world tags of its handle and ids (each World
+/// object has a tag of its own; two runs compare what the tags name) and without padding.
+inline std::string removalRecord(const RemovedEvent& e) {
+    std::string out;
+    const auto add = [&](const auto& value) {
+        out.append(reinterpret_cast<const char*>(&value), sizeof(value));
+    };
+    add(e.particle.slot);
+    add(e.particle.generation);
+    add(e.position);
+    add(e.velocity);
+    add(e.material.index);
+    add(e.cause);
+    add(e.drain.index);
+    return out;
+}
+
 /// FNV-1a (64 bit) over raw bytes.
 inline uint64_t fnv1a(const void* data, size_t size, uint64_t hash = 1469598103934665603ull) {
     const auto* bytes = static_cast<const unsigned char*>(data);

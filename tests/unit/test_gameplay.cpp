@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
+#include <string>
 
 using namespace fluid;
 using fluid::test::kFrame;
@@ -265,12 +267,13 @@ TEST_CASE("removal events are the same for 1, 2 and 4 workers", "[gameplay]") {
         uint64_t hash = 0;
         for (int f = 0; f < 40; ++f) {
             world.step(kFrame);
-            for (RemovedEvent e : world.removedEvents()) {
-                // Each run's world has a tag of its own (tags are never reused): the slot and
-                // generation are what the workers must agree on.
+            for (const RemovedEvent& e : world.removedEvents()) {
+                // Each run's world has a tag of its own (tags are never reused): the slot,
+                // generation and indices are what the workers must agree on.
                 REQUIRE(e.particle.world != 0);
-                e.particle.world = 0;
-                hash = fluid::test::fnv1a(&e, sizeof(e), hash);
+                REQUIRE(e.material.world == e.particle.world);
+                const std::string record = fluid::test::removalRecord(e);
+                hash = fluid::test::fnv1a(record.data(), record.size(), hash);
             }
         }
         return hash ^ fluid::test::stateHash(world);
@@ -421,4 +424,60 @@ TEST_CASE("a value the plugin refuses in onParamChanged reverts, numbers and poi
     CHECK_THROWS_AS(polygon->setPoints("vertices", bowTie), Error);
     const auto kept = polygon->points("vertices");
     CHECK(std::vector<glm::vec2>(kept.begin(), kept.end()) == square);
+}
+
+TEST_CASE("ids carry their world: another world refuses them, adopt carries them over",
+          "[gameplay][bad-input]") {
+    World a = openWorld();
+    World b = openWorld();
+    const MaterialId water = a.addMaterial(fluid::water());
+    const EmitterId faucetId = a.addEmitter(faucet({0.0f, 0.0f}));
+    DrainDef sinkDef;
+    sinkDef.shape = Shape::box({0.1f, -1.0f}, {0.3f, -0.05f});
+    const DrainId sink = a.addDrain(sinkDef);
+    SensorDef cupDef;
+    cupDef.shape = Shape::circle({0.0f, 0.0f}, 0.2f);
+    const SensorId cup = a.addSensor(cupDef);
+    b.addEmitter(faucet({0.0f, 0.0f}));
+    b.addDrain(sinkDef);
+    b.addSensor(cupDef);
+    // Every id names the world that made it, as the world's particle handles do.
+    const uint32_t tagA = a.addParticle({0.5f, 0.5f}, {0.0f, 0.0f}, water).world;
+    const uint32_t tagB = b.adopt(ParticleHandle{0, 1, tagA}).world;
+    REQUIRE(tagA != 0);
+    REQUIRE(tagB != tagA);
+    CHECK(water.world == tagA);
+    CHECK(faucetId.world == tagA);
+    CHECK(sink.world == tagA);
+    CHECK(cup.world == tagA);
+    // Another world refuses them, naming both worlds, even where the index exists there.
+    const std::string worlds = " was made by another world (world " + std::to_string(tagA) +
+                               "; this is world " + std::to_string(tagB) +
+                               "; an id kept from the world a snapshot was saved from needs "
+                               "World::adopt)";
+    CHECK_THROWS_WITH(b.material(water), "material id 2" + worlds);
+    CHECK_THROWS_WITH(b.addParticle({0.0f, 0.0f}, {0.0f, 0.0f}, water), "material id 2" + worlds);
+    CHECK_THROWS_WITH(b.emitter(faucetId), "World::emitter: emitter id 0" + worlds);
+    CHECK_THROWS_WITH(b.setEmitter(faucetId, faucet({0.0f, 0.0f})),
+                      "World::setEmitter: emitter id 0" + worlds);
+    CHECK_THROWS_WITH(b.drain(sink), "World::drain: drain id 0" + worlds);
+    CHECK_THROWS_WITH(b.sensorReading(cup), "World::sensorReading: sensor id 0" + worlds);
+    // An id made by hand from an index is taken as that index by any world.
+    CHECK(b.material(MaterialId{1}).name == a.material(MaterialId{1}).name);
+    CHECK(b.emitter(EmitterId{0}).position == glm::vec2(0.0f, 0.0f));
+    // Equal when the indices are: the tag says which world made an id, not what it names.
+    CHECK(water == MaterialId{2});
+    CHECK(b.adopt(water) == water);
+    // A world loaded from a snapshot is another world; adopt carries the ids over.
+    std::stringstream bytes;
+    a.save(bytes);
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    const World loaded = World::load(bytes, registry);
+    CHECK_THROWS_AS(loaded.material(water), Error);
+    CHECK(loaded.material(loaded.adopt(water)).name == a.material(water).name);
+    CHECK(loaded.emitter(loaded.adopt(faucetId)).direction == glm::vec2(1.0f, 0.0f));
+    CHECK(loaded.drain(loaded.adopt(sink)).shape.center == sinkDef.shape.center);
+    CHECK(loaded.sensor(loaded.adopt(cup)).shape.radius == cupDef.shape.radius);
+    CHECK(loaded.adopt(water).world != tagA);
 }

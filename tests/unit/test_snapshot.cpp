@@ -81,9 +81,8 @@ std::string fingerprint(const World& world) {
         const float life = world.lifetime(h);
         add(&life, sizeof(life));
     }
-    for (RemovedEvent e : world.removedEvents()) {
-        e.particle.world = 0;
-        add(&e, sizeof(e));
+    for (const RemovedEvent& e : world.removedEvents()) {
+        out += fluid::test::removalRecord(e);
     }
     const auto r = world.sensorReading(SensorId{0});
     add(r.data(), r.size_bytes());

@@ -11,28 +11,46 @@
 
 namespace fluid {
 
-/// An emitter of a world (from `World::addEmitter`). Thread rule: a plain value.
+/// An emitter of a world (from `World::addEmitter`). A world's emitters are never removed: an id
+/// stays valid for the life of the world that made it (see `MaterialId` for the rule on other
+/// worlds). Thread rule: a plain value.
 struct EmitterId {
     /// Index in the world's emitter list (unit: index).
     uint32_t index = 0;
-    /// Ids are equal when their indices are.
-    friend constexpr bool operator==(EmitterId, EmitterId) = default;
+    /// Tag of the `World` that made the id (as `ParticleHandle::world`; 0 in an id made by hand
+    /// from an index, which every world takes as an index).
+    uint32_t world = 0;
+    /// Ids are equal when their indices are (the tag says which world made one, not what it
+    /// names).
+    friend constexpr bool operator==(EmitterId a, EmitterId b) { return a.index == b.index; }
 };
 
-/// A drain of a world (from `World::addDrain`). Thread rule: a plain value.
+/// A drain of a world (from `World::addDrain`). A world's drains are never removed: an id stays
+/// valid for the life of the world that made it (see `MaterialId` for the rule on other worlds).
+/// Thread rule: a plain value.
 struct DrainId {
     /// Index in the world's drain list (unit: index).
     uint32_t index = 0;
-    /// Ids are equal when their indices are.
-    friend constexpr bool operator==(DrainId, DrainId) = default;
+    /// Tag of the `World` that made the id (as `ParticleHandle::world`; 0 in an id made by hand
+    /// from an index, which every world takes as an index).
+    uint32_t world = 0;
+    /// Ids are equal when their indices are (the tag says which world made one, not what it
+    /// names).
+    friend constexpr bool operator==(DrainId a, DrainId b) { return a.index == b.index; }
 };
 
-/// A sensor of a world (from `World::addSensor`). Thread rule: a plain value.
+/// A sensor of a world (from `World::addSensor`). A world's sensors are never removed: an id stays
+/// valid for the life of the world that made it (see `MaterialId` for the rule on other worlds).
+/// Thread rule: a plain value.
 struct SensorId {
     /// Index in the world's sensor list (unit: index).
     uint32_t index = 0;
-    /// Ids are equal when their indices are.
-    friend constexpr bool operator==(SensorId, SensorId) = default;
+    /// Tag of the `World` that made the id (as `ParticleHandle::world`; 0 in an id made by hand
+    /// from an index, which every world takes as an index).
+    uint32_t world = 0;
+    /// Ids are equal when their indices are (the tag says which world made one, not what it
+    /// names).
+    friend constexpr bool operator==(SensorId a, SensorId b) { return a.index == b.index; }
 };
 
 /// A faucet: emits rows of particles across a nozzle, moving along `direction` at `speed`.

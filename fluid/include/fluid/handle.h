@@ -28,13 +28,20 @@ struct ParticleHandle {
     friend constexpr bool operator==(ParticleHandle, ParticleHandle) = default;
 };
 
-/// Index of a material in its world (unit: index, 0 .. materialCount()-1).
-/// Returned by `World::addMaterial`. Thread rule: a plain value.
+/// A material of a world (from `World::addMaterial`). Materials, emitters, drains and sensors
+/// are added, never removed: an id stays valid for the life of the world that made it. An id
+/// carries that world's tag, and another world refuses it with `fluid::Error` naming both (a
+/// world loaded from a snapshot is another world: `World::adopt` carries an id over to it). An
+/// id made by hand from an index (`MaterialId{2}`, tag 0) is taken by any world as that index.
+/// Thread rule: a plain value.
 struct MaterialId {
-    /// Index into the world's material table.
+    /// Index into the world's material table (unit: index, 0 .. materialCount()-1).
     uint16_t index = 0;
-    /// Ids are equal when their indices are.
-    friend constexpr bool operator==(MaterialId, MaterialId) = default;
+    /// Tag of the `World` that made the id (as `ParticleHandle::world`; 0 in an id made by hand).
+    uint32_t world = 0;
+    /// Ids are equal when their indices are (the tag says which world made one, not what it
+    /// names).
+    friend constexpr bool operator==(MaterialId a, MaterialId b) { return a.index == b.index; }
 };
 
 } // namespace fluid

@@ -271,6 +271,16 @@ public:
     /// snapshot (or taken from the world it was saved from), used with the world loaded from
     /// it. Checks nothing; the particle's existence is `isValid`'s to say. Any thread.
     ParticleHandle adopt(ParticleHandle handle) const;
+    /// `id` with this world's tag (same index): for an id of the world a snapshot was saved
+    /// from, used with the world loaded from it. Checks nothing; the calls that take it check
+    /// the index. Any thread.
+    MaterialId adopt(MaterialId id) const;
+    /// See `adopt(MaterialId)`.
+    EmitterId adopt(EmitterId id) const;
+    /// See `adopt(MaterialId)`.
+    DrainId adopt(DrainId id) const;
+    /// See `adopt(MaterialId)`.
+    SensorId adopt(SensorId id) const;
     /// True while the particle behind `handle` exists.
     bool isValid(ParticleHandle handle) const;
     /// Current slot of the particle in the spans below, or nullopt for a stale handle.

@@ -570,8 +570,8 @@ void Coupling::makeReports(const World& world) {
         r.submergedArea = float(submerged);
         r.submergedFraction = area > 0.0 ? float(std::clamp(submerged / area, 0.0, 1.0)) : 0.0f;
         if (!counts.empty()) {
-            r.material =
-                MaterialId{uint16_t(std::max_element(counts.begin(), counts.end()) - counts.begin())};
+            r.material = world.adopt(MaterialId{
+                uint16_t(std::max_element(counts.begin(), counts.end()) - counts.begin())});
         }
         // The added mass the relaxation assumes (see the class comment): the submerged area's,
         // or, entering the fluid, a plate's as wide as the wet chord at a free surface.
