@@ -86,7 +86,7 @@ Hashes run(uint32_t workers, Quality quality) {
                                 r.submergedFraction};
             h.reports = fnv1a(v, sizeof v, h.reports);
             h.reports = fnv1a(&r.wetPoints, sizeof r.wetPoints, h.reports);
-            h.reports = fnv1a(&r.material, sizeof r.material, h.reports);
+            h.reports = fnv1a(&r.material.index, sizeof r.material.index, h.reports);
         }
         for (const box2d::ContactEvent& e : coupling.contacts()) {
             const uint8_t phase = uint8_t(e.phase);
