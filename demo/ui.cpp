@@ -354,54 +354,50 @@ void solverSection(Level& level, FieldErrors& errors) {
     }
 }
 
-// One editable field of a material.
-struct MaterialField {
-    const char* label;
-    float Material::*member;
-    float lo, hi;
-    const char* unit;
-    const char* description;
-};
+// A material field's label in the panel: its key in words ("yieldStress" -> "yield stress").
+std::string fieldLabel(std::string_view name) {
+    std::string label;
+    for (const char c : name) {
+        if (c >= 'A' && c <= 'Z') {
+            label += ' ';
+            label += char(c - 'A' + 'a');
+        } else {
+            label += c;
+        }
+    }
+    return label;
+}
 
-// The open lower ends of validate(Material) are given small positive floors.
-constexpr std::array<MaterialField, 10> kMaterialFields{{
-    {"viscosity", &Material::viscosity, 0.0f, 1e4f, "Pa*s",
-     "Dynamic viscosity mu (seed eq. 2.6). Water 3.5, yoghurt 20."},
-    {"surface tension", &Material::surfaceTension, 0.0f, 1e3f, "m^3/(kg s^2)",
-     "Cohesion gamma [Akinci 2013]: holds drops and blobs together. 0 is off."},
-    {"stiffness", &Material::stiffness, 1e-6f, 1e8f, "J/kg",
-     "k of the explicit solver's equation of state; sqrt(k) is its sound-speed floor."},
-    {"rest density", &Material::restDensity, 1e-3f, 1e5f, "kg/m^3",
-     "Density at rest. Changes the particle spacing: the fluid expands or packs."},
-    {"mass", &Material::mass, 1e-9f, 1e3f, "kg",
-     "Mass of one particle. Changes the particle spacing: the fluid expands or packs."},
-    {"smoothing distance", &Material::smoothingDistance, 1e-4f, 10.0f, "m",
-     "Kernel support radius h: how far particles feel each other."},
-    {"yield stress", &Material::yieldStress, 0.0f, 1e5f, "Pa",
-     "Below this stress the material does not flow: it heaps and sticks. Water 0, yoghurt 30."},
-    {"consistency", &Material::consistency, 0.0f, 1e4f, "Pa*s^n",
-     "K of the Herschel-Bulkley law: the flowing stress above the yield stress is K rate^n."},
-    {"flow index", &Material::flowIndex, 0.1f, 2.0f, "1",
-     "n of the Herschel-Bulkley law: below 1 thins with shear, above 1 thickens."},
-    {"shear modulus", &Material::shearModulus, 0.0f, 1e6f, "Pa",
-     "Stiffness below the yield stress (0: as stiff as the step allows, the yoghurt preset)."},
-}};
+// The field's description with both presets' values ("... Water 3.5, yoghurt 20.").
+std::string fieldTooltip(const fluid::MaterialField& field) {
+    char presets[96];
+    std::snprintf(presets, sizeof presets, " Water %g, yoghurt %g.",
+                  static_cast<double>(water().*field.member),
+                  static_cast<double>(yoghurt().*field.member));
+    return std::string(field.description) + presets;
+}
 
 void materialSection(World& world, const std::string& name, MaterialId id, FieldErrors& errors) {
     ImGui::PushID(static_cast<int>(id.index));
     const std::string header = "material: " + name + "###material";
     if (ImGui::CollapsingHeader(header.c_str())) {
-        for (const MaterialField& field : kMaterialFields) {
-            const ImGuiID fieldId = ImGui::GetID(field.label);
+        for (const fluid::MaterialField& field : materialFields()) {
+            if (field.name == "kernelParticles") {
+                continue; // informational: the step never reads it
+            }
+            const std::string label = fieldLabel(field.name);
+            const ImGuiID fieldId = ImGui::GetID(label.c_str());
             Material material = world.material(id);
             float& value = material.*field.member;
+            // An open lower end (mass, rest density, stiffness) gets a small positive floor.
+            const float lo = field.openLow ? field.hi * 1e-12f : field.lo;
             const std::string format = valueFormat(field.unit);
-            const float speed = static_cast<float>(dragSpeed(value, field.lo, field.hi));
-            if (ImGui::DragScalar(field.label, ImGuiDataType_Float, &value, speed, &field.lo,
+            const float speed = static_cast<float>(dragSpeed(value, lo, field.hi));
+            if (ImGui::DragScalar(label.c_str(), ImGuiDataType_Float, &value, speed, &lo,
                                   &field.hi, format.c_str(), kFieldFlags)) {
                 applyField(errors, fieldId, [&] { world.setMaterial(id, material); });
             }
-            rangeTooltip(field.description, field.unit, field.lo, field.hi);
+            rangeTooltip(fieldTooltip(field), field.unit, lo, field.hi);
             showFieldError(errors, fieldId);
         }
         ImGui::TextDisabled("spacing %.4f m", static_cast<double>(world.spacing(id)));

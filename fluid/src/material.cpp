@@ -38,31 +38,52 @@ Material yoghurt() {
 }
 
 namespace {
-void check(const Material& m, const char* field, float value, float lo, float hi, bool openLow,
-           const char* unit) {
-    const bool ok = std::isfinite(value) && (openLow ? value > lo : value >= lo) && value <= hi;
-    if (!ok) {
-        std::ostringstream s;
-        s << "material '" << m.name << "': " << field << " = " << value << " is "
-          << (std::isfinite(value) ? "out of range " : "not finite; expected ")
-          << (openLow ? "(" : "[") << lo << ", " << hi << "] (unit: " << unit << ")";
-        throw Error(s.str());
-    }
-}
+
+// In the order snapshots store them (snapshot.cpp reads and writes this table).
+constexpr MaterialField kFields[] = {
+    {"mass", &Material::mass, "kg", 0.0f, 1e3f, true,
+     "Mass of one particle; with the rest density it sets the particle spacing."},
+    {"restDensity", &Material::restDensity, "kg/m^3", 0.0f, 1e5f, true,
+     "Density at rest; with the mass it sets the particle spacing."},
+    {"viscosity", &Material::viscosity, "Pa*s", 0.0f, 1e4f, false,
+     "Dynamic viscosity mu (seed eq. 2.6); with a yield stress, the flow law's high-shear limit."},
+    {"stiffness", &Material::stiffness, "J/kg", 0.0f, 1e8f, true,
+     "k of the linear equation of state p = k (rho - rho0); sqrt(k) is Tait's sound-speed floor."},
+    {"smoothingDistance", &Material::smoothingDistance, "m", 1e-4f, 10.0f, false,
+     "Kernel support radius h: how far particles feel each other."},
+    {"kernelParticles", &Material::kernelParticles, "count", 4.0f, 400.0f, false,
+     "Particles in the support the material was tuned for (informational)."},
+    {"surfaceTension", &Material::surfaceTension, "m^3/(kg s^2)", 0.0f, 1e3f, false,
+     "Cohesion gamma [Akinci 2013]: holds drops and blobs together; 0 is off."},
+    {"yieldStress", &Material::yieldStress, "Pa", 0.0f, 1e5f, false,
+     "Herschel-Bulkley yield stress: below it the material holds its shape, heaps and sticks."},
+    {"consistency", &Material::consistency, "Pa*s^n", 0.0f, 1e4f, false,
+     "Herschel-Bulkley consistency K: the flowing stress above the yield stress is K rate^n."},
+    {"flowIndex", &Material::flowIndex, "1", 0.1f, 2.0f, false,
+     "Herschel-Bulkley flow index n: below 1 the material thins with shear, above 1 thickens."},
+    {"shearModulus", &Material::shearModulus, "Pa", 0.0f, 1e6f, false,
+     "Stiffness below the yield stress; 0 is as stiff as the step allows."},
+};
+
 } // namespace
 
+std::span<const MaterialField> materialFields() {
+    return kFields;
+}
+
 void validate(const Material& m) {
-    check(m, "mass", m.mass, 0.0f, 1e3f, true, "kg");
-    check(m, "restDensity", m.restDensity, 0.0f, 1e5f, true, "kg/m^3");
-    check(m, "viscosity", m.viscosity, 0.0f, 1e4f, false, "Pa*s");
-    check(m, "stiffness", m.stiffness, 0.0f, 1e8f, true, "J/kg");
-    check(m, "smoothingDistance", m.smoothingDistance, 1e-4f, 10.0f, false, "m");
-    check(m, "kernelParticles", m.kernelParticles, 4.0f, 400.0f, false, "count");
-    check(m, "surfaceTension", m.surfaceTension, 0.0f, 1e3f, false, "m^3/(kg s^2)");
-    check(m, "yieldStress", m.yieldStress, 0.0f, 1e5f, false, "Pa");
-    check(m, "consistency", m.consistency, 0.0f, 1e4f, false, "Pa*s^n");
-    check(m, "flowIndex", m.flowIndex, 0.1f, 2.0f, false, "1");
-    check(m, "shearModulus", m.shearModulus, 0.0f, 1e6f, false, "Pa");
+    for (const MaterialField& f : kFields) {
+        const float value = m.*f.member;
+        const bool ok =
+            std::isfinite(value) && (f.openLow ? value > f.lo : value >= f.lo) && value <= f.hi;
+        if (!ok) {
+            std::ostringstream s;
+            s << "material '" << m.name << "': " << f.name << " = " << value << " is "
+              << (std::isfinite(value) ? "out of range " : "not finite; expected ")
+              << (f.openLow ? "(" : "[") << f.lo << ", " << f.hi << "] (unit: " << f.unit << ")";
+            throw Error(s.str());
+        }
+    }
 }
 
 bool hasYield(const Material& m) {

@@ -264,17 +264,9 @@ void World::save(std::ostream& out) const {
     // Materials.
     o.put<uint64_t>(s.materials.size());
     for (const Material& m : s.materials) {
-        o.put(m.mass);
-        o.put(m.restDensity);
-        o.put(m.viscosity);
-        o.put(m.stiffness);
-        o.put(m.smoothingDistance);
-        o.put(m.kernelParticles);
-        o.put(m.surfaceTension);
-        o.put(m.yieldStress);
-        o.put(m.consistency);
-        o.put(m.flowIndex);
-        o.put(m.shearModulus);
+        for (const MaterialField& f : materialFields()) {
+            o.put(m.*f.member);
+        }
         o.string(m.name);
     }
     // Particles in their current order, and the handle table.
@@ -458,17 +450,9 @@ WorldDef getWorldDef(In& in) {
 // One material (checked by World::addMaterial).
 Material getMaterial(In& in) {
     Material m;
-    m.mass = in.get<float>();
-    m.restDensity = in.get<float>();
-    m.viscosity = in.get<float>();
-    m.stiffness = in.get<float>();
-    m.smoothingDistance = in.get<float>();
-    m.kernelParticles = in.get<float>();
-    m.surfaceTension = in.get<float>();
-    m.yieldStress = in.get<float>();
-    m.consistency = in.get<float>();
-    m.flowIndex = in.get<float>();
-    m.shearModulus = in.get<float>();
+    for (const MaterialField& f : materialFields()) {
+        m.*f.member = in.get<float>(f.name.data());
+    }
     m.name = in.string("a material name");
     return m;
 }

@@ -13,8 +13,10 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <optional>
@@ -72,25 +74,17 @@ constexpr std::size_t kMaxShapeVertices = 256;
 // that blob (warnOverlaps).
 constexpr double kOverlapReach = 0.8;
 
-// A Material field the file may override, with its range (as `validate(Material)` checks it).
-struct MaterialField {
-    std::string_view key;
-    float Material::*member;
-    Range range;
-};
-constexpr MaterialField kMaterialFields[] = {
-    {"mass", &Material::mass, {0.0, 1e3, "kg", true}},
-    {"restDensity", &Material::restDensity, {0.0, 1e5, "kg/m^3", true}},
-    {"viscosity", &Material::viscosity, {0.0, 1e4, "Pa*s"}},
-    {"stiffness", &Material::stiffness, {0.0, 1e8, "J/kg", true}},
-    {"smoothingDistance", &Material::smoothingDistance, {1e-4, 10.0, "m"}},
-    {"kernelParticles", &Material::kernelParticles, {4.0, 400.0, "count"}},
-    {"surfaceTension", &Material::surfaceTension, {0.0, 1e3, "m^3/(kg s^2)"}},
-    {"yieldStress", &Material::yieldStress, {0.0, 1e5, "Pa"}},
-    {"consistency", &Material::consistency, {0.0, 1e4, "Pa*s^n"}},
-    {"flowIndex", &Material::flowIndex, {0.1, 2.0, "1"}},
-    {"shearModulus", &Material::shearModulus, {0.0, 1e6, "Pa"}},
-};
+// A material field's range as the loader checks a file's numbers (doubles): each float bound as
+// the decimal it was written as (1e-4f as 0.0001, 0.1f as 0.1), so a file may give the bound
+// itself.
+Range materialRange(const MaterialField& f) {
+    const auto decimal = [](float value) {
+        char text[32];
+        const auto result = std::to_chars(text, text + sizeof text, value);
+        return std::strtod(std::string(text, result.ptr).c_str(), nullptr);
+    };
+    return Range{decimal(f.lo), decimal(f.hi), f.unit, f.openLow};
+}
 
 class LevelReader {
 public:
@@ -245,8 +239,8 @@ private:
             const std::string at = childPointer(root.pointer("materials"), i);
             const ObjectReader m(m_doc, (*list)[i], at, "a material");
             std::vector<std::string_view> allowed{"name", "preset"};
-            for (const MaterialField& f : kMaterialFields) {
-                allowed.push_back(f.key);
+            for (const MaterialField& f : materialFields()) {
+                allowed.push_back(f.name);
             }
             m.allowOnly(allowed);
             const std::string name = requiredName(m, "material");
@@ -260,8 +254,8 @@ private:
                 m.failAt("preset", "unknown preset '" + preset + "'; known: water, yoghurt");
             }
             material.name = name;
-            for (const MaterialField& f : kMaterialFields) {
-                material.*f.member = float(m.number(f.key, f.range, material.*f.member));
+            for (const MaterialField& f : materialFields()) {
+                material.*f.member = float(m.number(f.name, materialRange(f), material.*f.member));
             }
             const MaterialId id =
                 located(m_doc, at, [&] { return m_level.world.addMaterial(material); });

@@ -369,7 +369,7 @@ TEST_CASE("docs/plugins.md quotes the example's whirlpool as it is", "[level][do
 namespace {
 
 // A declared number as docs/levels.md prints it: the shortest form that reads back.
-std::string docNumber(double value) {
+template <class T> std::string docNumber(T value) {
     char text[32];
     const auto [end, error] = std::to_chars(text, text + sizeof text, value);
     REQUIRE(error == std::errc());
@@ -418,36 +418,69 @@ std::string pluginTable(const Registry& registry) {
 
 } // namespace
 
-TEST_CASE("docs/levels.md's plugin table is the registry's declarations", "[level][docs]") {
-    // The table between the markers is generated from every built-in type's ParamDecl array, so
-    // a parameter, range, default or unit changed in a plugin's header changes the page. To
-    // write the page anew: FLUID_UPDATE_DOCS=1 fluid-tests-level "docs/levels.md*".
+namespace {
+
+// docs/levels.md's numbers of a material, made from materialFields(): range and both presets.
+std::string materialTable() {
+    std::string out = "| key | unit | range | water | yoghurt | meaning |\n"
+                      "|---|---|---|---|---|---|\n";
+    for (const MaterialField& f : materialFields()) {
+        out += "| `" + std::string(f.name) + "` | " + std::string(f.unit) + " | " +
+               (f.openLow ? "(" : "[") + docNumber(f.lo) + ", " + docNumber(f.hi) + "] | " +
+               docNumber(water().*f.member) + " | " + docNumber(yoghurt().*f.member) + " | " +
+               cell(f.description) + " |\n";
+    }
+    return out;
+}
+
+// Fails unless the text of docs/levels.md between `begin` and `end` is `expected`; with
+// FLUID_UPDATE_DOCS=1 in the environment it writes `expected` there instead.
+void checkGenerated(const std::string& begin, const std::string& end,
+                    const std::string& expected) {
     const std::string path = std::string(FLUID_SOURCE_DIR) + "/docs/levels.md";
     const std::string page = readFile(path);
-    const std::string begin = "<!-- plugin table: generated from the registry; see the test "
-                              "\"docs/levels.md's plugin table is the registry's "
-                              "declarations\" -->\n";
-    const std::string end = "<!-- end of the plugin table -->\n";
     const size_t from = page.find(begin);
     REQUIRE(from != std::string::npos);
     const size_t to = page.find(end, from);
     REQUIRE(to != std::string::npos);
     const std::string table = page.substr(from + begin.size(), to - from - begin.size());
-    Registry registry;
-    registerBuiltinPlugins(registry);
-    const std::string expected = pluginTable(registry);
     const char* update = std::getenv("FLUID_UPDATE_DOCS");
     if (table != expected && update != nullptr && std::string(update) == "1") {
         std::ofstream(path, std::ios::binary)
             << page.substr(0, from + begin.size()) + expected + page.substr(to);
-        WARN("docs/levels.md: the plugin table was written anew");
+        WARN("docs/levels.md: a generated table was written anew");
         return;
     }
-    INFO("docs/levels.md's plugin table differs from the registry's declarations; write it anew "
-         "with FLUID_UPDATE_DOCS=1 fluid-tests-level \"docs/levels.md*\"");
+    INFO("docs/levels.md's generated table differs from the declarations; write it anew with "
+         "FLUID_UPDATE_DOCS=1 fluid-tests-level \"docs/levels.md*\"");
     CHECK(table == expected);
+}
+
+} // namespace
+
+TEST_CASE("docs/levels.md's plugin table is the registry's declarations", "[level][docs]") {
+    // The table between the markers is generated from every built-in type's ParamDecl array, so
+    // a parameter, range, default or unit changed in a plugin's header changes the page. To
+    // write the page anew: FLUID_UPDATE_DOCS=1 fluid-tests-level "docs/levels.md*".
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    const std::string expected = pluginTable(registry);
+    checkGenerated("<!-- plugin table: generated from the registry; see the test \"docs/"
+                   "levels.md's plugin table is the registry's declarations\" -->\n",
+                   "<!-- end of the plugin table -->\n", expected);
     // Every built-in type is there, with its parameters.
     CHECK(expected.find("| `force.gravity` | `gx` | m/s^2 | 0 | [-1000, 1000] |") !=
           std::string::npos);
     CHECK(expected.find("| `boundary.polygon` |") != std::string::npos);
+}
+
+TEST_CASE("docs/levels.md's material table is materialFields()", "[level][docs]") {
+    // The same for the numbers of a material: what validation, the loader, snapshots and the
+    // demo's panel read.
+    const std::string expected = materialTable();
+    checkGenerated("<!-- material table: generated from fluid::materialFields(); see the test "
+                   "\"docs/levels.md's material table is materialFields()\" -->\n",
+                   "<!-- end of the material table -->\n", expected);
+    CHECK(expected.find("| `yieldStress` | Pa | [0, 1e5] | 0 | 30 |") != std::string::npos);
+    CHECK(expected.find("| `mass` | kg | (0, 1000] | 0.013 | 0.014 |") != std::string::npos);
 }

@@ -2,7 +2,9 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
+#include <string_view>
 
 namespace fluid {
 
@@ -84,6 +86,29 @@ Material yoghurt();
 /// True when `material` follows the Herschel-Bulkley law (a positive yield stress or
 /// consistency) rather than the Newtonian one. Thread rule: any thread.
 bool hasYield(const Material& material);
+
+/// One number of `Material` as validation, level files, snapshots and the demo's tuning panel
+/// read it: `materialFields()` lists them all, so a field is declared once. Plain data.
+struct MaterialField {
+    /// Key in level files and name in error messages (e.g. "yieldStress").
+    std::string_view name;
+    /// The member it reads and writes.
+    float Material::*member;
+    /// SI unit (e.g. "Pa"; "1" for dimensionless, "count").
+    std::string_view unit;
+    /// Smallest accepted value (unit: `unit`; refused itself when `openLow`).
+    float lo;
+    /// Largest accepted value (unit: `unit`).
+    float hi;
+    /// True when `lo` itself is refused (a range (lo, hi]).
+    bool openLow;
+    /// One line for humans (docs/levels.md's table, the demo's tooltips).
+    std::string_view description;
+};
+
+/// Every number of `Material`, in the order snapshots store them; `validate` checks each
+/// against its range. Static storage. Any thread.
+std::span<const MaterialField> materialFields();
 
 /// Checks every field is finite and inside its documented range; throws `fluid::Error` naming
 /// the field and its value, e.g. "material 'water': viscosity = -1 is out of range [0, 10000]
