@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the benchmark rows of bench/README.md one after the other and prints them as markdown
+# Runs the benchmark rows of bench/*.md one after the other and prints them as markdown
 # table rows (scene, particles, threads, solver, ms per frame, sub-steps, iterations, largest
 # compression, ns per particle per sub-step, peak memory, command).
 # Usage: bench/table.sh [path/to/fluid-bench] [all|crates]
@@ -15,7 +15,7 @@
 #           resident set over particles, the program's own 4 MB included), command; about two
 #           minutes.
 #   liquidfun
-#           the side-by-side table with LiquidFun (bench/README.md, "Cheaper passes"): for the
+#           the side-by-side table with LiquidFun (bench/liquidfun.md): for the
 #           968, 4,050, 15,842 and 64,082 dams, LiquidFun's lf_dam (its path: third argument,
 #           default ../shared/anchors/liquidfun/lf_dam) and fluid-bench's game and precise
 #           presets on 1 and 2 threads, 30 warm-up and 120 timed frames (64k: 10 and 20), each

@@ -14,22 +14,16 @@ if [[ $# -lt 2 ]]; then
     echo "usage: $0 OLD_BUILD_DIR NEW_BUILD_DIR [FRAMES] [THREADS]" >&2
     exit 2
 fi
-# A build's fluid-run: tools/ (bench/ in builds from before the tools had a folder).
-runner() {
-    local dir
-    for dir in "$1/tools" "$1/bench"; do
-        if [[ -x $dir/fluid-run ]]; then
-            echo "$dir/fluid-run"
-            return
-        fi
-    done
-    echo "$0: no fluid-run in $1/tools or $1/bench" >&2
-    exit 2
-}
-old=$(runner "$1")
-new=$(runner "$2")
+old=$1/bench/fluid-run
+new=$2/bench/fluid-run
 frames=${3:-90}
 threads=${4:-2}
+for tool in "$old" "$new"; do
+    if [[ ! -x $tool ]]; then
+        echo "$0: no fluid-run at $tool" >&2
+        exit 2
+    fi
+done
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 work=$(mktemp -d)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Soak: plays fluid-soak's scripted scene (tools/fluid_soak.cpp) for MINUTES of wall-clock time
+# Soak: plays fluid-soak's scripted scene (bench/fluid_soak.cpp) for MINUTES of wall-clock time
 # and checks after every frame that no particle is lost or leaks, nothing goes non-finite, every
 # body stays in the tank and resident memory stays flat (within 5% of its value after the first
 # minute, or a third of a shorter run). Exits non-zero at the first failure, naming the frame.
@@ -23,4 +23,4 @@ threads="${SOAK_THREADS:-2}"
 cmake --preset release > /dev/null
 cmake --build --preset release --target fluid-soak
 seconds=$(awk -v m="$minutes" 'BEGIN { printf "%.0f", m * 60 }')
-./build/release/tools/fluid-soak --seconds "$seconds" --threads "$threads"
+./build/release/bench/fluid-soak --seconds "$seconds" --threads "$threads"

@@ -1,5 +1,5 @@
 // The position-based presets and the settings between them, measured as fluid-bench measures
-// them (tools/measure/compression.h: compression from the positions alone, the tank's surface as
+// them (bench/compression.h: compression from the positions alone, the tank's surface as
 // the 95th percentile of y plus half a spacing).
 //
 // - Each preset's accuracy on the resting 0.5 m water tank of `fluid-bench --scene tank`.

@@ -1,5 +1,5 @@
 // fluid-soak: a long scripted game scene that checks, after every frame, what a game that runs
-// for hours must never lose. See scripts/soak.sh and bench/README.md ("Soak").
+// for hours must never lose. See scripts/soak.sh and bench/soak.md.
 //
 // The scene: a closed 2.5 x 1.5 m tank with about 19,000 particles of water and yoghurt, Box2D
 // crates and a motor-driven paddle wheel, two faucets (the yoghurt one with lifetimes) and two
