@@ -33,7 +33,7 @@ void checkVec(const char* function, const char* what, glm::vec2 v) {
 }
 
 // Throws unless `id` was made by the world tagged `tag` or by hand (tag 0): "<what> id <index>
-// was made by world <w>; this is world <tag> (...)".
+// was made by another world (world <w>; this is world <tag>; ...)".
 template <class Id> void checkTag(Id id, const char* what, uint32_t tag) {
     if (id.world != 0 && id.world != tag) {
         throw Error(std::string(what) + " id " + std::to_string(id.index) +
