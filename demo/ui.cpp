@@ -277,6 +277,20 @@ void pluginSection(Level& level, Plugin& plugin, PluginKind kind, uint32_t index
     ImGui::PopID();
 }
 
+// A field's label in the panel: its key in words ("yieldStress" -> "yield stress").
+std::string fieldLabel(std::string_view name) {
+    std::string label;
+    for (const char c : name) {
+        if (c >= 'A' && c <= 'Z') {
+            label += ' ';
+            label += char(c - 'A' + 'a');
+        } else {
+            label += c;
+        }
+    }
+    return label;
+}
+
 void solverSection(Level& level, FieldErrors& errors) {
     World& world = level.world;
     if (!ImGui::CollapsingHeader("Solver", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -287,13 +301,6 @@ void solverSection(Level& level, FieldErrors& errors) {
         ImGui::TextDisabled("position-based fluids [Macklin & Mueller 2013]");
         PositionBasedDef pb = def.positionBased;
         const ImGuiID id = ImGui::GetID("solver");
-        const uint32_t one = 1;
-        const uint32_t maxSubsteps = 64;
-        const uint32_t maxIterations = 100;
-        const float zero = 0.0f;
-        const float maxVorticity = 10.0f;
-        const float oneF = 1.0f;
-        const ImGuiSliderFlags flags = kFieldFlags;
         bool changed = false;
         // The named presets; a level with Box2D bodies stays precise (the coupling refuses the
         // game preset's coarse correction).
@@ -310,24 +317,21 @@ void solverSection(Level& level, FieldErrors& errors) {
         }
         ImGui::SameLine();
         ImGui::TextDisabled("quality presets");
-        changed |= ImGui::DragScalar("sub-steps", ImGuiDataType_U32, &pb.substeps, 0.05f, &one,
-                                     &maxSubsteps, "%u per frame", flags);
-        rangeTooltip("Sub-steps per frame: more hold the water denser and cost more.", "count", 1,
-                     64);
-        changed |= ImGui::DragScalar("iterations", ImGuiDataType_U32, &pb.iterations, 0.05f, &one,
-                                     &maxIterations, "%u per sub-step", flags);
-        rangeTooltip("Density-constraint (Jacobi) iterations per sub-step.", "count", 1, 100);
-        changed |= ImGui::DragScalar("viscosity every", ImGuiDataType_U32, &pb.viscosityInterval,
-                                     0.05f, &one, &maxSubsteps, "%u sub-steps", flags);
-        rangeTooltip("Sub-steps between viscosity and surface tension runs.", "count", 1, 64);
-        changed |= ImGui::DragScalar("coarse", ImGuiDataType_Float, &pb.coarseCorrection, 0.002f,
-                                     &zero, &oneF, "%.3f", flags);
-        rangeTooltip("Share of the coarse-grid density correction per sub-step; 0 is off.", "1", 0,
-                     1);
-        changed |= ImGui::DragScalar("vorticity", ImGuiDataType_Float, &pb.vorticity, 0.002f, &zero,
-                                     &maxVorticity, "%.3f", flags);
-        rangeTooltip("Vorticity confinement: gives back the swirl that damping takes; 0 is off.",
-                     "1", 0, 10);
+        for (const Field<PositionBasedDef>& field : positionBasedFields()) {
+            const std::string label = fieldLabel(field.name);
+            if (field.whole != nullptr) {
+                const auto lo = static_cast<uint32_t>(field.lo);
+                const auto hi = static_cast<uint32_t>(field.hi);
+                changed |= ImGui::DragScalar(label.c_str(), ImGuiDataType_U32, &(pb.*field.whole),
+                                             0.05f, &lo, &hi, "%u", kFieldFlags);
+            } else {
+                const auto lo = static_cast<float>(field.lo);
+                const auto hi = static_cast<float>(field.hi);
+                changed |= ImGui::DragScalar(label.c_str(), ImGuiDataType_Float, &(pb.*field.real),
+                                             0.002f, &lo, &hi, "%.3f", kFieldFlags);
+            }
+            rangeTooltip(field.description, field.unit, field.lo, field.hi);
+        }
         if (changed) {
             applyField(errors, id, [&] { world.setPositionBased(pb); });
         }
@@ -354,26 +358,11 @@ void solverSection(Level& level, FieldErrors& errors) {
     }
 }
 
-// A material field's label in the panel: its key in words ("yieldStress" -> "yield stress").
-std::string fieldLabel(std::string_view name) {
-    std::string label;
-    for (const char c : name) {
-        if (c >= 'A' && c <= 'Z') {
-            label += ' ';
-            label += char(c - 'A' + 'a');
-        } else {
-            label += c;
-        }
-    }
-    return label;
-}
-
 // The field's description with both presets' values ("... Water 3.5, yoghurt 20.").
-std::string fieldTooltip(const fluid::MaterialField& field) {
+std::string fieldTooltip(const MaterialField& field) {
     char presets[96];
-    std::snprintf(presets, sizeof presets, " Water %g, yoghurt %g.",
-                  static_cast<double>(water().*field.member),
-                  static_cast<double>(yoghurt().*field.member));
+    std::snprintf(presets, sizeof presets, " Water %g, yoghurt %g.", field.get(water()),
+                  field.get(yoghurt()));
     return std::string(field.description) + presets;
 }
 
@@ -381,23 +370,24 @@ void materialSection(World& world, const std::string& name, MaterialId id, Field
     ImGui::PushID(static_cast<int>(id.index));
     const std::string header = "material: " + name + "###material";
     if (ImGui::CollapsingHeader(header.c_str())) {
-        for (const fluid::MaterialField& field : materialFields()) {
+        for (const MaterialField& field : materialFields()) {
             if (field.name == "kernelParticles") {
                 continue; // informational: the step never reads it
             }
             const std::string label = fieldLabel(field.name);
             const ImGuiID fieldId = ImGui::GetID(label.c_str());
             Material material = world.material(id);
-            float& value = material.*field.member;
+            float& value = material.*field.real;
             // An open lower end (mass, rest density, stiffness) gets a small positive floor.
-            const float lo = field.openLow ? field.hi * 1e-12f : field.lo;
+            const auto lo = static_cast<float>(field.openLow ? field.hi * 1e-12 : field.lo);
+            const auto hi = static_cast<float>(field.hi);
             const std::string format = valueFormat(field.unit);
-            const float speed = static_cast<float>(dragSpeed(value, lo, field.hi));
-            if (ImGui::DragScalar(label.c_str(), ImGuiDataType_Float, &value, speed, &lo,
-                                  &field.hi, format.c_str(), kFieldFlags)) {
+            const float speed = static_cast<float>(dragSpeed(value, lo, hi));
+            if (ImGui::DragScalar(label.c_str(), ImGuiDataType_Float, &value, speed, &lo, &hi,
+                                  format.c_str(), kFieldFlags)) {
                 applyField(errors, fieldId, [&] { world.setMaterial(id, material); });
             }
-            rangeTooltip(fieldTooltip(field), field.unit, lo, field.hi);
+            rangeTooltip(fieldTooltip(field), field.unit, lo, hi);
             showFieldError(errors, fieldId);
         }
         ImGui::TextDisabled("spacing %.4f m", static_cast<double>(world.spacing(id)));

@@ -41,27 +41,27 @@ namespace {
 
 // In the order snapshots store them (snapshot.cpp reads and writes this table).
 constexpr MaterialField kFields[] = {
-    {"mass", &Material::mass, "kg", 0.0f, 1e3f, true,
+    {"mass", &Material::mass, nullptr, "kg", 0.0, 1e3, true,
      "Mass of one particle; with the rest density it sets the particle spacing."},
-    {"restDensity", &Material::restDensity, "kg/m^3", 0.0f, 1e5f, true,
+    {"restDensity", &Material::restDensity, nullptr, "kg/m^3", 0.0, 1e5, true,
      "Density at rest; with the mass it sets the particle spacing."},
-    {"viscosity", &Material::viscosity, "Pa*s", 0.0f, 1e4f, false,
+    {"viscosity", &Material::viscosity, nullptr, "Pa*s", 0.0, 1e4, false,
      "Dynamic viscosity mu (seed eq. 2.6); with a yield stress, the flow law's high-shear limit."},
-    {"stiffness", &Material::stiffness, "J/kg", 0.0f, 1e8f, true,
+    {"stiffness", &Material::stiffness, nullptr, "J/kg", 0.0, 1e8, true,
      "k of the linear equation of state p = k (rho - rho0); sqrt(k) is Tait's sound-speed floor."},
-    {"smoothingDistance", &Material::smoothingDistance, "m", 1e-4f, 10.0f, false,
+    {"smoothingDistance", &Material::smoothingDistance, nullptr, "m", 1e-4, 10.0, false,
      "Kernel support radius h: how far particles feel each other."},
-    {"kernelParticles", &Material::kernelParticles, "count", 4.0f, 400.0f, false,
+    {"kernelParticles", &Material::kernelParticles, nullptr, "count", 4.0, 400.0, false,
      "Particles in the support the material was tuned for (informational)."},
-    {"surfaceTension", &Material::surfaceTension, "m^3/(kg s^2)", 0.0f, 1e3f, false,
+    {"surfaceTension", &Material::surfaceTension, nullptr, "m^3/(kg s^2)", 0.0, 1e3, false,
      "Cohesion gamma [Akinci 2013]: holds drops and blobs together; 0 is off."},
-    {"yieldStress", &Material::yieldStress, "Pa", 0.0f, 1e5f, false,
+    {"yieldStress", &Material::yieldStress, nullptr, "Pa", 0.0, 1e5, false,
      "Herschel-Bulkley yield stress: below it the material holds its shape, heaps and sticks."},
-    {"consistency", &Material::consistency, "Pa*s^n", 0.0f, 1e4f, false,
+    {"consistency", &Material::consistency, nullptr, "Pa*s^n", 0.0, 1e4, false,
      "Herschel-Bulkley consistency K: the flowing stress above the yield stress is K rate^n."},
-    {"flowIndex", &Material::flowIndex, "1", 0.1f, 2.0f, false,
+    {"flowIndex", &Material::flowIndex, nullptr, "1", 0.1, 2.0, false,
      "Herschel-Bulkley flow index n: below 1 the material thins with shear, above 1 thickens."},
-    {"shearModulus", &Material::shearModulus, "Pa", 0.0f, 1e6f, false,
+    {"shearModulus", &Material::shearModulus, nullptr, "Pa", 0.0, 1e6, false,
      "Stiffness below the yield stress; 0 is as stiff as the step allows."},
 };
 
@@ -73,7 +73,7 @@ std::span<const MaterialField> materialFields() {
 
 void validate(const Material& m) {
     for (const MaterialField& f : kFields) {
-        const float value = m.*f.member;
+        const float value = m.*f.real;
         const bool ok =
             std::isfinite(value) && (f.openLow ? value > f.lo : value >= f.lo) && value <= f.hi;
         if (!ok) {

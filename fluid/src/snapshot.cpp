@@ -92,6 +92,28 @@ static_assert(sizeof(ProfileRecord) == 24 * 4, "the snapshot's profile record ha
 using In = internal::ByteReader;
 using Out = internal::ByteWriter;
 
+// The numbers of a definition struct, each as its member's type, in the table's order.
+template <class Def> void putFields(Out& o, std::span<const Field<Def>> fields, const Def& def) {
+    for (const Field<Def>& f : fields) {
+        if (f.whole != nullptr) {
+            o.put(def.*f.whole);
+        } else {
+            o.put(def.*f.real);
+        }
+    }
+}
+
+// Reads what `putFields` wrote.
+template <class Def> void getFields(In& in, std::span<const Field<Def>> fields, Def& def) {
+    for (const Field<Def>& f : fields) {
+        if (f.whole != nullptr) {
+            def.*f.whole = in.get<uint32_t>(f.name.data());
+        } else {
+            def.*f.real = in.get<float>(f.name.data());
+        }
+    }
+}
+
 // Throws "snapshot: corrupt: <message>", as the reader does.
 [[noreturn]] void corrupt(const std::string& message) {
     throw Error("snapshot: corrupt: " + message);
@@ -253,20 +275,15 @@ void World::save(std::ostream& out) const {
     // Settings (the task hook is the host's, not the world's).
     const WorldDef& d = s.def;
     o.put(uint8_t(d.solver));
-    o.put(d.positionBased);
+    putFields(o, positionBasedFields(), d.positionBased);
     o.put(uint8_t(d.equationOfState));
     o.put(d.soundSpeed);
-    o.put(d.depth);
-    o.put(d.courant);
-    o.put(d.maxSubsteps);
-    o.put(d.maxParticles);
+    putFields(o, worldFields(), d);
     o.put(d.workerCount);
     // Materials.
     o.put<uint64_t>(s.materials.size());
     for (const Material& m : s.materials) {
-        for (const MaterialField& f : materialFields()) {
-            o.put(m.*f.member);
-        }
+        putFields(o, materialFields(), m);
         o.string(m.name);
     }
     // Particles in their current order, and the handle table.
@@ -436,23 +453,18 @@ std::vector<char> readBody(std::istream& input, uint64_t& size) {
 WorldDef getWorldDef(In& in) {
     WorldDef def;
     def.solver = in.small(Solver::Explicit, "the solver");
-    def.positionBased = in.get<PositionBasedDef>();
+    getFields(in, positionBasedFields(), def.positionBased);
     def.equationOfState = in.small(EquationOfState::Tait, "the equation of state");
-    def.soundSpeed = in.get<float>();
-    def.depth = in.get<float>();
-    def.courant = in.get<float>();
-    def.maxSubsteps = in.get<uint32_t>();
-    def.maxParticles = in.get<uint32_t>();
-    def.workerCount = in.get<uint32_t>();
+    def.soundSpeed = in.get<float>("the sound speed");
+    getFields(in, worldFields(), def);
+    def.workerCount = in.get<uint32_t>("the worker count");
     return def;
 }
 
 // One material (checked by World::addMaterial).
 Material getMaterial(In& in) {
     Material m;
-    for (const MaterialField& f : materialFields()) {
-        m.*f.member = in.get<float>(f.name.data());
-    }
+    getFields(in, materialFields(), m);
     m.name = in.string("a material name");
     return m;
 }

@@ -59,14 +59,66 @@ void checkRange(const char* field, T value, T lo, T hi, const char* unit,
     internal::checkRange<T>(prefix, field, value, lo, hi, unit);
 }
 
+// In the order snapshots store them (the struct's own order).
+constexpr Field<PositionBasedDef> kPositionBasedFields[] = {
+    {"substeps", nullptr, &PositionBasedDef::substeps, "count", 1, 64, false,
+     "Position-based sub-steps per 1/60 s frame (more for longer frames); more hold the water "
+     "denser and cost more."},
+    {"iterations", nullptr, &PositionBasedDef::iterations, "count", 1, 100, false,
+     "Density-constraint (Jacobi) iterations per sub-step."},
+    {"viscosityInterval", nullptr, &PositionBasedDef::viscosityInterval, "count", 1, 64, false,
+     "Sub-steps between viscosity and surface tension runs."},
+    {"coarseCorrection", &PositionBasedDef::coarseCorrection, nullptr, "1", 0, 1, false,
+     "Share of the coarse-grid density correction per sub-step; 0 is off "
+     "(docs/position_based.md, \"Coarse correction\")."},
+    {"vorticity", &PositionBasedDef::vorticity, nullptr, "1", 0, 10, false,
+     "Vorticity confinement: gives back the swirl that damping takes; 0 is off."},
+};
+
+// In the order snapshots store them.
+constexpr Field<WorldDef> kWorldFields[] = {
+    {"depth", &WorldDef::depth, nullptr, "m", 1e-4, 1e3, false,
+     "Slab depth that reads the materials' 3D mass and density in 2D (see Material)."},
+    {"courant", &WorldDef::courant, nullptr, "1", 0.01, 1, false, "Explicit solver's CFL number."},
+    {"maxSubsteps", nullptr, &WorldDef::maxSubsteps, "count", 1, 1000, false,
+     "Explicit solver's sub-step cap per frame: it bounds the frame's cost (about 0.3 s for 400 "
+     "particles at 1000)."},
+    {"maxParticles", nullptr, &WorldDef::maxParticles, "count", 1, 67108864, false,
+     "Most particles the world holds (blobs and emitters)."},
+};
+
+constexpr Field<EmitterDef> kEmitterFields[] = {
+    {"speed", &EmitterDef::speed, nullptr, "m/s", 0.01, 100, false, "Exit speed."},
+    {"width", &EmitterDef::width, nullptr, "m", 0, 100, false,
+     "Nozzle width; 0 = one particle per row."},
+    {"rate", &EmitterDef::rate, nullptr, "1/s", 0, 1e6, false,
+     "Particles per second; 0 = closed. At most lanes x speed / spacing (the world says the "
+     "limit)."},
+    {"maxCount", nullptr, &EmitterDef::maxCount, "count", 0, 4294967295.0, false,
+     "Most particles over the emitter's life; 0 = no limit."},
+    {"lifetime", &EmitterDef::lifetime, nullptr, "s", 0, 1e6, false,
+     "Lifetime of each emitted particle; 0 = forever."},
+    {"jitter", &EmitterDef::jitter, nullptr, "1", 0, 0.5, false,
+     "Random offset across the jet, in spacings."},
+};
+
+// Checks every field of `def` against its range: "<prefix><name> = <value> is out of range
+// [lo, hi] (unit: ...)" (whole numbers printed whole). The tables have no open lower ends.
+template <class Def>
+void checkFields(const Def& def, std::span<const Field<Def>> fields, const std::string& prefix) {
+    for (const Field<Def>& f : fields) {
+        if (f.whole != nullptr) {
+            internal::checkRange<uint32_t>(prefix, f.name, def.*f.whole, uint32_t(f.lo),
+                                           uint32_t(f.hi), f.unit);
+        } else {
+            internal::checkRange<float>(prefix, f.name, def.*f.real, float(f.lo), float(f.hi),
+                                        f.unit);
+        }
+    }
+}
+
 void validatePositionBased(const PositionBasedDef& pb, const char* prefix) {
-    const std::string field = prefix;
-    checkRange<uint32_t>((field + "substeps").c_str(), pb.substeps, 1, 64, "count", "");
-    checkRange<uint32_t>((field + "iterations").c_str(), pb.iterations, 1, 100, "count", "");
-    checkRange<uint32_t>((field + "viscosityInterval").c_str(), pb.viscosityInterval, 1, 64,
-                         "count", "");
-    checkRange((field + "coarseCorrection").c_str(), pb.coarseCorrection, 0.0f, 1.0f, "1", "");
-    checkRange((field + "vorticity").c_str(), pb.vorticity, 0.0f, 10.0f, "1", "");
+    checkFields<PositionBasedDef>(pb, kPositionBasedFields, prefix);
 }
 
 void validate(const WorldDef& def) {
@@ -76,10 +128,7 @@ void validate(const WorldDef& def) {
           << " is out of range: 0 (derive from the scene) or [0.1, 10000] (unit: m/s)";
         throw Error(s.str());
     }
-    checkRange("depth", def.depth, 1e-4f, 1e3f, "m");
-    checkRange("courant", def.courant, 0.01f, 1.0f, "1");
-    checkRange<uint32_t>("maxSubsteps", def.maxSubsteps, 1, 1000, "count");
-    checkRange<uint32_t>("maxParticles", def.maxParticles, 1, 1u << 26, "count");
+    checkFields<WorldDef>(def, kWorldFields, "WorldDef: ");
     validatePositionBased(def.positionBased, "WorldDef: positionBased.");
     if (def.tasks.enqueue == nullptr) {
         checkRange<uint32_t>("workerCount", def.workerCount, 1, 256, "count");
@@ -229,6 +278,18 @@ void checkSolverTakes(const WorldDef& def, const Material& material, const char*
     }
 }
 } // namespace
+
+std::span<const Field<PositionBasedDef>> positionBasedFields() {
+    return kPositionBasedFields;
+}
+
+std::span<const Field<WorldDef>> worldFields() {
+    return kWorldFields;
+}
+
+std::span<const Field<EmitterDef>> emitterFields() {
+    return kEmitterFields;
+}
 
 MaterialId World::addMaterial(const Material& material) {
     validate(material);
@@ -534,11 +595,7 @@ void World::validateEmitter(const EmitterDef& def, const char* function) const {
           << ") has no direction; expected a non-zero vector";
         throw Error(s.str());
     }
-    checkRange("speed", def.speed, 0.01f, 100.0f, "m/s", prefix.c_str());
-    checkRange("width", def.width, 0.0f, 100.0f, "m", prefix.c_str());
-    checkRange("rate", def.rate, 0.0f, 1e6f, "1/s", prefix.c_str());
-    checkRange("lifetime", def.lifetime, 0.0f, 1e6f, "s", prefix.c_str());
-    checkRange("jitter", def.jitter, 0.0f, 0.5f, "1", prefix.c_str());
+    checkFields<EmitterDef>(def, kEmitterFields, prefix);
     const Material& mat = material(def.material);
     const float spacing = particleSpacing(mat, m_state->def.depth);
     const double lanes = detail::emitterLanes(def.width, spacing);

@@ -74,16 +74,28 @@ constexpr std::size_t kMaxShapeVertices = 256;
 // that blob (warnOverlaps).
 constexpr double kOverlapReach = 0.8;
 
-// A material field's range as the loader checks a file's numbers (doubles): each float bound as
-// the decimal it was written as (1e-4f as 0.0001, 0.1f as 0.1), so a file may give the bound
-// itself.
-Range materialRange(const MaterialField& f) {
-    const auto decimal = [](float value) {
-        char text[32];
-        const auto result = std::to_chars(text, text + sizeof text, value);
-        return std::strtod(std::string(text, result.ptr).c_str(), nullptr);
-    };
-    return Range{decimal(f.lo), decimal(f.hi), f.unit, f.openLow};
+// A field's range as the loader checks a file's numbers.
+template <class Def> Range fieldRange(const Field<Def>& f) {
+    return Range{f.lo, f.hi, f.unit, f.openLow};
+}
+
+// Appends the keys of `fields` to `names`.
+template <class Def>
+void addNames(std::vector<std::string_view>& names, std::span<const Field<Def>> fields) {
+    for (const Field<Def>& f : fields) {
+        names.push_back(f.name);
+    }
+}
+
+// Reads the fields `fields` of `def` from `o`, each keeping `def`'s value when the file leaves
+// it out (whole numbers must be whole).
+template <class Def>
+void readFields(const ObjectReader& o, std::span<const Field<Def>> fields, Def& def) {
+    for (const Field<Def>& f : fields) {
+        f.set(def, f.whole != nullptr
+                       ? double(o.integer(f.name, fieldRange(f), uint64_t(f.get(def))))
+                       : o.number(f.name, fieldRange(f), f.get(def)));
+    }
 }
 
 class LevelReader {
@@ -128,10 +140,11 @@ private:
         std::string gravityPointer;
         if (const Json* value = root.find("world")) {
             const ObjectReader w(m_doc, *value, root.pointer("world"), "the world settings");
-            w.allowOnly({"gravity", "frameRate", "solver", "quality", "substeps", "iterations",
-                         "viscosityInterval", "coarseCorrection", "vorticity", "equationOfState",
-                         "soundSpeed", "courant", "maxSubsteps", "maxParticles", "workers",
-                         "depth"});
+            std::vector<std::string_view> allowed{"gravity", "frameRate", "solver", "quality"};
+            addNames(allowed, positionBasedFields());
+            allowed.insert(allowed.end(), {"equationOfState", "soundSpeed", "workers"});
+            addNames(allowed, worldFields());
+            w.allowOnly(allowed);
             if (w.has("gravity")) {
                 gravityPointer = w.pointer("gravity");
                 gravity = readGravity(w);
@@ -154,15 +167,7 @@ private:
             } else if (!quality.empty()) {
                 w.failAt("quality", "unknown quality '" + quality + "'; known: game, precise");
             }
-            def.positionBased.substeps =
-                uint32_t(w.integer("substeps", {1, 64, "count"}, def.positionBased.substeps));
-            def.positionBased.iterations =
-                uint32_t(w.integer("iterations", {1, 100, "count"}, def.positionBased.iterations));
-            def.positionBased.viscosityInterval = uint32_t(w.integer(
-                "viscosityInterval", {1, 64, "count"}, def.positionBased.viscosityInterval));
-            def.positionBased.coarseCorrection = float(w.number(
-                "coarseCorrection", {0, 1, "1"}, double(def.positionBased.coarseCorrection)));
-            def.positionBased.vorticity = float(w.number("vorticity", {0, 10, "1"}, 0.0));
+            readFields(w, positionBasedFields(), def.positionBased);
             const std::string eos = w.string("equationOfState", "tait");
             if (eos == "linear") {
                 def.equationOfState = EquationOfState::Linear;
@@ -177,13 +182,8 @@ private:
                                            "[0.1, 10000] (unit: m/s)");
             }
             def.soundSpeed = float(c);
-            def.courant = float(w.number("courant", {0.01, 1, "1"}, def.courant));
-            def.maxSubsteps =
-                uint32_t(w.integer("maxSubsteps", {1, 1000, "count"}, def.maxSubsteps));
-            def.maxParticles = uint32_t(
-                w.integer("maxParticles", {1, double(1u << 26), "count"}, def.maxParticles));
+            readFields(w, worldFields(), def);
             def.workerCount = uint32_t(w.integer("workers", {1, 256, "count"}, 1));
-            def.depth = float(w.number("depth", {1e-4, 1e3, "m"}, def.depth));
         }
         if (m_options.workerCount > 0) {
             def.workerCount = m_options.workerCount;
@@ -239,9 +239,7 @@ private:
             const std::string at = childPointer(root.pointer("materials"), i);
             const ObjectReader m(m_doc, (*list)[i], at, "a material");
             std::vector<std::string_view> allowed{"name", "preset"};
-            for (const MaterialField& f : materialFields()) {
-                allowed.push_back(f.name);
-            }
+            addNames(allowed, materialFields());
             m.allowOnly(allowed);
             const std::string name = requiredName(m, "material");
             const std::string preset = m.string("preset", "water");
@@ -254,9 +252,7 @@ private:
                 m.failAt("preset", "unknown preset '" + preset + "'; known: water, yoghurt");
             }
             material.name = name;
-            for (const MaterialField& f : materialFields()) {
-                material.*f.member = float(m.number(f.name, materialRange(f), material.*f.member));
-            }
+            readFields(m, materialFields(), material);
             const MaterialId id =
                 located(m_doc, at, [&] { return m_level.world.addMaterial(material); });
             m_materials.add(m_doc, name, m.pointer("name"), id);
@@ -582,8 +578,10 @@ private:
         for (std::size_t i = 0; list != nullptr && i < list->size(); ++i) {
             const std::string at = childPointer(root.pointer("emitters"), i);
             const ObjectReader e(m_doc, (*list)[i], at, "an emitter");
-            e.allowOnly({"name", "material", "position", "direction", "speed", "width", "rate",
-                         "maxCount", "lifetime", "jitter", "seed"});
+            std::vector<std::string_view> allowed{"name", "material", "position", "direction"};
+            addNames(allowed, emitterFields());
+            allowed.push_back("seed");
+            e.allowOnly(allowed);
             const std::string name = requiredName(e, "emitter");
             EmitterDef def;
             def.material =
@@ -594,12 +592,7 @@ private:
             if (def.direction.x == 0.0f && def.direction.y == 0.0f) {
                 e.failAt("direction", "expected a direction other than [0, 0]");
             }
-            def.speed = float(e.number("speed", {0.01, 100, "m/s"}, def.speed));
-            def.width = float(e.number("width", {0, 100, "m"}, def.width));
-            def.rate = float(e.number("rate", {0, 1e6, "1/s"}, def.rate));
-            def.maxCount = uint32_t(e.integer("maxCount", {0, 4294967295.0, "count"}, 0));
-            def.lifetime = float(e.number("lifetime", kLifetime, 0.0));
-            def.jitter = float(e.number("jitter", {0, 0.5, "1"}, 0.0));
+            readFields(e, emitterFields(), def);
             def.seed = e.integer("seed", {0, 9007199254740992.0, "1"}, def.seed);
             const EmitterId id = located(m_doc, at, [&] { return m_level.world.addEmitter(def); });
             warnBuriedNozzle(at, def.position);

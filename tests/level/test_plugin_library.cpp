@@ -420,6 +420,11 @@ std::string pluginTable(const Registry& registry) {
 
 namespace {
 
+// A field's value in `def` as docs/levels.md prints it, in the member's own type.
+template <class Def> std::string valueText(const Field<Def>& f, const Def& def) {
+    return f.real != nullptr ? docNumber(def.*f.real) : docNumber(def.*f.whole);
+}
+
 // docs/levels.md's numbers of a material, made from materialFields(): range and both presets.
 std::string materialTable() {
     std::string out = "| key | unit | range | water | yoghurt | meaning |\n"
@@ -427,7 +432,20 @@ std::string materialTable() {
     for (const MaterialField& f : materialFields()) {
         out += "| `" + std::string(f.name) + "` | " + std::string(f.unit) + " | " +
                (f.openLow ? "(" : "[") + docNumber(f.lo) + ", " + docNumber(f.hi) + "] | " +
-               docNumber(water().*f.member) + " | " + docNumber(yoghurt().*f.member) + " | " +
+               valueText(f, water()) + " | " + valueText(f, yoghurt()) + " | " +
+               cell(f.description) + " |\n";
+    }
+    return out;
+}
+
+// docs/levels.md's rows for `fields`, their defaults read from `defaults`.
+template <class Def>
+std::string fieldRows(std::span<const Field<Def>> fields, const Def& defaults) {
+    std::string out;
+    for (const Field<Def>& f : fields) {
+        out += "| `" + std::string(f.name) + "` | " + (f.whole != nullptr ? "whole" : "number") +
+               " | " + std::string(f.unit) + " | " + (f.openLow ? "(" : "[") + docNumber(f.lo) +
+               ", " + docNumber(f.hi) + "] | " + valueText(f, defaults) + " | " +
                cell(f.description) + " |\n";
     }
     return out;
@@ -483,4 +501,22 @@ TEST_CASE("docs/levels.md's material table is materialFields()", "[level][docs]"
                    "<!-- end of the material table -->\n", expected);
     CHECK(expected.find("| `yieldStress` | Pa | [0, 1e5] | 0 | 30 |") != std::string::npos);
     CHECK(expected.find("| `mass` | kg | (0, 1000] | 0.013 | 0.014 |") != std::string::npos);
+}
+
+TEST_CASE("docs/levels.md's world and emitter numbers are their field tables", "[level][docs]") {
+    const std::string header = "| key | type | unit | range | default | meaning |\n"
+                               "|---|---|---|---|---|---|\n";
+    const WorldDef world;
+    const std::string settings = header + fieldRows(positionBasedFields(), world.positionBased) +
+                                 fieldRows(worldFields(), world);
+    checkGenerated("<!-- world table: generated from fluid::positionBasedFields() and "
+                   "fluid::worldFields(); see the test \"docs/levels.md's world and emitter "
+                   "numbers are their field tables\" -->\n",
+                   "<!-- end of the world table -->\n", settings);
+    CHECK(settings.find("| `substeps` | whole | count | [1, 64] | 4 |") != std::string::npos);
+    const std::string emitter = header + fieldRows(emitterFields(), EmitterDef{});
+    checkGenerated("<!-- emitter table: generated from fluid::emitterFields(); see the test "
+                   "\"docs/levels.md's world and emitter numbers are their field tables\" -->\n",
+                   "<!-- end of the emitter table -->\n", emitter);
+    CHECK(emitter.find("| `jitter` | number | 1 | [0, 0.5] | 0 |") != std::string::npos);
 }

@@ -1,12 +1,14 @@
 // fluid — 2D SPH liquid for games.
 #pragma once
 
+#include <fluid/fields.h>
 #include <fluid/handle.h>
 #include <fluid/shape.h>
 
 #include <glm/vec2.hpp>
 
 #include <cstdint>
+#include <span>
 #include <string>
 
 namespace fluid {
@@ -86,6 +88,11 @@ struct EmitterDef {
     /// Seed of the emitter's random generator (unit: 1; any value).
     uint64_t seed = 1;
 };
+
+/// The numbers of `EmitterDef` (see `Field`): speed, width, rate, maxCount, lifetime and jitter.
+/// `position`, `direction`, `material` and `seed` are checked on their own. Static storage. Any
+/// thread.
+std::span<const Field<EmitterDef>> emitterFields();
 
 /// A drain (kill zone): particles inside its shape at the end of a step are removed and
 /// reported in `World::removedEvents`.

@@ -1,6 +1,8 @@
 // fluid — 2D SPH liquid for games.
 #pragma once
 
+#include <fluid/fields.h>
+
 #include <cstdint>
 #include <span>
 #include <string>
@@ -87,24 +89,8 @@ Material yoghurt();
 /// consistency) rather than the Newtonian one. Thread rule: any thread.
 bool hasYield(const Material& material);
 
-/// One number of `Material` as validation, level files, snapshots and the demo's tuning panel
-/// read it: `materialFields()` lists them all, so a field is declared once. Plain data.
-struct MaterialField {
-    /// Key in level files and name in error messages (e.g. "yieldStress").
-    std::string_view name;
-    /// The member it reads and writes.
-    float Material::*member;
-    /// SI unit (e.g. "Pa"; "1" for dimensionless, "count").
-    std::string_view unit;
-    /// Smallest accepted value (unit: `unit`; refused itself when `openLow`).
-    float lo;
-    /// Largest accepted value (unit: `unit`).
-    float hi;
-    /// True when `lo` itself is refused (a range (lo, hi]).
-    bool openLow;
-    /// One line for humans (docs/levels.md's table, the demo's tooltips).
-    std::string_view description;
-};
+/// A number of `Material` (see `Field`).
+using MaterialField = Field<Material>;
 
 /// Every number of `Material`, in the order snapshots store them; `validate` checks each
 /// against its range. Static storage. Any thread.

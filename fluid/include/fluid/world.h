@@ -141,6 +141,14 @@ struct WorldDef {
     TaskHook tasks{};
 };
 
+/// The numbers of `PositionBasedDef` (see `Field`), in the order snapshots store them. Static
+/// storage. Any thread.
+std::span<const Field<PositionBasedDef>> positionBasedFields();
+/// The plain numbers of `WorldDef` (see `Field`): depth, courant, maxSubsteps and maxParticles,
+/// in the order snapshots store them. `soundSpeed` (0 or a range), `workerCount` (with `tasks`)
+/// and the enums are checked on their own. Static storage. Any thread.
+std::span<const Field<WorldDef>> worldFields();
+
 /// A block of liquid to spawn: the shape is filled on a square lattice at the material's spacing
 /// (lattice points whose position lies inside the shape). Plain data.
 struct BlobDef {
