@@ -309,6 +309,8 @@ void World::save(std::ostream& out) const {
     // Emitters, drains, sensors and the last step's readings.
     o.put<uint64_t>(s.emitters.size());
     for (const detail::EmitterState& e : s.emitters) {
+        // Field by field, not from emitterFields(): the format puts the material between rate
+        // and maxCount.
         const EmitterDef& ed = e.def;
         o.put(ed.position);
         o.put(ed.direction);
