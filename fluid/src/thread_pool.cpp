@@ -51,7 +51,17 @@ template <class Done> bool spinUntil(Done&& done) {
 } // namespace
 
 struct ThreadPool::Impl {
+    // One thread's share of a task: a contiguous part of the items that its own thread works
+    // from the front, and that a thread done with its own part takes ranges from too. On its
+    // own cache line: the threads claim from different parts at the same time.
+    struct alignas(64) Part {
+        // The task's generation (high 32 bits) and the part's first unclaimed item (low 32).
+        std::atomic<uint64_t> cursor{0};
+        std::atomic<uint32_t> end{0}; // one past the part's last item
+    };
+
     std::vector<std::thread> threads;
+    std::vector<Part> parts; // one per thread, the caller's first
     std::mutex mutex;
     std::condition_variable wake; // a new task (or stop) for the workers
     std::condition_variable done; // the last claimed range finished, for the caller
@@ -61,47 +71,58 @@ struct ThreadPool::Impl {
     // sequentially consistent: a claim that succeeds read the fields of its own task.
     std::atomic<TaskCallback*> callback{nullptr};
     std::atomic<void*> context{nullptr};
-    std::atomic<uint32_t> itemCount{0};
     std::atomic<uint32_t> rangeSize{1};
-    // The task's generation (high 32 bits) and its first unclaimed item (low 32 bits).
-    std::atomic<uint64_t> cursor{0};
     // Threads between a claim attempt and the end of the range it claimed (if any).
     std::atomic<uint32_t> inFlight{0};
     std::atomic<uint32_t> generation{0}; // tasks started; workers wait for it to change
     std::atomic<bool> stop{false};
 
-    // Claims ranges of task `gen` and runs them as `worker` until none is left. A worker (not
-    // the caller) wakes the caller when it finishes the last range in flight.
+    explicit Impl(uint32_t workerCount) : parts(workerCount) {}
+
+    // Claims the next range of `part` for task `gen`; false when the part is done (or the task
+    // is not `gen` any more).
+    bool claim(Part& part, uint32_t gen, uint32_t& begin, uint32_t& end) {
+        uint64_t cur = part.cursor.load();
+        while (uint32_t(cur >> 32) == gen) {
+            begin = uint32_t(cur);
+            const uint32_t last = part.end.load();
+            if (begin >= last) {
+                return false;
+            }
+            const uint32_t size = rangeSize.load();
+            end = last - begin <= size ? last : begin + size;
+            if (part.cursor.compare_exchange_weak(cur, (uint64_t(gen) << 32) | end)) {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    // Runs ranges of task `gen` as `worker` until none is left: its own part first, then the
+    // others' in turn. So each thread works the same items in every task of the same size (the
+    // data its last task wrote is still in its cache), and a thread another process keeps off
+    // its core costs at most the range it holds. A worker (not the caller) wakes the caller when
+    // it finishes the last range in flight.
     void runRanges(uint32_t gen, uint32_t worker, bool notify) {
-        for (;;) {
-            inFlight.fetch_add(1);
-            uint64_t cur = cursor.load();
-            uint32_t begin = 0, end = 0;
-            bool claimed = false;
-            while (uint32_t(cur >> 32) == gen) {
-                begin = uint32_t(cur);
-                const uint32_t count = itemCount.load();
-                if (begin >= count) {
+        const auto count = uint32_t(parts.size());
+        for (uint32_t k = 0; k < count; ++k) {
+            Part& part = parts[(worker + k) % count];
+            for (;;) {
+                inFlight.fetch_add(1);
+                uint32_t begin = 0, end = 0;
+                const bool claimed = claim(part, gen, begin, end);
+                if (claimed) {
+                    callback.load()(begin, end, worker, context.load());
+                }
+                if (inFlight.fetch_sub(1) == 1 && notify) {
+                    // The caller may be asleep in finish: take the lock so that the
+                    // notification cannot fall between its check and its wait.
+                    std::lock_guard<std::mutex> lock(mutex);
+                    done.notify_one();
+                }
+                if (!claimed) {
                     break;
                 }
-                const uint32_t size = rangeSize.load();
-                end = count - begin <= size ? count : begin + size;
-                if (cursor.compare_exchange_weak(cur, (uint64_t(gen) << 32) | end)) {
-                    claimed = true;
-                    break;
-                }
-            }
-            if (claimed) {
-                callback.load()(begin, end, worker, context.load());
-            }
-            if (inFlight.fetch_sub(1) == 1 && notify) {
-                // The caller may be asleep in finish: take the lock so that the notification
-                // cannot fall between its check and its wait.
-                std::lock_guard<std::mutex> lock(mutex);
-                done.notify_one();
-            }
-            if (!claimed) {
-                return;
             }
         }
     }
@@ -131,7 +152,7 @@ ThreadPool::ThreadPool(uint32_t workerCount) : m_workerCount(workerCount) {
         throw Error("ThreadPool: workerCount = " + std::to_string(workerCount) +
                     " is out of range [1, 256]");
     }
-    m_impl = std::make_unique<Impl>();
+    m_impl = std::make_unique<Impl>(workerCount);
     m_impl->threads.reserve(workerCount - 1);
     for (uint32_t w = 1; w < workerCount; ++w) {
         m_impl->threads.emplace_back([impl = m_impl.get(), w] { impl->workerMain(w); });
@@ -160,12 +181,19 @@ TaskHook ThreadPool::hook() {
         }
         const uint32_t gen = pool.generation.load() + 1;
         // Stragglers of the last task stop claiming before its fields change.
-        pool.cursor.store(uint64_t(gen) << 32);
+        for (Impl::Part& part : pool.parts) {
+            part.cursor.store(uint64_t(gen) << 32);
+        }
         pool.callback.store(callback);
         pool.context.store(taskContext);
-        pool.itemCount.store(itemCount);
-        // About four ranges per thread balances load without much claiming overhead.
-        const auto threads = uint32_t(pool.threads.size() + 1);
+        // Thread t's part: items [count t / T, count (t + 1) / T), in ranges of a quarter of a
+        // part (at least minRange): small enough for the others to share a slow thread's part.
+        const auto threads = uint32_t(pool.parts.size());
+        for (uint32_t t = 0; t < threads; ++t) {
+            const auto begin = uint32_t(uint64_t(itemCount) * t / threads);
+            pool.parts[t].end.store(uint32_t(uint64_t(itemCount) * (t + 1) / threads));
+            pool.parts[t].cursor.store((uint64_t(gen) << 32) | begin);
+        }
         const uint32_t target = (itemCount + threads * 4 - 1) / (threads * 4);
         pool.rangeSize.store(std::max(std::max(minRange, target), 1u));
         {
