@@ -9,6 +9,7 @@
 //   types     air (F < 1/2: the potential is 0 there, a free surface), solid (samples fill more
 //             than particles: no flux through it), fluid (the unknowns)
 //   solve     -lap psi = max(F - 1 - tolerance, 0) H^2 on the fluid nodes, conjugate gradients
+//             preconditioned by MIC(0)
 //   move      each particle by -share grad psi (bilinear), at most kCoarseMaxMove of its support
 //   bodies    rigid bodies of boundary plugins (WorldState::bodies) are unknowns of the same
 //             solve [Batty, Bertails & Bridson 2007]: the operator gains G M^-1 G^T, G the flux
@@ -528,65 +529,137 @@ void fillFluid(WorldState& s, const Layout& g) {
     });
 }
 
-// Conjugate gradients for the potential psi of the active unknowns (with the bodies' terms
-// when `coupled`); bodySum gathers the bodies' flux. Returns cg.psi's data.
+// The modified incomplete Cholesky factor MIC(0) of the grid part of the operator [Bridson 2015,
+// "Fluid Simulation for Computer Graphics", 5.3]: per unknown a, precon_a = 1 / sqrt(e_a) with
+// e_a = A_aa - precon_l^2 - precon_b^2 - kMicTau (precon_l^2 [l's upper neighbour is fluid] +
+// precon_b^2 [b's right neighbour is fluid]), l and b a's left and lower neighbours (off-diagonal
+// entries -1); an e_a below kMicSafety A_aa falls back to A_aa. The unknowns are in node order,
+// row by row, so l and b come before a, and a left neighbour is always a - 1 (a right one a + 1).
+// Kept for the sweeps of applyPreconditioner: micLeft_a = precon_a precon_l (0 without l) and
+// micBelow_a = precon_b (0 without b). Slot `count` (no neighbour) holds 0.
+constexpr float kMicTau = 0.97f;
+constexpr float kMicSafety = 0.25f;
+void buildPreconditioner(CoarseGrid& cg, size_t count) {
+    const auto none = int32_t(count);
+    const int32_t* nb = cg.neighbours.data();
+    cg.precon.assign(count + 1, 0.0f);
+    cg.micLeft.assign(count + 1, 0.0f);
+    float* precon = cg.precon.data();
+    for (size_t a = 0; a < count; ++a) {
+        const int32_t l = nb[4 * a + 0], b = nb[4 * a + 2];
+        const float pl = precon[l], pb = precon[b];
+        const float upOfLeft = l != none && nb[4 * size_t(l) + 3] != none ? 1.0f : 0.0f;
+        const float rightOfBelow = b != none && nb[4 * size_t(b) + 1] != none ? 1.0f : 0.0f;
+        const float diagonal = cg.diagonal[a];
+        float e =
+            diagonal - pl * pl - pb * pb - kMicTau * (upOfLeft * pl * pl + rightOfBelow * pb * pb);
+        if (!(e >= kMicSafety * diagonal)) {
+            e = diagonal;
+        }
+        precon[a] = 1.0f / std::sqrt(e);
+        cg.micLeft[a] = precon[a] * pl;
+    }
+}
+
+// z = M^-1 r with M = L L^T the MIC(0) factor: L t = r forward in unknown order, then L^T z = t
+// backward (L's off-diagonal entries: -1 times the neighbour's precon). Along a row each value
+// waits on the one before it; that chain is one multiply-add, the lower (upper) row's part is
+// read from memory. z keeps slot `count` at 0.
+void applyPreconditioner(const CoarseGrid& cg, size_t count, const float* r, float* z) {
+    const int32_t* nb = cg.neighbours.data();
+    const float* precon = cg.precon.data();
+    const float* left = cg.micLeft.data();
+    const auto none = int32_t(count);
+    z[count] = 0.0f;
+    float previous = 0.0f;
+    for (size_t a = 0; a < count; ++a) {
+        const int32_t b = nb[4 * a + 2];
+        previous = precon[a] * (r[a] + precon[b] * z[b]) + left[a] * previous;
+        z[a] = previous;
+    }
+    // Backward: z_a = precon_a (t_a + precon_a (z_right + z_up)), z_right = z_a+1 when a has a
+    // right neighbour (then micLeft_a+1 = precon_a+1 precon_a is not 0).
+    float next = 0.0f;
+    for (size_t a = count; a-- > 0;) {
+        const int32_t up = nb[4 * a + 3];
+        const float pa = precon[a];
+        const float right = nb[4 * a + 1] != none ? next : 0.0f;
+        next = pa * (z[a] + pa * (right + z[up]));
+        z[a] = next;
+    }
+}
+
+// Conjugate gradients, preconditioned by MIC(0) of the grid part of the operator, for the
+// potential psi of the active unknowns (with the bodies' terms when `coupled`: the
+// preconditioner of the grid part stays symmetric positive definite, and the solve converges
+// for the whole operator); bodySum gathers the bodies' flux. Returns cg.psi's data.
 float* solvePotential(CoarseGrid& cg, const std::vector<double>& mobility,
                       std::vector<double>& bodySum, bool coupled, uint32_t maxIterations) {
     const size_t count = cg.active.size();
     const auto none = int32_t(count);
-    // Conjugate gradients on A psi = rhs: (A psi)_a = diagonal_a psi_a - sum of the fluid
-    // neighbours' psi (air holds 0); the diagonal's small shift keeps a closed container full
-    // of fluid solvable. The dot products sum in double over kDotLanes interleaved partial sums
-    // (unknown a into partial a mod kDotLanes), combined in a fixed order at the end: the same
-    // result on every build and worker count, and independent chains of additions instead of
-    // one that waits on the previous addition's latency (the solve ran at that latency).
-    // Each loop also sums the dot product the next step needs.
+    // (A psi)_a = diagonal_a psi_a - sum of the fluid neighbours' psi (air holds 0); the
+    // diagonal's small shift keeps a closed container full of fluid solvable. The dot products
+    // sum in double over kDotLanes interleaved partial sums (unknown a into partial a mod
+    // kDotLanes), combined in a fixed order at the end: the same result on every build and
+    // worker count, and independent chains of additions instead of one that waits on the
+    // previous addition's latency.
     const size_t padded = (count + kDotLanes - 1) / kDotLanes * kDotLanes;
+    const size_t slots = std::max(padded, count + 1);
     cg.psi.assign(padded, 0.0f);
     cg.r.assign(padded, 0.0f);
     cg.q.assign(padded, 0.0f);
+    cg.z.assign(slots, 0.0f);
     for (size_t a = 0; a < count; ++a) {
         cg.r[a] = cg.rhs[cg.active[a]];
     }
+    buildPreconditioner(cg, count);
     // d keeps slot `count` at 0 for the missing neighbour, and zeros up to the padding.
-    cg.d.assign(std::max(padded, count + 1), 0.0f);
-    std::copy(cg.r.begin(), cg.r.begin() + std::ptrdiff_t(count), cg.d.begin());
+    cg.d.assign(slots, 0.0f);
     cg.diagonal.resize(padded, 0.0f);
     cg.neighbours.resize(4 * padded, none);
-    double rr = laneDot(cg.r.data(), cg.r.data(), padded);
-    const double stop = rr * double(tuning::kCoarseResidual) * double(tuning::kCoarseResidual);
-    const int32_t* nb = cg.neighbours.data();
     float* psi = cg.psi.data();
     float* r = cg.r.data();
     float* d = cg.d.data();
     float* q = cg.q.data();
+    float* z = cg.z.data();
+    const int32_t* nb = cg.neighbours.data();
     const float* diagonal = cg.diagonal.data();
-    for (uint32_t it = 0; it < maxIterations && rr > stop; ++it) {
-        // q = A d, and d.q (padding slots: diagonal 0 and d 0, so q 0).
-        double dqLanes[kDotLanes] = {};
+    // q = A x (x keeps slot `count` and the padding at 0), and x.q.
+    const auto apply = [&](const float* x) {
+        double lanes[kDotLanes] = {};
         for (size_t a0 = 0; a0 < padded; a0 += kDotLanes) {
             for (size_t l = 0; l < kDotLanes; ++l) {
                 const size_t a = a0 + l;
                 const int32_t* n4 = nb + 4 * a;
-                float acc = diagonal[a] * d[a];
-                acc -= d[size_t(n4[0])];
-                acc -= d[size_t(n4[1])];
-                acc -= d[size_t(n4[2])];
-                acc -= d[size_t(n4[3])];
+                float acc = diagonal[a] * x[a];
+                acc -= x[size_t(n4[0])];
+                acc -= x[size_t(n4[1])];
+                acc -= x[size_t(n4[2])];
+                acc -= x[size_t(n4[3])];
                 q[a] = acc;
-                dqLanes[l] += double(d[a]) * double(acc);
+                lanes[l] += double(x[a]) * double(acc);
             }
         }
-        double dq = combineLanes(dqLanes);
         if (coupled) {
-            addBodyFlux(cg, mobility, d, q, bodySum);
-            dq = laneDot(d, q, padded);
+            addBodyFlux(cg, mobility, x, q, bodySum);
+            return laneDot(x, q, padded);
         }
+        return combineLanes(lanes);
+    };
+    // The solve ends at kCoarseResidual of the start's residual.
+    double rr = laneDot(r, r, padded);
+    const double stop = rr * double(tuning::kCoarseResidual) * double(tuning::kCoarseResidual);
+    applyPreconditioner(cg, count, r, z);
+    std::copy(z, z + count, d);
+    double rz = laneDot(r, z, padded);
+    for (uint32_t it = 0; it < maxIterations && rr > stop; ++it) {
+        // q = A d, and d.q (padding slots: diagonal 0 and d 0, so q 0).
+        const double dq = apply(d);
         if (!(dq > 0.0)) {
             break;
         }
         // psi += alpha d, r -= alpha q, and r.r.
-        const auto alpha = float(rr / dq);
+        const auto alpha = float(rz / dq);
         double nextLanes[kDotLanes] = {};
         for (size_t a0 = 0; a0 < padded; a0 += kDotLanes) {
             for (size_t l = 0; l < kDotLanes; ++l) {
@@ -596,11 +669,19 @@ float* solvePotential(CoarseGrid& cg, const std::vector<double>& mobility,
                 nextLanes[l] += double(r[a]) * double(r[a]);
             }
         }
-        const double next = combineLanes(nextLanes);
-        const auto beta = float(next / rr);
-        rr = next;
+        rr = combineLanes(nextLanes);
+        if (!(rr > stop)) {
+            break;
+        }
+        applyPreconditioner(cg, count, r, z);
+        const double next = laneDot(r, z, padded);
+        if (!(rz > 0.0)) {
+            break;
+        }
+        const auto beta = float(next / rz);
+        rz = next;
         for (size_t a = 0; a < padded; ++a) {
-            d[a] = r[a] + beta * d[a];
+            d[a] = z[a] + beta * d[a];
         }
     }
     return psi;

@@ -171,6 +171,8 @@ struct CoarseGrid {
     std::vector<float> fx, fy;            // per particle: its bilinear fractions in the cell
     std::vector<uint8_t> type;            // 0 air, 1 fluid, 2 solid
     std::vector<float> psi, rhs, r, d, q; // potential and conjugate-gradient vectors
+    std::vector<float> z, precon, micLeft; // preconditioned residual; per unknown the MIC(0)
+                                           // factor and its product with its left neighbour's
     std::vector<uint32_t> active;         // the fluid nodes, in order (the unknowns)
     std::vector<int32_t> slot;            // per node: its unknown, -1 for air and solid
     std::vector<float> diagonal;          // per unknown: the operator's diagonal
