@@ -22,11 +22,16 @@
 #           run three times in turn (LiquidFun, then each fluid setting, then again) and the
 #           median kept; particles, LiquidFun ms, then ms and ratio to LiquidFun for game 1
 #           thread, game 2 threads, precise 1 thread, precise 2 threads; about eight minutes.
+#   levels  the shipped levels (levels/*.json) on one thread: fluid-run (beside fluid-bench) plays
+#           each for 300 frames, three times in turn, and the median time is kept; level,
+#           settings (the level's solver preset), bodies, mean particles, ms per frame, ns per
+#           particle per frame (the whole frame, Box2D and coupling included, over the mean
+#           particle count), goal at the end, command; about two minutes.
 # Run it on an otherwise idle machine.
 set -euo pipefail
 bench=${1:-build/release/bench/fluid-bench}
 set=${2:-all}
-[[ "$set" == all || "$set" == crates || "$set" == scaling || "$set" == liquidfun ]] || { echo "bench/table.sh: unknown set '$set' (expected all, crates, scaling or liquidfun)" >&2; exit 2; }
+[[ "$set" == all || "$set" == crates || "$set" == scaling || "$set" == liquidfun || "$set" == levels ]] || { echo "bench/table.sh: unknown set '$set' (expected all, crates, scaling, liquidfun or levels)" >&2; exit 2; }
 [[ -x "$bench" ]] || { echo "bench/table.sh: no fluid-bench at $bench (build the release preset first)" >&2; exit 1; }
 
 tmp=$(mktemp -d)
@@ -133,6 +138,32 @@ if [[ "$set" == scaling ]]; then
     scaling_row --scene dam --particles 256000 --frames 3 --warmup 1 --threads 2
     for isa in avx2 sse2; do
         FLUID_SIMD=$isa scaling_row --scene dam --particles 16000 --frames 30 --warmup 2 --threads 2
+    done
+    exit 0
+fi
+
+if [[ "$set" == levels ]]; then
+    run=$(dirname "$bench")/fluid-run
+    [[ -x "$run" ]] || { echo "bench/table.sh: no fluid-run at $run (build the release preset first)" >&2; exit 1; }
+    levels=$(cd "$(dirname "$0")/.." && pwd)/levels
+    for level in "$levels"/*.json; do
+        # The level's settings as its file states them: a `quality` preset, else WorldDef's
+        # default (the precise preset).
+        settings=$(grep -oE '"quality"[^,}]*' "$level" | grep -oE 'game|precise' || true)
+        if grep -q '"solver": *"explicit"' "$level"; then settings=explicit; fi
+        ms=() ns=()
+        for round in 1 2 3; do
+            "$run" "$level" --frames 300 --threads 1 > "$tmp/out" 2> /dev/null
+            ms+=("$(grep -oE '[0-9.]+ ms per frame' "$tmp/out" | cut -d' ' -f1)")
+            ns+=("$(grep -oE '[0-9]+ ns per particle per frame' "$tmp/out" | cut -d' ' -f1)")
+        done
+        median() { printf '%s\n' "$@" | sort -g | sed -n 2p; }
+        printf '| %s | %s | %s | %s | %s | %s | %s | `fluid-run levels/%s --frames 300 --threads 1` |\n' \
+            "$(grep -oE '^fluid-run: [^:]*' "$tmp/out" | cut -d' ' -f2-)" "${settings:-precise}" \
+            "$(grep -oE '[0-9]+ bodies' "$tmp/out" | cut -d' ' -f1 || echo 0)" \
+            "$(grep -oE 'mean [0-9]+ particles' "$tmp/out" | cut -d' ' -f2)" \
+            "$(median "${ms[@]}")" "$(median "${ns[@]}")" \
+            "$(grep -oE 'goal [a-z]+' "$tmp/out" | cut -d' ' -f2 || echo -)" "$(basename "$level")"
     done
     exit 0
 fi
