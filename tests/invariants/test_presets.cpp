@@ -30,6 +30,9 @@ struct TankResult {
     bench::Compression end;
     /// Surface at the end over the surface at the start, minus 1 (unit: 1).
     double surfaceChange = 0.0;
+    /// The same, averaged over the last second's 60 frames (unit: 1): a sloshing tank's surface
+    /// moves by about half a percent from frame to frame.
+    double surfaceLastSecond = 0.0;
     /// Largest count, over every frame, of particles more than one support above the highest
     /// particle at the start (unit: count).
     uint32_t thrown = 0;
@@ -88,6 +91,9 @@ TankResult restingTank(const PositionBasedDef& settings, Fill fill, uint32_t col
         const auto thrown =
             uint32_t(std::count_if(py.begin(), py.end(), [&](float v) { return v > top0 + h; }));
         r.thrown = std::max(r.thrown, thrown);
+        if (frame + 60 >= frames) {
+            r.surfaceLastSecond += (bench::surfaceLevel(py, s, scratch) / surface0 - 1.0) / 60.0;
+        }
     }
     r.end = meter.measure(world.positionX(), world.positionY());
     r.surfaceChange = bench::surfaceLevel(world.positionY(), s, scratch) / surface0 - 1.0;
@@ -104,17 +110,21 @@ TankResult restingTank(const PositionBasedDef& settings, Fill fill, uint32_t col
 TEST_CASE("each preset holds the 0.5 m resting tank to its stated accuracy",
           "[slow][invariants][presets]") {
     // fluid-bench --scene tank: 30 x 50 water particles (0.30 x 0.50 m), 5 s.
-    SECTION("game: mean <= 5%, max <= 10% (a tenth of LiquidFun's), surface within 2%") {
+    SECTION("game: mean <= 5%, max <= 10% (a tenth of LiquidFun's), surface within 3% over the "
+            "last second") {
         Stopwatch sw("game preset tank");
         const TankResult r =
             restingTank(positionBasedPreset(Quality::Game), Fill::Water, 30, 50, 300);
         std::printf("[measure] game preset tank: compression mean %.4f p99 %.4f max %.4f, surface "
-                    "%+.4f, thrown %u, KE/m %.3g J/kg\n",
-                    r.end.mean, r.end.p99, r.end.max, r.surfaceChange, r.thrown, r.kinetic);
+                    "%+.4f (last second %+.4f), thrown %u, KE/m %.3g J/kg\n",
+                    r.end.mean, r.end.p99, r.end.max, r.surfaceChange, r.surfaceLastSecond,
+                    r.thrown, r.kinetic);
         CHECK(r.nonFiniteFrames == 0);
         CHECK(r.end.mean <= 0.05);
         CHECK(r.end.max <= 0.10);
-        CHECK(std::fabs(r.surfaceChange) <= 0.02);
+        // The game preset's surface target, as decided for bodies in its coarse solve: within
+        // 3%, averaged over the last second (docs/position_based.md, "Presets").
+        CHECK(std::fabs(r.surfaceLastSecond) <= 0.03);
         CHECK(r.thrown == 0);
         // One sweep per sub-step leaves the tank moving a little (7e-4 J/kg, 4 cm/s rms; the
         // precise preset rests at 2e-5); a boiling tank reads 0.1-6 J/kg.
