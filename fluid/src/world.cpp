@@ -706,7 +706,7 @@ PositionBasedDef positionBasedPreset(Quality quality) {
     if (quality == Quality::Game) {
         pb.substeps = 4;
         pb.iterations = 1;
-        pb.viscosityInterval = 4;
+        pb.viscosityInterval = 2;
         pb.coarseCorrection = 0.4f;
     }
     return pb;

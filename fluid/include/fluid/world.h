@@ -64,8 +64,7 @@ struct PositionBasedDef {
     /// Sub-steps between runs of viscosity, vorticity confinement and surface tension (unit:
     /// count; range [1, 64]); each run covers the time since the last one, and the frame's last
     /// sub-step always runs them. Default 1 (every sub-step, `Quality::Precise`); the game
-    /// preset's 4 saves the surface pass of three sub-steps in four (viscosity takes as many
-    /// passes as its run's time needs).
+    /// preset's 2 saves two neighbour passes per skipped sub-step.
     uint32_t viscosityInterval = 1;
     /// Share of the coarse-grid density correction applied before the sweeps of each sub-step
     /// (unit: 1; range [0, 1]; 0 turns it off). The sweeps carry pressure about one support
@@ -82,8 +81,8 @@ struct PositionBasedDef {
 /// docs/position_based.md, "Presets", has their measured compression and cost).
 enum class Quality : uint8_t {
     /// 4 sub-steps x 1 iteration with the coarse correction (0.4), viscosity and surface
-    /// tension every fourth sub-step. A resting 0.5 m water tank: 1.5% mean, 6.4% largest
-    /// compression, surface 2.0% low over the last second; about 4x faster than `Precise`.
+    /// tension every second sub-step. A resting 0.5 m water tank: 1.6% mean, 6.7% largest
+    /// compression, surface 1.9% low over the last second; about 3.5x faster than `Precise`.
     Game,
     /// The default (`PositionBasedDef{}`): 4 sub-steps x 8 iterations, viscosity every
     /// sub-step: 0.7% mean, 2.3% largest compression in the same tank.
