@@ -37,6 +37,9 @@ set=${2:-all}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
+# The median of the numbers on standard input, one a line.
+median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
+
 # A field of the machine-readable last line (matched whole: "ms_per_frame" is not "cpu_ms_per_frame").
 field() { tail -1 "$tmp/out" | grep -oE "(^| )$1=[0-9.]+" | cut -d= -f2; }
 
@@ -99,7 +102,6 @@ scaling_row() {
 if [[ "$set" == liquidfun ]]; then
     lf=${3:-../shared/anchors/liquidfun/lf_dam}
     [[ -x "$lf" ]] || { echo "bench/table.sh: no lf_dam at $lf" >&2; exit 1; }
-    median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
     ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2fx", a / b }'; }
     # particles, lattice columns and rows (lf_dam), warm-up and timed frames
     for spec in "968 22 44 30 120" "4050 45 90 30 120" "15842 89 178 30 120" \
@@ -157,12 +159,11 @@ if [[ "$set" == levels ]]; then
             ms+=("$(grep -oE '[0-9.]+ ms per frame' "$tmp/out" | cut -d' ' -f1)")
             ns+=("$(grep -oE '[0-9]+ ns per particle per frame' "$tmp/out" | cut -d' ' -f1)")
         done
-        median() { printf '%s\n' "$@" | sort -g | sed -n 2p; }
         printf '| %s | %s | %s | %s | %s | %s | %s | `fluid-run levels/%s --frames 300 --threads 1` |\n' \
             "$(grep -oE '^fluid-run: [^:]*' "$tmp/out" | cut -d' ' -f2-)" "${settings:-precise}" \
             "$(grep -oE '[0-9]+ bodies' "$tmp/out" | cut -d' ' -f1 || echo 0)" \
             "$(grep -oE 'mean [0-9]+ particles' "$tmp/out" | cut -d' ' -f2)" \
-            "$(median "${ms[@]}")" "$(median "${ns[@]}")" \
+            "$(printf '%s\n' "${ms[@]}" | median)" "$(printf '%s\n' "${ns[@]}" | median)" \
             "$(grep -oE 'goal [a-z]+' "$tmp/out" | cut -d' ' -f2 || echo -)" "$(basename "$level")"
     done
     exit 0

@@ -535,8 +535,8 @@ void fillFluid(WorldState& s, const Layout& g) {
 // precon_b^2 [b's right neighbour is fluid]), l and b a's left and lower neighbours (off-diagonal
 // entries -1); an e_a below kMicSafety A_aa falls back to A_aa. The unknowns are in node order,
 // row by row, so l and b come before a, and a left neighbour is always a - 1 (a right one a + 1).
-// Kept for the sweeps of applyPreconditioner: micLeft_a = precon_a precon_l (0 without l) and
-// micBelow_a = precon_b (0 without b). Slot `count` (no neighbour) holds 0.
+// Kept for the sweeps of applyPreconditioner: micLeft_a = precon_a precon_l (0 without l).
+// Slot `count` (no neighbour) holds 0 in precon.
 constexpr float kMicTau = 0.97f;
 constexpr float kMicSafety = 0.25f;
 void buildPreconditioner(CoarseGrid& cg, size_t count) {

@@ -42,8 +42,8 @@ TEST_CASE("a frame longer than 1/60 s takes more sub-steps and holds the 60 Hz c
     std::printf("[measure] %s at %.0f Hz: %u sub-steps per frame, largest compression over the "
                 "last 5 s %.4f\n",
                 game ? "game" : "precise", double(rate), world.profile().substeps, double(worst));
-    // The preset's sub-steps per 1/60 s whatever the frame (4 for both); before, a 1 Hz
-    // frame's four 0.25 s sub-steps read 7.6 and 1.4 of compression.
+    // The long-frame rule: the preset's sub-steps per 1/60 s whatever the frame
+    // (docs/position_based.md, "One step").
     CHECK(world.profile().substeps ==
           uint32_t(std::lround(float(def.positionBased.substeps) * 60.0f / rate)));
     CHECK(worst <= (game ? 0.1f : 0.01f));

@@ -81,8 +81,8 @@ struct PositionBasedDef {
 /// docs/position_based.md, "Presets", has their measured compression and cost).
 enum class Quality : uint8_t {
     /// 4 sub-steps x 1 iteration with the coarse correction (0.4), viscosity and surface
-    /// tension every second sub-step. A resting 0.5 m water tank: 1.6% mean, 6.7% largest
-    /// compression, surface 1.9% low over the last second; about 3.5x faster than `Precise`.
+    /// tension every second sub-step: a tenth of LiquidFun's compression, several times faster
+    /// than `Precise` (figures: docs/position_based.md, "Presets").
     Game,
     /// The default (`PositionBasedDef{}`): 4 sub-steps x 8 iterations, viscosity every
     /// sub-step: 0.7% mean, 2.3% largest compression in the same tank.
