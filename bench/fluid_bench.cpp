@@ -432,12 +432,14 @@ int run(const Options& opt) {
     def.equationOfState =
         opt.eos == "linear" ? fluid::EquationOfState::Linear : fluid::EquationOfState::Tait;
     fluid::World world(def);
-    const fluid::Material liquid = opt.material == "yoghurt" ? fluid::yoghurt() : fluid::water();
+    const fluid::Material liquid = opt.material == "yoghurt"        ? fluid::yoghurt()
+                                   : opt.material == "seed_yoghurt" ? fluid::seedYoghurt()
+                                                                    : fluid::water();
     const Scene scene = opt.scene == "blob"   ? buildBlob(world, opt.particles, liquid)
                         : opt.scene == "tank" ? buildTank(world, opt.particles, liquid)
                                               : buildDam(world, opt.particles, liquid);
     std::string what = scene.text;
-    what += opt.material == "yoghurt" ? ", yoghurt" : "";
+    what += opt.material == "water" ? "" : ", " + opt.material;
 
     // One frame of the scene: World::step alone, or (crates) the coupled frame or the uncoupled
     // reference. Declared in this order so the coupling goes before the b2World, and the
@@ -698,7 +700,8 @@ int main(int argc, char** argv) {
                    "Position-based constraint iterations per sub-step (0: the preset's)")
         ->check(CLI::Range(0u, 100u));
     app.add_option("--material", opt.material,
-                   "The scene's liquid: water (the default) or yoghurt (fluid::yoghurt())");
+                   "The scene's liquid: water (the default), yoghurt (fluid::yoghurt()) or "
+                   "seed_yoghurt (fluid::seedYoghurt(), Table 4.1's Newtonian yoghurt)");
     app.add_option("--eos", opt.eos, "Equation of state of the explicit solver: tait or linear");
     app.add_flag("--no-coupling", opt.noCoupling,
                  "Crates scene: step the Box2D crates without coupling them to the fluid");
@@ -744,8 +747,10 @@ int main(int argc, char** argv) {
                      opt.quality.c_str());
         return 2;
     }
-    if (opt.material != "water" && opt.material != "yoghurt") {
-        std::fprintf(stderr, "fluid-bench: unknown material '%s' (expected water or yoghurt)\n",
+    if (opt.material != "water" && opt.material != "yoghurt" && opt.material != "seed_yoghurt") {
+        std::fprintf(stderr,
+                     "fluid-bench: unknown material '%s' (expected water, yoghurt or "
+                     "seed_yoghurt)\n",
                      opt.material.c_str());
         return 2;
     }

@@ -20,7 +20,7 @@ Material water() {
     return m;
 }
 
-Material yoghurt() {
+Material seedYoghurt() {
     Material m;
     m.mass = 0.014f;
     m.restDensity = 1050.0f;
@@ -29,6 +29,12 @@ Material yoghurt() {
     m.smoothingDistance = 0.04f;
     m.kernelParticles = 50.0f;
     m.surfaceTension = 0.1f;
+    m.name = "seed_yoghurt";
+    return m;
+}
+
+Material yoghurt() {
+    Material m = seedYoghurt();
     m.yieldStress = 30.0f;
     m.consistency = 2.0f;
     m.flowIndex = 0.7f;

@@ -246,8 +246,11 @@ private:
                 material = water();
             } else if (preset == "yoghurt") {
                 material = yoghurt();
+            } else if (preset == "seed_yoghurt") {
+                material = seedYoghurt();
             } else {
-                m.failAt("preset", "unknown preset '" + preset + "'; known: water, yoghurt");
+                m.failAt("preset",
+                         "unknown preset '" + preset + "'; known: water, yoghurt, seed_yoghurt");
             }
             material.name = name;
             readFields(m, materialFields(), material);

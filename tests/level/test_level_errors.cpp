@@ -182,7 +182,8 @@ TEST_CASE("level errors: unknown plugin types, presets, solvers and shapes list 
                                        "'force.vortx'; known: force.gravity");
     }
     CHECK(errorOf(R"({"version": 1, "materials": [{"name": "m", "preset": "milk"}]})") ==
-          "t.json:1:54: at /materials/0/preset: unknown preset 'milk'; known: water, yoghurt");
+          "t.json:1:54: at /materials/0/preset: unknown preset 'milk'; known: water, yoghurt, "
+          "seed_yoghurt");
     CHECK(errorOf(level(R"(, "world": {"solver": "pbd"})")) ==
           "t.json:1:70: at /world/solver: unknown solver 'pbd'; known: position_based, explicit");
     CHECK(errorOf(level(R"(, "world": {"quality": "fast"})")) ==

@@ -541,3 +541,36 @@ TEST_CASE("blobs that overlap load with a warning naming the blob, the file, lin
         CHECK(parseLevel(apart, "t.json", builtins()).warnings.empty());
     }
 }
+
+TEST_CASE("the seed_yoghurt preset is Table 4.1's yoghurt, which the explicit solver pours",
+          "[level]") {
+    Level level = parseLevel(
+        R"({"version": 1, "world": {"solver": "explicit", "maxParticles": 2000},
+            "materials": [{"name": "y", "preset": "seed_yoghurt"}],
+            "plugins": [{"type": "boundary.box", "name": "tank",
+                         "params": {"minX": 0, "minY": 0, "maxX": 0.6, "maxY": 0.5}}],
+            "blobs": [{"material": "y", "shape": "box", "min": [0, 0], "max": [0.1, 0.2]}]})",
+        "t.json", builtins());
+    const Material& m = level.world.material(level.materials[0].second);
+    CHECK(m.name == "y");
+    CHECK(m.viscosity == seedYoghurt().viscosity);
+    CHECK_FALSE(hasYield(m));
+    const uint32_t count = level.world.particleCount();
+    REQUIRE(count > 100);
+    const auto top = [&] {
+        const auto y = level.world.positionY();
+        return *std::max_element(y.begin(), y.begin() + level.world.particleCount());
+    };
+    const float before = top();
+    for (int f = 0; f < 180; ++f) {
+        level.step();
+    }
+    std::printf("[measure] seed_yoghurt column top: %.4f m -> %.4f m in 3 s\n", before, top());
+    // Three seconds: the 20 Pa s column slumps, and every particle stays in the tank.
+    CHECK(level.world.particleCount() == count);
+    CHECK(top() < before - 0.015f);
+    const auto x = level.world.positionX(), y = level.world.positionY();
+    for (uint32_t i = 0; i < count; ++i) {
+        CHECK((x[i] >= 0.0f && x[i] <= 0.6f && y[i] >= 0.0f && y[i] <= 0.5f));
+    }
+}

@@ -29,6 +29,33 @@ TEST_CASE("presets hold the seed's Table 4.1 exactly", "[unit][material]") {
     CHECK_NOTHROW(fluid::validate(y));
 }
 
+TEST_CASE("seedYoghurt is Table 4.1's yoghurt alone, and the explicit solver steps it",
+          "[unit][material]") {
+    const fluid::Material s = fluid::seedYoghurt();
+    const fluid::Material y = fluid::yoghurt();
+    CHECK(s.name == "seed_yoghurt");
+    CHECK_FALSE(fluid::hasYield(s));
+    CHECK(fluid::hasYield(y));
+    CHECK(s.yieldStress == 0.0f);
+    CHECK(s.consistency == 0.0f);
+    // Every Table 4.1 number is the yoghurt preset's.
+    CHECK(s.mass == y.mass);
+    CHECK(s.restDensity == y.restDensity);
+    CHECK(s.viscosity == y.viscosity);
+    CHECK(s.stiffness == y.stiffness);
+    CHECK(s.smoothingDistance == y.smoothingDistance);
+    CHECK(s.kernelParticles == y.kernelParticles);
+    CHECK(s.surfaceTension == y.surfaceTension);
+    CHECK_NOTHROW(fluid::validate(s));
+
+    fluid::WorldDef def;
+    def.solver = fluid::Solver::Explicit;
+    fluid::World world(def);
+    CHECK_THROWS_AS(world.addMaterial(y), fluid::Error);
+    const fluid::MaterialId id = world.addMaterial(s);
+    CHECK(world.material(id).name == "seed_yoghurt");
+}
+
 TEST_CASE("kDefaultDepth gives water its 32 kernel particles", "[unit][material]") {
     const fluid::Material w = fluid::water();
     const float area = fluid::particleArea(w, fluid::kDefaultDepth);

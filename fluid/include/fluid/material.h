@@ -79,6 +79,10 @@ struct Material {
 
 /// The seed's water (Table 4.1, values unchanged). Thread rule: any thread.
 Material water();
+/// The seed's yoghurt exactly as Table 4.1 gives it: a Newtonian liquid of viscosity 20 Pa*s,
+/// no yield stress or consistency, named "seed_yoghurt". The yoghurt the explicit solver steps
+/// (it refuses `yoghurt()`), and the one to compare with the report. Thread rule: any thread.
+Material seedYoghurt();
 /// The seed's yoghurt (Table 4.1, values unchanged) with a Herschel-Bulkley flow law: yield
 /// stress 30 Pa, consistency 2 Pa*s^n, flow index 0.7, shear modulus 0 (as stiff as the step
 /// allows). Table 4.1's viscosity of 20 Pa*s stays as the law's high-shear limit. Thread rule:
