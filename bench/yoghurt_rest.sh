@@ -6,12 +6,13 @@
 #
 #   bash bench/yoghurt_rest.sh build/release/bench/fluid-run [CASE...]
 #
-# A case is NAME:YIELD:SETTINGS, SETTINGS a JSON fragment for the level's "world" object; without
-# cases, the set in docs/position_based.md ("Why heaps creep"). One thread, one case after the
-# other; about a minute in all.
+# A case is NAME:YIELD:SETTINGS[|MATERIAL], SETTINGS a JSON fragment for the level's "world"
+# object and MATERIAL one for the yoghurt's (after its yield stress); without cases, the set in
+# docs/position_based.md ("Why heaps creep"). One thread, one case after the other; about a
+# minute in all.
 set -euo pipefail
 
-run="${1:?usage: bench/yoghurt_rest.sh path/to/fluid-run [NAME:YIELD:SETTINGS ...]}"
+run="${1:?usage: bench/yoghurt_rest.sh path/to/fluid-run [NAME:YIELD:SETTINGS[|MATERIAL] ...]}"
 shift
 cases=("$@")
 if [ ${#cases[@]} -eq 0 ]; then
@@ -23,6 +24,8 @@ if [ ${#cases[@]} -eq 0 ]; then
         '8x1-every:300:"quality": "game", "substeps": 8, "viscosityInterval": 1'
         '16x1-every-4th:300:"quality": "game", "substeps": 16, "viscosityInterval": 4'
         '16x1-every:300:"quality": "game", "substeps": 16, "viscosityInterval": 1'
+        '12x1-every-1Pas:300:"quality": "game", "substeps": 12, "viscosityInterval": 1|"viscosity": 1'
+        '16x1-every-1Pas:300:"quality": "game", "substeps": 16, "viscosityInterval": 1|"viscosity": 1'
     )
 fi
 
@@ -37,12 +40,17 @@ for c in "${cases[@]}"; do
     rest=${c#*:}
     tau=${rest%%:*}
     settings=${rest#*:}
+    material=""
+    if [[ $settings == *'|'* ]]; then
+        material=", ${settings#*|}"
+        settings=${settings%%|*}
+    fi
     level="$dir/$name.json"
     cat >"$level" <<EOF
 {
   "version": 1, "name": "yoghurt block",
   "world": { "gravity": [0, -9.81], "frameRate": 60, "maxParticles": 5000, $settings },
-  "materials": [ { "name": "yoghurt", "preset": "yoghurt", "yieldStress": $tau } ],
+  "materials": [ { "name": "yoghurt", "preset": "yoghurt", "yieldStress": $tau$material } ],
   "plugins": [ { "type": "boundary.box", "name": "floor",
       "params": { "minX": -1.5, "minY": 0, "maxX": 1.5, "maxY": 1, "openTop": 1, "friction": 1 } } ],
   "blobs": [ { "material": "yoghurt", "shape": "box", "min": [-0.1, 0], "max": [0.1, 0.2] } ]
