@@ -5,7 +5,9 @@
 
 namespace fluid::detail {
 
-Stages::Stages(Profile& profile, std::span<const char* const> solverStages) : m_profile(profile) {
+Stages::Stages(Profile& profile, std::span<const char* const> solverStages,
+               const StageProbe* probe)
+    : m_profile(profile), m_probe(probe) {
     assert(solverStages.size() + 2 <= kMaxProfileStages);
     m_last = uint32_t(solverStages.size()) + 1;
     m_profile.stages[0].name = "prepare";
@@ -20,7 +22,7 @@ void runFrame(WorldState& s, float frameDt, Solver& solver) {
     const Clock::time_point start = Clock::now();
     Profile& prof = s.profile;
     prof = Profile{};
-    Stages stages(prof, solver.stageNames());
+    Stages stages(prof, solver.stageNames(), &s.stageProbe);
     const uint32_t n = s.particles.size();
     const SceneFacts facts = sceneFacts(s);
     const StepContext context{frameDt, s.time, facts.sampleSpacing, facts.maxSupport};

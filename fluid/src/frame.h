@@ -40,16 +40,24 @@ struct Substep {
 /// last; a solver's own stages in between, in the order its sub-step runs them.
 class Stages {
 public:
-    Stages(Profile& profile, std::span<const char* const> solverStages);
+    /// `probe` (WorldState::stageProbe) is called after each of the solver's stages when set.
+    Stages(Profile& profile, std::span<const char* const> solverStages,
+           const StageProbe* probe = nullptr);
     /// Runs f and adds its wall-clock time to the solver's stage `id` (an index into the
-    /// solver's list).
-    template <class F> void run(uint32_t id, F&& f) { timed(m_profile.stages[1 + id].ms, f); }
+    /// solver's list), then calls the stage probe, if any, with `id`.
+    template <class F> void run(uint32_t id, F&& f) {
+        timed(m_profile.stages[1 + id].ms, f);
+        if (m_probe != nullptr && *m_probe) {
+            (*m_probe)(id);
+        }
+    }
     /// The driver's own stages.
     template <class F> void prepare(F&& f) { timed(m_profile.stages[0].ms, f); }
     template <class F> void finish(F&& f) { timed(m_profile.stages[m_last].ms, f); }
 
 private:
     Profile& m_profile;
+    const StageProbe* m_probe = nullptr;
     uint32_t m_last = 0;
 };
 

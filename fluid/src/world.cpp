@@ -247,6 +247,10 @@ void WorldState::removeAt(uint32_t index) {
     p.expiry.pop_back();
 }
 
+WorldState& stateOf(World& world) {
+    return *world.m_state;
+}
+
 } // namespace detail
 
 World::World(const WorldDef& def) : m_state(std::make_unique<detail::WorldState>()) {

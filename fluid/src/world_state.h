@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -206,6 +207,11 @@ private:
     uint32_t m_value = 0;
 };
 
+/// A test hook: called on the stepping thread after each stage of a sub-step with the stage's
+/// index in the solver's stage list (the profile's names), so that a diagnostic can read the
+/// state between stages. Never set outside tests.
+using StageProbe = std::function<void(uint32_t stage)>;
+
 struct WorldState {
     WorldDef def;
     std::unique_ptr<ThreadPool> pool; // own pool when the host gave no hook
@@ -251,6 +257,7 @@ struct WorldState {
     std::vector<RemovedEvent> removed;         // the last step's removals
 
     Profile profile;
+    StageProbe stageProbe; // tests only: see StageProbe
     double time = 0.0;
     float soundSpeed = 0.0f; // derived Tait sound speed, never decreasing
     float fieldGH = 0.0f;    // g H of the external field, measured in the last step (m^2/s^2)

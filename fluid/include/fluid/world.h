@@ -237,9 +237,13 @@ struct Profile {
 /// set. Thread-safe.
 const char* instructionSet();
 
+class World;
 namespace detail {
 struct WorldState;
-}
+/// The world's internal state, for the project's own diagnostics and tests (fluid/src is not
+/// installed: a game has no use for it). Stepping thread.
+WorldState& stateOf(World& world);
+} // namespace detail
 
 /// A liquid simulation: particles, materials, plugins. No globals: worlds are independent.
 /// Thread rule: a world is used from one thread at a time (the stepping thread); it uses the
@@ -432,6 +436,7 @@ public:
     float spacing(MaterialId id) const;
 
 private:
+    friend detail::WorldState& detail::stateOf(World& world);
     void validateEmitter(const EmitterDef& def, const char* function) const;
     std::unique_ptr<detail::WorldState> m_state;
 };

@@ -1,0 +1,162 @@
+// fluid-float: one Box2D body floating in a tank of resting water, coupled by
+// fluid::box2d::Coupling; prints how deep it floats against Archimedes and how still it holds.
+//
+//   fluid-float [--shape box|circle] [--ratio R] [--size N] [--depth D] [--width W]
+//               [--quality game|precise] [--seconds T] [--threads K] [--drop]
+//               [--substeps S] [--iterations I] [--coarse C]
+//
+// The tank: W m wide (default 0.6), water D m deep (default 0.2), gravity (0, -9.81) m/s^2. The
+// body: a box N water spacings wide and 2N/3 tall, or a circle N spacings across (default 12),
+// R times water's areal density (default 0.5). It starts at its exact Archimedes draft with the
+// water it displaces left out of the tank (so the surface stays at D), or with --drop with its
+// bottom on the surface. After T seconds (default 10) of 60 Hz frames, over the last second:
+// the waterline is read from the particles left and right of the body, one support radius from
+// it and from the walls, and the body's area below it exactly from its shape and pose. The
+// last line is machine-readable:
+//   shape=S ratio=R size=N depth=D quality=Q submerged=F error=E high_mm=H speed=V spin=W
+//   particles=P ms_per_frame=M
+// error: submerged fraction over R, minus 1 (negative: floats too high); high_mm: how far above
+// its Archimedes draft the body's centre rides (mm; its bottom when upright); speed and spin: the
+// largest over the last second (m/s, rad/s).
+#include <fluid/box2d/coupling.h>
+#include <fluid/fluid.h>
+
+#include <box2d/box2d.h>
+
+#include <CLI/CLI.hpp>
+
+#include "box2d_support.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace fluid;
+using namespace fluid::test;
+
+struct Options {
+    std::string shape = "box";
+    float ratio = 0.5f;
+    float size = 12.0f;
+    float depth = 0.2f;
+    float width = 0.6f;
+    std::string quality = "game";
+    float seconds = 10.0f;
+    uint32_t threads = 1;
+    bool drop = false;
+    uint32_t substeps = 0, iterations = 0;
+    float coarse = -1.0f;
+};
+
+// Height of the box's or circle's draft below its top... the draft d of a body of `ratio`:
+// box: ratio times its height; circle: the chord depth whose segment area is ratio pi r^2.
+double archimedesDraft(bool circle, double ratio, double hh, double r) {
+    if (!circle) {
+        return ratio * 2.0 * hh;
+    }
+    double lo = 0.0, hi = 2.0 * r;
+    for (int k = 0; k < 100; ++k) {
+        const double d = 0.5 * (lo + hi);
+        const double below = circleAreaBelow(0.0, r, d - r); // circle at 0, level d - r
+        (below < ratio * std::numbers::pi * r * r ? lo : hi) = d;
+    }
+    return 0.5 * (lo + hi);
+}
+
+int run(const Options& opt) {
+    WorldDef def;
+    def.workerCount = opt.threads;
+    def.positionBased = positionBasedPreset(opt.quality == "precise" ? Quality::Precise : Quality::Game);
+    if (opt.substeps > 0) {
+        def.positionBased.substeps = opt.substeps;
+    }
+    if (opt.iterations > 0) {
+        def.positionBased.iterations = opt.iterations;
+    }
+    if (opt.coarse >= 0.0f) {
+        def.positionBased.coarseCorrection = opt.coarse;
+    }
+    World world(def);
+    const MaterialId water = world.addMaterial(fluid::water());
+    const float s = world.spacing(water);
+    const float h = world.material(water).smoothingDistance;
+    const auto cols = uint32_t(std::floor(opt.width / s));
+    const auto rows = uint32_t(std::lround(opt.depth / s));
+    const float width = float(cols) * s, surface = float(rows) * s, top = surface + 0.5f;
+    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
+    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, width, top));
+    b2World physics(b2Vec2(0.0f, -kG));
+    addTankWalls(physics, 0.0f, 0.0f, width, top);
+
+    const bool circle = opt.shape == "circle";
+    const float hw = 0.5f * opt.size * s, hh = circle ? hw : hw * 2.0f / 3.0f;
+    const double draft = archimedesDraft(circle, opt.ratio, hh, hw);
+    const float rho = box2d::arealDensity(world, water);
+    const float bottom = opt.drop ? surface : surface - float(draft);
+    const glm::vec2 centre{0.5f * width, bottom + hh};
+    b2Body* body = circle ? addCircle(physics, b2_dynamicBody, centre, hw, opt.ratio * rho)
+                          : addBox(physics, b2_dynamicBody, centre, hw, hh, opt.ratio * rho);
+    body->GetFixtureList()->SetFriction(0.0f);
+    box2d::CouplingDef cdef;
+    cdef.categoryMask = kFluidMask;
+    box2d::Coupling coupling(world, physics, cdef);
+    // After the coupling: the blob leaves out the lattice points inside the body.
+    world.spawnBlob(latticeBlock(world, water, 0.0f, 0.0f, cols, rows));
+
+    const int frames = int(std::lround(opt.seconds * 60.0f)), window = 60;
+    double submerged = 0.0, level = 0.0, lowest = 0.0, speed = 0.0, spin = 0.0;
+    double seconds = 0.0;
+    for (int f = 0; f < frames; ++f) {
+        const auto t0 = std::chrono::steady_clock::now();
+        coupling.step(world, kFrame);
+        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (f < frames - window) {
+            continue;
+        }
+        const Box box = bodyBounds(*body);
+        const std::vector<std::pair<double, double>> none;
+        const Waterline left = waterline(world, s, h, box.x0 - h, none, 0.0);
+        const Waterline right = waterline(world, s, box.x1 + h, width - h, none, 0.0);
+        const double y = 0.5 * (left.height + right.height);
+        const auto [below, total] = bodyAreaBelow(*body, y);
+        submerged += below / total / window;
+        level += y / window;
+        lowest += (double(body->GetPosition().y) - hh) / window; // the bottom, upright
+        speed = std::max(speed, length(toD(body->GetLinearVelocity())));
+        spin = std::max(spin, double(std::fabs(body->GetAngularVelocity())));
+    }
+    const double error = submerged / double(opt.ratio) - 1.0;
+    const double high = lowest - (level - draft);
+    std::printf("shape=%s ratio=%.2f size=%.0f depth=%.2f quality=%s submerged=%.4f error=%+.4f "
+                "high_mm=%+.2f speed=%.4f spin=%.4f particles=%u ms_per_frame=%.3f\n",
+                opt.shape.c_str(), double(opt.ratio), double(opt.size), double(opt.depth),
+                opt.quality.c_str(), submerged, error, 1000.0 * high, speed, spin,
+                world.particleCount(), 1000.0 * seconds / frames);
+    return allFinite(world) ? 0 : 1;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    Options opt;
+    CLI::App app{"fluid-float: one Box2D body floating in a tank of resting water"};
+    app.add_option("--shape", opt.shape, "box or circle")->check(CLI::IsMember({"box", "circle"}));
+    app.add_option("--ratio", opt.ratio, "body density over water's (1)")->check(CLI::Range(0.05, 4.0));
+    app.add_option("--size", opt.size, "body width in water spacings (count)")->check(CLI::Range(2.0, 200.0));
+    app.add_option("--depth", opt.depth, "water depth (m)")->check(CLI::Range(0.05, 3.0));
+    app.add_option("--width", opt.width, "tank width (m)")->check(CLI::Range(0.1, 10.0));
+    app.add_option("--quality", opt.quality, "game or precise")->check(CLI::IsMember({"game", "precise"}));
+    app.add_option("--seconds", opt.seconds, "simulated time (s)")->check(CLI::Range(1.5, 600.0));
+    app.add_option("--threads", opt.threads, "worker threads")->check(CLI::Range(1, 64));
+    app.add_flag("--drop", opt.drop, "start with the body's bottom on the surface");
+    app.add_option("--substeps", opt.substeps, "override the preset's sub-steps")->check(CLI::Range(1, 64));
+    app.add_option("--iterations", opt.iterations, "override the preset's sweeps")->check(CLI::Range(1, 64));
+    app.add_option("--coarse", opt.coarse, "override the coarse correction's share (0 = off)")->check(CLI::Range(0.0, 1.0));
+    CLI11_PARSE(app, argc, argv);
+    return run(opt);
+}
