@@ -51,6 +51,8 @@ struct Options {
     bool drop = false;
     uint32_t substeps = 0, iterations = 0;
     float coarse = -1.0f;
+    float hold = NAN; // mm above the draft to hold the body at; NaN: free
+    bool trace = false;
 };
 
 // Height of the box's or circle's draft below its top... the draft d of a body of `ratio`:
@@ -97,7 +99,10 @@ int run(const Options& opt) {
     const float hw = 0.5f * opt.size * s, hh = circle ? hw : hw * 2.0f / 3.0f;
     const double draft = archimedesDraft(circle, opt.ratio, hh, hw);
     const float rho = box2d::arealDensity(world, water);
-    const float bottom = opt.drop ? surface : surface - float(draft);
+    const bool held = std::isfinite(opt.hold);
+    const float bottom = opt.drop ? surface
+                         : held   ? surface - float(draft) + 0.001f * opt.hold
+                                  : surface - float(draft);
     const glm::vec2 centre{0.5f * width, bottom + hh};
     b2Body* body = circle ? addCircle(physics, b2_dynamicBody, centre, hw, opt.ratio * rho)
                           : addBox(physics, b2_dynamicBody, centre, hw, hh, opt.ratio * rho);
@@ -110,11 +115,24 @@ int run(const Options& opt) {
 
     const int frames = int(std::lround(opt.seconds * 60.0f)), window = 60;
     double submerged = 0.0, level = 0.0, lowest = 0.0, speed = 0.0, spin = 0.0;
-    double seconds = 0.0;
+    double seconds = 0.0, support = 0.0;
+    const b2Vec2 pose = body->GetPosition();
+    if (held) {
+        body->SetGravityScale(0.0f); // still during the fluid's step: the fluid's static force
+    }
     for (int f = 0; f < frames; ++f) {
         const auto t0 = std::chrono::steady_clock::now();
         coupling.step(world, kFrame);
         seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (held) {
+            if (f >= frames - window) {
+                support += double(coupling.report(body)->force.y) /
+                           (double(body->GetMass()) * kG) / window;
+            }
+            body->SetTransform(pose, 0.0f);
+            body->SetLinearVelocity(b2Vec2(0.0f, 0.0f));
+            body->SetAngularVelocity(0.0f);
+        }
         if (f < frames - window) {
             continue;
         }
@@ -128,7 +146,18 @@ int run(const Options& opt) {
         level += y / window;
         lowest += (double(body->GetPosition().y) - hh) / window; // the bottom, upright
         speed = std::max(speed, length(toD(body->GetLinearVelocity())));
+        if (opt.trace) {
+            std::printf("frame %d: x %.4f y %.4f angle %+.4f vx %+.4f vy %+.4f omega %+.4f\n", f + 1,
+                        double(body->GetPosition().x), double(body->GetPosition().y),
+                        double(body->GetAngle()), double(body->GetLinearVelocity().x),
+                        double(body->GetLinearVelocity().y), double(body->GetAngularVelocity()));
+        }
         spin = std::max(spin, double(std::fabs(body->GetAngularVelocity())));
+    }
+    if (held) {
+        std::printf("held %+.1f mm: the fluid's force %.4f of the weight; waterline %.4f m, "
+                    "submerged %.4f (Archimedes' force: %.4f of the weight)\n",
+                    double(opt.hold), support, level, submerged, submerged / double(opt.ratio));
     }
     const double error = submerged / double(opt.ratio) - 1.0;
     const double high = lowest - (level - draft);
@@ -154,6 +183,10 @@ int main(int argc, char** argv) {
     app.add_option("--seconds", opt.seconds, "simulated time (s)")->check(CLI::Range(1.5, 600.0));
     app.add_option("--threads", opt.threads, "worker threads")->check(CLI::Range(1, 64));
     app.add_flag("--drop", opt.drop, "start with the body's bottom on the surface");
+    app.add_flag("--trace", opt.trace, "print the body's pose and velocity every measured frame");
+    app.add_option("--hold", opt.hold,
+                   "hold the body this far above its draft (mm) and print the fluid's force")
+        ->check(CLI::Range(-500.0, 500.0));
     app.add_option("--substeps", opt.substeps, "override the preset's sub-steps")->check(CLI::Range(1, 64));
     app.add_option("--iterations", opt.iterations, "override the preset's sweeps")->check(CLI::Range(1, 64));
     app.add_option("--coarse", opt.coarse, "override the coarse correction's share (0 = off)")->check(CLI::Range(0.0, 1.0));

@@ -6,15 +6,19 @@
 // [Kugelstadt et al. 2019 project densities on a grid in the same way]:
 //   fill      each node's fill F = sum V_i N(x_i) / H^2 of particles (rest areas V, bilinear
 //             weights N) plus the same of boundary samples; 1 is the rest lattice
-//   types     air (F < 1/2: the potential is 0 there, a free surface), solid (samples fill more
+//   types     air (F < 1/2: the potential is 0 beyond it, a free surface placed where F
+//             crosses 1/2 between a fluid node and its air neighbour), solid (samples fill more
 //             than particles: no flux through it), fluid (the unknowns)
 //   solve     -lap psi = max(F - 1 - tolerance, 0) H^2 on the fluid nodes, conjugate gradients
 //             preconditioned by MIC(0)
 //   move      each particle by -share grad psi (bilinear), at most kCoarseMaxMove of its support
 //   bodies    rigid bodies of boundary plugins (WorldState::bodies) are unknowns of the same
 //             solve [Batty, Bertails & Bridson 2007]: the operator gains G M^-1 G^T, G the flux
-//             a body's displacement (x, y) drives through the faces of its nodes, and each body
-//             moves by share M^-1 G^T psi (docs/position_based.md, "Bodies in the coarse solve")
+//             a body's displacement (x, y) drives into the nodes (its fill's derivative: the
+//             integral of the bilinear gradients over its inside, with the potential extended
+//             into it linearly, so G^T psi is the -integral of grad psi that would move the water
+//             in its place), and each body moves by share M^-1 G^T psi
+//             (docs/position_based.md, "Bodies in the coarse solve")
 // The displacement divergence -div u = lap psi removes the compression to first order. The grid
 // work runs serially in a fixed order and the particles' moves are independent of each other,
 // so results do not depend on the number of workers.
@@ -201,7 +205,8 @@ bool sampleFill(CoarseGrid& cg, const Samples& w, const Layout& g, float amount,
 // cg.inside (rows (i1 - i0) kSubcells long); returns how many points lie inside. None for a box
 // too large for the lattice (the body keeps its samples' fill).
 template <class Contains>
-uint32_t readOutline(CoarseGrid& cg, const Layout& g, const NodeBox& box, Contains&& contains) {
+uint32_t readOutline(CoarseGrid& cg, const Layout& g, const NodeBox& box, float shiftX,
+                     float shiftY, Contains&& contains) {
     const double points = double(box.i1 - box.i0) * double(box.j1 - box.j0) * kSubcells * kSubcells;
     const bool tooLarge = points > double(kMaxLattice);
     const int fnx = tooLarge ? 0 : (box.i1 - box.i0) * kSubcells;
@@ -212,8 +217,8 @@ uint32_t readOutline(CoarseGrid& cg, const Layout& g, const NodeBox& box, Contai
     uint32_t inside = 0;
     for (int q = 0; q < fny; ++q) {
         for (int r = 0; r < fnx; ++r) {
-            if (contains(x0 + (float(r) + 0.5f) * cell / float(kSubcells),
-                         y0 + (float(q) + 0.5f) * cell / float(kSubcells))) {
+            if (contains(x0 + shiftX + (float(r) + 0.5f) * cell / float(kSubcells),
+                         y0 + shiftY + (float(q) + 0.5f) * cell / float(kSubcells))) {
                 cg.inside[size_t(q) * size_t(fnx) + size_t(r)] = 1;
                 ++inside;
             }
@@ -222,21 +227,64 @@ uint32_t readOutline(CoarseGrid& cg, const Layout& g, const NodeBox& box, Contai
     return inside;
 }
 
-// The body's share of node (i, j)'s fill (box-relative indices), from its outline: the bilinear
-// weights over the lattice points of cg.inside within the node's reach.
-float outlineFill(const CoarseGrid& cg, const NodeBox& box, int i, int j) {
+// Body `body`'s fill and gradient weights from its outline's lattice (cg.inside over `box`,
+// shifted by (shiftX, shiftY) < one lattice step): each inside point of area (H / kSubcells)^2
+// is splatted bilinearly like a particle of water (its fill, box-relative, into
+// cg.ownFill) and gives each corner of its cell that area times the corner's bilinear gradient
+// there (CoarseGrid::NodeWeight, appended to cg.bodyGradient in node order). The lattice moves
+// with the body, so both change smoothly with its position: the gradient weights are the fill's
+// derivative with respect to the body's translation.
+void outlineSplat(CoarseGrid& cg, const Layout& g, const NodeBox& box, float shiftX, float shiftY,
+                  uint32_t body) {
     const int fnx = (box.i1 - box.i0) * kSubcells, fny = (box.j1 - box.j0) * kSubcells;
-    float fill = 0.0f;
-    for (int q = std::max((j - 1) * kSubcells, 0); q < std::min((j + 1) * kSubcells, fny); ++q) {
-        const float wy = 1.0f - std::fabs((float(q) + 0.5f) / float(kSubcells) - float(j));
-        for (int r = std::max((i - 1) * kSubcells, 0); r < std::min((i + 1) * kSubcells, fnx);
-             ++r) {
-            if (cg.inside[size_t(q) * size_t(fnx) + size_t(r)] != 0) {
-                fill += (1.0f - std::fabs((float(r) + 0.5f) / float(kSubcells) - float(i))) * wy;
+    const size_t stride = box.stride();
+    const size_t rows = size_t(box.j1 - box.j0 + 1);
+    cg.boxGradient.assign(2 * stride * rows, 0.0f);
+    cg.ownFill.assign(stride * rows, 0.0f);
+    float* w = cg.boxGradient.data();
+    const float step = 1.0f / float(kSubcells); // lattice step in cells
+    const float sx = shiftX * g.invH, sy = shiftY * g.invH;
+    // Area over H (the bilinear gradient is 1/H times the fractions below), and area over H^2.
+    const float a = 1.0f / (g.invH * float(kSubcells * kSubcells));
+    const float fillArea = 1.0f / float(kSubcells * kSubcells);
+    for (int q = 0; q < fny; ++q) {
+        const float gy = sy + (float(q) + 0.5f) * step;
+        const int cj = int(std::floor(gy));
+        if (cj < 0 || cj >= box.j1 - box.j0) {
+            continue;
+        }
+        const float fy = gy - float(cj);
+        for (int r = 0; r < fnx; ++r) {
+            if (cg.inside[size_t(q) * size_t(fnx) + size_t(r)] == 0) {
+                continue;
+            }
+            const float gx = sx + (float(r) + 0.5f) * step;
+            const int ci = int(std::floor(gx));
+            if (ci < 0 || ci >= box.i1 - box.i0) {
+                continue;
+            }
+            const float fx = gx - float(ci);
+            const size_t k = size_t(cj) * stride + size_t(ci);
+            splatAt(cg.ownFill, stride, k, fx, fy, fillArea);
+            w[2 * k] -= a * (1.0f - fy);
+            w[2 * k + 1] -= a * (1.0f - fx);
+            w[2 * (k + 1)] += a * (1.0f - fy);
+            w[2 * (k + 1) + 1] -= a * fx;
+            w[2 * (k + stride)] -= a * fy;
+            w[2 * (k + stride) + 1] += a * (1.0f - fx);
+            w[2 * (k + stride + 1)] += a * fy;
+            w[2 * (k + stride + 1) + 1] += a * fx;
+        }
+    }
+    for (size_t j = 0; j < rows; ++j) {
+        for (size_t i = 0; i < stride; ++i) {
+            const size_t k = j * stride + i;
+            if (w[2 * k] != 0.0f || w[2 * k + 1] != 0.0f) {
+                const size_t node = (size_t(box.j0) + j) * size_t(g.nx) + size_t(box.i0) + i;
+                cg.bodyGradient.push_back({uint32_t(node), body, w[2 * k], w[2 * k + 1]});
             }
         }
     }
-    return fill / float(kSubcells * kSubcells);
 }
 
 // Which body fills each node (cg.owner): b for a node inside body b (its inside test at the
@@ -251,6 +299,8 @@ void markOwners(WorldState& s, const Layout& g, float amount, float time) {
     const size_t nodes = size_t(g.nx) * size_t(g.ny);
     cg.owner.assign(nodes, -1);
     cg.bodyFill.assign(nodes, 0.0f);
+    cg.bodyGradient.clear();
+    cg.outlined.assign(s.bodies.size(), 0);
     std::vector<uint32_t> start, order;
     sortBodySamples(s, g, start, order);
     const float cell = 1.0f / g.invH;
@@ -268,20 +318,35 @@ void markOwners(WorldState& s, const Layout& g, float amount, float time) {
         const auto contains = [&](float x, float y) {
             return plugin.bodyContains(body.index, glm::vec2(x - offX, y - offY), time);
         };
-        const uint32_t inside = readOutline(cg, g, box, contains);
+        // The lattice is anchored to the body (its first sample, where it stands now), so the
+        // same points stay inside it as it moves and its fill follows it smoothly.
+        const BoundarySamples& own = plugin.samples();
+        const size_t first = body.sampleBegin - s.samples.pluginBegin[body.plugin];
+        const float step = cell / float(kSubcells);
+        const float anchorX = own.px[first] + own.vx[first] * time + offX;
+        const float anchorY = own.py[first] + own.vy[first] * time + offY;
+        const float boxX = g.x0 + float(box.i0) * cell, boxY = g.y0 + float(box.j0) * cell;
+        const float shiftX = (anchorX - boxX) - step * std::floor((anchorX - boxX) / step);
+        const float shiftY = (anchorY - boxY) - step * std::floor((anchorY - boxY) / step);
+        const uint32_t inside = readOutline(cg, g, box, shiftX, shiftY, contains);
+        cg.samplesFill.swap(cg.ownFill); // the samples' fill, kept while the outline's is made
+        if (inside > 0) {
+            cg.outlined[b] = 1;
+            outlineSplat(cg, g, box, shiftX, shiftY, uint32_t(b));
+        }
         for (int j = box.j0; j <= box.j1; ++j) {
             for (int i = box.i0; i <= box.i1; ++i) {
                 const size_t k = size_t(j) * size_t(g.nx) + size_t(i);
-                const float own =
-                    cg.ownFill[size_t(j - box.j0) * box.stride() + size_t(i - box.i0)];
+                const size_t local = size_t(j - box.j0) * box.stride() + size_t(i - box.i0);
+                const float sampled = cg.samplesFill[local];
                 if (inside == 0) {
-                    if (own > 0.0f && own >= 0.5f * cg.solid[k]) {
+                    if (sampled > 0.0f && sampled >= 0.5f * cg.solid[k]) {
                         cg.owner[k] = int32_t(b); // no inside test: the nodes its samples fill
                     }
                     continue;
                 }
-                const float geometric = outlineFill(cg, box, i - box.i0, j - box.j0);
-                cg.solid[k] = std::max(cg.solid[k] - own, 0.0f) + geometric;
+                const float geometric = cg.ownFill[local];
+                cg.solid[k] = std::max(cg.solid[k] - sampled, 0.0f) + geometric;
                 cg.bodyFill[k] += geometric;
                 if (contains(g.x0 + float(i) * cell, g.y0 + float(j) * cell)) {
                     cg.owner[k] = int32_t(b);
@@ -333,6 +398,18 @@ bool classifyNodes(CoarseGrid& cg, size_t nodes, float tolerance, float h2, bool
     return any;
 }
 
+// The operator's coefficient of a face between a fluid node of fill `inside` and an air node
+// of fill `outside` (fills of particles and samples, 1 full): the potential's zero, the free
+// surface, lies where the fill crosses 1/2 between them, at theta of the cell from the fluid
+// node, and the face's flux takes the potential's slope over that distance (1/theta; the
+// ghost-fluid free surface of Gibou et al. 2002 and Enright et al. 2003). With the zero on the
+// air node itself (theta 1, as before), a floating body read the pressure of water up to a
+// cell deeper than the real surface and rode 1-3 cm high.
+float surfaceCoefficient(float inside, float outside) {
+    const float theta = (inside - 0.5f) / std::max(inside - outside, 1e-6f);
+    return 1.0f / std::clamp(theta, tuning::kCoarseSurfaceMin, 1.0f);
+}
+
 // The unknowns in compact order (cg.active: their nodes), each with its diagonal and its fluid
 // neighbours' compact indices; a missing neighbour points at slot `count` (the unknowns' count),
 // which the vectors the operator reads keep at 0 (the same sums as skipping it, without a
@@ -365,18 +442,150 @@ void buildOperator(CoarseGrid& cg, const Layout& g, float cellSize, bool bodies)
         for (int e = 0; e < 4; ++e) {
             const int ii = i + di[e], jj = j + dj[e];
             if (ii < 0 || jj < 0 || ii >= nx || jj >= ny) {
-                cg.diagonal[a] += 1.0f; // outside the grid: air
+                // Outside the grid: air, the surface where the fill crosses 1/2 on the way.
+                cg.diagonal[a] += surfaceCoefficient(cg.fluid[k] + cg.solid[k], 0.0f);
                 continue;
             }
             const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
             if (cg.type[m] != kSolid) { // no flux through solids
-                cg.diagonal[a] += 1.0f;
+                cg.diagonal[a] += cg.type[m] == kAir
+                                      ? surfaceCoefficient(cg.fluid[k] + cg.solid[k],
+                                                           cg.fluid[m] + cg.solid[m])
+                                      : 1.0f;
                 if (cg.slot[m] >= 0) {
                     cg.neighbours[4 * a + size_t(e)] = cg.slot[m];
                 }
-            } else if (bodies && cg.owner[m] >= 0) {
+            } else if (bodies && cg.owner[m] >= 0 && cg.outlined[size_t(cg.owner[m])] == 0) {
                 cg.bodyFaces.push_back({uint32_t(a), uint32_t(cg.owner[m]), cellSize * float(di[e]),
                                         cellSize * float(dj[e])});
+            }
+        }
+    }
+}
+
+// The node values inside the bodies with an outline as combinations of the unknowns
+// (CoarseGrid::extStart, extTerms): a node with fluid neighbours takes the mean of the values
+// extrapolated linearly to it from each (2 psi_a - psi_b, b the next node beyond a; psi_a alone
+// when b is solid), so the potential's hydrostatic slope runs on into the body, as it would run
+// on into the water the body displaces; a node beside air and no fluid holds 0 (a dry top); one
+// deeper inside takes the mean of its neighbours' extrapolations, or 0.
+void extendIntoBodies(CoarseGrid& cg, const Layout& g) {
+    const int nx = g.nx, ny = g.ny;
+    const size_t nodes = size_t(nx) * size_t(ny);
+    cg.extStart.assign(2 * nodes, 0);
+    cg.extTerms.clear();
+    const int di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
+    const auto inBody = [&](size_t k) {
+        return cg.type[k] == kSolid && cg.owner[k] >= 0 && cg.outlined[size_t(cg.owner[k])] != 0;
+    };
+    const auto node = [&](int i, int j) -> int64_t {
+        return i < 0 || j < 0 || i >= nx || j >= ny ? -1 : int64_t(j) * nx + i;
+    };
+    std::vector<uint32_t> deeper;
+    for (int j = 0; j < ny; ++j) {
+        for (int i = 0; i < nx; ++i) {
+            const auto k = size_t(j) * size_t(nx) + size_t(i);
+            if (!inBody(k)) {
+                continue;
+            }
+            const auto begin = uint32_t(cg.extTerms.size());
+            int fluid = 0;
+            bool air = false;
+            for (int e = 0; e < 4; ++e) {
+                const int64_t a = node(i + di[e], j + dj[e]);
+                fluid += a >= 0 && cg.type[size_t(a)] == kFluid ? 1 : 0;
+                air = air || a < 0 || cg.type[size_t(a)] == kAir;
+            }
+            if (fluid > 0) {
+                const float share = 1.0f / float(fluid);
+                for (int e = 0; e < 4; ++e) {
+                    const int64_t a = node(i + di[e], j + dj[e]);
+                    if (a < 0 || cg.type[size_t(a)] != kFluid) {
+                        continue;
+                    }
+                    const int64_t b = node(i + 2 * di[e], j + 2 * dj[e]);
+                    const auto ua = uint32_t(cg.slot[size_t(a)]);
+                    if (b >= 0 && cg.type[size_t(b)] == kFluid) {
+                        cg.extTerms.push_back({ua, 2.0f * share});
+                        cg.extTerms.push_back({uint32_t(cg.slot[size_t(b)]), -share});
+                    } else if (b < 0 || cg.type[size_t(b)] == kAir) {
+                        cg.extTerms.push_back({ua, 2.0f * share});
+                    } else {
+                        cg.extTerms.push_back({ua, share});
+                    }
+                }
+            } else if (!air) {
+                deeper.push_back(uint32_t(k));
+            }
+            cg.extStart[2 * k] = begin;
+            cg.extStart[2 * k + 1] = uint32_t(cg.extTerms.size());
+        }
+    }
+    // Deeper nodes: the mean of their neighbours' extrapolations (read before any is added).
+    for (const uint32_t k : deeper) {
+        const int i = int(k % uint32_t(nx)), j = int(k / uint32_t(nx));
+        int count = 0;
+        for (int e = 0; e < 4; ++e) {
+            const int64_t a = node(i + di[e], j + dj[e]);
+            count += a >= 0 && cg.extStart[2 * size_t(a) + 1] > cg.extStart[2 * size_t(a)] &&
+                             inBody(size_t(a))
+                         ? 1
+                         : 0;
+        }
+        const auto begin = uint32_t(cg.extTerms.size());
+        for (int e = 0; e < 4 && count > 0; ++e) {
+            const int64_t a = node(i + di[e], j + dj[e]);
+            if (a < 0 || !inBody(size_t(a))) {
+                continue;
+            }
+            const uint32_t b0 = cg.extStart[2 * size_t(a)], b1 = cg.extStart[2 * size_t(a) + 1];
+            if (b1 <= b0 || b1 > begin) { // none, or a deeper node's own
+                continue;
+            }
+            for (uint32_t t = b0; t < b1; ++t) {
+                const CoarseGrid::ExtTerm term = cg.extTerms[t];
+                cg.extTerms.push_back({term.unknown, term.weight / float(count)});
+            }
+        }
+        cg.extStart[2 * size_t(k)] = begin;
+        cg.extStart[2 * size_t(k) + 1] = uint32_t(cg.extTerms.size());
+    }
+}
+
+// The bodies' Jacobian rows from their gradient weights: node k's weight (wx, wy) times each
+// unknown's share of k's value (fluid: itself; inside a body: its extension; a wall's node: the
+// mean of its fluid neighbours, as nodeValues reads it; air: none), negated (-integral of grad
+// psi), appended to cg.bodyFaces in the weights' order.
+void gradientRows(CoarseGrid& cg, const Layout& g) {
+    const int nx = g.nx, ny = g.ny;
+    const int di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
+    for (const CoarseGrid::NodeWeight& w : cg.bodyGradient) {
+        const size_t k = w.node;
+        const auto add = [&](uint32_t unknown, float share) {
+            cg.bodyFaces.push_back({unknown, w.body, -w.wx * share, -w.wy * share});
+        };
+        if (cg.type[k] == kFluid) {
+            add(uint32_t(cg.slot[k]), 1.0f);
+        } else if (cg.type[k] == kSolid && cg.owner[k] >= 0 &&
+                   cg.outlined[size_t(cg.owner[k])] != 0) {
+            for (uint32_t t = cg.extStart[2 * k]; t < cg.extStart[2 * k + 1]; ++t) {
+                add(cg.extTerms[t].unknown, cg.extTerms[t].weight);
+            }
+        } else if (cg.type[k] == kSolid) {
+            const int i = int(k % size_t(nx)), j = int(k / size_t(nx));
+            uint32_t found[4];
+            int count = 0;
+            for (int e = 0; e < 4; ++e) {
+                const int ii = i + di[e], jj = j + dj[e];
+                if (ii >= 0 && jj >= 0 && ii < nx && jj < ny) {
+                    const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
+                    if (cg.type[m] == kFluid) {
+                        found[count++] = uint32_t(cg.slot[m]);
+                    }
+                }
+            }
+            for (int c = 0; c < count; ++c) {
+                add(found[c], 1.0f / float(count));
             }
         }
     }
@@ -688,7 +897,7 @@ float* solvePotential(CoarseGrid& cg, const std::vector<double>& mobility,
 }
 
 // The node values the move reads, into cg.rhs (free after the solve).
-const std::vector<float>& nodeValues(CoarseGrid& cg, int nx, int ny) {
+const std::vector<float>& nodeValues(CoarseGrid& cg, int nx, int ny, bool bodies) {
     // Node values for the gradient: fluid nodes their potential, solid nodes the mean of their
     // fluid neighbours' (no flux through solids), air 0.
     std::vector<float>& value = cg.rhs; // free now
@@ -697,6 +906,15 @@ const std::vector<float>& nodeValues(CoarseGrid& cg, int nx, int ny) {
             const size_t k = size_t(j) * size_t(nx) + size_t(i);
             if (cg.type[k] == kFluid) {
                 value[k] = cg.psi[size_t(cg.slot[k])];
+                continue;
+            }
+            if (bodies && cg.type[k] == kSolid && cg.owner[k] >= 0 &&
+                cg.outlined[size_t(cg.owner[k])] != 0) {
+                float v = 0.0f;
+                for (uint32_t t = cg.extStart[2 * k]; t < cg.extStart[2 * k + 1]; ++t) {
+                    v += cg.extTerms[t].weight * cg.psi[cg.extTerms[t].unknown];
+                }
+                value[k] = v;
                 continue;
             }
             float sum = 0.0f;
@@ -756,11 +974,15 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
         return false;
     }
     buildOperator(cg, g, cellSize, bodies);
+    if (bodies) {
+        extendIntoBodies(cg, g);
+        gradientRows(cg, g);
+    }
     const bool coupled = !cg.bodyFaces.empty();
     const std::vector<double> mobility = coupled ? bodyMobility(s) : std::vector<double>();
     std::vector<double> bodySum(coupled ? 2 * s.bodies.size() : 0);
     float* psi = solvePotential(cg, mobility, bodySum, coupled, maxIterations);
-    const std::vector<float>& value = nodeValues(cg, g.nx, g.ny);
+    const std::vector<float>& value = nodeValues(cg, g.nx, g.ny, bodies);
     // Each particle's move reads only the node values: the particles split over the workers.
     parallelFor(s.tasks, n, kMoveGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {

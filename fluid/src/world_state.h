@@ -181,15 +181,37 @@ struct CoarseGrid {
                                           // count for none: d keeps a 0 there)
     std::vector<int32_t> owner;           // per node: the body it lies inside, or -1
     std::vector<float> bodyFill;          // per node: the bodies' fill from their outlines
-    std::vector<float> ownFill;           // scratch: one body's sample fill over its box
+    std::vector<float> ownFill;           // scratch: one body's outline fill over its box
+    std::vector<float> samplesFill;       // scratch: one body's samples' fill over its box
     std::vector<uint8_t> inside;          // scratch: one body's inside test on a fine lattice
-    // The bodies' Jacobian: per face between an unknown and a body's node, the flux the body's
-    // displacement (x, y) drives out of the unknown's cell (m), in unknown order.
+    // The bodies' Jacobian G: per entry, the flux a body's displacement (x, y) drives out of an
+    // unknown's cell (m): from the outlined bodies' gradient weights, or for a body without an
+    // inside test per face between an unknown and one of its nodes. G^T psi sums them.
     struct BodyFace {
         uint32_t unknown = 0, body = 0;
         float gx = 0, gy = 0;
     };
     std::vector<BodyFace> bodyFaces;
+    // A body's gradient weights: per node of its box, the integral over the body's inside (its
+    // outline's lattice) of the node's bilinear gradient (m). The body's row of the Jacobian is
+    // -sum w v over them (v: the node values, extended into the body): the same -integral of
+    // grad psi that moves the water in its place. Bodies in order, each's nodes in node order.
+    struct NodeWeight {
+        uint32_t node = 0, body = 0;
+        float wx = 0, wy = 0;
+    };
+    std::vector<NodeWeight> bodyGradient;
+    std::vector<float> boxGradient; // scratch: one body's weights over its box (x, y per node)
+    std::vector<uint8_t> outlined;  // per body: 1 when its fill and weights come from its outline
+    // The node values inside bodies, as combinations of the unknowns: node k's value is the sum
+    // of extTerms[extStart[2k] .. extStart[2k + 1]) (unknown, weight); filled for the nodes
+    // inside an outlined body, empty ranges elsewhere.
+    struct ExtTerm {
+        uint32_t unknown = 0;
+        float weight = 0;
+    };
+    std::vector<uint32_t> extStart;
+    std::vector<ExtTerm> extTerms;
 };
 
 // A world object's tag in its handles (ParticleHandle::world): 1 for the first world the
