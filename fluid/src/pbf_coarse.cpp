@@ -620,7 +620,8 @@ void addBodyFlux(const CoarseGrid& cg, const std::vector<double>& mobility, cons
 // start (placeSamples offsets its samples from then on) and an impulse. Returns true when some
 // body moved.
 bool moveBodies(WorldState& s, const CoarseGrid& cg, const std::vector<double>& mobility,
-                std::vector<double>& bodySum, const CoarseSettings& settings, const float* psi) {
+                std::vector<double>& bodySum, const CoarseSettings& settings, const float* psi,
+                double momentum[2]) {
     bodyForce(cg, psi, bodySum);
     const double span = double(settings.endTime) - double(settings.startTime);
     if (!(span > 0.0)) {
@@ -647,9 +648,62 @@ bool moveBodies(WorldState& s, const CoarseGrid& cg, const std::vector<double>& 
         body.oy -= float(dvy * double(settings.startTime));
         body.impulseX += double(body.mass) * dvx;
         body.impulseY += double(body.mass) * dvy;
+        momentum[0] += double(body.mass) * dx;
+        momentum[1] += double(body.mass) * dy;
         moved = true;
     }
     return moved;
+}
+
+// True when a fluid node holds some fill of a boundary's samples other than the bodies': the
+// liquid touches a wall, which takes its share of the coarse solve's impulse.
+bool touchesWall(const CoarseGrid& cg, bool bodies) {
+    for (const uint32_t k : cg.active) {
+        if (cg.solid[k] - (bodies ? cg.bodyFill[k] : 0.0f) > 0.0f) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// Where no wall is in reach, the coarse moves keep the momentum: the particles' moves (mass
+// times move) and the bodies' (`bodies`, kg m) sum to zero once the mass-weighted mean is taken
+// off every particle's move. The moves are a bilinear gradient read at the particles, and near a
+// free surface they do not sum to zero by themselves: two blobs meeting at 10 m/s changed the
+// total momentum by 7e-3 of its scale with the game preset, against 2e-5 with the precise one.
+void keepMomentum(WorldState& s, const double bodies[2]) {
+    Particles& p = s.particles;
+    PositionBasedScratch& x = s.pbfScratch;
+    struct Sum {
+        double mx, my, m;
+    };
+    const Sum sum = blockReduce<Sum>(
+        s.tasks, p.size(), Sum{0.0, 0.0, 0.0},
+        [&](uint32_t b, uint32_t e) {
+            Sum r{0.0, 0.0, 0.0};
+            for (uint32_t i = b; i < e; ++i) {
+                r.mx += double(p.mass[i]) * double(x.cx[i]);
+                r.my += double(p.mass[i]) * double(x.cy[i]);
+                r.m += double(p.mass[i]);
+            }
+            return r;
+        },
+        [](Sum a, const Sum& b) { return Sum{a.mx + b.mx, a.my + b.my, a.m + b.m}; });
+    if (!(sum.m > 0.0)) {
+        return;
+    }
+    const auto dx = float((sum.mx + bodies[0]) / sum.m), dy = float((sum.my + bodies[1]) / sum.m);
+    if (!std::isfinite(dx) || !std::isfinite(dy) || (dx == 0.0f && dy == 0.0f)) {
+        return;
+    }
+    parallelFor(s.tasks, p.size(), kMoveGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+        for (uint32_t i = b; i < e; ++i) {
+            x.cx[i] -= dx;
+            x.cy[i] -= dy;
+            p.px[i] = x.ox[i] + x.cx[i];
+            p.py[i] = x.oy[i] + x.cy[i];
+        }
+    });
 }
 
 } // namespace
@@ -983,7 +1037,12 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
             moveParticle(p, s.pbfScratch, cg, g, value.data(), share, i);
         }
     });
-    return coupled && moveBodies(s, cg, mobility, bodySum, settings, psi);
+    double bodyMomentum[2] = {0.0, 0.0};
+    const bool moved = coupled && moveBodies(s, cg, mobility, bodySum, settings, psi, bodyMomentum);
+    if (!touchesWall(cg, bodies)) {
+        keepMomentum(s, bodyMomentum);
+    }
+    return moved;
 }
 
 } // namespace fluid::detail

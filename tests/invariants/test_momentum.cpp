@@ -145,3 +145,56 @@ TEST_CASE("zero-g water and yoghurt blobs collide and keep their momentum over 1
     }
     CHECK(sum / count < 0.8);
 }
+
+// Two blobs meeting head on at 10 m/s (each at 5 m/s), zero gravity, no walls: the sweeps and
+// the viscosity act in pairs and the coarse solve's moves sum to zero where no wall is in reach,
+// so the total momentum stays within 1e-3 of the sum of |m v| over 2 s, with both presets, water
+// against water and against yoghurt. (Before the coarse solve kept momentum, the game preset
+// lost 2.4e-3 with water and 8.8e-3 with yoghurt.) The precise preset with yoghurt loses 1.06e-3
+// at the impact, in the yoghurt's stress pass, which issue 47's model replaces: held to 1.1e-3
+// until then.
+TEST_CASE("zero-g blobs meeting at 10 m/s keep their momentum, game and precise presets",
+          "[slow][invariants][momentum]") {
+    const Quality quality = GENERATE(Quality::Game, Quality::Precise);
+    const bool yoghurtToo = GENERATE(false, true);
+    const char* name = quality == Quality::Game ? "game" : "precise";
+    CAPTURE(name, yoghurtToo);
+    WorldDef def = physicsDef();
+    def.positionBased = positionBasedPreset(quality);
+    World world(def);
+    const MaterialId w = world.addMaterial(water());
+    const MaterialId other = yoghurtToo ? world.addMaterial(yoghurt()) : w;
+    BlobDef a;
+    a.shape.type = ShapeType::Circle;
+    a.shape.center = {-0.15f, 0.01f};
+    a.shape.radius = 0.1f;
+    a.velocity = {5.0f, 0.0f};
+    a.material = w;
+    BlobDef b = a;
+    b.shape.center = {0.15f, -0.01f};
+    b.velocity = {-5.0f, 0.0f};
+    b.material = other;
+    world.spawnBlob(a);
+    world.spawnBlob(b);
+    double scale = 0.0; // sum of |m v| at the start
+    {
+        const auto vx = world.velocityX(), vy = world.velocityY();
+        const auto mat = world.materialIndex();
+        for (uint32_t i = 0; i < world.particleCount(); ++i) {
+            scale += world.material(MaterialId{mat[i]}).mass * std::hypot(vx[i], vy[i]);
+        }
+    }
+    const glm::dvec2 p0 = momentum(world);
+    double worst = 0.0;
+    for (int f = 0; f < 120; ++f) {
+        world.step(kFrame);
+        const glm::dvec2 p = momentum(world);
+        worst = std::max(worst, std::hypot(p.x - p0.x, p.y - p0.y) / scale);
+        REQUIRE(allFinite(world));
+    }
+    std::printf("[measure] momentum, blobs meeting at 10 m/s, %s, %s: %u particles, largest "
+                "change %.3g of the sum of |m v| (%.3f kg m/s)\n",
+                name, yoghurtToo ? "water and yoghurt" : "water", world.particleCount(), worst,
+                scale);
+    CHECK(worst <= (quality == Quality::Precise && yoghurtToo ? 1.1e-3 : 1e-3));
+}
