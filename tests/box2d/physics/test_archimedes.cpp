@@ -27,6 +27,12 @@ struct Spec {
     float ratio = 0.5f; // body density over the fluid's
 };
 
+// The bodies' size: half extents of the boxes, radius of the circles (m), and the preset.
+struct Bodies {
+    float halfWidth = kBoxHalfWidth, halfHeight = kBoxHalfHeight, radius = kRadius;
+    Quality quality = Quality::Precise;
+};
+
 struct Outcome {
     Spec spec;
     double measured = 0.0;  // submerged fraction, exact area below the measured waterline
@@ -50,6 +56,7 @@ struct TankRun {
     double initialSurface = 0.0;
     uint32_t particles = 0;
     uint32_t leaked = 0; // particles inside a fixture at the end
+    double deepest = 0.0; // how deep the deepest of them lies (m)
 };
 
 // A tank split by thin static Box2D partitions (coupled: they are walls to the fluid too) into
@@ -57,9 +64,12 @@ struct TankRun {
 // (a 3.8 m tank 0.25 m deep has a 5 s first mode), a compartment settles within one. Each
 // compartment holds `depth` m of `material`; its body starts at rest with its bottom on the
 // surface. After `frames` frames, the last 30 are averaged.
-TankRun runTank(const Material& preset, const std::vector<Spec>& specs, float compartment,
+TankRun runTank(const Material& preset, const std::vector<Spec>& specs, const Bodies& shape,
+                float compartment,
                 float depth, int frames) {
-    World world(physicsDef());
+    WorldDef worldDef = physicsDef();
+    worldDef.positionBased = positionBasedPreset(shape.quality);
+    World world(worldDef);
     const MaterialId id = world.addMaterial(preset);
     const float s = world.spacing(id);
     const float h = world.material(id).smoothingDistance;
@@ -95,9 +105,10 @@ TankRun runTank(const Material& preset, const std::vector<Spec>& specs, float co
         const float density = specs[k].ratio * rho;
         bodies.push_back(
             specs[k].circle
-                ? addCircle(physics, b2_dynamicBody, {x, surface + kRadius}, kRadius, density)
-                : addBox(physics, b2_dynamicBody, {x, surface + kBoxHalfHeight}, kBoxHalfWidth,
-                         kBoxHalfHeight, density));
+                ? addCircle(physics, b2_dynamicBody, {x, surface + shape.radius}, shape.radius,
+                            density)
+                : addBox(physics, b2_dynamicBody, {x, surface + shape.halfHeight},
+                         shape.halfWidth, shape.halfHeight, density));
         bodies.back()->GetFixtureList()->SetFriction(0.0f);
     }
     box2d::CouplingDef def;
@@ -160,7 +171,18 @@ TankRun runTank(const Material& preset, const std::vector<Spec>& specs, float co
         }
     }
     run.particles = world.particleCount();
-    run.leaked = intrusion(world, physics, kFluidMask).count;
+    const Intrusion inside = intrusion(world, physics, kFluidMask);
+    run.leaked = inside.count;
+    run.deepest = inside.deepest;
+    for (const b2Body* b = physics.GetBodyList(); b != nullptr; b = b->GetNext()) {
+        const Intrusion one = intrusion(world, *b, kFluidMask);
+        if (one.count > 0) {
+            std::printf("[measure] Archimedes: %u particles inside a %s body at (%.3f, %.3f), the "
+                        "deepest %.2e m\n",
+                        one.count, b->GetType() == b2_staticBody ? "static" : "dynamic",
+                        double(b->GetPosition().x), double(b->GetPosition().y), one.deepest);
+        }
+    }
     CHECK(allFinite(world));
     return run;
 }
@@ -180,7 +202,7 @@ void floating(const Material& preset) {
     // of which what lies one support radius from body and walls reads the waterline. Fluid
     // 0.2 m deep before the bodies go in, 0.25-0.27 m after: 0.08 m or more under the deepest
     // body (the 0.75 circle draws 0.17 m). 5 s to settle.
-    const TankRun run = runTank(preset, specs, 0.64f, 0.2f, 300);
+    const TankRun run = runTank(preset, specs, Bodies{}, 0.64f, 0.2f, 300);
     std::printf("[measure] Archimedes in %s: %u particles, surface %.4f m before the bodies went "
                 "in\n",
                 preset.name.c_str(), run.particles, run.initialSurface);
@@ -238,7 +260,7 @@ TEST_CASE("Archimedes: boxes and circles at twice the fluid's density sink and r
     CAPTURE(preset.name);
     Stopwatch sw("Archimedes, sinking, " + preset.name);
     const std::vector<Spec> specs{{false, 2.0f}, {true, 2.0f}};
-    const TankRun run = runTank(preset, specs, 0.64f, 0.2f, 150);
+    const TankRun run = runTank(preset, specs, Bodies{}, 0.64f, 0.2f, 150);
     for (const Outcome& o : run.bodies) {
         std::printf("[measure] Archimedes %s %s at %.1f: lowest point %.4f m, on the floor %d, "
                     "speed %.4f m/s, spin %.4f rad/s, measured submerged %.3f, report %.3f, "
@@ -260,4 +282,52 @@ TEST_CASE("Archimedes: boxes and circles at twice the fluid's density sink and r
         CHECK(o.lift < 0.7 * o.weight);
     }
     CHECK(run.leaked == 0);
+}
+
+// The game preset: boxes (24 x 16 water spacings) and circles (24 across) at half and three
+// quarters of water's density, dropped on water 0.2 m and 0.6 m deep, float within 10% of their
+// density ratio. Not yet held (bench/box2d.md, "Floating in the game preset"): bodies of 12
+// spacings dropped on the water rest 11-22% high (started at their draft, within 7%), the
+// lightest (0.25) and the 6-spacing bodies sit 2-9 mm deep, and most bodies still bob at 1-10
+// cm/s, over the 1 cm/s the precise preset's bodies keep.
+TEST_CASE("Archimedes, game preset: bodies of 24 spacings at 0.5 and 0.75 of water's density "
+          "float at that submerged fraction at 0.2 m and 0.6 m depth",
+          "[slow][box2d][archimedes]") {
+    const float depth = GENERATE(0.2f, 0.6f);
+    CAPTURE(depth);
+    World probe;
+    const float s = probe.spacing(probe.addMaterial(fluid::water()));
+    Bodies shape;
+    shape.halfWidth = 12.0f * s;
+    shape.halfHeight = 8.0f * s;
+    shape.radius = 12.0f * s;
+    shape.quality = Quality::Game;
+    char label[96];
+    std::snprintf(label, sizeof label, "Archimedes, game preset, %.1f m", double(depth));
+    Stopwatch sw(label);
+    const std::vector<Spec> specs{{false, 0.5f}, {true, 0.5f}, {false, 0.75f}, {true, 0.75f}};
+    // Compartments 0.8 m wide (0.27 m bodies), 8 s to settle.
+    const TankRun run = runTank(fluid::water(), specs, shape, 0.8f, depth, 480);
+    std::printf("[measure] Archimedes, game, %.1f m: %u particles, %u inside a body at the end, "
+                "the deepest %.2e m\n",
+                double(depth), run.particles, run.leaked, run.deepest);
+    // After the fluid's step the coupling moves each body by the coarse solve's displacement,
+    // which may leave a particle on its surface a few hundredths of a millimetre inside until
+    // the next step projects it out (1-2 particles, 8e-6 to 3.4e-5 m; the shipped solver before
+    // issue 43 left one too): none may lie a hundredth of a spacing deep.
+    CHECK(run.deepest < 1e-4);
+    for (const Outcome& o : run.bodies) {
+        std::printf("[measure] Archimedes, game, %.1f m: %s at %.2f: measured %.4f (%+.1f%%), "
+                    "speed %.4f m/s, spin %.4f rad/s, drift %+.3f m, lift %.2f N vs weight "
+                    "%.2f N\n",
+                    double(depth), shapeName(o.spec), o.spec.ratio, o.measured,
+                    100.0 * (o.measured / o.spec.ratio - 1.0), o.speed, o.spin, o.drift, o.lift,
+                    o.weight);
+        CAPTURE(shapeName(o.spec), o.spec.ratio, o.measured, o.speed, o.spin, o.drift);
+        // The waterline from 3 columns a side or more: these bodies drift (up to 0.17 m in 8
+        // s), and one may end within a few columns of its compartment's wall.
+        CHECK(o.columns >= 3);
+        CHECK(std::fabs(o.measured / o.spec.ratio - 1.0) <= 0.10);
+        CHECK_FALSE(o.onFloor);
+    }
 }
