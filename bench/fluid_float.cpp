@@ -114,7 +114,7 @@ int run(const Options& opt) {
     world.spawnBlob(latticeBlock(world, water, 0.0f, 0.0f, cols, rows));
 
     const int frames = int(std::lround(opt.seconds * 60.0f)), window = 60;
-    double submerged = 0.0, level = 0.0, lowest = 0.0, speed = 0.0, spin = 0.0;
+    double submerged = 0.0, level = 0.0, lowest = 0.0, speed = 0.0, spin = 0.0, reported = 0.0;
     double seconds = 0.0, support = 0.0;
     const b2Vec2 pose = body->GetPosition();
     if (held) {
@@ -143,6 +143,7 @@ int run(const Options& opt) {
         const double y = 0.5 * (left.height + right.height);
         const auto [below, total] = bodyAreaBelow(*body, y);
         submerged += below / total / window;
+        reported += double(coupling.report(body)->submergedFraction) / window;
         level += y / window;
         lowest += (double(body->GetPosition().y) - hh) / window; // the bottom, upright
         speed = std::max(speed, length(toD(body->GetLinearVelocity())));
@@ -159,12 +160,27 @@ int run(const Options& opt) {
                     "submerged %.4f (Archimedes' force: %.4f of the weight)\n",
                     double(opt.hold), support, level, submerged, submerged / double(opt.ratio));
     }
+    // The gap under the body at the end: its bottom (upright) minus the highest particle centre
+    // under its middle half.
+    double gap = NAN;
+    {
+        const double xc = body->GetPosition().x, bottomY = body->GetPosition().y - hh;
+        double highest = -1e9;
+        const auto px = world.positionX(), py = world.positionY();
+        for (uint32_t i = 0; i < world.particleCount(); ++i) {
+            if (std::fabs(px[i] - xc) < 0.5 * hw && py[i] < bottomY + 0.5 * s) {
+                highest = std::max(highest, double(py[i]));
+            }
+        }
+        gap = (bottomY - highest) / s;
+    }
     const double error = submerged / double(opt.ratio) - 1.0;
     const double high = lowest - (level - draft);
     std::printf("shape=%s ratio=%.2f size=%.0f depth=%.2f quality=%s submerged=%.4f error=%+.4f "
-                "high_mm=%+.2f speed=%.4f spin=%.4f particles=%u ms_per_frame=%.3f\n",
+                "high_mm=%+.2f speed=%.4f spin=%.4f reported=%.4f gap=%.2f particles=%u "
+                "ms_per_frame=%.3f\n",
                 opt.shape.c_str(), double(opt.ratio), double(opt.size), double(opt.depth),
-                opt.quality.c_str(), submerged, error, 1000.0 * high, speed, spin,
+                opt.quality.c_str(), submerged, error, 1000.0 * high, speed, spin, reported, gap,
                 world.particleCount(), 1000.0 * seconds / frames);
     return allFinite(world) ? 0 : 1;
 }
