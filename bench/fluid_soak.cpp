@@ -126,9 +126,14 @@ int main(int argc, char** argv) {
                    "Before this frame's step, save the world, the Box2D world and the coupling "
                    "to PREFIX.world, PREFIX.b2d and PREFIX.coupling (to replay a failure)");
     app.add_option("--dump", dumpPrefix, "PREFIX for --dump-frame");
+    std::string quality = "precise";
+    app.add_option("--quality", quality, "The position-based preset: precise (the default) or game")
+        ->check(CLI::IsMember({"precise", "game"}));
     CLI11_PARSE(app, argc, argv);
 
     fluid::WorldDef def;
+    def.positionBased = fluid::positionBasedPreset(quality == "game" ? fluid::Quality::Game
+                                                                     : fluid::Quality::Precise);
     def.workerCount = threads;
     def.maxParticles = 40000;
     fluid::World world(def);
