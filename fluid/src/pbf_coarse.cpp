@@ -616,7 +616,7 @@ void addBodyFlux(const CoarseGrid& cg, const std::vector<double>& mobility, cons
 }
 
 // The bodies' share of the solve: each moves by share M^-1 G^T psi (rho0 depth over its mass), at
-// most kCoarseMaxMove of a coarse cell per sub-step, taken as a velocity change from the sub-step's
+// most kCoarseBodyMaxMove of a coarse cell per sub-step, taken as a velocity change from the sub-step's
 // start (placeSamples offsets its samples from then on) and an impulse. Returns true when some
 // body moved.
 bool moveBodies(WorldState& s, const CoarseGrid& cg, const std::vector<double>& mobility,
@@ -627,7 +627,7 @@ bool moveBodies(WorldState& s, const CoarseGrid& cg, const std::vector<double>& 
     if (!(span > 0.0)) {
         return false;
     }
-    const double limit = double(tuning::kCoarseMaxMove) * double(settings.cellSize);
+    const double limit = double(tuning::kCoarseBodyMaxMove) * double(settings.cellSize);
     bool moved = false;
     for (size_t b = 0; b < s.bodies.size(); ++b) {
         BodyState& body = s.bodies[b];
