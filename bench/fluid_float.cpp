@@ -73,7 +73,8 @@ double archimedesDraft(bool circle, double ratio, double hh, double r) {
 int run(const Options& opt) {
     WorldDef def;
     def.workerCount = opt.threads;
-    def.positionBased = positionBasedPreset(opt.quality == "precise" ? Quality::Precise : Quality::Game);
+    def.positionBased =
+        positionBasedPreset(opt.quality == "precise" ? Quality::Precise : Quality::Game);
     if (opt.substeps > 0) {
         def.positionBased.substeps = opt.substeps;
     }
@@ -126,8 +127,8 @@ int run(const Options& opt) {
         seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (held) {
             if (f >= frames - window) {
-                support += double(coupling.report(body)->force.y) /
-                           (double(body->GetMass()) * kG) / window;
+                support += double(coupling.report(body)->force.y) / (double(body->GetMass()) * kG) /
+                           window;
             }
             body->SetTransform(pose, 0.0f);
             body->SetLinearVelocity(b2Vec2(0.0f, 0.0f));
@@ -148,8 +149,8 @@ int run(const Options& opt) {
         lowest += (double(body->GetPosition().y) - hh) / window; // the bottom, upright
         speed = std::max(speed, length(toD(body->GetLinearVelocity())));
         if (opt.trace) {
-            std::printf("frame %d: x %.4f y %.4f angle %+.4f vx %+.4f vy %+.4f omega %+.4f\n", f + 1,
-                        double(body->GetPosition().x), double(body->GetPosition().y),
+            std::printf("frame %d: x %.4f y %.4f angle %+.4f vx %+.4f vy %+.4f omega %+.4f\n",
+                        f + 1, double(body->GetPosition().x), double(body->GetPosition().y),
                         double(body->GetAngle()), double(body->GetLinearVelocity().x),
                         double(body->GetLinearVelocity().y), double(body->GetAngularVelocity()));
         }
@@ -191,11 +192,14 @@ int main(int argc, char** argv) {
     Options opt;
     CLI::App app{"fluid-float: one Box2D body floating in a tank of resting water"};
     app.add_option("--shape", opt.shape, "box or circle")->check(CLI::IsMember({"box", "circle"}));
-    app.add_option("--ratio", opt.ratio, "body density over water's (1)")->check(CLI::Range(0.05, 4.0));
-    app.add_option("--size", opt.size, "body width in water spacings (count)")->check(CLI::Range(2.0, 200.0));
+    app.add_option("--ratio", opt.ratio, "body density over water's (1)")
+        ->check(CLI::Range(0.05, 4.0));
+    app.add_option("--size", opt.size, "body width in water spacings (count)")
+        ->check(CLI::Range(2.0, 200.0));
     app.add_option("--depth", opt.depth, "water depth (m)")->check(CLI::Range(0.05, 3.0));
     app.add_option("--width", opt.width, "tank width (m)")->check(CLI::Range(0.1, 10.0));
-    app.add_option("--quality", opt.quality, "game or precise")->check(CLI::IsMember({"game", "precise"}));
+    app.add_option("--quality", opt.quality, "game or precise")
+        ->check(CLI::IsMember({"game", "precise"}));
     app.add_option("--seconds", opt.seconds, "simulated time (s)")->check(CLI::Range(1.5, 600.0));
     app.add_option("--threads", opt.threads, "worker threads")->check(CLI::Range(1, 64));
     app.add_flag("--drop", opt.drop, "start with the body's bottom on the surface");
@@ -203,9 +207,12 @@ int main(int argc, char** argv) {
     app.add_option("--hold", opt.hold,
                    "hold the body this far above its draft (mm) and print the fluid's force")
         ->check(CLI::Range(-500.0, 500.0));
-    app.add_option("--substeps", opt.substeps, "override the preset's sub-steps")->check(CLI::Range(1, 64));
-    app.add_option("--iterations", opt.iterations, "override the preset's sweeps")->check(CLI::Range(1, 64));
-    app.add_option("--coarse", opt.coarse, "override the coarse correction's share (0 = off)")->check(CLI::Range(0.0, 1.0));
+    app.add_option("--substeps", opt.substeps, "override the preset's sub-steps")
+        ->check(CLI::Range(1, 64));
+    app.add_option("--iterations", opt.iterations, "override the preset's sweeps")
+        ->check(CLI::Range(1, 64));
+    app.add_option("--coarse", opt.coarse, "override the coarse correction's share (0 = off)")
+        ->check(CLI::Range(0.0, 1.0));
     CLI11_PARSE(app, argc, argv);
     return run(opt);
 }

@@ -5,8 +5,7 @@
 
 namespace fluid::detail {
 
-Stages::Stages(Profile& profile, std::span<const char* const> solverStages,
-               const StageProbe* probe)
+Stages::Stages(Profile& profile, std::span<const char* const> solverStages, const StageProbe* probe)
     : m_profile(profile), m_probe(probe) {
     assert(solverStages.size() + 2 <= kMaxProfileStages);
     m_last = uint32_t(solverStages.size()) + 1;

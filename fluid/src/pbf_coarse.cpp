@@ -448,10 +448,9 @@ void buildOperator(CoarseGrid& cg, const Layout& g, float cellSize, bool bodies)
             }
             const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
             if (cg.type[m] != kSolid) { // no flux through solids
-                cg.diagonal[a] += cg.type[m] == kAir
-                                      ? surfaceCoefficient(cg.fluid[k] + cg.solid[k],
-                                                           cg.fluid[m] + cg.solid[m])
-                                      : 1.0f;
+                cg.diagonal[a] += cg.type[m] == kAir ? surfaceCoefficient(cg.fluid[k] + cg.solid[k],
+                                                                          cg.fluid[m] + cg.solid[m])
+                                                     : 1.0f;
                 if (cg.slot[m] >= 0) {
                     cg.neighbours[4 * a + size_t(e)] = cg.slot[m];
                 }
@@ -616,9 +615,9 @@ void addBodyFlux(const CoarseGrid& cg, const std::vector<double>& mobility, cons
 }
 
 // The bodies' share of the solve: each moves by share M^-1 G^T psi (rho0 depth over its mass), at
-// most kCoarseBodyMaxMove of a coarse cell per sub-step, taken as a velocity change from the sub-step's
-// start (placeSamples offsets its samples from then on) and an impulse. Returns true when some
-// body moved.
+// most kCoarseBodyMaxMove of a coarse cell per sub-step, taken as a velocity change from the
+// sub-step's start (placeSamples offsets its samples from then on) and an impulse, its mass times
+// its move added to `momentum` (kg m). Returns true when some body moved.
 bool moveBodies(WorldState& s, const CoarseGrid& cg, const std::vector<double>& mobility,
                 std::vector<double>& bodySum, const CoarseSettings& settings, const float* psi,
                 double momentum[2]) {
@@ -655,11 +654,12 @@ bool moveBodies(WorldState& s, const CoarseGrid& cg, const std::vector<double>& 
     return moved;
 }
 
-// True when a fluid node holds some fill of a boundary's samples other than the bodies': the
-// liquid touches a wall, which takes its share of the coarse solve's impulse.
+// True when a fluid node holds some fill of a boundary's samples other than the bodies' (more
+// than a thousandth of a node: the bodies' part is a difference of float sums): the liquid
+// touches a wall, which takes its share of the coarse solve's impulse.
 bool touchesWall(const CoarseGrid& cg, bool bodies) {
     for (const uint32_t k : cg.active) {
-        if (cg.solid[k] - (bodies ? cg.bodyFill[k] : 0.0f) > 0.0f) {
+        if (cg.solid[k] - (bodies ? cg.bodyFill[k] : 0.0f) > 1e-3f) {
             return true;
         }
     }
@@ -688,7 +688,9 @@ void keepMomentum(WorldState& s, const double bodies[2]) {
             }
             return r;
         },
-        [](Sum a, const Sum& b) { return Sum{a.mx + b.mx, a.my + b.my, a.m + b.m}; });
+        [](Sum a, const Sum& b) {
+            return Sum{a.mx + b.mx, a.my + b.my, a.m + b.m};
+        });
     if (!(sum.m > 0.0)) {
         return;
     }

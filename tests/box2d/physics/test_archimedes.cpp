@@ -65,8 +65,7 @@ struct TankRun {
 // compartment holds `depth` m of `material`; its body starts at rest with its bottom on the
 // surface. After `frames` frames, the last 30 are averaged.
 TankRun runTank(const Material& preset, const std::vector<Spec>& specs, const Bodies& shape,
-                float compartment,
-                float depth, int frames) {
+                float compartment, float depth, int frames) {
     WorldDef worldDef = physicsDef();
     worldDef.positionBased = positionBasedPreset(shape.quality);
     World world(worldDef);
@@ -103,12 +102,11 @@ TankRun runTank(const Material& preset, const std::vector<Spec>& specs, const Bo
     for (size_t k = 0; k < count; ++k) {
         const float x = 0.5f * (lo[k] + hi[k]);
         const float density = specs[k].ratio * rho;
-        bodies.push_back(
-            specs[k].circle
-                ? addCircle(physics, b2_dynamicBody, {x, surface + shape.radius}, shape.radius,
-                            density)
-                : addBox(physics, b2_dynamicBody, {x, surface + shape.halfHeight},
-                         shape.halfWidth, shape.halfHeight, density));
+        bodies.push_back(specs[k].circle
+                             ? addCircle(physics, b2_dynamicBody, {x, surface + shape.radius},
+                                         shape.radius, density)
+                             : addBox(physics, b2_dynamicBody, {x, surface + shape.halfHeight},
+                                      shape.halfWidth, shape.halfHeight, density));
         bodies.back()->GetFixtureList()->SetFriction(0.0f);
     }
     box2d::CouplingDef def;
@@ -286,8 +284,8 @@ TEST_CASE("Archimedes: boxes and circles at twice the fluid's density sink and r
 
 // The game preset: boxes (24 x 16 water spacings) and circles (24 across) at half and three
 // quarters of water's density, dropped on water 0.2 m and 0.6 m deep, float at their density
-// ratio (-4.6% to +10.1%). Not yet held (bench/box2d.md, "Floating in the game preset"): bodies of 12
-// spacings dropped on the water rest 11-22% high (started at their draft, within 7%), the
+// ratio (-4.6% to +10.1%). Not yet held (bench/box2d.md, "Floating in the game preset"): bodies of
+// 12 spacings dropped on the water rest 11-22% high (started at their draft, within 7%), the
 // lightest (0.25) and the 6-spacing bodies sit 2-9 mm deep, and most bodies still bob at 1-10
 // cm/s, over the 1 cm/s the precise preset's bodies keep.
 TEST_CASE("Archimedes, game preset: bodies of 24 spacings at 0.5 and 0.75 of water's density "

@@ -70,9 +70,9 @@ Support bodySupport(Quality quality, float width, float depth, float hw, float h
     const Tank t = makeTank(world, water, width, depth);
     b2World physics(b2Vec2(0.0f, -kG));
     addTankWalls(physics, 0.0f, 0.0f, t.width, t.surface + 0.5f);
-    b2Body* body = addBox(physics, b2_dynamicBody,
-                          {0.5f * t.width, t.surface - ratio * 2.0f * hh + hh}, hw, hh,
-                          ratio * box2d::arealDensity(world, water));
+    b2Body* body =
+        addBox(physics, b2_dynamicBody, {0.5f * t.width, t.surface - ratio * 2.0f * hh + hh}, hw,
+               hh, ratio * box2d::arealDensity(world, water));
     body->GetFixtureList()->SetFriction(0.0f);
     box2d::CouplingDef cdef;
     cdef.categoryMask = kFluidMask;
@@ -223,8 +223,8 @@ TEST_CASE("Floating support: a floating box is carried by its weight at Archimed
     const int settle = 240, frames = 60;
     const Support body = bodySupport(quality, width, depth, hw, hh, ratio, settle, frames);
     const float x0 = 0.3f - hw, x1 = 0.3f + hw; // the tank's middle (0.6 m wide to a spacing)
-    const Support ghost = ghostSupport(quality, width, depth, x0, x1, float(body.bottom), settle,
-                                       frames);
+    const Support ghost =
+        ghostSupport(quality, width, depth, x0, x1, float(body.bottom), settle, frames);
     const auto percent = [](double part, double whole) { return 100.0 * part / whole; };
     std::printf("[measure] floating support (%s), the box: submerged %.3f (%+.1f%% of its "
                 "density ratio), bottom %.4f m, waterline %.4f m; coarse %.1f%%, sweeps %.1f%%, "
