@@ -3,7 +3,7 @@
 //
 //   fluid-float [--shape box|circle] [--ratio R] [--size N] [--depth D] [--width W]
 //               [--quality game|precise] [--seconds T] [--threads K] [--drop]
-//               [--substeps S] [--iterations I] [--coarse C]
+//               [--substeps S] [--iterations I] [--coarse C] [--hold MM] [--trace]
 //
 // The tank: W m wide (default 0.6), water D m deep (default 0.2), gravity (0, -9.81) m/s^2. The
 // body: a box N water spacings wide and 2N/3 tall, or a circle N spacings across (default 12),
@@ -14,10 +14,14 @@
 // it and from the walls, and the body's area below it exactly from its shape and pose. The
 // last line is machine-readable:
 //   shape=S ratio=R size=N depth=D quality=Q submerged=F error=E high_mm=H speed=V spin=W
-//   particles=P ms_per_frame=M
+//   reported=F2 gap=G particles=P ms_per_frame=M
 // error: submerged fraction over R, minus 1 (negative: floats too high); high_mm: how far above
 // its Archimedes draft the body's centre rides (mm; its bottom when upright); speed and spin: the
-// largest over the last second (m/s, rad/s).
+// largest over the last second (m/s, rad/s); reported: the coupling's submerged fraction (mean
+// over the last second); gap: the body's bottom minus the highest particle centre under its
+// middle half at the end (spacings). --hold MM holds the body MM above its draft (Box2D's
+// gravity off, its pose reset every frame) and prints the fluid's force on it first; --trace
+// prints its pose and velocity every frame of the last second.
 #include <fluid/box2d/coupling.h>
 #include <fluid/fluid.h>
 
