@@ -403,8 +403,8 @@ bool classifyNodes(CoarseGrid& cg, size_t nodes, float tolerance, float h2, bool
 // surface, lies where the fill crosses 1/2 between them, at theta of the cell from the fluid
 // node, and the face's flux takes the potential's slope over that distance (1/theta; the
 // ghost-fluid free surface of Gibou et al. 2002 and Enright et al. 2003). With the zero on the
-// air node itself (theta 1, as before), a floating body read the pressure of water up to a
-// cell deeper than the real surface and rode 1-3 cm high.
+// air node itself floaters read too deep a pressure (docs/position_based.md, "Bodies in the
+// coarse solve").
 float surfaceCoefficient(float inside, float outside) {
     const float theta = (inside - 0.5f) / std::max(inside - outside, 1e-6f);
     return 1.0f / std::clamp(theta, tuning::kCoarseSurfaceMin, 1.0f);
@@ -460,6 +460,25 @@ void buildOperator(CoarseGrid& cg, const Layout& g, float cellSize, bool bodies)
             }
         }
     }
+}
+
+// The unknowns of node k's fluid neighbours (left, right, below, above; at most 4) into
+// `slots`; returns how many. A solid node's value is their potential's mean.
+int fluidNeighbours(const CoarseGrid& cg, int nx, int ny, size_t k, uint32_t (&slots)[4]) {
+    const int i = int(k % size_t(nx)), j = int(k / size_t(nx));
+    const int di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
+    int count = 0;
+    for (int e = 0; e < 4; ++e) {
+        const int ii = i + di[e], jj = j + dj[e];
+        if (ii < 0 || jj < 0 || ii >= nx || jj >= ny) {
+            continue;
+        }
+        const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
+        if (cg.type[m] == kFluid) {
+            slots[count++] = uint32_t(cg.slot[m]);
+        }
+    }
+    return count;
 }
 
 // The node values inside the bodies with an outline as combinations of the unknowns
@@ -556,8 +575,6 @@ void extendIntoBodies(CoarseGrid& cg, const Layout& g) {
 // mean of its fluid neighbours, as nodeValues reads it; air: none), negated (-integral of grad
 // psi), appended to cg.bodyFaces in the weights' order.
 void gradientRows(CoarseGrid& cg, const Layout& g) {
-    const int nx = g.nx, ny = g.ny;
-    const int di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
     for (const CoarseGrid::NodeWeight& w : cg.bodyGradient) {
         const size_t k = w.node;
         const auto add = [&](uint32_t unknown, float share) {
@@ -571,18 +588,8 @@ void gradientRows(CoarseGrid& cg, const Layout& g) {
                 add(cg.extTerms[t].unknown, cg.extTerms[t].weight);
             }
         } else if (cg.type[k] == kSolid) {
-            const int i = int(k % size_t(nx)), j = int(k / size_t(nx));
             uint32_t found[4];
-            int count = 0;
-            for (int e = 0; e < 4; ++e) {
-                const int ii = i + di[e], jj = j + dj[e];
-                if (ii >= 0 && jj >= 0 && ii < nx && jj < ny) {
-                    const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
-                    if (cg.type[m] == kFluid) {
-                        found[count++] = uint32_t(cg.slot[m]);
-                    }
-                }
-            }
+            const int count = fluidNeighbours(cg, g.nx, g.ny, k, found);
             for (int c = 0; c < count; ++c) {
                 add(found[c], 1.0f / float(count));
             }
@@ -668,9 +675,8 @@ bool touchesWall(const CoarseGrid& cg, bool bodies) {
 
 // Where no wall is in reach, the coarse moves keep the momentum: the particles' moves (mass
 // times move) and the bodies' (`bodies`, kg m) sum to zero once the mass-weighted mean is taken
-// off every particle's move. The moves are a bilinear gradient read at the particles, and near a
-// free surface they do not sum to zero by themselves: two blobs meeting at 10 m/s changed the
-// total momentum by 7e-3 of its scale with the game preset, against 2e-5 with the precise one.
+// off every particle's move. The moves are a bilinear gradient read at the particles, which near
+// a free surface does not sum to zero by itself (docs/position_based.md, "Coarse correction").
 void keepMomentum(WorldState& s, const double bodies[2]) {
     Particles& p = s.particles;
     PositionBasedScratch& x = s.pbfScratch;
@@ -955,10 +961,9 @@ float* solvePotential(CoarseGrid& cg, const std::vector<double>& mobility,
 // The node values the move reads, into cg.rhs (free after the solve).
 const std::vector<float>& nodeValues(CoarseGrid& cg, int nx, int ny) {
     // Node values for the gradient: fluid nodes their potential, solid nodes the mean of their
-    // fluid neighbours' (no flux through solids), air 0. Nodes inside bodies too: read with the
-    // bodies' extension (extendIntoBodies), the particles beside a body moved at 3-16 cm/s
-    // (a 12-spacing box at half water's density: 6 cm/s, 0.27 rad/s; with the mean: 0.9 cm/s,
-    // 0.011 rad/s), and floated no better.
+    // fluid neighbours' (no flux through solids), air 0. Nodes inside bodies too: with the
+    // bodies' extension the particles beside them jostled them (docs/position_based.md, "Bodies
+    // in the coarse solve").
     std::vector<float>& value = cg.rhs; // free now
     for (int j = 0; j < ny; ++j) {
         for (int i = 0; i < nx; ++i) {
@@ -968,22 +973,12 @@ const std::vector<float>& nodeValues(CoarseGrid& cg, int nx, int ny) {
                 continue;
             }
             float sum = 0.0f;
-            int fluidNeighbours = 0;
-            if (cg.type[k] == kSolid) {
-                const int di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
-                for (int e = 0; e < 4; ++e) {
-                    const int ii = i + di[e], jj = j + dj[e];
-                    if (ii < 0 || jj < 0 || ii >= nx || jj >= ny) {
-                        continue;
-                    }
-                    const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
-                    if (cg.type[m] == kFluid) {
-                        sum += cg.psi[size_t(cg.slot[m])];
-                        ++fluidNeighbours;
-                    }
-                }
+            uint32_t found[4];
+            const int count = cg.type[k] == kSolid ? fluidNeighbours(cg, nx, ny, k, found) : 0;
+            for (int c = 0; c < count; ++c) {
+                sum += cg.psi[found[c]];
             }
-            value[k] = fluidNeighbours > 0 ? sum / float(fluidNeighbours) : 0.0f;
+            value[k] = count > 0 ? sum / float(count) : 0.0f;
         }
     }
     return value;

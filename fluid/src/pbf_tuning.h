@@ -73,8 +73,8 @@ inline constexpr float kCoarseFrame = 0.9f;
 /// Longest coarse move of a particle per sub-step, in its supports.
 inline constexpr float kCoarseMaxMove = 0.25f;
 /// Longest coarse move of a rigid body per sub-step, in coarse cells: the body's plugin projects
-/// the particles out of it without this move, which reaches it only after the step (0.25 let a
-/// crate in the game-preset soak end a step with a particle 1 cm inside it).
+/// the particles out of it without this move, which reaches it only after the step
+/// (docs/position_based.md, "Tuning constants").
 inline constexpr float kCoarseBodyMaxMove = 0.05f;
 /// Nearest a fluid node's zero of the potential may lie to it, in cells (the free surface,
 /// placed where the fill crosses 1/2 between the node and its air neighbour): the operator's

@@ -284,10 +284,8 @@ TEST_CASE("Archimedes: boxes and circles at twice the fluid's density sink and r
 
 // The game preset: boxes (24 x 16 water spacings) and circles (24 across) at half and three
 // quarters of water's density, dropped on water 0.2 m and 0.6 m deep, float at their density
-// ratio (-4.6% to +10.1%). Not yet held (bench/box2d.md, "Floating in the game preset"): bodies of
-// 12 spacings dropped on the water rest 11-22% high (started at their draft, within 7%), the
-// lightest (0.25) and the 6-spacing bodies sit 2-9 mm deep, and most bodies still bob at 1-10
-// cm/s, over the 1 cm/s the precise preset's bodies keep.
+// ratio. What it does not hold yet (smaller and lighter bodies, bobbing): bench/box2d.md,
+// "Floating in the game preset".
 TEST_CASE("Archimedes, game preset: bodies of 24 spacings at 0.5 and 0.75 of water's density "
           "float at that submerged fraction at 0.2 m and 0.6 m depth",
           "[slow][box2d][archimedes]") {
@@ -325,9 +323,8 @@ TEST_CASE("Archimedes, game preset: bodies of 24 spacings at 0.5 and 0.75 of wat
         // The waterline from 3 columns a side or more: these bodies drift (up to 0.17 m in 8
         // s), and one may end within a few columns of its compartment's wall.
         CHECK(o.columns >= 3);
-        // The target is 10%; the waterline, read from the top particles beside the body, is
-        // good to about a third of a spacing, 4% of the 0.5 box's 8-spacing draft, and that box
-        // reads +10.1% at 0.2 m (+9.6% with a body move limit of a quarter cell): held to 12%.
+        // The target is 10%, less the waterline's own error (about a third of a spacing; the
+        // figures: bench/box2d.md, "Floating in the game preset").
         CHECK(std::fabs(o.measured / o.spec.ratio - 1.0) <= 0.12);
         CHECK_FALSE(o.onFloor);
     }
