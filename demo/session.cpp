@@ -15,7 +15,7 @@ namespace fluid::demo {
 namespace {
 
 // A preset scaled to another lattice spacing: mass with the particle's area, the smoothing
-// distance with the spacing, so a blob dropped into a coarse level (crates.json uses 2 cm)
+// distance with the spacing, so a blob dropped into a level of coarse water
 // has the level's resolution.
 Material atSpacing(Material material, float spacing, float depth) {
     const float own = particleSpacing(material, depth);
