@@ -529,6 +529,16 @@ void World::step(float frameDt) {
     if (m_state->materials.empty()) {
         throw Error("World::step: the world has no material; call addMaterial first");
     }
+    // A plugin that carries another engine's bodies has its host step the world with them.
+    for (std::size_t k = 0; k < m_state->boundaries.size(); ++k) {
+        const char* host = m_state->boundaries[k]->steppedBy();
+        if (host != nullptr) {
+            throw Error("World::step: boundary plugin " + std::to_string(k) + " ('" +
+                        std::string(m_state->boundaries[k]->type()) +
+                        "') carries another engine's bodies: step the world with " + host +
+                        ", which moves them with it; a bare World::step would leave them behind");
+        }
+    }
     detail::WorldState& s = *m_state;
     // Emitters add this frame's particles, the solver moves everything, then drains, lifetimes
     // and sensors see where the particles ended (events for the host to read).

@@ -146,3 +146,43 @@ TEST_CASE("crates.json: bodies as written, light crates float, heavy ones sink",
                 "particles, %.2f ms per frame\n",
                 brick, stone, cork, pine, oak, level.world.particleCount(), ms);
 }
+
+// The README's level loop: `level.step()` moves a level's Box2D bodies with the liquid; the bare
+// `level.world.step`, which would leave them frozen, is refused with a message naming the call
+// to make, before anything moves. Once the coupling is gone the world steps on its own again.
+TEST_CASE("a level with bodies steps as the README shows, and refuses a bare World::step",
+          "[level][bodies]") {
+    Level level = loadLevel(std::string(FLUID_LEVELS_DIR) + "/crates.json", builtins());
+    REQUIRE(level.coupling != nullptr);
+    std::vector<b2Vec2> start;
+    for (const auto& [name, body] : level.bodies) {
+        start.push_back(body->GetPosition());
+    }
+    const uint64_t before = stateHash(level.world);
+    CHECK_THROWS_WITH(level.world.step(1.0f / level.frameRate),
+                      "World::step: boundary plugin 1 ('box2d.bodies') carries another engine's "
+                      "bodies: step the world with fluid::box2d::Coupling::step (a level: "
+                      "fluid::Level::step), which moves them with it; a bare World::step would "
+                      "leave them behind");
+    CHECK(stateHash(level.world) == before);
+    CHECK(level.world.time() == 0.0);
+    for (int frame = 0; frame < 60; ++frame) {
+        level.step();
+    }
+    // The eight dynamic bodies fall onto the water or through it; the static tank stays.
+    uint32_t moving = 0;
+    for (std::size_t b = 0; b < level.bodies.size(); ++b) {
+        const b2Body* body = level.bodies[b].second;
+        const b2Vec2 d = body->GetPosition() - start[b];
+        if (body->GetType() == b2_dynamicBody && d.Length() > 0.01f) {
+            ++moving;
+        }
+    }
+    CHECK(moving == 8);
+    CHECK(level.world.time() == Approx(1.0).epsilon(1e-5));
+    // The coupling's own stepping (Coupling::step through Level::step) still works after a
+    // refused call, and without the coupling the world is an ordinary one.
+    level.coupling.reset();
+    level.world.step(1.0f / level.frameRate);
+    CHECK(allFinite(level.world));
+}

@@ -360,6 +360,13 @@ public:
     virtual bool bodyContains(uint32_t /*body*/, glm::vec2 /*point*/, float /*timeInStep*/) const {
         return false;
     }
+    /// The call that must step the world while this plugin is in it, or nullptr when a bare
+    /// `World::step` is fine (the default). A plugin that carries another engine's bodies
+    /// returns its host's step function (such as "fluid::box2d::Coupling::step"), except while
+    /// that host is stepping the world itself: `World::step` then refuses to run, throwing
+    /// `fluid::Error` with this name, so that the obvious call cannot leave the bodies behind.
+    /// Stepping thread; read at the start of every `World::step`.
+    virtual const char* steppedBy() const { return nullptr; }
     /// True when `point` (unit: m) lies in what `project` keeps particles out of: inside a
     /// solid, outside a container; a wall has no inside. Read from the plugin's parameters as
     /// they are now (it may be called before any `prepare`): `World::spawnBlob` leaves out the

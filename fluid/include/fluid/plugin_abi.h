@@ -29,14 +29,15 @@ namespace fluid {
 /// declaration hash is current" fails when the declarations of plugin.h and registry.h change,
 /// as a reminder. 4: `Material` gained the yield-stress fields (plugins see it in their
 /// contexts). 5: `BoundaryPlugin` gained `rigidBodies` and `receiveBodyImpulses` (bodies in the
-/// coarse pressure solve). Thread rule: a constant.
-inline constexpr uint32_t kPluginAbiVersion = 5;
+/// coarse pressure solve). 6: `BoundaryPlugin` gained `steppedBy` (a plugin whose host must step
+/// the world). Thread rule: a constant.
+inline constexpr uint32_t kPluginAbiVersion = 6;
 
 /// FNV-1a (32 bit) of the declarations of fluid/plugin.h and fluid/registry.h with `//`
 /// comments and all whitespace removed (see `pluginAbiDeclHash`). Part of
 /// `pluginAbiDetails()`, so a plugin compiled against other declarations is refused even when
 /// `kPluginAbiVersion` was not bumped. Update it when that test says so. Thread rule: a constant.
-inline constexpr uint32_t kPluginAbiDeclHash = 0x2bde99eau;
+inline constexpr uint32_t kPluginAbiDeclHash = 0x6a37021cu;
 
 /// Name of the entry point returning the library's `kPluginAbiVersion` (C linkage, signature
 /// `uint32_t(void)`, frozen for every future ABI version).

@@ -152,6 +152,12 @@ float BodyBoundary::friction() const {
     return m_def != nullptr ? m_def->friction : 0.0f;
 }
 
+const char* BodyBoundary::steppedBy() const {
+    return m_physics != nullptr && !m_hostStepping
+               ? "fluid::box2d::Coupling::step (a level: fluid::Level::step)"
+               : nullptr;
+}
+
 bool BodyBoundary::contains(glm::vec2 point) const {
     if (m_physics == nullptr) {
         return false;

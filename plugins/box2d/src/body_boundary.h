@@ -180,6 +180,11 @@ public:
     bool bodyContains(uint32_t body, glm::vec2 point, float timeInStep) const override;
     /// True when `point` lies in a coupled fixture of a body (`b2Fixture::TestPoint`).
     bool contains(glm::vec2 point) const override;
+    /// Attached and not inside the coupling's own step: "fluid::box2d::Coupling::step" (a bare
+    /// `World::step` would leave the Box2D bodies frozen); otherwise nullptr.
+    const char* steppedBy() const override;
+    /// Marks the coupling's own `World::step` calls (set while one runs; stepping thread).
+    void setHostStepping(bool stepping) { m_hostStepping = stepping; }
 
     /// The coupled bodies of the last `prepare`, in body-list order.
     std::span<const BodyEntry> bodies() const { return m_bodies; }
@@ -213,6 +218,7 @@ private:
                          uint32_t fixtureIndex);
 
     b2World* m_physics = nullptr;
+    bool m_hostStepping = false; // inside the coupling's own World::step
     const CouplingDef* m_def = nullptr;
     std::vector<FixtureEntry> m_entries;
     std::unordered_map<const b2Fixture*, uint32_t> m_index; // lookup only, never iterated

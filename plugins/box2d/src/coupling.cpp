@@ -24,6 +24,16 @@ namespace fluid::box2d {
 
 namespace {
 
+// The coupling's own World::step: the plugin lets it through (BodyBoundary::steppedBy) until the
+// step returns or throws.
+struct HostStep {
+    BodyBoundary& boundary;
+    explicit HostStep(BodyBoundary& b) : boundary(b) { boundary.setHostStepping(true); }
+    ~HostStep() { boundary.setHostStepping(false); }
+    HostStep(const HostStep&) = delete;
+    HostStep& operator=(const HostStep&) = delete;
+};
+
 void checkRange(const char* field, double value, double lo, double hi, const char* unit) {
     internal::checkRange("fluid::box2d::CouplingDef: ", field, value, lo, hi, unit);
 }
@@ -239,6 +249,7 @@ void Coupling::step(World& world, float dt) {
     checkWorld(world, "step");
     checkBodies("step");
     if (!(dt > 0.0f && dt <= 1.0f)) {
+        const HostStep host(*m_boundary);
         world.step(dt); // throws World::step's own message, before Box2D moves anything
     }
     // One round per position-based sub-step, as many as `World::step` would take for dt, the
@@ -339,7 +350,10 @@ void Coupling::fluidRound(World& world, float dt) {
         masses[k] = world.material(MaterialId{uint16_t(k)}).mass;
     }
     m_boundary->setMaterialMasses(std::move(masses));
-    world.step(dt);
+    {
+        const HostStep host(*m_boundary);
+        world.step(dt);
+    }
     applyCorrections();
     addProfile(world.profile());
     const std::span<const RemovedEvent> removed = world.removedEvents();
