@@ -29,6 +29,8 @@
 // stacked: particles at exactly the position of another after the last frame (pair terms have
 // no direction to part them). surface_change_last_second: the surface change averaged over the
 // last 60 frames.
+#include "command_line.h"
+
 #include <fluid/fluid.h>
 
 #if FLUID_BENCH_BOX2D
@@ -708,13 +710,8 @@ int main(int argc, char** argv) {
     app.add_option("--window", opt.window,
                    "A:B: frames (1-based, counted from the first simulated frame, warm-up "
                    "included) the window_compression fields cover (default: the timed frames)");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        app.exit(e); // prints the message and the usage hint
-        return 2;
+    if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
+        return status;
     }
     if (opt.scene != "dam" && opt.scene != "blob" && opt.scene != "crates" && opt.scene != "tank") {
         std::fprintf(stderr,

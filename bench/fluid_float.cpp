@@ -22,6 +22,8 @@
 // middle half at the end (spacings). --hold MM holds the body MM above its draft (Box2D's
 // gravity off, its pose reset every frame) and prints the fluid's force on it first; --trace
 // prints its pose and velocity every frame of the last second.
+#include "command_line.h"
+
 #include <fluid/box2d/coupling.h>
 #include <fluid/fluid.h>
 
@@ -217,6 +219,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 64));
     app.add_option("--coarse", opt.coarse, "override the coarse correction's share (0 = off)")
         ->check(CLI::Range(0.0, 1.0));
-    CLI11_PARSE(app, argc, argv);
+    if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
+        return status;
+    }
     return run(opt);
 }

@@ -7,6 +7,8 @@
 //
 // Exit status: 0 when the run finished, 1 for bad input (the loader's message on stderr), 2 for
 // a bad command line.
+#include "command_line.h"
+
 #include <fluid/fluid.h>
 #include <fluid/level.h>
 #include <fluid/plugin_library.h>
@@ -192,7 +194,9 @@ int main(int argc, char** argv) {
     app.add_option("--out", outDir, "Directory for snapshots (created if missing)");
     app.add_option("--plugin", plugins,
                    "Plugin library (.so) to load before the level; repeatable");
-    CLI11_PARSE(app, argc, argv);
+    if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
+        return status;
+    }
     if (snapshotEvery > 0 && outDir.empty()) {
         std::cerr << "fluid-run: --snapshot-every needs --out DIR\n";
         return 2;

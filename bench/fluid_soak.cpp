@@ -21,6 +21,8 @@
 //   - resident memory, after the first minute (a third of shorter runs), within 5% of its value
 //     then.
 // The first failure prints the frame, the check and the figures, and exits 1.
+#include "command_line.h"
+
 #include <fluid/box2d/coupling.h>
 #include <fluid/box2d/physics_save.h>
 #include <fluid/fluid.h>
@@ -129,7 +131,9 @@ int main(int argc, char** argv) {
     std::string quality = "precise";
     app.add_option("--quality", quality, "The position-based preset: precise (the default) or game")
         ->check(CLI::IsMember({"precise", "game"}));
-    CLI11_PARSE(app, argc, argv);
+    if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
+        return status;
+    }
 
     fluid::WorldDef def;
     def.positionBased = fluid::positionBasedPreset(quality == "game" ? fluid::Quality::Game

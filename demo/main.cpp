@@ -5,6 +5,8 @@
 //                                             headless: step N frames, save a PNG, exit
 //   fluid-demo --level all --view all --frames N --screenshot-dir DIR
 //                                             every level in every view (tests, docs)
+#include "bench/command_line.h"
+
 #include "demo/app.h"
 #include "demo/headless.h"
 #include "demo/level_list.h"
@@ -90,7 +92,9 @@ int main(int argc, char** argv) {
     app.add_option("--script", scriptPath,
                    "Play the game with scripted input (docs/demo.md); with --frames N it runs N "
                    "frames of one step each, prints a summary and exits");
-    CLI11_PARSE(app, argc, argv);
+    if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
+        return status;
+    }
 
     int width = 0, height = 0;
     char tail = 0;
@@ -183,9 +187,14 @@ int main(int argc, char** argv) {
                          "one.\nRun it on a desktop, or install xvfb and xauth.\n");
             return 1;
         }
-        const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+        // The pictures go beside the program (in the build folder), not into the folder it was
+        // started from, which may be the source tree.
+        const std::filesystem::path selfPath = std::filesystem::read_symlink("/proc/self/exe");
+        const std::string self = selfPath.string();
+        const std::string shots = (selfPath.parent_path() / "fluid-demo-shots").string();
         std::printf("fluid-demo: no display; playing every level headless under Xvfb. "
-                    "Screenshots go to ./fluid-demo-shots/\n");
+                    "Screenshots go to %s/\n",
+                    shots.c_str());
         std::fflush(stdout);
         std::vector<std::string> args{"xvfb-run",
                                       "-a",
@@ -199,7 +208,7 @@ int main(int argc, char** argv) {
                                       "--frames",
                                       "180",
                                       "--screenshot-dir",
-                                      "fluid-demo-shots"};
+                                      shots};
         std::vector<char*> raw;
         for (std::string& a : args) {
             raw.push_back(a.data());

@@ -1,0 +1,23 @@
+// fluid — the command-line rule shared by fluid-bench, fluid-run, fluid-soak, fluid-float and
+// fluid-demo: a bad command line exits with status 2, as their documentation says.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace fluid::tools {
+
+/// Parses `argv` into `app`. Returns -1 when the program should go on; otherwise the status to
+/// exit with: 0 after `--help` (the help printed on standard output), 2 for a bad command line
+/// (an unknown option, a value of the wrong type or out of range, a missing required option:
+/// CLI11's message and its usage hint printed on standard error). Main thread.
+inline int parseCommandLine(CLI::App& app, int argc, char** argv) {
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int status = app.exit(e); // prints the help, or the message and the hint
+        return status == 0 ? 0 : 2;
+    }
+    return -1;
+}
+
+} // namespace fluid::tools
