@@ -1,7 +1,13 @@
 # Checks that fluid can be consumed by a game in both supported ways:
-#   (a) installed: `cmake --install` into a fresh prefix, then find_package(fluid CONFIG REQUIRED);
-#   (b) vendored:  add_subdirectory(<fluid source> fluid-build), with no tests/bench/examples.
-# In both modes the consumer in consumer/ is configured, built and run.
+#   (a) installed: `cmake --install` into a fresh prefix, then find_package(fluid CONFIG ...):
+#       - consumer_core/: a bare find_package(fluid) loads the core alone, configured as on a
+#         machine without Box2D, nlohmann_json, OpenGL and GLEW (CMAKE_DISABLE_FIND_PACKAGE_*),
+#         and optional components whose dependencies are missing only come back not found;
+#       - consumer/ with COMPONENTS naming every installed component, calling into each;
+#       - requests that must fail, naming the component and what is missing: gl without GLEW,
+#         level without nlohmann_json, an unknown component, a component not installed;
+#   (b) vendored:  add_subdirectory(<fluid source> fluid-build), with no tests/bench/examples,
+#       and none of the optional libraries unless the game turns them on.
 #
 # Usage:
 #   cmake -DSOURCE_DIR=<fluid source> -DBINARY_DIR=<built fluid tree> -DWORK_DIR=<scratch dir>
@@ -31,7 +37,8 @@ endif()
 # Build the consumer the way the parent tree was built.
 load_cache("${BINARY_DIR}" READ_WITH_PREFIX PARENT_
     CMAKE_GENERATOR CMAKE_MAKE_PROGRAM CMAKE_BUILD_TYPE CMAKE_CXX_COMPILER CMAKE_CXX_FLAGS
-    CMAKE_EXE_LINKER_FLAGS FLUID_INSTALL FLUID_CCACHE FLUID_CCACHE_PROGRAM)
+    CMAKE_EXE_LINKER_FLAGS FLUID_INSTALL FLUID_CCACHE FLUID_CCACHE_PROGRAM
+    FLUID_BUILD_BOX2D FLUID_BUILD_LEVEL FLUID_BUILD_GL)
 if(NOT DEFINED GENERATOR OR GENERATOR STREQUAL "")
     set(GENERATOR "${PARENT_CMAKE_GENERATOR}")
 endif()
@@ -63,7 +70,8 @@ if(BUILD_TYPE)
     set(_config_args --config "${BUILD_TYPE}")
 endif()
 
-# run(<description> <command>...): run a command, fail with its output if it fails.
+# run(<description> <command>...): run a command, fail with its output if it fails; the output
+# is left in RUN_OUTPUT.
 function(run description)
     message(STATUS "check_install: ${description}")
     execute_process(COMMAND ${ARGN}
@@ -75,27 +83,93 @@ function(run description)
         fail("${description} failed (exit ${_rc})\n  command: ${_cmd}\n--- output ---\n${_out}"
              "--- end of output ---")
     endif()
+    set(RUN_OUTPUT "${_out}" PARENT_SCOPE)
 endfunction()
 
-# Finds the consumer executable inside a build tree (single- or multi-config generators).
-function(find_consumer_exe build_dir out_var)
+
+# run_failing(<description> PATTERNS <regex>... COMMAND <command>...): run a command that must
+# fail, and whose output must match every regex (case-sensitive). CMake wraps long messages, so
+# a space in a regex matches any run of blanks and line breaks.
+function(run_failing description)
+    cmake_parse_arguments(PARSE_ARGV 1 _arg "" "" "PATTERNS;COMMAND")
+    message(STATUS "check_install: ${description}")
+    execute_process(COMMAND ${_arg_COMMAND}
+        RESULT_VARIABLE _rc
+        OUTPUT_VARIABLE _out
+        ERROR_VARIABLE _out)
+    string(JOIN " " _cmd ${_arg_COMMAND})
+    if(_rc STREQUAL "0")
+        fail("${description}: the command succeeded but must fail\n  command: ${_cmd}\n"
+             "--- output ---\n${_out}--- end of output ---")
+    endif()
+    foreach(_pattern IN LISTS _arg_PATTERNS)
+        string(REPLACE " " "[ \t\r\n]+" _regex "${_pattern}")
+        if(NOT _out MATCHES "${_regex}")
+            fail("${description}: the output does not match '${_pattern}'\n  command: ${_cmd}\n"
+                 "--- output ---\n${_out}--- end of output ---")
+        endif()
+    endforeach()
+endfunction()
+
+# find_exe(<build dir> <name> <out var>): the executable <name> inside a build tree (single- or
+# multi-config generators).
+function(find_exe build_dir name out_var)
     foreach(_candidate IN ITEMS
-            "${build_dir}/fluid_consumer" "${build_dir}/fluid_consumer.exe"
-            "${build_dir}/${BUILD_TYPE}/fluid_consumer" "${build_dir}/${BUILD_TYPE}/fluid_consumer.exe")
+            "${build_dir}/${name}" "${build_dir}/${name}.exe"
+            "${build_dir}/${BUILD_TYPE}/${name}" "${build_dir}/${BUILD_TYPE}/${name}.exe")
         if(EXISTS "${_candidate}" AND NOT IS_DIRECTORY "${_candidate}")
             set(${out_var} "${_candidate}" PARENT_SCOPE)
             return()
         endif()
     endforeach()
-    fail("built the consumer in '${build_dir}' but found no fluid_consumer executable there")
+    fail("built '${name}' in '${build_dir}' but found no such executable there")
+endfunction()
+
+# check_found_in_prefix(<build dir>): the package came from our fresh prefix, not from
+# somewhere else on the machine.
+function(check_found_in_prefix build_dir)
+    load_cache("${build_dir}" READ_WITH_PREFIX CONSUMER_ fluid_DIR)
+    file(REAL_PATH "${_prefix}" _real_prefix)
+    file(REAL_PATH "${CONSUMER_fluid_DIR}" _real_fluid_dir)
+    string(FIND "${_real_fluid_dir}" "${_real_prefix}/" _pos)
+    if(NOT _pos EQUAL 0)
+        fail("'${build_dir}' found fluid at '${CONSUMER_fluid_DIR}', not under '${_prefix}'")
+    endif()
 endfunction()
 
 set(_consumer_src "${CMAKE_CURRENT_LIST_DIR}/consumer")
+set(_consumer_core_src "${CMAKE_CURRENT_LIST_DIR}/consumer_core")
 set(_prefix "${WORK_DIR}/prefix")
+set(_core_build "${WORK_DIR}/consumer-core")
 set(_package_build "${WORK_DIR}/consumer-package")
+set(_failing_build "${WORK_DIR}/consumer-failing")
 set(_subdir_build "${WORK_DIR}/consumer-subdirectory")
-file(REMOVE_RECURSE "${_prefix}" "${_package_build}" "${_subdir_build}")
+set(_subdir_level_build "${WORK_DIR}/consumer-subdirectory-level")
+file(REMOVE_RECURSE "${_prefix}" "${_core_build}" "${_package_build}" "${_failing_build}"
+    "${_subdir_build}" "${_subdir_level_build}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
+
+# The components the parent tree installs, and the targets file of each.
+set(_components core)
+set(_targets_file_core fluidCoreTargets.cmake)
+set(_targets_file_box2d fluidBox2dTargets.cmake)
+set(_targets_file_level fluidLevelTargets.cmake)
+set(_targets_file_gl fluidGlTargets.cmake)
+foreach(_comp IN ITEMS box2d level gl)
+    string(TOUPPER "${_comp}" _upper)
+    if(PARENT_FLUID_BUILD_${_upper})
+        list(APPEND _components ${_comp})
+    endif()
+endforeach()
+message(STATUS "check_install: installed components: ${_components}")
+
+# A machine view without fluid's optional dependencies.
+set(_without_optional_deps
+    -DCMAKE_DISABLE_FIND_PACKAGE_box2d=ON
+    -DCMAKE_DISABLE_FIND_PACKAGE_nlohmann_json=ON
+    -DCMAKE_DISABLE_FIND_PACKAGE_OpenGL=ON
+    -DCMAKE_DISABLE_FIND_PACKAGE_GLEW=ON)
+set(_package_args "-DCMAKE_PREFIX_PATH=${_prefix}" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
 
 # ---- (a) installed package ---------------------------------------------------------------------
 run("install ${BINARY_DIR} into ${_prefix}"
@@ -106,38 +180,102 @@ if(NOT EXISTS "${_prefix}/include/fluid/fluid.h")
 endif()
 file(GLOB_RECURSE _configs "${_prefix}/*/fluidConfig.cmake")
 file(GLOB_RECURSE _versions "${_prefix}/*/fluidConfigVersion.cmake")
-file(GLOB_RECURSE _targets "${_prefix}/*/fluidTargets.cmake")
-if(NOT _configs OR NOT _versions OR NOT _targets)
-    fail("the install lacks fluidConfig.cmake, fluidConfigVersion.cmake or fluidTargets.cmake "
-         "(under ${_prefix})")
+if(NOT _configs OR NOT _versions)
+    fail("the install lacks fluidConfig.cmake or fluidConfigVersion.cmake (under ${_prefix})")
 endif()
-# Build-only helpers must not leak into the exported package.
+list(GET _configs 0 _config)
+get_filename_component(_package_dir "${_config}" DIRECTORY)
+foreach(_comp IN ITEMS core box2d level gl)
+    set(_file "${_package_dir}/${_targets_file_${_comp}}")
+    if(_comp IN_LIST _components AND NOT EXISTS "${_file}")
+        fail("component '${_comp}' was built but the install lacks ${_file}")
+    elseif(NOT _comp IN_LIST _components AND EXISTS "${_file}")
+        fail("component '${_comp}' was not built but the install has ${_file}")
+    endif()
+endforeach()
+# Build-only helpers must not leak into the exported package, and the core's targets file must
+# not refer to any optional dependency.
+file(GLOB _targets "${_package_dir}/fluid*Targets*.cmake")
 foreach(_file IN LISTS _targets)
     file(READ "${_file}" _text)
     if(_text MATCHES "fluid_warnings")
         fail("${_file} refers to fluid_warnings; link it as $<BUILD_INTERFACE:fluid_warnings>")
     endif()
 endforeach()
-
-run("configure the consumer (package mode)"
-    "${CMAKE_COMMAND}" -S "${_consumer_src}" -B "${_package_build}" ${_common_args}
-    -DFLUID_CONSUMER_MODE=package
-    "-DCMAKE_PREFIX_PATH=${_prefix}"
-    -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
-
-# Make sure the package came from our fresh prefix, not from somewhere else on the machine.
-load_cache("${_package_build}" READ_WITH_PREFIX CONSUMER_ fluid_DIR)
-file(REAL_PATH "${_prefix}" _real_prefix)
-file(REAL_PATH "${CONSUMER_fluid_DIR}" _real_fluid_dir)
-string(FIND "${_real_fluid_dir}" "${_real_prefix}/" _pos)
-if(NOT _pos EQUAL 0)
-    fail("package mode found fluid at '${CONSUMER_fluid_DIR}', not under '${_prefix}'")
+file(READ "${_package_dir}/${_targets_file_core}" _text)
+if(_text MATCHES "box2d::|nlohmann_json|OpenGL::|GLEW::|fluid::(box2d|level|gl)")
+    fail("${_package_dir}/${_targets_file_core} refers to an optional library "
+         "('${CMAKE_MATCH_0}'); the core must need glm and threads only")
 endif()
 
+# (a1) The core alone, on a machine view without the optional dependencies. find_package(fluid)
+# must not even look for them: CMake then reports each CMAKE_DISABLE_FIND_PACKAGE_<Pkg> given on
+# the command line as unused.
+run("configure the core consumer without Box2D, nlohmann_json, OpenGL and GLEW"
+    "${CMAKE_COMMAND}" -S "${_consumer_core_src}" -B "${_core_build}" ${_common_args}
+    ${_package_args} ${_without_optional_deps})
+check_found_in_prefix("${_core_build}")
+foreach(_pkg IN ITEMS box2d nlohmann_json OpenGL GLEW)
+    if(NOT RUN_OUTPUT MATCHES "not used by the project:[^-]*CMAKE_DISABLE_FIND_PACKAGE_${_pkg}[\r\n]")
+        fail("find_package(fluid) without components looked for ${_pkg} (CMake does not report "
+             "CMAKE_DISABLE_FIND_PACKAGE_${_pkg} as unused)\n--- output ---\n${RUN_OUTPUT}"
+             "--- end of output ---")
+    endif()
+endforeach()
+run("build the core consumer" "${CMAKE_COMMAND}" --build "${_core_build}" ${_config_args})
+find_exe("${_core_build}" fluid_consumer_core _exe)
+run("run the core consumer" "${_exe}")
+# The optional components asked for with OPTIONAL_COMPONENTS come back not found, without failing.
+run("configure the core consumer with OPTIONAL_COMPONENTS box2d level gl"
+    "${CMAKE_COMMAND}" -S "${_consumer_core_src}" -B "${_core_build}"
+    "-DFLUID_CONSUMER_OPTIONAL=box2d,level,gl")
+
+# (a2) Every installed component, by name.
+string(JOIN "," _all_components ${_components})
+run("configure the consumer (package mode, COMPONENTS ${_all_components})"
+    "${CMAKE_COMMAND}" -S "${_consumer_src}" -B "${_package_build}" ${_common_args}
+    ${_package_args}
+    -DFLUID_CONSUMER_MODE=package
+    "-DFLUID_CONSUMER_COMPONENTS=${_all_components}")
+check_found_in_prefix("${_package_build}")
 run("build the consumer (package mode)"
     "${CMAKE_COMMAND}" --build "${_package_build}" ${_config_args})
-find_consumer_exe("${_package_build}" _exe)
+find_exe("${_package_build}" fluid_consumer _exe)
 run("run the consumer (package mode)" "${_exe}")
+
+# (a3) Requests that must fail, with a message naming the component and what it lacks.
+# failing_request(<description> <components> <configure args> PATTERNS <regex>...)
+function(failing_request description components)
+    cmake_parse_arguments(PARSE_ARGV 2 _arg "" "" "ARGS;PATTERNS")
+    file(REMOVE_RECURSE "${_failing_build}")
+    run_failing("${description}"
+        PATTERNS ${_arg_PATTERNS}
+        COMMAND "${CMAKE_COMMAND}" -S "${_consumer_src}" -B "${_failing_build}" ${_common_args}
+            ${_package_args} ${_arg_ARGS}
+            -DFLUID_CONSUMER_MODE=package
+            "-DFLUID_CONSUMER_COMPONENTS=${components}")
+endfunction()
+
+if("gl" IN_LIST _components)
+    failing_request("COMPONENTS gl without GLEW must fail naming gl and GLEW" gl
+        ARGS -DCMAKE_DISABLE_FIND_PACKAGE_GLEW=ON
+        PATTERNS "component 'gl' needs GLEW" "fluid_FOUND to FALSE")
+else()
+    failing_request("COMPONENTS gl, not installed, must fail naming gl" gl
+        PATTERNS "component 'gl' was not installed" "FLUID_BUILD_GL=OFF")
+endif()
+if("level" IN_LIST _components)
+    failing_request("COMPONENTS level without nlohmann_json must fail naming level and nlohmann_json"
+        level
+        ARGS -DCMAKE_DISABLE_FIND_PACKAGE_nlohmann_json=ON
+        PATTERNS "component 'level' needs nlohmann_json")
+    failing_request("COMPONENTS level without Box2D must fail naming level and box2d" level
+        ARGS -DCMAKE_DISABLE_FIND_PACKAGE_box2d=ON
+        PATTERNS "component 'box2d' needs box2d" "component 'level' needs component 'box2d'")
+endif()
+failing_request("an unknown component must fail naming it" core,physics
+    PATTERNS "component 'physics' is unknown")
+file(REMOVE_RECURSE "${_failing_build}")
 
 # ---- (b) add_subdirectory -----------------------------------------------------------------------
 run("configure the consumer (subdirectory mode)"
@@ -148,7 +286,18 @@ run("configure the consumer (subdirectory mode)"
 # fluid's libraries (level files, Box2D coupling) are built and tested in the parent tree.
 run("build the consumer (subdirectory mode)"
     "${CMAKE_COMMAND}" --build "${_subdir_build}" --target fluid_consumer ${_config_args})
-find_consumer_exe("${_subdir_build}" _exe)
+find_exe("${_subdir_build}" fluid_consumer _exe)
 run("run the consumer (subdirectory mode)" "${_exe}")
 
-message(STATUS "check_install: package and subdirectory consumers built and ran")
+# A game that turns on FLUID_BUILD_LEVEL gets fluid::level and fluid::box2d, not fluid::gl
+# (the consumer's CMakeLists.txt checks the targets; configuring is enough).
+if("level" IN_LIST _components)
+    run("configure the consumer (subdirectory mode, FLUID_BUILD_LEVEL)"
+        "${CMAKE_COMMAND}" -S "${_consumer_src}" -B "${_subdir_level_build}" ${_common_args}
+        -DFLUID_CONSUMER_MODE=subdirectory
+        -DFLUID_CONSUMER_COMPONENTS=level
+        "-DFLUID_SOURCE_DIR=${SOURCE_DIR}")
+endif()
+
+message(STATUS "check_install: core-only, all-component, failing-request and subdirectory "
+               "consumers passed")
