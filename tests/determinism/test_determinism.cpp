@@ -77,7 +77,7 @@ uint64_t runDam(const WorldDef& def, uint32_t* substeps = nullptr) {
 } // namespace
 
 TEST_CASE("bit-identical state for 1, 2 and 4 workers and a host task hook",
-          "[slow][determinism]") {
+          "[slow][long][determinism]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
     CAPTURE(solverName(solver));
     Stopwatch sw(std::string("determinism, 4 runs, ") + solverName(solver));

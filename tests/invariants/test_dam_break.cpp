@@ -8,7 +8,7 @@ using namespace fluid;
 using namespace fluid::test;
 
 TEST_CASE("dam break: 2,000 particles, 3 s, no NaN, no leak, no explosion",
-          "[slow][invariants][dam]") {
+          "[slow][long][invariants][dam]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
     CAPTURE(solverName(solver));
     Stopwatch sw(std::string("dam break 3 s, ") + solverName(solver));
@@ -108,7 +108,7 @@ BigDam runBigDam(Solver solver, int frames, bool untilArrival) {
 } // namespace
 
 TEST_CASE("dam break 0.5 x 1 m for 10 s with the default solver: no leak, front on time",
-          "[slow][invariants][dam]") {
+          "[slow][long][invariants][dam]") {
     Stopwatch sw("dam break 0.5 x 1 m: explicit to arrival, default 10 s");
     REQUIRE(WorldDef{}.solver == Solver::PositionBased);
     const BigDam reference = runBigDam(Solver::Explicit, 120, true);

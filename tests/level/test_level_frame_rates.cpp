@@ -149,7 +149,7 @@ TEST_CASE("crates.json at 1, 2, 10 and 60 Hz, position-based: water in the tank,
 
 TEST_CASE("crates.json at 1, 2, 10 and 60 Hz, explicit solver: water in the tank, bodies calm, "
           "the cost of 60 Hz per simulated second",
-          "[slow][level][bodies][frame-rate][explicit]") {
+          "[slow][long][level][bodies][frame-rate][explicit]") {
     Stopwatch sw("crates.json at 4 frame rates, explicit solver");
     sweep(true, 2.0);
 }

@@ -288,7 +288,7 @@ TEST_CASE("Archimedes: boxes and circles at twice the fluid's density sink and r
 // "Floating in the game preset".
 TEST_CASE("Archimedes, game preset: bodies of 24 spacings at 0.5 and 0.75 of water's density "
           "float at that submerged fraction at 0.2 m and 0.6 m depth",
-          "[slow][box2d][archimedes]") {
+          "[slow][long][box2d][archimedes]") {
     const float depth = GENERATE(0.2f, 0.6f);
     CAPTURE(depth);
     World probe;
@@ -338,7 +338,7 @@ TEST_CASE("Archimedes, game preset: bodies of 24 spacings at 0.5 and 0.75 of wat
 // (bench/box2d.md, "Floating in the game preset", the precise rows).
 TEST_CASE("Archimedes, precise preset: bodies of 12 spacings at 0.25, 0.5 and 0.75 of water's "
           "density float at that submerged fraction at 0.2 m and 0.6 m depth",
-          "[slow][box2d][archimedes]") {
+          "[slow][long][box2d][archimedes]") {
     const float depth = GENERATE(0.2f, 0.6f);
     CAPTURE(depth);
     World probe;
