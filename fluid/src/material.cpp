@@ -1,5 +1,6 @@
 // fluid — materials: the seed's Table 4.1 presets and validation.
 #include <fluid/error.h>
+#include <fluid/internal/checks.h>
 #include <fluid/material.h>
 
 #include <cmath>
@@ -78,14 +79,21 @@ std::span<const MaterialField> materialFields() {
 }
 
 void validate(const Material& m) {
+    if (const std::string problem = internal::nameProblem(m.name); !problem.empty()) {
+        throw Error("material '" + m.name + "': " + problem);
+    }
     for (const MaterialField& f : kFields) {
+        // Compared in the field's own type: a bound such as 1e-4 is not a float, and the
+        // float nearest to it (what a level or a tuning panel stores) must pass.
         const float value = m.*f.real;
+        const auto lo = float(f.lo);
+        const auto hi = float(f.hi);
         const bool ok =
-            std::isfinite(value) && (f.openLow ? value > f.lo : value >= f.lo) && value <= f.hi;
+            std::isfinite(value) && (f.openLow ? value > lo : value >= lo) && value <= hi;
         if (!ok) {
             std::ostringstream s;
-            s << "material '" << m.name << "': " << f.name << " = " << value << " is "
-              << (std::isfinite(value) ? "out of range " : "not finite; expected ")
+            s << "material '" << m.name << "': " << f.name << " = " << internal::formatValue(value)
+              << " is " << (std::isfinite(value) ? "out of range " : "not finite; expected ")
               << (f.openLow ? "(" : "[") << f.lo << ", " << f.hi << "] (unit: " << f.unit << ")";
             throw Error(s.str());
         }

@@ -171,6 +171,7 @@ std::unique_ptr<Plugin> Registry::create(std::string_view type,
     for (const ParamValue& value : values) {
         plugin->setParam(value.first, value.second);
     }
+    plugin->checkParams();
     return plugin;
 }
 

@@ -32,7 +32,8 @@ namespace fluid {
 namespace {
 
 constexpr char kMagic[8] = {'F', 'L', 'U', 'I', 'D', 'S', 'N', 'P'};
-constexpr uint32_t kVersion = 4; // 4: Herschel-Bulkley fields, stress and pending kicks
+constexpr uint32_t kVersion = 5; // 4: Herschel-Bulkley fields, stress and pending kicks; 5: the
+                                 // position-based solver's carried frame time
 
 // The last step's profile as a snapshot holds it: its counts and figures, in the order of the
 // format since version 2. The eight floats where the stage times once stood are written as 0
@@ -255,6 +256,7 @@ void checkParticles(const detail::WorldState& s) {
 void checkSolverState(const detail::WorldState& s) {
     const std::tuple<const char*, double, double> solver[] = {
         {"time", s.time, -DBL_MAX},
+        {"carried time", s.carry, 0.0},
         {"sound speed", s.soundSpeed, 0.0},
         {"field gh", s.fieldGH, -DBL_MAX},
         {"last max acceleration", s.lastMaxAccel, 0.0}};
@@ -341,6 +343,7 @@ void World::save(std::ostream& out) const {
     // Solver state carried from step to step, and the last profile's counts and figures
     // (ProfileRecord: no stage times).
     o.put(s.time);
+    o.put(s.carry);
     o.put(s.soundSpeed);
     o.put(s.fieldGH);
     o.put(uint8_t(s.fieldMeasured));
@@ -572,12 +575,18 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
         corrupt("sensor readings of the wrong size");
     }
     s.time = in.get<double>();
+    s.carry = in.get<double>();
     s.soundSpeed = in.get<float>();
     s.fieldGH = in.get<float>();
     s.fieldMeasured = in.small(true, "the field flag");
     s.lastMaxAccel = in.get<float>();
     s.profile = in.get<ProfileRecord>().profile();
     checkSolverState(s);
+    if (s.carry > 1.0) {
+        std::ostringstream text;
+        text << "the carried frame time is " << s.carry << " s, more than a frame (1 s)";
+        corrupt(text.str());
+    }
     if (!in.done()) {
         corrupt("unexpected data after the last section");
     }

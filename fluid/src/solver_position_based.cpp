@@ -258,7 +258,10 @@ public:
         m_moving = samplesMove(s);
         beginYielding(s);
         FramePlan plan;
-        plan.count = fluid::frameSubsteps(settings.substeps, frameDt);
+        // World::step planned the whole sub-steps of fixed length the frame is due.
+        plan.count = s.plannedSubsteps > 0 ? s.plannedSubsteps
+                                           : fluid::frameSubsteps(settings.substeps, frameDt);
+        s.plannedSubsteps = 0;
         plan.dt = frameDt / float(plan.count);
         m_c = pbfConstants(s, facts, plan.dt);
         // Viscosity, vorticity and surface tension run every `interval` sub-steps, each time

@@ -540,6 +540,28 @@ void World::step(float frameDt) {
         }
     }
     detail::WorldState& s = *m_state;
+    // The position-based solver steps in sub-steps of a fixed length, 1/60 s over the setting's
+    // count, whatever the frame: the frame simulates the whole sub-steps due and carries the
+    // rest to the next frame (a frame shorter than what is left of a sub-step steps nothing).
+    // A correction turns into velocity over its sub-step, so a shorter sub-step would turn the
+    // same residual compression into a faster motion (docs/position_based.md, "Frame length").
+    float simulated = frameDt;
+    if (s.def.solver == Solver::PositionBased) {
+        const double h = detail::substepLength(s.def.positionBased.substeps);
+        const double due = s.carry + double(frameDt);
+        const uint32_t count = detail::dueSubsteps(due, h);
+        if (count == 0) {
+            s.carry = due;
+            s.removed.clear();
+            s.profile = Profile{};
+            s.profile.particles = s.particles.size();
+            return;
+        }
+        s.plannedSubsteps = count;
+        simulated = float(double(count) * h);
+        s.carry = std::max(0.0, due - double(count) * h);
+    }
+    frameDt = simulated;
     // Emitters add this frame's particles, the solver moves everything, then drains, lifetimes
     // and sensors see where the particles ended (events for the host to read).
     s.removed.clear();
@@ -690,8 +712,15 @@ uint32_t World::drainCount() const {
 SensorId World::addSensor(const SensorDef& def) {
     validate(def.shape, "World::addSensor");
     m_state->sensors.push_back(def);
-    // Zeros until the next step measures (the table is sensor-major, one entry per material).
-    m_state->sensorReadings.assign(m_state->sensors.size() * m_state->materials.size(), {});
+    // The new sensor's entries are zeros until the next step measures; the others keep theirs.
+    // Only the new entries are written, so adding n sensors costs O(n) (the table is
+    // sensor-major, one entry per material).
+    try {
+        m_state->sensorReadings.resize(m_state->sensors.size() * m_state->materials.size());
+    } catch (...) {
+        m_state->sensors.pop_back();
+        throw;
+    }
     return SensorId{static_cast<uint32_t>(m_state->sensors.size() - 1), m_state->tag.value()};
 }
 
@@ -733,6 +762,9 @@ namespace {
 // a frame pacer's 1/59.94 s does not add a sub-step.
 constexpr double kTunedFrame = 1.0 / 60.0;
 constexpr double kLongFrameSlack = 0.1;
+// Share of a sub-step a frame may fall short of it and still take it: a float frame's
+// rounding (1/60.f over 4 is 0.99999... of 1/240 s in some sums), never a real shortfall.
+constexpr double kSubstepRounding = 1e-4;
 
 } // namespace
 
@@ -748,8 +780,35 @@ uint32_t frameSubsteps(uint32_t perFrame, float frameDt) {
 
 uint32_t World::substepsFor(float frameDt) const {
     checkFrameDt("World::substepsFor", frameDt);
-    return frameSubsteps(m_state->def.positionBased.substeps, frameDt);
+    const detail::WorldState& s = *m_state;
+    if (s.def.solver != Solver::PositionBased) {
+        return frameSubsteps(s.def.positionBased.substeps, frameDt);
+    }
+    return detail::dueSubsteps(s.carry + double(frameDt),
+                               detail::substepLength(s.def.positionBased.substeps));
 }
+
+double World::substepLength() const {
+    return detail::substepLength(m_state->def.positionBased.substeps);
+}
+
+double World::carriedTime() const {
+    return m_state->carry;
+}
+
+namespace detail {
+
+double substepLength(uint32_t perFrame) {
+    // From the float 1/60 a game passes, so that its 60 Hz frames are whole sub-steps exactly
+    // (at 4 per frame to the bit) and carry nothing.
+    return double(1.0f / 60.0f) / double(perFrame);
+}
+
+uint32_t dueSubsteps(double due, double h) {
+    return uint32_t(std::floor(due / h + kSubstepRounding));
+}
+
+} // namespace detail
 
 void World::setPositionBased(const PositionBasedDef& settings) {
     validatePositionBased(settings, "World::setPositionBased: ");

@@ -281,6 +281,10 @@ struct WorldState {
     Profile profile;
     StageProbe stageProbe; // tests only: see StageProbe
     double time = 0.0;
+    // Position-based: frame time passed to World::step that no sub-step has simulated yet (s, in
+    // [0, one sub-step)), and the sub-steps the frame being stepped takes (World::step sets it).
+    double carry = 0.0;
+    uint32_t plannedSubsteps = 0;
     float soundSpeed = 0.0f; // derived Tait sound speed, never decreasing
     float fieldGH = 0.0f;    // g H of the external field, measured in the last step (m^2/s^2)
     bool fieldMeasured = false;
@@ -355,5 +359,10 @@ void stepExplicit(WorldState& state, float frameDt);
 
 /// The position-based solver's step (solver_position_based.cpp).
 void stepPositionBased(WorldState& state, float frameDt);
+/// The position-based solver's sub-step (s): 1/60 s over `perFrame` (World::substepLength).
+double substepLength(uint32_t perFrame);
+/// Whole sub-steps of length `h` in `due` seconds, forgiving a float frame's rounding (a
+/// 1/60.f frame is 4 sub-steps of 1/240 s, not 3.99999...).
+uint32_t dueSubsteps(double due, double h);
 
 } // namespace fluid::detail

@@ -482,8 +482,10 @@ std::string childPointer(std::string_view base, std::size_t index) {
 }
 
 std::string formatNumber(double value) {
-    // Whole numbers in full (100000, not 1e+05); others in the shortest text that reads back.
-    if (std::isfinite(value) && value == std::floor(value) && std::fabs(value) < 1e15) {
+    // Whole numbers in full (100000, not 1e+05) up to 2^53, the largest seed (every whole
+    // double up to there is exact); others in the shortest text that reads back.
+    if (std::isfinite(value) && value == std::floor(value) &&
+        std::fabs(value) <= 9007199254740992.0) {
         return std::to_string(int64_t(value));
     }
     char buffer[64];
@@ -734,9 +736,18 @@ uint64_t ObjectReader::integer(std::string_view key, const Range& range, uint64_
         m_doc.fail(at, "expected " + expected + ", got " + describeType(*value));
     }
     // Unsigned 64-bit values (seeds) are exact only as integers; doubles above 2^53 lose digits.
+    // The bounds are compared as integers too: as a double, 2^53 + 1 rounds to 2^53 and would
+    // pass a range that ends at 2^53.
     if (value->is_number_unsigned()) {
         const uint64_t u = value->get<uint64_t>();
-        if (double(u) < range.lo || double(u) > range.hi) {
+        constexpr double kTwo64 = 18446744073709551616.0;
+        const bool belowLo = range.lo >= kTwo64 ||
+                             (range.lo > 0.0 && u < uint64_t(std::ceil(range.lo))) ||
+                             (range.loOpen && range.lo >= 0.0 && range.lo == std::floor(range.lo) &&
+                              u == uint64_t(range.lo));
+        const bool aboveHi =
+            range.hi < 0.0 || (range.hi < kTwo64 && u > uint64_t(std::floor(range.hi)));
+        if (belowLo || aboveHi) {
             m_doc.fail(at, std::to_string(u) + " is out of range " + range.describe());
         }
         return u;

@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <new>
 #include <optional>
 #include <system_error>
 #include <unordered_map>
@@ -41,7 +42,7 @@ std::string composeLevelMessage(const std::string& file, uint32_t line, uint32_t
 LevelError::LevelError(std::string file, uint32_t line, uint32_t column, std::string path,
                        std::string message)
     : Error(composeLevelMessage(file, line, column, path, message)), m_file(std::move(file)),
-      m_line(line), m_column(column), m_path(std::move(path)), m_message(std::move(message)) {}
+      m_line(line), m_column(column), m_path(printable(path)), m_message(printable(message)) {}
 
 namespace {
 
@@ -114,6 +115,9 @@ public:
         }
         m_level.version = uint32_t(v);
         m_level.name = root.string("name", "");
+        if (const std::string problem = internal::nameProblem(m_level.name); !problem.empty()) {
+            root.failAt("name", problem);
+        }
         m_level.description = root.string("description", "");
 
         readWorld(root);
@@ -297,6 +301,10 @@ private:
             } else {
                 requirePoints(*info, p, nullptr);
             }
+            // Values that pass one by one but not together (a box with minX >= maxX): a load
+            // error at the parameters, not a step that throws later.
+            located(m_doc, p.has("params") ? p.pointer("params") : at,
+                    [&] { plugin.checkParams(); });
             uint32_t index = 0;
             located(m_doc, at, [&] {
                 if (force) {
@@ -439,11 +447,15 @@ private:
                                  b.pointer("material"));
             blob.velocity = b.point("velocity", kVelocity, {0.0f, 0.0f});
             blob.lifetime = float(b.number("lifetime", kLifetime, 0.0));
-            checkBlobSize(b, shape, blob.material);
+            const double lattice = checkBlobSize(b, shape, blob.material);
             const uint32_t first = m_level.world.particleCount();
             uint32_t inside = 0;
-            const uint32_t added =
-                located(m_doc, at, [&] { return m_level.world.spawnBlob(blob, &inside); });
+            uint32_t added = 0;
+            try {
+                added = located(m_doc, at, [&] { return m_level.world.spawnBlob(blob, &inside); });
+            } catch (const std::bad_alloc&) {
+                b.fail(detail::outOfMemoryText("the blob's", lattice, first));
+            }
             if (added == 0 && inside > 0) {
                 b.fail("the blob holds no particle: all of its " + std::to_string(inside) +
                        " lattice points lie inside solids (plugins or bodies) or outside the "
@@ -547,8 +559,9 @@ private:
     }
 
     // The world fills a blob's bounding box on the material's lattice; refuse boxes that would
-    // span more lattice cells than the world may hold before asking it to.
-    void checkBlobSize(const ObjectReader& b, const Shape& shape, MaterialId material) const {
+    // span more lattice cells than the world may hold before asking it to. Returns the
+    // blob's lattice points (unit: count).
+    double checkBlobSize(const ObjectReader& b, const Shape& shape, MaterialId material) const {
         glm::dvec2 lo{shape.center - shape.halfExtents}, hi{shape.center + shape.halfExtents};
         if (shape.type == ShapeType::Circle) {
             lo = glm::dvec2(shape.center) - double(shape.radius);
@@ -571,6 +584,7 @@ private:
                    " m); the world holds at most " + formatNumber(cap) +
                    " particles (world.maxParticles)");
         }
+        return std::max(cols, 1.0) * std::max(rows, 1.0);
     }
 
     // ---- emitters, drains, sensors ---------------------------------------------------------

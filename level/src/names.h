@@ -5,7 +5,11 @@
 
 #include "json_positions.h"
 
+#include <fluid/internal/checks.h>
+
 #include <cstddef>
+#include <cstdint>
+#include <cstdio>
 #include <map>
 #include <string>
 #include <string_view>
@@ -13,12 +17,16 @@
 
 namespace fluid::detail {
 
-// The required, non-empty "name" of a block; `what` names the block in the message.
+// The required, non-empty "name" of a block, printable text (no control characters); `what`
+// names the block in the message.
 inline std::string requiredName(const ObjectReader& o, std::string_view what) {
     const std::string name =
         o.requiredString("name", "the " + std::string(what) + "'s name (a string)");
     if (name.empty()) {
         o.failAt("name", "expected a non-empty name");
+    }
+    if (const std::string problem = internal::nameProblem(name); !problem.empty()) {
+        o.failAt("name", problem);
     }
     return name;
 }
@@ -76,6 +84,25 @@ private:
     std::vector<Entry> m_entries;
     std::map<std::string, std::size_t> m_index;
 };
+
+// Memory a world takes per particle while it steps (unit: bytes; bench/scaling.md measures
+// about 194, the program included).
+inline constexpr double kBytesPerParticle = 200.0;
+
+// The text of a load error for memory that ran out while the world made room for `particles`
+// more particles (unit: count; `whose` names them: "the blob's") on top of `held`.
+inline std::string outOfMemoryText(std::string_view whose, double particles, uint64_t held) {
+    const double total = particles + double(held);
+    const double bytes = total * kBytesPerParticle;
+    char gigabytes[32];
+    std::snprintf(gigabytes, sizeof gigabytes, "%.1f", bytes / 1e9);
+    return "memory ran out making room for " + std::string(whose) + " about " +
+           std::to_string(uint64_t(particles)) + " particles: the world would hold about " +
+           std::to_string(uint64_t(total)) + " particles, about " +
+           std::to_string(uint64_t(bytes)) + " bytes (" + gigabytes + " GB at about " +
+           std::to_string(int(kBytesPerParticle)) +
+           " bytes per particle); make them fewer or lower world.maxParticles";
+}
 
 // A fluid::Error from the world, re-thrown at the block of the file that caused it.
 template <class F> auto located(const JsonDocument& doc, const std::string& pointer, F&& f) {

@@ -13,13 +13,14 @@ BoxContainer::BoxContainer(float minX, float minY, float maxX, float maxY) : Box
     setParam("minY", minY);
     setParam("maxX", maxX);
     setParam("maxY", maxY);
+    checkParams();
 }
 
 void BoxContainer::onParamChanged(std::size_t /*index*/) {
     m_builtSpacing = 0.0f; // lay the samples again at the next prepare
 }
 
-void BoxContainer::prepare(const StepContext& context) {
+void BoxContainer::checkParams() const {
     const double x0 = value(kMinX), y0 = value(kMinY), x1 = value(kMaxX), y1 = value(kMaxY);
     if (!(x0 < x1 && y0 < y1)) {
         std::ostringstream s;
@@ -27,6 +28,11 @@ void BoxContainer::prepare(const StepContext& context) {
           << ", " << y1 << "] is empty; expected minX < maxX and minY < maxY";
         throw Error(s.str());
     }
+}
+
+void BoxContainer::prepare(const StepContext& context) {
+    checkParams(); // parameters set one by one after the plugin joined a world
+    const double x0 = value(kMinX), y0 = value(kMinY), x1 = value(kMaxX), y1 = value(kMaxY);
     if (m_builtSpacing == context.sampleSpacing && m_builtSupport == context.supportRadius) {
         return;
     }

@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace fluid {
 
@@ -12,8 +13,31 @@ namespace fluid {
 /// call leaves the world unchanged.
 class Error : public std::runtime_error {
 public:
-    /// Wraps `message` (UTF-8, one line).
-    explicit Error(const std::string& message) : std::runtime_error(message) {}
+    /// Wraps `message` (UTF-8, one line). Control characters in it (bytes below 0x20 and
+    /// 0x7f: a NUL, a line break or an escape sequence quoted from a user's string) are written
+    /// as `printable` writes them, so `what()` is never cut short at a NUL and cannot drive a
+    /// terminal.
+    explicit Error(const std::string& message) : std::runtime_error(printable(message)) {}
+
+    /// `text` with every control character (a byte below 0x20, or 0x7f) written as "\xNN" (two
+    /// lower-case hex digits); every other byte, UTF-8 multibyte characters included, stays as
+    /// it is. Pure function; any thread.
+    static std::string printable(std::string_view text) {
+        std::string out;
+        out.reserve(text.size());
+        for (const char c : text) {
+            const auto byte = static_cast<unsigned char>(c);
+            if (byte < 0x20 || byte == 0x7f) {
+                constexpr char kHex[] = "0123456789abcdef";
+                out += "\\x";
+                out += kHex[byte >> 4];
+                out += kHex[byte & 0xf];
+            } else {
+                out += c;
+            }
+        }
+        return out;
+    }
 };
 
 } // namespace fluid

@@ -73,7 +73,8 @@ struct Material {
     /// yoghurt: 0. Stirred yoghurt's storage modulus is about 100-500 Pa, but at 200 Pa a
     /// stirred yoghurt wobbles like jelly after the spoon leaves (docs/position_based.md).
     float shearModulus = 200.0f;
-    /// Display name (free text, for tools and error messages).
+    /// Display name (printable text for tools and error messages: no control characters,
+    /// i.e. no byte below 0x20 and no 0x7f; UTF-8 allowed; `validate` refuses others).
     std::string name = "water";
 };
 
@@ -102,7 +103,10 @@ std::span<const MaterialField> materialFields();
 
 /// Checks every field is finite and inside its documented range; throws `fluid::Error` naming
 /// the field and its value, e.g. "material 'water': viscosity = -1 is out of range [0, 10000]
-/// (unit: Pa*s)". Thread rule: any thread.
+/// (unit: Pa*s)". A float field equal to its bound rounded to float (the smallest
+/// smoothingDistance, 1e-4f) is inside. The name must be printable text ("material 'w\x1b':
+/// the name holds a control character (byte 0x1b at offset 1); names are printable text").
+/// Thread rule: any thread.
 void validate(const Material& material);
 
 /// Default slab depth (unit: m): the depth at which the water preset has exactly its table's

@@ -147,6 +147,13 @@ public:
     /// an unknown name, a number parameter, a non-finite coordinate or a count outside
     /// [minValue, maxValue].
     void setPoints(std::string_view name, std::span<const glm::vec2> points);
+    /// Throws `fluid::Error` when the parameters together do not make a valid plugin (a box
+    /// whose minX is not below its maxX), naming the plugin, the values and what was expected.
+    /// `setParam` checks one value at a time, and values set one by one may pass through a
+    /// combination that is not valid, so this is a separate check: `Registry::create` and the
+    /// level loader call it once every value is set. Default: nothing. Stepping thread, between
+    /// steps.
+    virtual void checkParams() const {}
 
     /// Once per `World::step`, after the sub-steps, on the stepping thread (advance a kinematic
     /// pose, forget a one-shot trigger). Default: nothing.
@@ -193,7 +200,8 @@ struct ForceContext {
 /// What every plugin gets once per `World::step`: the same values in `prepare` (before the
 /// sub-steps) and in `finish` (after them; `time` is still the step's start).
 struct StepContext {
-    /// The frame time passed to `World::step` (unit: s).
+    /// The time this step simulates (unit: s): the frame passed to `World::step`, or for the
+    /// position-based solver the whole sub-steps it takes (`World::step`, "carries").
     float frameDt = 0.0f;
     /// Simulated time at the start of the step (unit: s).
     double time = 0.0;

@@ -30,14 +30,15 @@ namespace fluid {
 /// as a reminder. 4: `Material` gained the yield-stress fields (plugins see it in their
 /// contexts). 5: `BoundaryPlugin` gained `rigidBodies` and `receiveBodyImpulses` (bodies in the
 /// coarse pressure solve). 6: `BoundaryPlugin` gained `steppedBy` (a plugin whose host must step
-/// the world). Thread rule: a constant.
-inline constexpr uint32_t kPluginAbiVersion = 6;
+/// the world). 7: `Plugin` gained `checkParams`, and `Error` writes control characters as
+/// "\xNN". Thread rule: a constant.
+inline constexpr uint32_t kPluginAbiVersion = 7;
 
 /// FNV-1a (32 bit) of the declarations of fluid/plugin.h and fluid/registry.h with `//`
 /// comments and all whitespace removed (see `pluginAbiDeclHash`). Part of
 /// `pluginAbiDetails()`, so a plugin compiled against other declarations is refused even when
 /// `kPluginAbiVersion` was not bumped. Update it when that test says so. Thread rule: a constant.
-inline constexpr uint32_t kPluginAbiDeclHash = 0x6a37021cu;
+inline constexpr uint32_t kPluginAbiDeclHash = 0xa6b18a45u;
 
 /// Name of the entry point returning the library's `kPluginAbiVersion` (C linkage, signature
 /// `uint32_t(void)`, frozen for every future ABI version).

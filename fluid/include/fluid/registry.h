@@ -51,8 +51,9 @@ public:
     /// Every registered type, in registration order.
     std::span<const PluginInfo> types() const { return m_infos; }
 
-    /// Makes a plugin and sets `values` (validated as in `Plugin::setParam`). Throws
-    /// `fluid::Error` for an unknown type (listing the known ones) or a bad value.
+    /// Makes a plugin and sets `values` (validated as in `Plugin::setParam`, then together by
+    /// `Plugin::checkParams`). Throws `fluid::Error` for an unknown type (listing the known
+    /// ones), a bad value or values that do not fit together.
     std::unique_ptr<Plugin> create(std::string_view type,
                                    std::span<const ParamValue> values = {}) const;
     /// As `create`, and throws `fluid::Error` unless the type is a force plugin.

@@ -49,10 +49,11 @@ enum class EquationOfState : uint8_t {
 /// Settings of `Solver::PositionBased`. Read them with `World::def().positionBased`; change them
 /// between steps with `World::setPositionBased` (stepping thread).
 struct PositionBasedDef {
-    /// Sub-steps per `World::step` of 1/60 s (unit: count; range [1, 64]); a frame more than
-    /// a tenth longer takes proportionally more (a 1 s frame at 4: 240), so the settings hold
-    /// at any frame rate at the same cost per simulated second (`Profile::substeps` reports the
-    /// count taken). Default 4, the `Quality::Precise` preset's (`Quality::Game`: 4 x 1
+    /// Sub-steps per 1/60 s of simulated time (unit: count; range [1, 64]): each is 1/60 s over
+    /// this count whatever the frame length, so a 1 s frame at 4 takes 240, a 1/240 s frame
+    /// one, and a shorter one carries its time to the next frame (`World::step`); the settings
+    /// hold at any frame rate at the same cost per simulated second (`Profile::substeps` reports
+    /// the count taken). Default 4, the `Quality::Precise` preset's (`Quality::Game`: 4 x 1
     /// iteration). Fewer are faster and
     /// more compressible; a particle moves at most two support radii per sub-step (faster ones
     /// are slowed and counted in `Profile::speedClamped`). Without the coarse correction, below
@@ -97,8 +98,9 @@ PositionBasedDef positionBasedPreset(Quality quality);
 /// 1/60 s (a frame pacer's 1/59.94 s adds none), else as many as keep each sub-step no
 /// longer than at 60 Hz, rounded up: `ceil(frameDt * 60 * perFrame - perFrame / 10)` (1 s at 4:
 /// 240). So a setting tuned at 60 Hz holds at any frame rate at the same cost per simulated
-/// second. The position-based solver's sub-steps (`World::substepsFor`) and the rounds of a
-/// coupled Box2D frame (`fluid::box2d::Coupling::step`) follow it. `perFrame` in [1, 64]
+/// second. A coupled Box2D frame of the explicit solver takes this many rounds
+/// (`fluid::box2d::Coupling::step`); the position-based solver steps sub-steps of a fixed
+/// length instead and carries what is left of a frame (`World::step`). `perFrame` in [1, 64]
 /// (unit: count), `frameDt` finite in (0, 1] (unit: s); throws `fluid::Error` naming the
 /// argument otherwise. Result in [perFrame, 66 x perFrame]. Pure function; any thread.
 uint32_t frameSubsteps(uint32_t perFrame, float frameDt);
@@ -331,15 +333,17 @@ public:
     /// Number of drains (unit: count).
     uint32_t drainCount() const;
 
-    /// Adds a sensor (see `SensorDef`); throws `fluid::Error` for a bad shape.
+    /// Adds a sensor (see `SensorDef`); throws `fluid::Error` for a bad shape. Amortized
+    /// constant time: adding n sensors costs O(n). Stepping thread, between steps.
     SensorId addSensor(const SensorDef& def);
     /// A sensor's settings; throws for an unknown id.
     const SensorDef& sensor(SensorId id) const;
     /// Number of sensors (unit: count).
     uint32_t sensorCount() const;
     /// What the sensor held at the end of the last step, one entry per material (indexed by
-    /// `MaterialId::index`). Zeros before the first step, and after `addMaterial` or
-    /// `addSensor` until the next step measures. Throws for an unknown id.
+    /// `MaterialId::index`). Zeros before the first step, and after `addMaterial` until the
+    /// next step measures; a sensor added by `addSensor` reads zeros until then (the others
+    /// keep their last readings). Throws for an unknown id.
     std::span<const SensorReading> sensorReading(SensorId id) const;
 
     /// Particles drains and lifetimes removed during the last step, ordered by drain (in the
@@ -384,21 +388,35 @@ public:
     /// `fluid::Error` naming the field and leaves them unchanged). Takes effect at the next step.
     void setPositionBased(const PositionBasedDef& settings);
 
-    /// Advances the world by one game frame (unit: s; finite, range (0, 1]; typically 1/60),
-    /// split into sub-steps: `PositionBasedDef::substeps` of them, or as many as the explicit
-    /// solver's CFL condition asks (see `Profile::substeps`). In order: emitters add the
-    /// frame's particles, the solver runs, drains and lifetimes remove particles
-    /// (`removedEvents`), sensors measure (`sensorReading`). Throws `fluid::Error` for a bad
-    /// frameDt, and passes on what a plugin's `prepare` throws, leaving the world unchanged
-    /// in both cases; a hook that throws later, during the sub-steps, leaves it mid-step.
+    /// Advances the world by one game frame (unit: s; finite, range (0, 1]; typically 1/60; it
+    /// may change from frame to frame). The position-based solver steps in sub-steps of a fixed
+    /// length, `substepLength()` (1/240 s at the default 4 per 1/60 s): the frame simulates the
+    /// whole sub-steps due (`substepsFor`) and carries the rest to the next frame
+    /// (`carriedTime`), so any sequence of frame lengths steps the same sub-steps as a fixed
+    /// 60 Hz, and a frame shorter than what is left of a sub-step steps nothing (no events, an
+    /// empty `profile()`). The explicit solver steps the whole frame in as many sub-steps as its
+    /// CFL condition asks (see `Profile::substeps`). In order: emitters add the frame's
+    /// particles, the solver runs, drains and lifetimes remove particles (`removedEvents`),
+    /// sensors measure (`sensorReading`). Throws `fluid::Error` for a bad frameDt, and passes on
+    /// what a plugin's `prepare` throws, leaving the world unchanged in both cases; a hook that
+    /// throws later, during the sub-steps, leaves it mid-step.
     void step(float frameDt);
-    /// The sub-steps the position-based solver takes for a `step(frameDt)` with this world's
-    /// settings: `frameSubsteps(def().positionBased.substeps, frameDt)` (unit: count; range
-    /// [1, 4224]). The explicit solver picks its own during the step from the CFL condition
-    /// (`Profile::substeps`); for it this is still the position-based settings' count.
-    /// `frameDt` as `step` (unit: s; finite, range (0, 1]); throws `fluid::Error` ("World::
-    /// substepsFor: frameDt = ... is out of range ...") otherwise. Stepping thread, between steps.
+    /// The sub-steps the position-based solver takes for a `step(frameDt)` now: the whole
+    /// `substepLength()`s in `carriedTime() + frameDt` (unit: count; range [0, 3840]; 0 when
+    /// the frame only adds to the carried time). For the explicit solver, which picks its own
+    /// during the step from the CFL condition (`Profile::substeps`), this is the long-frame
+    /// rule's `frameSubsteps(def().positionBased.substeps, frameDt)`. `frameDt` as `step`
+    /// (unit: s; finite, range (0, 1]); throws `fluid::Error` ("World::substepsFor: frameDt =
+    /// ... is out of range ...") otherwise. Stepping thread, between steps.
     uint32_t substepsFor(float frameDt) const;
+    /// The position-based solver's sub-step (unit: s): 1/60 s over
+    /// `def().positionBased.substeps` (1/240 s by default, range [1/3840, 1/60]). Stepping
+    /// thread, between steps.
+    double substepLength() const;
+    /// Frame time given to `step` that the position-based solver has not simulated yet (unit:
+    /// s; range [0, substepLength()) for the current settings): the next step starts with it.
+    /// 0 for the explicit solver. Saved in snapshots. Stepping thread, between steps.
+    double carriedTime() const;
 
     /// Particles in the world (unit: count).
     uint32_t particleCount() const;
@@ -428,7 +446,7 @@ public:
     const Profile& profile() const;
     /// Sub-steps the last step took (unit: count), same as `profile().substeps`.
     uint32_t lastSubsteps() const;
-    /// Simulated time since creation (unit: s).
+    /// Simulated time since creation (unit: s): the frames stepped, less `carriedTime()`.
     double time() const;
     /// The definition the world was created from.
     const WorldDef& def() const;

@@ -40,9 +40,11 @@ public:
     uint32_t line() const { return m_line; }
     /// Column of the offending value (unit: 1-based byte column; 0 when unknown).
     uint32_t column() const { return m_column; }
-    /// JSON pointer of the offending value ("" for the whole document).
+    /// JSON pointer of the offending value ("" for the whole document; control characters
+    /// written as `Error::printable` writes them).
     const std::string& path() const { return m_path; }
-    /// What was wrong and what was expected, without the location.
+    /// What was wrong and what was expected, without the location (control characters written
+    /// as `Error::printable` writes them).
     const std::string& message() const { return m_message; }
 
 private:

@@ -252,38 +252,38 @@ void Coupling::step(World& world, float dt) {
         const HostStep host(*m_boundary);
         world.step(dt); // throws World::step's own message, before Box2D moves anything
     }
-    // One round per position-based sub-step, as many as `World::step` would take for dt, the
-    // world stepping one sub-step at a time; the explicit solver kExplicitRounds a 1/60 s frame
-    // by the same long-frame rule (see the class comment). The world's settings are put back
-    // however the frame ends.
-    const PositionBasedDef settings = world.def().positionBased;
-    const bool positionBased = world.def().solver == Solver::PositionBased;
-    const uint32_t rounds =
-        positionBased ? world.substepsFor(dt) : frameSubsteps(kExplicitRounds, dt);
-    struct Restore {
-        World& world;
-        PositionBasedDef settings;
-        bool changed = false;
-        ~Restore() {
-            if (changed) {
-                world.setPositionBased(settings);
-            }
-        }
-    } restore{world, settings};
-    if (positionBased && settings.substeps != 1) {
-        PositionBasedDef one = settings;
-        one.substeps = 1;
-        world.setPositionBased(one);
-        restore.changed = true;
-    }
     m_splashes.clear();
     m_contacts.clear();
     m_removed.clear();
     m_profile = Profile{};
-    const float h = dt / float(rounds);
+    if (world.def().solver != Solver::PositionBased) {
+        // The explicit solver: kExplicitRounds rounds a 1/60 s frame, more for a longer one by
+        // the long-frame rule (see the class comment), each in its own CFL sub-steps.
+        const uint32_t rounds = frameSubsteps(kExplicitRounds, dt);
+        const float h = dt / float(rounds);
+        for (uint32_t round = 0; round < rounds; ++round) {
+            m_physics->Step(h, m_def.velocityIterations, m_def.positionIterations);
+            fluidRound(world, h, h);
+        }
+        return;
+    }
+    // The position-based solver: one round per sub-step the frame is due (World::substepsFor,
+    // the world's carried time included), each a Box2D step and a world step of exactly one
+    // sub-step of the fixed length; what is left of the frame is carried by the world, and
+    // Box2D's time with it. The first round's world step is the sub-step less the time the
+    // world carried already.
+    const uint32_t rounds = world.substepsFor(dt);
+    const double h = world.substepLength();
+    const double carried = world.carriedTime();
     for (uint32_t round = 0; round < rounds; ++round) {
-        m_physics->Step(h, m_def.velocityIterations, m_def.positionIterations);
-        fluidRound(world, h);
+        m_physics->Step(float(h), m_def.velocityIterations, m_def.positionIterations);
+        const double given = round == 0 ? h - carried : h;
+        fluidRound(world, float(std::max(given, 1e-9)), float(h));
+    }
+    const double rest = carried + double(dt) - double(rounds) * h;
+    if (rest > 1e-9) {
+        const HostStep host(*m_boundary);
+        world.step(float(rest)); // less than a sub-step: only carried
     }
 }
 
@@ -294,7 +294,12 @@ void Coupling::stepFluid(World& world, float dt) {
     m_contacts.clear();
     m_removed.clear();
     m_profile = Profile{};
-    fluidRound(world, dt);
+    // The time the world simulates: dt, or for the position-based solver the whole sub-steps
+    // due (its carried time included).
+    const bool positionBased = world.def().solver == Solver::PositionBased;
+    const double simulated = positionBased ? double(world.substepsFor(dt)) * world.substepLength()
+                                           : double(dt);
+    fluidRound(world, dt, float(simulated));
 }
 
 std::span<const RemovedEvent> Coupling::removedEvents() const {
@@ -344,7 +349,7 @@ void Coupling::addProfile(const Profile& round) {
     p.particles = round.particles;
 }
 
-void Coupling::fluidRound(World& world, float dt) {
+void Coupling::fluidRound(World& world, float given, float simulated) {
     std::vector<double> masses(world.materialCount());
     for (std::size_t k = 0; k < masses.size(); ++k) {
         masses[k] = world.material(MaterialId{uint16_t(k)}).mass;
@@ -352,8 +357,12 @@ void Coupling::fluidRound(World& world, float dt) {
     m_boundary->setMaterialMasses(std::move(masses));
     {
         const HostStep host(*m_boundary);
-        world.step(dt);
+        world.step(given);
     }
+    if (world.lastSubsteps() == 0) {
+        return; // the frame only added to the world's carried time: nothing moved
+    }
+    const float dt = simulated;
     applyCorrections();
     addProfile(world.profile());
     const std::span<const RemovedEvent> removed = world.removedEvents();

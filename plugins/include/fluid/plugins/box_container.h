@@ -29,11 +29,15 @@ public:
     }};
     /// The default box: [-1, 1] x [0, 2] m, closed, wall friction 1 (the fluid's viscosity).
     BoxContainer() : BoundaryPlugin(kType, kParams) {}
-    /// A closed box with inner corners `min` and `max` (unit: m; min < max on both axes), wall
-    /// friction 1.
+    /// A closed box with inner corners `min` and `max` (unit: m; min < max on both axes, else
+    /// throws as `checkParams`), wall friction 1.
     BoxContainer(float minX, float minY, float maxX, float maxY);
 
-    /// Lays the wall samples (only when the box or the spacing changed).
+    /// Throws `fluid::Error` "plugin 'boundary.box': the inner rectangle [minX, maxX] x [minY,
+    /// maxY] is empty; expected minX < maxX and minY < maxY" unless both hold.
+    void checkParams() const override;
+    /// Lays the wall samples (only when the box or the spacing changed); throws as
+    /// `checkParams` for an empty rectangle.
     void prepare(const StepContext& context) override;
     /// Clamps particle centres into the inner rectangle; removes velocity into the wall.
     void project(const ProjectContext& context, uint32_t begin, uint32_t end) override;

@@ -139,11 +139,12 @@ void registerCouplingPlugin(Registry& registry);
 /// about it: buoyancy and drag come out of the fluid, not a formula.
 ///
 /// One frame (`step`) of dt is one round per sub-step the position-based solver takes for dt
-/// (`World::substepsFor(dt)`: `PositionBasedDef::substeps`, default 4, per 1/60 s frame, more
-/// for a longer frame by the long-frame rule `fluid::frameSubsteps`), the world stepping one
-/// sub-step at a time (its setting is put back after the frame); with the explicit solver,
-/// `frameSubsteps(4, dt)` rounds, each in its own CFL sub-steps. So a frame of any length has
-/// the rounds of 60 Hz frames and their cost per simulated second. A round of h:
+/// (`World::substepsFor(dt)`: the whole sub-steps of `World::substepLength()`, 1/240 s at the
+/// default 4 per 1/60 s, in the world's carried time plus dt; the rest of the frame stays
+/// carried, and Box2D's time with it), the world stepping one sub-step at a time; with the
+/// explicit solver, `frameSubsteps(4, dt)` rounds, each in its own CFL sub-steps. So frames of
+/// any length, varying or not, have the rounds of 60 Hz frames and their cost per simulated
+/// second. A round of h:
 ///   1. the `b2World` steps by h, with the fluid's forces of the previous round applied to its
 ///      dynamic bodies (and whatever the game applied);
 ///   2. the fluid world steps by h; every body sweeps rigidly from where the fluid last saw it
@@ -311,7 +312,9 @@ public:
 private:
     void checkWorld(const World& world, const char* function) const;
     void checkBodies(const char* function) const;
-    void fluidRound(World& world, float dt);
+    // Steps the world by `given` s, which simulates `simulated` s (the position-based solver's
+    // whole sub-steps), then hands the fluid's forces and corrections to the bodies.
+    void fluidRound(World& world, float given, float simulated);
     void addProfile(const Profile& round);
     void applyForces(float dt);
     void applyCorrections();
