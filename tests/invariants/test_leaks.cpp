@@ -231,7 +231,7 @@ PaddleRun runPaddle(Solver solver, uint32_t frames, uint32_t perFrame, uint32_t 
 } // namespace
 
 TEST_CASE("leaks: a rotating paddle in water, fired at, holds every particle out",
-          "[slow][leaks]") {
+          "[slow][long][leaks]") {
     {
         Stopwatch watch("paddle, position-based, 600 frames");
         const PaddleRun r = runPaddle(Solver::PositionBased, 600, 2, 1000, 80, 6.0f, false);

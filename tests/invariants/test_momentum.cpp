@@ -69,7 +69,7 @@ uint32_t spawnPair(World& world, MaterialId a, MaterialId b, float x, float y, f
 } // namespace
 
 TEST_CASE("zero-g blob launched at 1 m/s keeps its momentum over 1,000 steps",
-          "[slow][invariants][momentum]") {
+          "[slow][long][invariants][momentum]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
     CAPTURE(solverName(solver));
     Stopwatch sw(std::string("momentum, one material, ") + solverName(solver));
@@ -104,7 +104,7 @@ TEST_CASE("zero-g blob launched at 1 m/s keeps its momentum over 1,000 steps",
 }
 
 TEST_CASE("zero-g water and yoghurt blobs collide and keep their momentum over 1,000 steps",
-          "[slow][invariants][momentum]") {
+          "[slow][long][invariants][momentum]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
     CAPTURE(solverName(solver));
     Stopwatch sw(std::string("momentum, two materials, ") + solverName(solver));

@@ -244,7 +244,7 @@ TEST_CASE("Archimedes: boxes and circles at 0.25, 0.5, 0.75 of water's density f
 // cm/s after 2.5 s). The sinking test below runs in the preset's yoghurt.
 TEST_CASE("Archimedes: boxes and circles at 0.25, 0.5, 0.75 of yoghurt's density float at that "
           "submerged fraction",
-          "[slow][box2d][archimedes]") {
+          "[slow][long][box2d][archimedes]") {
     Material newtonian = fluid::yoghurt();
     newtonian.yieldStress = 0.0f;
     newtonian.consistency = 0.0f;
