@@ -11,6 +11,7 @@
 
 #include <fluid/gl/renderer.h>
 
+#include <SFML/System/Err.hpp>
 #include <SFML/Window.hpp>
 #include <box2d/box2d.h>
 
@@ -23,6 +24,8 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <sstream>
+#include <string>
 
 namespace fluid::demo {
 namespace {
@@ -275,6 +278,12 @@ private:
         // shared between contexts).
         m_imgui.reset();
         m_renderer.reset();
+        // SFML turns vertical sync off on every new window and says on sf::err() when the
+        // display cannot (a virtual one); a scripted run never waits for the screen, so there
+        // that line is dropped and anything else SFML says is passed on.
+        std::stringstream sfmlSays;
+        std::streambuf* const sfmlErr =
+            m_options.frames > 0 ? sf::err().rdbuf(sfmlSays.rdbuf()) : nullptr;
         if (fullscreen) {
             m_window.create(sf::VideoMode::getDesktopMode(), "fluid", sf::Style::Fullscreen,
                             glContextSettings());
@@ -284,10 +293,15 @@ private:
             m_window.setPosition({0, 0}); // without a window manager SFML places it off-screen
         }
         m_fullscreen = fullscreen;
-        // A scripted run steps as fast as it can and never waits for the screen; asking for
-        // vertical sync there only makes SFML print that a virtual display lacks it.
         if (m_options.frames == 0) {
             m_window.setVerticalSyncEnabled(true);
+        } else {
+            sf::err().rdbuf(sfmlErr);
+            for (std::string line; std::getline(sfmlSays, line);) {
+                if (line != "Setting vertical sync not supported") {
+                    sf::err() << line << '\n';
+                }
+            }
         }
         m_window.setKeyRepeatEnabled(false);
         checkContext(m_window);
@@ -582,9 +596,11 @@ private:
         hud.speed = m_pacer->speed();
         hud.droppedSteps = m_pacer->droppedSteps();
         drawHud(hud);
-        drawLevelBanner(bannerFor(level), m_imgui->bannerFont());
+        BannerInfo banner = bannerFor(level);
+        banner.panelOpen = m_showTuning;
+        drawLevelBanner(banner, m_imgui->bannerFont());
         if (m_showHelp) {
-            drawHelp(&m_showHelp);
+            drawHelp(&m_showHelp, level.name, banner.text);
         }
         if (m_showTuning) {
             drawTuningPanel(m_session->level(), &m_showTuning);

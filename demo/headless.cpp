@@ -8,6 +8,7 @@
 
 #include <fluid/gl/renderer.h>
 
+#include <SFML/System/Err.hpp>
 #include <SFML/Window.hpp>
 
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <string>
 
 namespace fluid::demo {
 namespace {
@@ -53,8 +55,19 @@ int runHeadless(const HeadlessOptions& options) {
             return 1;
         }
     }
+    // SFML turns vertical sync off on every new window and says on sf::err() that a virtual
+    // display cannot; a headless run never waits for the screen, so that line is dropped and
+    // anything else SFML says while the window is made is passed on.
+    std::stringstream sfmlSays;
+    std::streambuf* const sfmlErr = sf::err().rdbuf(sfmlSays.rdbuf());
     sf::Window window(sf::VideoMode(unsigned(options.size.x), unsigned(options.size.y)),
                       "fluid-demo (headless)", sf::Style::Titlebar, glContextSettings());
+    sf::err().rdbuf(sfmlErr);
+    for (std::string line; std::getline(sfmlSays, line);) {
+        if (line != "Setting vertical sync not supported") {
+            sf::err() << line << '\n';
+        }
+    }
     window.setVisible(false);
     std::unique_ptr<gl::Renderer> renderer;
     std::unique_ptr<ImGuiBridge> imgui;

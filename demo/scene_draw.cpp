@@ -8,6 +8,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vector_relational.hpp>
 
 #include <algorithm>
 #include <array>
@@ -55,11 +56,16 @@ std::vector<glm::vec2> placed(const KinematicShape& shape, std::span<const glm::
     return out;
 }
 
+// Thickness of the walls drawn round a box tank [lo, hi] (unit: m).
+float wallThickness(glm::vec2 lo, glm::vec2 hi) {
+    return 0.04f * std::max(hi.x - lo.x, hi.y - lo.y);
+}
+
 // Walls of a box tank: four slabs outside the inner rectangle (no ceiling when open).
 void drawBox(const BoundaryPlugin& box, gl::ShapeBatch& batch) {
     const glm::vec2 lo{float(box.param("minX")), float(box.param("minY"))};
     const glm::vec2 hi{float(box.param("maxX")), float(box.param("maxY"))};
-    const float t = 0.04f * std::max(hi.x - lo.x, hi.y - lo.y);
+    const float t = wallThickness(lo, hi);
     batch.rect({lo.x - t, lo.y - t}, {hi.x + t, lo.y}, kWall);
     batch.rect({lo.x - t, lo.y}, {lo.x, hi.y}, kWall);
     batch.rect({hi.x, lo.y}, {hi.x + t, hi.y}, kWall);
@@ -170,8 +176,12 @@ ViewBounds levelBounds(const Level& level) {
     for (const auto& plugin : level.world.boundaries()) {
         const std::string_view type = plugin->type();
         if (type == "boundary.box" && tank.empty()) {
-            tank.add({float(plugin->param("minX")), float(plugin->param("minY"))});
-            tank.add({float(plugin->param("maxX")), float(plugin->param("maxY"))});
+            // The tank with the walls drawBox draws round it, so they show whole.
+            const glm::vec2 lo{float(plugin->param("minX")), float(plugin->param("minY"))};
+            const glm::vec2 hi{float(plugin->param("maxX")), float(plugin->param("maxY"))};
+            const float t = wallThickness(lo, hi);
+            tank.add(lo - glm::vec2(t));
+            tank.add(hi + glm::vec2(t, plugin->param("openTop") < 0.5 ? t : 0.0f));
         } else if (type == "boundary.polygon" || type == "boundary.chain") {
             const auto& shape = static_cast<const KinematicShape&>(*plugin);
             const char* key = type == "boundary.polygon" ? "vertices" : "points";
@@ -203,10 +213,17 @@ ViewBounds levelBounds(const Level& level) {
             for (const b2Fixture* f = body->GetFixtureList(); f != nullptr; f = f->GetNext()) {
                 b2AABB box;
                 f->GetShape()->ComputeAABB(&box, body->GetTransform(), 0);
-                // Static ground bodies may reach far beyond the play area; frame the rest.
-                if (body->GetType() != b2_staticBody || tank.empty()) {
-                    all.add(toGlm(box.lowerBound));
-                    all.add(toGlm(box.upperBound));
+                // Static ground bodies may reach far beyond the play area; frame the rest, and
+                // static fixtures that stay within a tenth of the tank's size of it (a tank's
+                // own Box2D walls).
+                const glm::vec2 lower = toGlm(box.lowerBound), upper = toGlm(box.upperBound);
+                const glm::vec2 slack = 0.1f * (tank.hi - tank.lo);
+                const bool nearTank = !tank.empty() &&
+                                      glm::all(glm::greaterThanEqual(lower, tank.lo - slack)) &&
+                                      glm::all(glm::lessThanEqual(upper, tank.hi + slack));
+                if (body->GetType() != b2_staticBody || tank.empty() || nearTank) {
+                    all.add(lower);
+                    all.add(upper);
                 }
             }
         }

@@ -14,10 +14,11 @@ struct ViewBounds {
     glm::vec2 lo{0.0f, 0.0f}, hi{1.0f, 1.0f};
 };
 
-/// The rectangle to frame `level` in: its first `boundary.box` tank when it has one, grown to
-/// hold the emitters, sensors and bodies; otherwise the extent of everything in the level
-/// (particles, shapes, bodies) with room around it for blobs to drift. Call once after loading,
-/// so the camera does not follow the liquid. Stepping thread.
+/// The rectangle to frame `level` in (unit: m): its first `boundary.box` tank with the walls
+/// drawn round it when it has one, grown to hold the emitters, sensors, bodies and the static
+/// Box2D fixtures within a tenth of the tank's size of it; otherwise the extent of everything
+/// in the level (particles, shapes, bodies) with room around it for blobs to drift. Call once
+/// after loading, so the camera does not follow the liquid. Stepping thread.
 ViewBounds levelBounds(const Level& level);
 
 /// Walls, static shapes, drains and sensors (with their fill shown by `goalFill`, unit: 1 in

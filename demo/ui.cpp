@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace fluid::demo {
 
@@ -21,15 +22,30 @@ const ImVec4 kGreen{0.40f, 0.92f, 0.45f, 1.0f};
 const ImVec4 kRed{1.00f, 0.38f, 0.33f, 1.0f};
 const ImVec4 kCyan{0.45f, 0.85f, 1.00f, 1.0f};
 const ImVec4 kKey{0.62f, 0.80f, 1.00f, 1.0f};
+// Labels and hints of the HUD and the banner: light enough to read over the grey walls
+// through the overlays' dark backing (ImGui's own disabled grey, 0.5, is not).
+const ImVec4 kHint{0.70f, 0.73f, 0.78f, 1.0f};
+// Opacity of the HUD's and the banner's backing: dark enough that text stays readable over
+// walls, water and yoghurt (unit: 1).
+constexpr float kOverlayBackground = 0.82f;
 // Size the banner title is drawn at when the bridge found no TrueType font (unit: px).
 constexpr float kBannerSize = 28.0f;
-// Where the HUD ends, margin included (unit: px): the banner keeps clear of it.
-constexpr float kHudRight = 320.0f;
-// Banner width range (unit: px) and the room kept free on each side of a centred banner, for
-// the HUD on the left and the tuning panel on the right.
-constexpr float kBannerMaxWidth = 620.0f;
-constexpr float kBannerMinCentred = 400.0f;
+// Where the HUD ends, margin included, before it was first measured (unit: px).
+constexpr float kHudRight = 260.0f;
+// Widest banner (unit: px; about 100 characters a line), the room the tuning panel takes on
+// the right while it is open, and the margin to the window's edges.
+constexpr float kBannerMaxWidth = 760.0f;
 constexpr float kSideRoom = 370.0f;
+constexpr float kEdge = 10.0f;
+// Width the help window wraps the level's text at (unit: px; about the controls table's).
+constexpr float kHelpTextWidth = 440.0f;
+// Share of the window's height the level leaves free above it (unit: 1): Session::camera
+// frames the level with a fifth of its height of room on top and a 5% margin, 0.26 of 1.32
+// of the framed height when the height decides, more otherwise. The banner stays inside it.
+constexpr float kBannerRoom = 0.19f;
+// Right edge of the HUD as last drawn, margin included (unit: px); the banner keeps clear of
+// it. Demo UI state, one HUD per process like ImGui's own context.
+float g_hudRight = kHudRight;
 
 constexpr ImGuiWindowFlags kOverlayFlags =
     ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
@@ -401,6 +417,31 @@ void sectionTitle(const char* title) {
     ImGui::Separator();
 }
 
+// Pushes the hint colour as ImGui's disabled text colour for the overlays' labels.
+class HintColour {
+public:
+    HintColour() { ImGui::PushStyleColor(ImGuiCol_TextDisabled, kHint); }
+    ~HintColour() { ImGui::PopStyleColor(); }
+    HintColour(const HintColour&) = delete;
+    HintColour& operator=(const HintColour&) = delete;
+};
+
+// `line` cut at a word end so that it and an ellipsis fit in `width` (px, current font).
+std::string withEllipsis(std::string_view line, float width) {
+    // Three dots: the fonts' glyph ranges (Latin) have no U+2026.
+    static constexpr std::string_view kEllipsis = "...";
+    std::string_view kept = line;
+    while (!kept.empty() && textWidth(std::string(kept) + std::string(kEllipsis)) > width) {
+        const size_t space = kept.find_last_of(' ');
+        kept = space == std::string_view::npos ? std::string_view{} : kept.substr(0, space);
+    }
+    while (!kept.empty() &&
+           (kept.back() == ' ' || kept.back() == ',' || kept.back() == ':' || kept.back() == ';')) {
+        kept.remove_suffix(1);
+    }
+    return std::string(kept) + std::string(kEllipsis);
+}
+
 // "52% / 80%", "312 / 500 particles", "1.20 / 2.00 L".
 std::string progressText(const BannerInfo& info) {
     char buffer[96];
@@ -427,10 +468,54 @@ std::span<const ControlHelp> controls() {
     return kControls;
 }
 
+std::vector<std::string_view> wrapWords(std::string_view text, float width,
+                                        const std::function<float(std::string_view)>& measure) {
+    std::vector<std::string_view> lines;
+    size_t start = 0;
+    while (start < text.size()) {
+        // Spaces at a line's start belong to no line; a newline ends one.
+        while (start < text.size() && text[start] == ' ') {
+            ++start;
+        }
+        if (start >= text.size()) {
+            break;
+        }
+        size_t end = start;    // end of the line so far (exclusive)
+        size_t cursor = start; // start of the next word
+        bool broken = false;
+        while (cursor < text.size()) {
+            size_t wordEnd = cursor;
+            while (wordEnd < text.size() && text[wordEnd] != ' ' && text[wordEnd] != '\n') {
+                ++wordEnd;
+            }
+            const std::string_view candidate = text.substr(start, wordEnd - start);
+            if (end > start && measure(candidate) > width) {
+                broken = true; // the word goes to the next line
+                break;
+            }
+            end = wordEnd; // the first word of a line stays on it, even if it is too wide
+            if (wordEnd >= text.size() || text[wordEnd] == '\n') {
+                break;
+            }
+            cursor = wordEnd;
+            while (cursor < text.size() && text[cursor] == ' ') {
+                ++cursor;
+            }
+        }
+        lines.push_back(text.substr(start, end - start));
+        start = end;
+        if (!broken && start < text.size() && text[start] == '\n') {
+            ++start;
+        }
+    }
+    return lines;
+}
+
 void drawHud(const HudInfo& info) {
     const ImGuiViewport* viewport = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + 10.0f, viewport->WorkPos.y + 10.0f));
-    ImGui::SetNextWindowBgAlpha(0.55f);
+    ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + kEdge, viewport->WorkPos.y + kEdge));
+    ImGui::SetNextWindowBgAlpha(kOverlayBackground);
+    const HintColour hints;
     if (ImGui::Begin("##hud", nullptr, kOverlayFlags)) {
         ImGui::Text("%.0f fps", static_cast<double>(info.fps));
         ImGui::SameLine();
@@ -469,6 +554,9 @@ void drawHud(const HudInfo& info) {
                                 static_cast<unsigned long long>(info.droppedSteps));
         }
         ImGui::TextDisabled("F1 help   Esc levels   Tab tuning");
+        // Auto-resized: the size is the one measured in an earlier frame.
+        g_hudRight =
+            ImGui::GetWindowPos().x - viewport->WorkPos.x + ImGui::GetWindowWidth() + kEdge;
     }
     ImGui::End();
 }
@@ -476,36 +564,61 @@ void drawHud(const HudInfo& info) {
 void drawLevelBanner(const BannerInfo& info, ImFont* big) {
     const ImGuiViewport* viewport = ImGui::GetMainViewport();
     const float screenWidth = viewport->WorkSize.x;
-    // Centred between the HUD and the tuning panel when there is room; on a narrow window,
-    // right of the HUD; on a tiny one, centred over everything.
-    float width = std::min(kBannerMaxWidth, screenWidth - 2.0f * kSideRoom);
+    const float screenHeight = viewport->WorkSize.y;
+    // Between the HUD and the window's right edge (the tuning panel's left edge while it is
+    // open), centred on the window when that fits, else centred in the room; on a tiny window
+    // over everything.
+    const float roomLeft = std::max(g_hudRight, kEdge);
+    const float roomRight = screenWidth - kEdge - (info.panelOpen ? kSideRoom : 0.0f);
+    float width = std::min(kBannerMaxWidth, roomRight - roomLeft);
     float left = 0.5f * (screenWidth - width);
-    if (width < kBannerMinCentred) {
-        width = std::min(kBannerMaxWidth, screenWidth - kHudRight - 10.0f);
-        left = kHudRight;
-        if (width < 240.0f) {
-            width = std::max(screenWidth - 20.0f, 1.0f);
-            left = 10.0f;
-        }
+    if (left < roomLeft || left + width > roomRight) {
+        left = roomLeft + 0.5f * (roomRight - roomLeft - width);
     }
-    ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + left, viewport->WorkPos.y + 10.0f));
+    if (width < 240.0f) {
+        width = std::max(std::min(kBannerMaxWidth, screenWidth - 2.0f * kEdge), 1.0f);
+        left = 0.5f * (screenWidth - width);
+    }
+    ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + left, viewport->WorkPos.y + kEdge));
     ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0.0f), ImVec2(width, FLT_MAX));
-    ImGui::SetNextWindowBgAlpha(0.55f);
+    ImGui::SetNextWindowBgAlpha(kOverlayBackground);
+    const HintColour hints;
     if (ImGui::Begin("##banner", nullptr, kOverlayFlags)) {
+        const ImGuiStyle& style = ImGui::GetStyle();
+        float used = 2.0f * style.WindowPadding.y;
         {
             const BigFont font(big, 1.0f);
             centredText(info.name);
+            used += ImGui::GetTextLineHeightWithSpacing();
+        }
+        const bool goal = info.state != GoalState::None;
+        if (goal) {
+            // The progress bar (the clock in its label) and the spacing above it.
+            used += ImGui::GetFrameHeightWithSpacing() + style.ItemSpacing.y;
         }
         if (!info.text.empty()) {
-            if (textWidth(info.text) < ImGui::GetContentRegionAvail().x) {
-                centredText(info.text);
-            } else {
-                ImGui::PushTextWrapPos(0.0f);
-                text(info.text);
-                ImGui::PopTextWrapPos();
+            // As many lines as the room above the level holds (at least one), broken at
+            // spaces only; a cut text ends in an ellipsis.
+            const float avail = ImGui::GetContentRegionAvail().x;
+            const std::vector<std::string_view> lines = wrapWords(info.text, avail, textWidth);
+            const float budget = kBannerRoom * screenHeight - kEdge;
+            const size_t fit = static_cast<size_t>(
+                std::max((budget - used) / ImGui::GetTextLineHeightWithSpacing(), 1.0f));
+            const size_t shown = std::min(lines.size(), fit);
+            for (size_t k = 0; k < shown; ++k) {
+                std::string line(lines[k]);
+                if (k + 1 == shown && shown < lines.size()) {
+                    line = withEllipsis(lines[k], avail);
+                }
+                // One line is centred under the title; a paragraph is left-aligned.
+                if (lines.size() == 1) {
+                    centredText(line);
+                } else {
+                    text(line);
+                }
             }
         }
-        if (info.state != GoalState::None) {
+        if (goal) {
             ImGui::Spacing();
             const double fraction = info.goalAmount > 0.0
                                         ? std::clamp(info.goalValue / info.goalAmount, 0.0, 1.0)
@@ -513,28 +626,24 @@ void drawLevelBanner(const BannerInfo& info, ImFont* big) {
             const ImVec4 bar = info.state == GoalState::Won    ? kGreen
                                : info.state == GoalState::Lost ? kRed
                                                                : ImVec4(0.26f, 0.59f, 0.98f, 1.0f);
-            ImGui::PushStyleColor(ImGuiCol_PlotHistogram, bar);
-            const std::string progress = progressText(info);
-            ImGui::ProgressBar(static_cast<float>(fraction), ImVec2(-1.0f, 0.0f), progress.c_str());
-            ImGui::PopStyleColor();
+            // "312 / 500 particles    time left 41.2 s" (amber under 10 s), or the time played.
+            std::string label = progressText(info);
             char clock[64];
+            bool hurry = false;
             if (info.timeLimit > 0.0) {
                 const double remaining = std::max(info.timeLimit - info.time, 0.0);
-                std::snprintf(clock, sizeof clock, "time left %.1f s", remaining);
-                if (remaining < 10.0 && info.state == GoalState::Pending) {
-                    ImGui::PushStyleColor(ImGuiCol_Text, kAmber);
-                    centredText(clock);
-                    ImGui::PopStyleColor();
-                } else {
-                    centredText(clock);
-                }
+                std::snprintf(clock, sizeof clock, "    time left %.1f s", remaining);
+                hurry = remaining < 10.0 && info.state == GoalState::Pending;
             } else {
-                std::snprintf(clock, sizeof clock, "time %.1f s", info.time);
-                ImGui::PushStyleColor(ImGuiCol_Text,
-                                      ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-                centredText(clock);
-                ImGui::PopStyleColor();
+                std::snprintf(clock, sizeof clock, "    time %.1f s", info.time);
             }
+            label += clock;
+            ImGui::PushStyleColor(ImGuiCol_PlotHistogram, bar);
+            if (hurry) {
+                ImGui::PushStyleColor(ImGuiCol_Text, kAmber);
+            }
+            ImGui::ProgressBar(static_cast<float>(fraction), ImVec2(-1.0f, 0.0f), label.c_str());
+            ImGui::PopStyleColor(hurry ? 2 : 1);
         }
     }
     ImGui::End();
@@ -562,7 +671,7 @@ void drawLevelBanner(const BannerInfo& info, ImFont* big) {
     ImGui::PopStyleVar();
 }
 
-void drawHelp(bool* open) {
+void drawHelp(bool* open, std::string_view levelName, std::string_view levelText) {
     if (open == nullptr || !*open) {
         return;
     }
@@ -572,6 +681,18 @@ void drawHelp(bool* open) {
     const ImGuiWindowFlags flags = ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse |
                                    ImGuiWindowFlags_NoSavedSettings;
     if (ImGui::Begin("Controls (F1)", open, flags)) {
+        if (!levelName.empty()) {
+            // The level's whole text, which the banner may have cut.
+            ImGui::PushStyleColor(ImGuiCol_Text, kKey);
+            text(levelName);
+            ImGui::PopStyleColor();
+            for (const std::string_view line : wrapWords(levelText, kHelpTextWidth, textWidth)) {
+                text(line);
+            }
+            ImGui::Spacing();
+            ImGui::Separator();
+            ImGui::Spacing();
+        }
         const ImGuiTableFlags tableFlags =
             ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_PadOuterX;
         if (ImGui::BeginTable("controls", 2, tableFlags)) {

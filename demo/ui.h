@@ -4,9 +4,11 @@
 #include <fluid/level.h>
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 struct ImFont;
 
@@ -39,9 +41,11 @@ struct HudInfo {
 };
 
 /// Draws the HUD top-left: fps, particles, sim ms/frame, sub-steps, view, material, gravity or
-/// zero-g, PAUSED, and "simulation behind: 71% speed" in amber while `behind`. No decoration,
-/// takes no input. Thread rule (every function here): between `ImGuiBridge::newFrame` and
-/// `render`, on the GL thread.
+/// zero-g, PAUSED, and "simulation behind: 71% speed" in amber while `behind`. Labels and hints
+/// are a light grey on an 82% opaque backing, readable over the grey walls. No decoration,
+/// takes no input; `drawLevelBanner` keeps clear of its right edge (as measured when last
+/// drawn). Thread rule (every function here): between `ImGuiBridge::newFrame` and `render`,
+/// on the GL thread.
 void drawHud(const HudInfo& info);
 
 /// What the level banner shows.
@@ -64,18 +68,34 @@ struct BannerInfo {
     /// `Level::goal.timeLimit` (unit: s; 0 = none: the elapsed time is shown instead of the
     /// time left).
     double timeLimit = 0.0;
+    /// True while the tuning panel is open on the right: the banner keeps clear of it.
+    bool panelOpen = false;
 };
 
-/// Draws the banner top-centre: the title in `big` (`ImGuiBridge::bannerFont()`; nullptr or a
-/// font under 20 px is scaled up), the text wrapped, and with a goal a progress bar (value /
-/// amount) and the time left. When the goal is Won or Lost, also a large centred "Level
-/// complete!" (green) or "Time's up" (red) over "R retry, N next level". Takes no input. To
-/// fade it out, wrap the call in `ImGui::PushStyleVar(ImGuiStyleVar_Alpha, a)`.
+/// Draws the banner at the top, between the HUD and the window's right edge (the tuning panel
+/// while it is open), centred on the window when it fits: the title in `big`
+/// (`ImGuiBridge::bannerFont()`; nullptr or a font under 20 px is scaled up), the text wrapped
+/// at spaces only (`wrapWords`: a number such as "5,000" or a word never splits), and with a
+/// goal a progress bar (value / amount) whose label also holds the time left (amber under
+/// 10 s) or played. The banner stays within the top 19% of the window, the room
+/// `Session::camera` leaves above the level: a text with more lines than fit is cut at a word
+/// with "..." (the F1 help shows it whole). When the goal is Won or Lost, also a large centred
+/// "Level complete!" (green) or "Time's up" (red) over "R retry, N next level". Takes no input.
+/// To fade it out, wrap the call in `ImGui::PushStyleVar(ImGuiStyleVar_Alpha, a)`.
 void drawLevelBanner(const BannerInfo& info, ImFont* big);
 
+/// Splits `text` into lines at most `width` wide (unit: as `measure`, e.g. px), breaking only
+/// at spaces and at newlines: a number ("5,000", "2.5"), a hyphenated or any other word stays
+/// whole; a word wider than `width` gets a line of its own. Runs of spaces at a break are
+/// dropped. `measure` gives the width of a piece of text (ImGui's text width in the game).
+/// The views point into `text`. Thread rule: any thread (pure, given a pure `measure`).
+std::vector<std::string_view> wrapWords(std::string_view text, float width,
+                                        const std::function<float(std::string_view)>& measure);
+
 /// Draws the F1 overlay listing every control, centred; its close button clears `*open`.
-/// Nothing is drawn while `*open` is false.
-void drawHelp(bool* open);
+/// With a `levelName`, it first shows the level's title and whole `levelText` (wrapped as the
+/// banner's, which may cut it). Nothing is drawn while `*open` is false.
+void drawHelp(bool* open, std::string_view levelName = {}, std::string_view levelText = {});
 
 /// One entry of the level menu.
 struct LevelEntry {

@@ -3,6 +3,9 @@
 // field crosses the threshold (anti-aliased over one pixel), the materials' weighted colour, a
 // lighter rim band just inside the surface and a faint highlight on the side facing the light.
 // The pressure view uses it with uDark = 1: black liquid with a thin grey rim.
+// Next to solids (opaque shapes) the surface level goes down to uSolidThreshold: particles rest
+// up to about a spacing from a wall or a body, and the liquid must still touch it. The rim
+// fades out there, so a wall does not get a light halo.
 
 // ---- inputs ----
 in vec2 vUv; // texture coordinate of the target
@@ -10,11 +13,14 @@ in vec2 vUv; // texture coordinate of the target
 // ---- uniforms ----
 uniform sampler2D uField;     // rgb = sum of colour x w, a = largest single w (bilinear)
 uniform sampler2D uWeight;    // r = sum of w: the field (bilinear)
-uniform float uDropletLevel;  // scale of the largest single w (lone droplets stay visible)
-uniform float uKernelWeight;  // one particle's weight in the sum (sum / max w for a lone one)
+uniform float uDropletLevel;  // scale of the largest single w: every particle shows as a disc
 uniform float uThreshold; // field level at the surface (1)
 uniform float uRimWidth;  // width of the rim band inside the surface (px of the target)
 uniform int uDark;        // 1: pressure view (black liquid, grey rim)
+uniform sampler2D uSolidDistance; // r = distance to the nearest solid (its texels; bilinear)
+uniform float uSolidReach;        // distance at which the level is back to uThreshold (texels
+                                  // of uSolidDistance); 0: no solids, uSolidDistance not read
+uniform float uSolidThreshold;    // field level at the surface where it touches a solid (1)
 
 // ---- outputs ----
 out vec4 fragColour; // straight alpha, blended over the background
@@ -22,25 +28,33 @@ out vec4 fragColour; // straight alpha, blended over the background
 void main() {
     vec4 field = texture(uField, vUv);
     float sum = texture(uWeight, vUv).r;
-    // A lone particle's sum peaks below the threshold: where a single kernel makes up nearly
-    // all of the sum (isolated droplets, chains), the largest kernel, scaled, stands in. Rows
-    // along the liquid's edge have neighbours (ratio ~1.9) and keep the smooth sum.
-    float ratio = sum / max(field.a * uKernelWeight, 1e-6);
-    float isolated = 1.0 - smoothstep(1.2, 1.5, ratio);
-    float a = max(sum, uDropletLevel * field.a * isolated);
+    // A lone particle's sum peaks below the threshold, and sparse ones (spray, a thin film, a
+    // chain) dip below it between them: the largest single kernel, scaled, stands in, so every
+    // particle shows at least as a disc of half a spacing (at the default threshold). Inside
+    // the liquid and along dense edges the sum is larger and decides.
+    float a = max(sum, uDropletLevel * field.a);
+    // 1 at a solid, 0 from uSolidReach on; the surface level follows. The solid mask marks the
+    // texels whose centre a solid covers, so a solid's edge may lie up to a texel closer than
+    // the distance says: 0.7 texel of it counts as touching.
+    float near = 0.0;
+    if (uSolidReach > 0.0) {
+        near = 1.0 - smoothstep(0.0, uSolidReach, texture(uSolidDistance, vUv).r - 0.7);
+    }
+    float level = a - mix(uThreshold, uSolidThreshold, near); // > 0 inside the liquid
     // Derivatives first: they must be taken before any fragment of the quad discards.
-    vec2 gradient = vec2(dFdx(a), dFdy(a)); // field change per target pixel
-    float slope = length(gradient);
-    float edge = 0.7 * (abs(gradient.x) + abs(gradient.y)) + 1e-4;
-    float coverage = smoothstep(uThreshold - edge, uThreshold + edge, a);
+    vec2 gradient = vec2(dFdx(a), dFdy(a)); // field change per target pixel (lighting)
+    vec2 levelGradient = vec2(dFdx(level), dFdy(level)); // the surface's (coverage, rim)
+    float slope = length(levelGradient);
+    float edge = 0.7 * (abs(levelGradient.x) + abs(levelGradient.y)) + 1e-4;
+    float coverage = smoothstep(-edge, edge, level);
     if (coverage <= 0.0) {
         discard;
     }
-    // Distance inside the surface (px), from the field's first-order expansion.
-    float depth = (a - uThreshold) / max(slope, 1e-5);
-    float rim = 1.0 - smoothstep(0.0, uRimWidth, depth);
+    // Distance inside the surface (px), from the level's first-order expansion.
+    float depth = level / max(slope, 1e-5);
+    float rim = (1.0 - smoothstep(0.0, uRimWidth, depth)) * (1.0 - near);
     // Outward normal in the target's plane (the field grows inwards); light from the upper left.
-    vec2 normal = -gradient / max(slope, 1e-5);
+    vec2 normal = -gradient / max(length(gradient), 1e-5);
     float facing = max(dot(normal, vec2(-0.6, 0.8)), 0.0);
 
     vec3 colour;
@@ -55,7 +69,7 @@ void main() {
         // Faint highlight: a soft glow further in on the lit side, fading out by 6 rim widths.
         float glow = smoothstep(uRimWidth, 2.5 * uRimWidth, depth) *
                      (1.0 - smoothstep(3.0 * uRimWidth, 6.0 * uRimWidth, depth));
-        colour += vec3(0.12) * (facing * facing * glow);
+        colour += vec3(0.12) * (facing * facing * glow * (1.0 - near));
     }
     fragColour = vec4(colour, coverage);
 }

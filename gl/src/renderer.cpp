@@ -3,7 +3,10 @@
 // Per frame (see docs/rendering.md):
 //   1. clear the RGBA8 composite target to the background, draw the `under` shapes;
 //   2. Metaballs: add every particle's kernel into a float field target (additive blending),
-//      then one full-screen triangle turns the field into a surface over the composite;
+//      rasterise the opaque shapes into a solid mask and take each field texel's distance to
+//      it (two passes), then one full-screen triangle turns the field into a surface over the
+//      composite, with a lower surface level next to solids; the opaque `under` shapes are
+//      drawn again over it;
 //      Pressure: the same surface in black, then one red square per particle;
 //      Particles: one disc per particle;
 //   3. draw the `over` shapes.
@@ -19,6 +22,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -38,10 +42,17 @@ constexpr float kMinPressureScale = 1e-3f;
 constexpr float kInteriorField = 1.2f;
 // Default of RenderSettings::threshold. A lone particle's summed field peaks at only
 // kInteriorField x 4 / (pi fieldRadius^2) (0.38 at radius 2): below the threshold, so spray
-// would vanish. The composite therefore also takes the largest single kernel, scaled so that
-// at the default threshold a lone particle shows as a disc of radius half a spacing (the
-// same half spacing a flat surface stands out by); inside the liquid the sum dominates.
+// would vanish, and sparse particles (a thin film, a chain) dip below it between them. The
+// composite therefore also takes the largest single kernel, scaled so that at the default
+// threshold every particle shows at least as a disc of radius half a spacing (the same half
+// spacing a flat surface stands out by); inside the liquid and along dense edges the sum is
+// larger and decides.
 constexpr float kDefaultThreshold = 0.6f;
+// A shape triangle whose three vertices have at least this alpha is opaque: a solid.
+constexpr float kOpaqueAlpha = 0.999f;
+// Most taps on each side of a texel in a solid distance pass; a wider reach samples every
+// few texels instead (thin solids may then be missed at extreme zoom).
+constexpr int kMaxDistanceTaps = 16;
 
 // Vertex attribute locations, as the shaders declare them.
 enum Attribute : GLuint {
@@ -84,6 +95,14 @@ glm::ivec4 pixelRect(const float* m, glm::vec2 lo, glm::vec2 hi, glm::ivec2 size
     return {x0.x, x0.y, std::max(x1.x - x0.x, 0), std::max(x1.y - x0.y, 0)};
 }
 
+// `rect` (x, y, width, height) grown by `margin` texels on every side, clipped to [0, size).
+glm::ivec4 grownRect(glm::ivec4 rect, int margin, glm::ivec2 size) {
+    const int x0 = std::max(rect.x - margin, 0), y0 = std::max(rect.y - margin, 0);
+    const int x1 = std::min(rect.x + rect.z + margin, size.x);
+    const int y1 = std::min(rect.y + rect.w + margin, size.y);
+    return {x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
+}
+
 // Locations of the uniforms one particle program uses (-1 when it has none of that name).
 struct ParticleUniforms {
     GLint worldToClip = -1, spacing = -1, colour = -1, materialCount = -1;
@@ -107,28 +126,56 @@ struct SurfacePass {
     float rimWidth = 3.0f;        // rim band (target px)
     bool dark = false;            // pressure view: black liquid, grey rim
     glm::vec2 lo{0.0f}, hi{0.0f}; // every particle's kernel lies in [lo, hi] (m)
+    // Solids: the opaque triangles at [solidFirst, solidFirst + solidCount) of the shape
+    // buffer; within solidReach (solid texels; 0 = off) of them the surface level goes down
+    // to solidThreshold (1).
+    GLint solidFirst = 0;
+    GLsizei solidCount = 0;
+    std::span<const ShapeVertex> solids; // the same triangles (for the cache)
+    float solidReach = 0.0f;
+    float solidThreshold = 0.15f;
 };
 } // namespace
 
 struct Renderer::Impl {
     glm::ivec2 size{0, 0};
     glm::ivec2 fieldSize{0, 0};
+    // The solid targets' size: half the field's (a quarter of the target's at the default
+    // fieldResolution), plenty for a distance that only sets where the surface level eases.
+    glm::ivec2 solidSize{0, 0};
     GLint maxTextureSize = 0;
 
     // Targets: the composite (what the host sees) and the metaball field.
     GLuint compositeFbo = 0, compositeTexture = 0;
     // The field has two attachments: colour (rgb = sum of colour x w, a = max of w) and weight
-    // (r = sum of w). The max lets a lone droplet show (see kDropletLevel).
+    // (r = sum of w). The max lets a lone droplet show (see kDefaultThreshold).
     GLuint fieldFbo = 0;
     std::array<GLuint, 2> fieldTextures{};
     bool fieldHalfFloat = true;
+    // Solid targets, at solidSize: the mask of opaque shapes (R8), the distance to the nearest
+    // solid texel along the row (R16F) and the distance itself (R16F; solid texels).
+    enum SolidTarget : size_t { kSolidMask, kSolidRows, kSolidDistance, kSolidTargets };
+    std::array<GLuint, kSolidTargets> solidFbos{};
+    std::array<GLuint, kSolidTargets> solidTextures{};
+    // What the solid distance holds: for these solids, camera and reach, valid inside
+    // solidCacheRect (solid texels). Walls stand still, so most frames reuse it; a moving body
+    // or liquid that leaves the rectangle computes it again.
+    std::vector<ShapeVertex> solidCache;
+    std::array<float, 9> solidCacheCamera{};
+    float solidCacheReach = -1.0f;
+    glm::ivec4 solidCacheRect{0, 0, 0, 0};
 
     detail::Program shapeProgram, fieldProgram, compositeProgram, squareProgram, discProgram;
+    detail::Program maskProgram, distanceProgram;
+    GLint maskWorldToClip = -1;
+    GLint distanceSource = -1, distancePass = -1, distanceTaps = -1, distanceStride = -1,
+          distanceFar = -1;
+    GLint compositeSolidDistance = -1, compositeSolidReach = -1, compositeSolidThreshold = -1;
     GLint shapeWorldToClip = -1;
     ParticleUniforms fieldUniforms, squareUniforms, discUniforms;
     GLint fieldRadius = -1, fieldWeight = -1;
     GLint compositeThreshold = -1, compositeRimWidth = -1, compositeDark = -1, compositeField = -1,
-          compositeWeight = -1, compositeDropletLevel = -1, compositeKernelWeight = -1;
+          compositeWeight = -1, compositeDropletLevel = -1;
     GLint squareInvScale = -1;
     GLint discPixel = -1, discInvSpeedScale = -1;
 
@@ -142,8 +189,10 @@ struct Renderer::Impl {
     std::array<float, kMaxMaterials * 3> colour{};
     GLint materialCount = 1;
 
-    // Reused every frame: positive pressures for the automatic scale.
+    // Reused every frame: positive pressures for the automatic scale, and the opaque
+    // triangles of both shape batches (the solids).
     std::vector<float> pressureScratch;
+    std::vector<ShapeVertex> solidScratch;
 
     explicit Impl(glm::ivec2 targetSize);
     ~Impl();
@@ -155,7 +204,9 @@ struct Renderer::Impl {
     void setStyles(std::span<const MaterialStyle> styles);
     void uploadMaterials(const ParticleUniforms& uniforms) const;
     void uploadChannel(Channel channel, const void* data, size_t bytes, bool present);
-    void drawShapes(GLint first, GLsizei count) const;
+    // Draws shape triangles [first, first + count) with straight alpha; `opaque` ones (alpha
+    // >= kOpaqueAlpha) without blending, which a software renderer fills faster.
+    void drawShapes(GLint first, GLsizei count, bool opaque = false) const;
     void drawSurface(const SurfacePass& pass);
 };
 
@@ -196,6 +247,8 @@ Renderer::Impl::Impl(glm::ivec2 targetSize) {
 
     shapeProgram = detail::Program("shape.vert", "shape.frag");
     fieldProgram = detail::Program("metaball_field.vert", "metaball_field.frag");
+    maskProgram = detail::Program("shape.vert", "solid_mask.frag");
+    distanceProgram = detail::Program("fullscreen.vert", "solid_distance.frag");
     compositeProgram = detail::Program("fullscreen.vert", "metaball_composite.frag");
     squareProgram = detail::Program("pressure_square.vert", "pressure_square.frag");
     discProgram = detail::Program("particle_disc.vert", "particle_disc.frag");
@@ -212,13 +265,24 @@ Renderer::Impl::Impl(glm::ivec2 targetSize) {
     compositeField = compositeProgram.uniform("uField");
     compositeWeight = compositeProgram.uniform("uWeight");
     compositeDropletLevel = compositeProgram.uniform("uDropletLevel");
-    compositeKernelWeight = compositeProgram.uniform("uKernelWeight");
+    compositeSolidDistance = compositeProgram.uniform("uSolidDistance");
+    compositeSolidReach = compositeProgram.uniform("uSolidReach");
+    compositeSolidThreshold = compositeProgram.uniform("uSolidThreshold");
+    maskWorldToClip = maskProgram.uniform("uWorldToClip");
+    distanceSource = distanceProgram.uniform("uSource");
+    distancePass = distanceProgram.uniform("uPass");
+    distanceTaps = distanceProgram.uniform("uTaps");
+    distanceStride = distanceProgram.uniform("uStride");
+    distanceFar = distanceProgram.uniform("uFar");
     squareInvScale = squareProgram.uniform("uInvScale");
     discPixel = discProgram.uniform("uPixel");
     discInvSpeedScale = discProgram.uniform("uInvSpeedScale");
     glUseProgram(compositeProgram.id());
     glUniform1i(compositeField, 0);
     glUniform1i(compositeWeight, 1);
+    glUniform1i(compositeSolidDistance, 2);
+    glUseProgram(distanceProgram.id());
+    glUniform1i(distanceSource, 0);
     glUseProgram(0);
 
     // Shapes: interleaved position + colour, refilled every frame.
@@ -265,6 +329,8 @@ Renderer::Impl::Impl(glm::ivec2 targetSize) {
     glGenTextures(1, &compositeTexture);
     glGenFramebuffers(1, &fieldFbo);
     glGenTextures(2, fieldTextures.data());
+    glGenFramebuffers(GLsizei(kSolidTargets), solidFbos.data());
+    glGenTextures(GLsizei(kSolidTargets), solidTextures.data());
     allocateComposite();
     setStyles({});
 }
@@ -274,6 +340,8 @@ Renderer::Impl::~Impl() {
     glDeleteFramebuffers(1, &fieldFbo);
     glDeleteTextures(1, &compositeTexture);
     glDeleteTextures(2, fieldTextures.data());
+    glDeleteFramebuffers(GLsizei(kSolidTargets), solidFbos.data());
+    glDeleteTextures(GLsizei(kSolidTargets), solidTextures.data());
     glDeleteVertexArrays(1, &shapeVao);
     glDeleteVertexArrays(1, &particleVao);
     glDeleteVertexArrays(1, &emptyVao);
@@ -305,6 +373,7 @@ void Renderer::Impl::allocateComposite() {
 
 void Renderer::Impl::allocateField(glm::ivec2 newFieldSize) {
     fieldSize = newFieldSize;
+    solidCacheReach = -1.0f; // the solid targets are allocated anew
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, fieldFbo);
     // Half floats are enough for sums of a few dozen weights and half the bandwidth of 32-bit;
@@ -338,6 +407,35 @@ void Renderer::Impl::allocateField(glm::ivec2 newFieldSize) {
     }
     static constexpr GLenum kDrawBuffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glDrawBuffers(2, kDrawBuffers);
+
+    // The solid targets: R8 is always renderable; the distances use the field's float format
+    // (complete above), one channel.
+    solidSize = glm::max((fieldSize + 1) / 2, glm::ivec2(1));
+    for (size_t i = 0; i < kSolidTargets; ++i) {
+        const bool mask = i == kSolidMask;
+        const GLenum format = mask ? GL_R8 : (fieldHalfFloat ? GL_R16F : GL_R32F);
+        glBindTexture(GL_TEXTURE_2D, solidTextures[i]);
+        glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(format), solidSize.x, solidSize.y, 0,
+                     GL_RED, mask ? GL_UNSIGNED_BYTE : GL_FLOAT, nullptr);
+        // The distance passes fetch texels; the composite samples the distance bilinearly.
+        setTextureParameters(i == kSolidDistance ? GL_LINEAR : GL_NEAREST);
+        glBindFramebuffer(GL_FRAMEBUFFER, solidFbos[i]);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                               solidTextures[i], 0);
+        const GLenum solidStatus = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+        if (solidStatus != GL_FRAMEBUFFER_COMPLETE) {
+            glBindTexture(GL_TEXTURE_2D, 0);
+            char text[160];
+            std::snprintf(text, sizeof text,
+                          "fluid::gl: Renderer: the solid %s framebuffer of size (%d, %d) is "
+                          "incomplete (status 0x%04X)",
+                          mask ? "mask (GL_R8)" : "distance (one-channel float)", solidSize.x,
+                          solidSize.y, static_cast<unsigned>(solidStatus));
+            fieldSize = {0, 0};
+            throw Error(text);
+        }
+    }
+    glBindTexture(GL_TEXTURE_2D, 0);
 }
 
 void Renderer::Impl::setStyles(std::span<const MaterialStyle> styles) {
@@ -383,7 +481,7 @@ void Renderer::Impl::uploadChannel(Channel channel, const void* data, size_t byt
     glEnableVertexAttribArray(location);
 }
 
-void Renderer::Impl::drawShapes(GLint first, GLsizei count) const {
+void Renderer::Impl::drawShapes(GLint first, GLsizei count, bool opaque) const {
     if (count == 0) {
         return;
     }
@@ -393,7 +491,11 @@ void Renderer::Impl::drawShapes(GLint first, GLsizei count) const {
     glBlendEquation(GL_FUNC_ADD);
     // Straight alpha over an opaque target; the target's alpha stays 1.
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    if (opaque) {
+        glDisable(GL_BLEND);
+    }
     glDrawArrays(GL_TRIANGLES, first, count);
+    glEnable(GL_BLEND);
 }
 
 void Renderer::Impl::drawSurface(const SurfacePass& pass) {
@@ -429,6 +531,64 @@ void Renderer::Impl::drawSurface(const SurfacePass& pass) {
     glBindVertexArray(particleVao);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(pass.particles));
 
+    // Solid passes: the opaque shapes into a mask, then each texel's distance to the mask, in
+    // two separable passes (rows, then columns) that are exact within the reach. Each pass
+    // reads up to `window` texels beyond the rectangle the next one writes.
+    const bool solids = pass.solidCount > 0 && pass.solidReach > 0.0f;
+    auto contains = [](glm::ivec4 outer, glm::ivec4 inner) {
+        return inner.x >= outer.x && inner.y >= outer.y && inner.x + inner.z <= outer.x + outer.z &&
+               inner.y + inner.w <= outer.y + outer.w;
+    };
+    const glm::ivec4 solidRect = pixelRect(pass.worldToClip, pass.lo, pass.hi, solidSize, 2);
+    const bool cached =
+        solids && solidCacheReach == pass.solidReach && contains(solidCacheRect, solidRect) &&
+        std::equal(solidCacheCamera.begin(), solidCacheCamera.end(), pass.worldToClip) &&
+        solidCache.size() == pass.solids.size() &&
+        std::memcmp(solidCache.data(), pass.solids.data(),
+                    pass.solids.size() * sizeof(ShapeVertex)) == 0;
+    if (solids && !cached) {
+        const int window = int(std::ceil(pass.solidReach)) + 1;
+        const int stride = (window + kMaxDistanceTaps - 1) / kMaxDistanceTaps;
+        const int taps = (window + stride - 1) / stride;
+        // Some room round the liquid, so that it can move a little before this runs again.
+        const glm::ivec4 region = grownRect(solidRect, 4, solidSize);
+        solidCache.assign(pass.solids.begin(), pass.solids.end());
+        std::copy(pass.worldToClip, pass.worldToClip + 9, solidCacheCamera.begin());
+        solidCacheReach = pass.solidReach;
+        solidCacheRect = region;
+        glDisable(GL_BLEND);
+        glViewport(0, 0, solidSize.x, solidSize.y);
+        glBindFramebuffer(GL_FRAMEBUFFER, solidFbos[kSolidMask]);
+        const glm::ivec4 maskRect = grownRect(region, 2 * taps * stride, solidSize);
+        glScissor(maskRect.x, maskRect.y, maskRect.z, maskRect.w);
+        glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        glUseProgram(maskProgram.id());
+        glUniformMatrix3fv(maskWorldToClip, 1, GL_FALSE, pass.worldToClip);
+        glBindVertexArray(shapeVao);
+        glDrawArrays(GL_TRIANGLES, pass.solidFirst, pass.solidCount);
+
+        glUseProgram(distanceProgram.id());
+        glUniform1i(distanceTaps, taps);
+        glUniform1i(distanceStride, stride);
+        glUniform1f(distanceFar, float(taps * stride + 1));
+        glBindVertexArray(emptyVao);
+        glActiveTexture(GL_TEXTURE0);
+        for (const int step : {0, 1}) {
+            const SolidTarget source = step == 0 ? kSolidMask : kSolidRows;
+            const SolidTarget target = step == 0 ? kSolidRows : kSolidDistance;
+            const glm::ivec4 rect =
+                step == 0 ? grownRect(region, taps * stride, solidSize) : region;
+            glBindFramebuffer(GL_FRAMEBUFFER, solidFbos[target]);
+            glScissor(rect.x, rect.y, rect.z, rect.w);
+            glUniform1i(distancePass, step);
+            glBindTexture(GL_TEXTURE_2D, solidTextures[source]);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        }
+        glBindTexture(GL_TEXTURE_2D, 0);
+        glEnable(GL_BLEND);
+    }
+
     // Composite pass: one full-screen triangle samples the field (bilinear) over the target.
     glBindFramebuffer(GL_FRAMEBUFFER, compositeFbo);
     glViewport(0, 0, size.x, size.y);
@@ -439,9 +599,12 @@ void Renderer::Impl::drawSurface(const SurfacePass& pass) {
     glUniform1f(compositeThreshold, pass.threshold);
     const float edge = 0.5f / pass.fieldRadius;
     glUniform1f(compositeDropletLevel, kDefaultThreshold / std::pow(1.0f - edge * edge, 3.0f));
-    glUniform1f(compositeKernelWeight, kernelWeight);
     glUniform1f(compositeRimWidth, pass.rimWidth);
     glUniform1i(compositeDark, pass.dark ? 1 : 0);
+    glUniform1f(compositeSolidReach, solids ? pass.solidReach : 0.0f);
+    glUniform1f(compositeSolidThreshold, std::min(pass.solidThreshold, pass.threshold));
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, solids ? solidTextures[kSolidDistance] : 0);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, fieldTextures[1]);
     glActiveTexture(GL_TEXTURE0);
@@ -450,6 +613,8 @@ void Renderer::Impl::drawSurface(const SurfacePass& pass) {
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindTexture(GL_TEXTURE_2D, 0);
     glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_2D, 0);
     glActiveTexture(GL_TEXTURE0);
     glDisable(GL_SCISSOR_TEST);
@@ -548,6 +713,8 @@ RenderStats Renderer::render(const Camera& camera, const ParticleSpans& particle
     const float resolution = std::clamp(finiteOr(settings.fieldResolution, 0.5f), 0.25f, 1.0f);
     const float speedScale = std::max(finiteOr(settings.speedScale, 2.0f), 1e-6f);
     const float fixedPressureScale = std::max(finiteOr(settings.pressureScale, 0.0f), 0.0f);
+    const float solidThreshold = std::clamp(finiteOr(settings.solidThreshold, 0.15f), 0.05f, 4.0f);
+    const float solidReach = std::clamp(finiteOr(settings.solidReach, 3.0f), 0.0f, 4.0f);
 
     RenderStats stats;
     stats.particles = static_cast<uint32_t>(n);
@@ -577,11 +744,35 @@ RenderStats Renderer::render(const Camera& camera, const ParticleSpans& particle
     glClearColor(settings.background.r, settings.background.g, settings.background.b, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
 
-    if (underCount + overCount > 0) {
-        // Both batches in one buffer, one orphaning allocation per frame.
+    // The views with a surface treat opaque triangles as solids: copied after both batches,
+    // those of `under` first (drawn again over the liquid), then those of `over`.
+    const bool surfaceView =
+        n > 0 && (settings.view == View::Metaballs || settings.view == View::Pressure);
+    std::vector<ShapeVertex>& solids = m.solidScratch;
+    solids.clear();
+    size_t solidUnderCount = 0;
+    if (surfaceView) {
+        for (const ShapeBatch* batch : {&under, &over}) {
+            const std::span<const ShapeVertex> v = batch->vertices();
+            for (size_t i = 0; i + 2 < v.size(); i += 3) {
+                if (v[i].colour.a >= kOpaqueAlpha && v[i + 1].colour.a >= kOpaqueAlpha &&
+                    v[i + 2].colour.a >= kOpaqueAlpha) {
+                    solids.insert(solids.end(), v.begin() + std::ptrdiff_t(i),
+                                  v.begin() + std::ptrdiff_t(i + 3));
+                }
+            }
+            if (batch == &under) {
+                solidUnderCount = solids.size();
+            }
+        }
+    }
+    const size_t solidFirst = underCount + overCount;
+    const size_t shapeCount = solidFirst + solids.size();
+
+    if (shapeCount > 0) {
+        // Both batches (and the solids) in one buffer, one orphaning allocation per frame.
         glBindBuffer(GL_ARRAY_BUFFER, m.shapeVbo);
-        glBufferData(GL_ARRAY_BUFFER,
-                     static_cast<GLsizeiptr>((underCount + overCount) * sizeof(ShapeVertex)),
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(shapeCount * sizeof(ShapeVertex)),
                      nullptr, GL_STREAM_DRAW);
         if (underCount > 0) {
             glBufferSubData(GL_ARRAY_BUFFER, 0,
@@ -592,6 +783,11 @@ RenderStats Renderer::render(const Camera& camera, const ParticleSpans& particle
             glBufferSubData(
                 GL_ARRAY_BUFFER, static_cast<GLintptr>(underCount * sizeof(ShapeVertex)),
                 static_cast<GLsizeiptr>(overCount * sizeof(ShapeVertex)), over.vertices().data());
+        }
+        if (!solids.empty()) {
+            glBufferSubData(
+                GL_ARRAY_BUFFER, static_cast<GLintptr>(solidFirst * sizeof(ShapeVertex)),
+                static_cast<GLsizeiptr>(solids.size() * sizeof(ShapeVertex)), solids.data());
         }
         glUseProgram(m.shapeProgram.id());
         glUniformMatrix3fv(m.shapeWorldToClip, 1, GL_FALSE, worldToClip);
@@ -641,11 +837,23 @@ RenderStats Renderer::render(const Camera& camera, const ParticleSpans& particle
                 lo.y = y < lo.y ? y : lo.y;
                 hi.y = y > hi.y ? y : hi.y;
             }
-            const float reach = fieldRadius * *std::max_element(m.spacing.begin(), m.spacing.end());
+            const float widest = *std::max_element(m.spacing.begin(), m.spacing.end());
+            const float reach = fieldRadius * widest;
             pass.lo = lo - reach;
             pass.hi = hi + reach;
+            pass.solidFirst = static_cast<GLint>(solidFirst);
+            pass.solidCount = static_cast<GLsizei>(solids.size());
+            pass.solids = solids;
+            // The reach in solid texels (the field, and so the solid targets, may be a little
+            // more or less than `resolution` times the target: rounding).
+            pass.solidReach =
+                solidReach * widest * targetPixelsPerMetre * float(m.solidSize.x) / float(m.size.x);
+            pass.solidThreshold = solidThreshold;
             if (lo.x <= hi.x && lo.y <= hi.y) {
                 m.drawSurface(pass);
+                // Walls hide whatever of the liquid's surface reaches into them.
+                m.drawShapes(static_cast<GLint>(solidFirst), static_cast<GLsizei>(solidUnderCount),
+                             true);
             }
         }
 

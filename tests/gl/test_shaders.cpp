@@ -22,10 +22,10 @@ TEST_CASE("Embedded shaders: sorted names, #version 330 core, lookup", "[gl][sha
         CHECK(stage);
     }
     // The programs the renderer links exist.
-    for (const char* name :
-         {"shape.vert", "shape.frag", "fullscreen.vert", "metaball_field.vert",
-          "metaball_field.frag", "metaball_composite.frag", "pressure_square.vert",
-          "pressure_square.frag", "particle_disc.vert", "particle_disc.frag"}) {
+    for (const char* name : {"shape.vert", "shape.frag", "fullscreen.vert", "metaball_field.vert",
+                             "metaball_field.frag", "metaball_composite.frag",
+                             "pressure_square.vert", "pressure_square.frag", "particle_disc.vert",
+                             "particle_disc.frag", "solid_mask.frag", "solid_distance.frag"}) {
         INFO(name);
         CHECK(!shaderSource(name).empty());
     }

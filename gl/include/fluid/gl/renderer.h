@@ -69,8 +69,8 @@ inline ParticleSpans particles(const World& world) {
 /// What the liquid looks like.
 enum class View : uint8_t {
     /// Metaballs: a smooth liquid surface with anti-aliased edges, a light rim and per-material
-    /// colour; where materials mix, their colours blend. Lone droplets stay visible as discs
-    /// about one spacing across.
+    /// colour; where materials mix, their colours blend. Every particle shows at least as a disc
+    /// about one spacing across (lone droplets, spray); the surface touches walls and bodies.
     Metaballs,
     /// The seed report's pressure view: black liquid with translucent red squares, one per
     /// particle, more opaque under more pressure.
@@ -113,6 +113,20 @@ struct RenderSettings {
     /// Resolution of the metaball field over the target's (unit: 1; [0.25, 1]); 0.5 quarters
     /// the fill cost on software renderers.
     float fieldResolution = 0.5f;
+    /// Field level at the surface where the liquid touches a solid (unit: 1; [0.05, 4]; used
+    /// only where it is below `threshold`). Particles rest up to about a spacing from walls and
+    /// bodies, where the field has fallen to about 0.25: at `threshold` the background would
+    /// show between the liquid and the solid. Solids are the opaque triangles (alpha >= 0.999)
+    /// of `under` and `over`; the metaball and pressure views draw the opaque triangles of
+    /// `under` again over the liquid, so the lower level reaches into a wall unseen.
+    float solidThreshold = 0.15f;
+    /// Distance from a solid over which the surface level goes smoothly from `solidThreshold`
+    /// back to `threshold` (unit: spacings of the widest material; [0, 4]; 0 = no solid
+    /// treatment). Beyond it the liquid is drawn as if there were no solids. Within it the gap
+    /// between the liquid and the solid closes, a thin or sparse film on a solid (yoghurt on a
+    /// plank) reads as one film, a free surface that meets a solid rises by at most about half
+    /// a spacing (a meniscus), and the light rim fades out where the liquid touches the solid.
+    float solidReach = 3.0f;
     /// Background colour (unit: linear RGB).
     glm::vec3 background{0.08f, 0.09f, 0.11f};
 };
@@ -164,11 +178,15 @@ public:
     void setMaterials(std::span<const MaterialStyle> styles);
 
     /// Clears the target to the background, draws `under` (walls, sensors), the liquid in
-    /// `settings.view`, then `over` (bodies, cursor). The camera's view (`worldMin()` to
-    /// `worldMax()`) fills the target: give it the target's size as viewport for square
-    /// pixels. Throws `fluid::Error`, before drawing anything, if the spans' sizes disagree
-    /// or the camera's zoom is not > 0. Leaves `framebuffer()` bound and changes the viewport,
-    /// blending, scissor, program, vertex array and texture bindings.
+    /// `settings.view`, then `over` (bodies, cursor). In the metaball and pressure views the
+    /// opaque triangles of `under` (alpha >= 0.999: walls) are drawn once more over the liquid,
+    /// which therefore never covers a wall, and the liquid's surface reaches every opaque
+    /// triangle of either batch it comes near (see `RenderSettings::solidThreshold`); a
+    /// translucent `under` triangle drawn after an opaque one it overlaps loses its tint there.
+    /// The camera's view (`worldMin()` to `worldMax()`) fills the target: give it the target's
+    /// size as viewport for square pixels. Throws `fluid::Error`, before drawing anything, if the
+    /// spans' sizes disagree or the camera's zoom is not > 0. Leaves `framebuffer()` bound and
+    /// changes the viewport, blending, scissor, program, vertex array and texture bindings.
     RenderStats render(const Camera& camera, const ParticleSpans& particles,
                        const ShapeBatch& under, const ShapeBatch& over,
                        const RenderSettings& settings);
