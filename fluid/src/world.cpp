@@ -546,6 +546,7 @@ void World::step(float frameDt) {
     // A correction turns into velocity over its sub-step, so a shorter sub-step would turn the
     // same residual compression into a faster motion (docs/position_based.md, "Frame length").
     float simulated = frameDt;
+    double carryAfter = 0.0; // stored once the step went through: a throwing step keeps the old
     if (s.def.solver == Solver::PositionBased) {
         const double h = detail::substepLength(s.def.positionBased.substeps);
         const double due = s.carry + double(frameDt);
@@ -559,7 +560,7 @@ void World::step(float frameDt) {
         }
         s.plannedSubsteps = count;
         simulated = float(double(count) * h);
-        s.carry = std::max(0.0, due - double(count) * h);
+        carryAfter = std::max(0.0, due - double(count) * h);
     }
     frameDt = simulated;
     // Emitters add this frame's particles, the solver moves everything, then drains, lifetimes
@@ -582,8 +583,10 @@ void World::step(float frameDt) {
         }
     } catch (...) {
         undo.restore(s);
+        s.plannedSubsteps = 0;
         throw;
     }
+    s.carry = carryAfter;
     s.profile.removed = detail::finishGameplay(s);
     s.profile.emitted = emitted;
     s.profile.emitBlocked = blocked;
