@@ -3,6 +3,8 @@
 // meet the floor, a banner over the level and HUD hints lost over the grey walls. The pictures
 // come from the demo.holes.* and demo.overlay.* runs (tests/demo/CMakeLists.txt); every check
 // works on colour classes and geometry, not on golden images.
+#include "demo_shots.h"
+
 #include <catch2/catch.hpp>
 
 #include <SFML/Graphics/Image.hpp>
@@ -13,11 +15,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <deque>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
+
+using namespace fluid::test;
 
 namespace {
 
@@ -39,76 +42,10 @@ constexpr double kLiquidReach = 3.0;
 // pixels close over it.
 constexpr double kThinCoverage = 0.4;
 
-// One line of summary.txt: key=value pairs.
-struct Shot {
-    std::map<std::string, std::string> fields;
-    std::string at(const std::string& key) const {
-        const auto it = fields.find(key);
-        return it == fields.end() ? std::string() : it->second;
-    }
-};
-
-std::vector<Shot> readSummary(const std::string& dir) {
-    std::ifstream in(dir + "/summary.txt");
-    INFO("reading " << dir << "/summary.txt");
-    REQUIRE(in.good());
-    std::vector<Shot> shots;
-    std::string line;
-    while (std::getline(in, line)) {
-        Shot shot;
-        std::istringstream words(line);
-        std::string word;
-        while (words >> word) {
-            const auto eq = word.find('=');
-            if (eq != std::string::npos) {
-                shot.fields[word.substr(0, eq)] = word.substr(eq + 1);
-            }
-        }
-        if (!shot.at("level").empty()) {
-            shots.push_back(shot);
-        }
-    }
-    return shots;
-}
-
-// An image and the camera it was taken with: world metres to pixels.
-struct Picture {
-    sf::Image image;
-    double ppm = 1.0, cx = 0.0, cy = 0.0;
-    int width = 0, height = 0;
-
-    explicit Picture(const Shot& shot) {
-        INFO("loading " << shot.at("file"));
-        REQUIRE(image.loadFromFile(shot.at("file")));
-        ppm = std::stod(shot.at("px_per_m"));
-        const std::string center = shot.at("center");
-        cx = std::stod(center.substr(0, center.find(',')));
-        cy = std::stod(center.substr(center.find(',') + 1));
-        width = int(image.getSize().x);
-        height = int(image.getSize().y);
-    }
-    int px(double x) const { return int(std::lround((x - cx) * ppm + 0.5 * width)); }
-    int py(double y) const { return int(std::lround(0.5 * height - (y - cy) * ppm)); }
-    double wx(int x) const { return cx + (x + 0.5 - 0.5 * width) / ppm; }
-    double wy(int y) const { return cy - (y + 0.5 - 0.5 * height) / ppm; }
-    sf::Color at(int x, int y) const { return image.getPixel(unsigned(x), unsigned(y)); }
-};
-
 bool isBackground(sf::Color c) {
     return std::abs(int(c.r) - kBackground[0]) <= kBackgroundTolerance &&
            std::abs(int(c.g) - kBackground[1]) <= kBackgroundTolerance &&
            std::abs(int(c.b) - kBackground[2]) <= kBackgroundTolerance;
-}
-// Colour classes of test_demo_screens.cpp: water blue, yoghurt cream (their mixes fall in one
-// or the other).
-bool isWater(sf::Color c) {
-    return c.b > 110 && c.b > c.r + 50 && c.b > c.g + 10;
-}
-bool isYoghurt(sf::Color c) {
-    return c.r > 170 && c.g > 160 && c.b > 120 && std::abs(int(c.r) - int(c.b)) < 80;
-}
-bool isLiquid(sf::Color c) {
-    return isWater(c) || isYoghurt(c);
 }
 
 // Bodies' outlines (demo/scene_draw.cpp kBodyEdge: 0.10, 0.08, 0.06): nearly as dark as the
@@ -273,7 +210,7 @@ std::vector<Shot> holeShots() {
     std::istringstream dirs(FLUID_DEMO_HOLES_DIRS);
     std::string dir;
     while (std::getline(dirs, dir, '|')) {
-        const std::vector<Shot> shots = readSummary(dir);
+        const std::vector<Shot> shots = readShots(dir);
         all.insert(all.end(), shots.begin(), shots.end());
     }
     return all;
@@ -429,8 +366,8 @@ TEST_CASE("the liquid meets the floor under it", "[demo][holes]") {
 TEST_CASE("the banner stays above the level and the HUD's hints read over the walls",
           "[demo][overlay]") {
     // Every level after 30 frames at 960 x 540, with and without HUD and banner.
-    const std::vector<Shot> with = readSummary(FLUID_DEMO_OVERLAY_DIR);
-    const std::vector<Shot> without = readSummary(FLUID_DEMO_BARE_DIR);
+    const std::vector<Shot> with = readShots(FLUID_DEMO_OVERLAY_DIR);
+    const std::vector<Shot> without = readShots(FLUID_DEMO_BARE_DIR);
     REQUIRE(with.size() >= 13);
     int measured = 0;
     for (const Shot& shot : with) {

@@ -2,6 +2,8 @@
 // what a player would see, measured. The images come from a deterministic simulation, but the
 // checks use colour classes and regions with margins, not golden images, so a renderer tweak
 // does not break them while a wrong picture does.
+#include "demo_shots.h"
+
 #include <catch2/catch.hpp>
 
 #include <SFML/Graphics/Image.hpp>
@@ -9,93 +11,21 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
 #include <string>
 
+using namespace fluid::test;
+
 namespace {
 
-// One line of summary.txt: key=value pairs.
-struct Shot {
-    std::map<std::string, std::string> fields;
-    const std::string& at(const std::string& key) const {
-        const auto it = fields.find(key);
-        if (it == fields.end()) {
-            FAIL("summary.txt line has no '" << key << "'");
-        }
-        return it->second;
-    }
-    double number(const std::string& key) const { return std::stod(at(key)); }
-};
-
 std::map<std::string, Shot> readSummary() {
-    std::ifstream in(std::string(FLUID_DEMO_SHOTS) + "/summary.txt");
-    REQUIRE(in.good());
     std::map<std::string, Shot> shots;
-    std::string line;
-    while (std::getline(in, line)) {
-        Shot shot;
-        std::istringstream words(line);
-        std::string word;
-        while (words >> word) {
-            const auto eq = word.find('=');
-            if (eq != std::string::npos) {
-                shot.fields[word.substr(0, eq)] = word.substr(eq + 1);
-            }
-        }
+    for (const Shot& shot : readShots(FLUID_DEMO_SHOTS)) {
         shots[shot.at("level") + "-" + shot.at("view")] = shot;
     }
     return shots;
-}
-
-// An image and the camera it was taken with: world metres to pixels.
-struct Picture {
-    sf::Image image;
-    double ppm = 1.0, cx = 0.0, cy = 0.0;
-    int width = 0, height = 0;
-
-    explicit Picture(const Shot& shot) {
-        REQUIRE(image.loadFromFile(shot.at("file")));
-        ppm = shot.number("px_per_m");
-        const std::string center = shot.at("center");
-        cx = std::stod(center.substr(0, center.find(',')));
-        cy = std::stod(center.substr(center.find(',') + 1));
-        width = int(image.getSize().x);
-        height = int(image.getSize().y);
-    }
-    int px(double x) const { return int(std::lround((x - cx) * ppm + 0.5 * width)); }
-    int py(double y) const { return int(std::lround(0.5 * height - (y - cy) * ppm)); }
-    sf::Color at(int x, int y) const { return image.getPixel(unsigned(x), unsigned(y)); }
-    // Counts pixels of a class in the world rectangle [x0, x1] x [y0, y1]; `total` gets the
-    // pixel count of the rectangle.
-    template <class Pred>
-    int count(double x0, double y0, double x1, double y1, Pred pred, int* total = nullptr) const {
-        int n = 0, all = 0;
-        for (int y = std::max(0, py(y1)); y <= std::min(height - 1, py(y0)); ++y) {
-            for (int x = std::max(0, px(x0)); x <= std::min(width - 1, px(x1)); ++x) {
-                ++all;
-                n += pred(at(x, y)) ? 1 : 0;
-            }
-        }
-        if (total != nullptr) {
-            *total = all;
-        }
-        return n;
-    }
-};
-
-// Colour classes (tuned on the screenshots: water is blue, yoghurt cream, the pressure view's
-// squares red, walls grey, background near black).
-bool isWater(sf::Color c) {
-    return c.b > 110 && c.b > c.r + 50 && c.b > c.g + 10;
-}
-bool isYoghurt(sf::Color c) {
-    return c.r > 170 && c.g > 160 && c.b > 120 && std::abs(int(c.r) - int(c.b)) < 80;
-}
-bool isLiquid(sf::Color c) {
-    return isWater(c) || isYoghurt(c);
 }
 
 const std::map<std::string, Shot>& summary() {
