@@ -185,6 +185,19 @@ TankRun runTank(const Material& preset, const std::vector<Spec>& specs, const Bo
     return run;
 }
 
+// Boxes `across` water spacings wide and two thirds of that tall, circles `across` spacings
+// in diameter, stepped with `quality`.
+Bodies bodiesOfSpacings(float across, Quality quality) {
+    World probe;
+    const float s = probe.spacing(probe.addMaterial(fluid::water()));
+    Bodies shape;
+    shape.halfWidth = (0.5f * across) * s;
+    shape.halfHeight = (across / 3.0f) * s;
+    shape.radius = (0.5f * across) * s;
+    shape.quality = quality;
+    return shape;
+}
+
 const char* shapeName(const Spec& s) {
     return s.circle ? "circle" : "box";
 }
@@ -291,13 +304,7 @@ TEST_CASE("Archimedes, game preset: bodies of 24 spacings at 0.5 and 0.75 of wat
           "[slow][long][box2d][archimedes]") {
     const float depth = GENERATE(0.2f, 0.6f);
     CAPTURE(depth);
-    World probe;
-    const float s = probe.spacing(probe.addMaterial(fluid::water()));
-    Bodies shape;
-    shape.halfWidth = 12.0f * s;
-    shape.halfHeight = 8.0f * s;
-    shape.radius = 12.0f * s;
-    shape.quality = Quality::Game;
+    const Bodies shape = bodiesOfSpacings(24.0f, Quality::Game);
     char label[96];
     std::snprintf(label, sizeof label, "Archimedes, game preset, %.1f m", double(depth));
     Stopwatch sw(label);
@@ -332,22 +339,14 @@ TEST_CASE("Archimedes, game preset: bodies of 24 spacings at 0.5 and 0.75 of wat
 
 // The precise preset with smaller bodies and deeper water: boxes (12 x 8 water spacings) and
 // circles (12 across) at 0.25, 0.5 and 0.75 of water's density, on water 0.2 m and 0.6 m deep,
-// float at their density ratio and hold still. The error does not grow with depth: it is an
-// offset of about a fifth of a spacing (1.4-2.6 mm high at 6, 12 and 24 spacings, 0.6 m deep;
-// `fluid-float --quality precise`), which bodies of 6 spacings feel as up to -21% at 0.25
-// (bench/box2d.md, "Floating in the game preset", the precise rows).
+// float at their density ratio and hold still: the error is an offset of about a fifth of a
+// spacing whatever the depth (figures: bench/box2d.md, "Floating in the game preset").
 TEST_CASE("Archimedes, precise preset: bodies of 12 spacings at 0.25, 0.5 and 0.75 of water's "
           "density float at that submerged fraction at 0.2 m and 0.6 m depth",
           "[slow][long][box2d][archimedes]") {
     const float depth = GENERATE(0.2f, 0.6f);
     CAPTURE(depth);
-    World probe;
-    const float s = probe.spacing(probe.addMaterial(fluid::water()));
-    Bodies shape;
-    shape.halfWidth = 6.0f * s;
-    shape.halfHeight = 4.0f * s;
-    shape.radius = 6.0f * s;
-    shape.quality = Quality::Precise;
+    const Bodies shape = bodiesOfSpacings(12.0f, Quality::Precise);
     char label[96];
     std::snprintf(label, sizeof label, "Archimedes, precise, 12 spacings, %.1f m", double(depth));
     Stopwatch sw(label);
@@ -366,7 +365,7 @@ TEST_CASE("Archimedes, precise preset: bodies of 12 spacings at 0.25, 0.5 and 0.
         CAPTURE(shapeName(o.spec), o.spec.ratio, o.measured, o.reported, o.speed, o.spin);
         CHECK(o.columns >= 3);
         // The target's 10%; at 0.25 a box draws two spacings, so the offset of a fifth of a
-        // spacing is already 10% of its draft there (measured -6.9% to -11.5%): 15% for it.
+        // spacing is already 10% of its draft there: 15% for it.
         CHECK(std::fabs(o.measured / o.spec.ratio - 1.0) <= (o.spec.ratio < 0.3f ? 0.15 : 0.10));
         CHECK(std::fabs(o.reported - o.measured) <= o.tolerance);
         CHECK(o.speed < 0.01);
