@@ -183,14 +183,10 @@ TEST_CASE("bit-identical state on every instruction set the machine runs", "[slo
         }
         const std::string command =
             std::string("FLUID_SIMD=") + set.name + " '" + self + "' '[.isa-hash]' 2>&1";
-        FILE* child = popen(command.c_str(), "r");
-        REQUIRE(child != nullptr);
-        std::string out;
-        char buffer[256];
-        while (std::fgets(buffer, sizeof buffer, child) != nullptr) {
-            out += buffer;
-        }
-        CHECK(pclose(child) == 0);
+        const ShellRun child = runShell(command);
+        REQUIRE(child.started);
+        CHECK(child.status == 0);
+        const std::string& out = child.output;
         const size_t at = out.find("isa=");
         REQUIRE(at != std::string::npos);
         const std::string line = out.substr(at, out.find('\n', at) - at);

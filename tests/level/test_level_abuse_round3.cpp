@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "level_support.h"
+#include "test_support.h"
 
 #include <fluid/level.h>
 
@@ -241,14 +242,9 @@ TEST_CASE("level abuse: a blob larger than memory is a load error, not std::bad_
     const std::string command =
         "ulimit -v 1500000 && FLUID_TEST_MEMORY_CHILD=1 '" + self +
         "' '[.abuse3_child]' --use-colour no 2>&1";
-    FILE* child = popen(command.c_str(), "r");
-    REQUIRE(child != nullptr);
-    std::string output;
-    char buffer[4096];
-    while (std::fgets(buffer, sizeof buffer, child) != nullptr) {
-        output += buffer;
-    }
-    pclose(child);
+    const fluid::test::ShellRun child = fluid::test::runShell(command);
+    REQUIRE(child.started);
+    const std::string& output = child.output;
     INFO(output);
     CHECK(output.find(
               "LevelError: t.json:1:97: at /blobs/0: memory ran out making room for the blob's "

@@ -349,6 +349,29 @@ inline uint32_t physicsWorkers() {
     return 2;
 }
 
+/// What a shell command wrote on standard output (add "2>&1" for standard error too), whether
+/// it could be started, and its status as `pclose` gives it (0: it exited with 0). Test thread.
+struct ShellRun {
+    bool started = false;
+    std::string output;
+    int status = -1;
+};
+inline ShellRun runShell(const std::string& command) {
+    ShellRun run;
+    FILE* child = ::popen(command.c_str(), "r");
+    if (child == nullptr) {
+        return run;
+    }
+    run.started = true;
+    char buffer[4096];
+    size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof buffer, child)) > 0) {
+        run.output.append(buffer, n);
+    }
+    run.status = ::pclose(child);
+    return run;
+}
+
 /// A WorldDef for the slow scenes (see physicsWorkers) with the given solver.
 inline WorldDef physicsDef(Solver solver = Solver::PositionBased) {
     WorldDef def;
