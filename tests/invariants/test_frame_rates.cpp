@@ -55,8 +55,8 @@ TEST_CASE("a frame longer than 1/60 s takes more sub-steps and holds the 60 Hz c
 
 // Frames of any length, in any sequence, keep resting water at rest: the position-based solver
 // steps fixed sub-steps (1/240 s with the presets) and carries what is left of a frame, so a
-// short frame no longer turns the tank's residual compression into a fast motion (a step of
-// 1e-4 s took a settled game-preset tank from 0.0094 J to 1,800 J, 1e-38 s made it NaN).
+// short frame no longer turns the tank's residual compression into a fast motion (figures:
+// docs/position_based.md, "Frame length").
 TEST_CASE("frames of any length and any sequence keep resting water at rest",
           "[invariants][slow][frames]") {
     const Quality quality = GENERATE(Quality::Game, Quality::Precise);

@@ -33,8 +33,8 @@ void replaceOnce(std::string& text, const std::string& from, const std::string& 
 // crates.json with its frame rate replaced, and the explicit solver when asked. For the explicit
 // solver the water is the level's former one: 0.2 m deep on a 2 cm lattice (four times the
 // preset's particle mass, twice its smoothing distance), a quarter of the particles and a
-// sound-speed step twice as long, so its four frame rates take 12 s, not 110 s at the level's
-// 1 cm; the position-based runs keep the level as shipped.
+// sound-speed step twice as long, which keeps its four frame rates short; the position-based
+// runs keep the level as shipped.
 std::string cratesAt(int hz, bool explicitSolver) {
     std::string text = readLevel("crates.json");
     replaceOnce(text, "\"frameRate\": 60",

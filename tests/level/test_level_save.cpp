@@ -253,10 +253,8 @@ TEST_CASE("crates.json saved at 10 s continues within 2 mm of the uninterrupted 
     std::printf("[measure] crates.json 1 s after a save at 10 s: worst body %.3g m, worst centre "
                 "of mass %.3g m\n",
                 worstBody, worstCentre);
-    // Measured at the level's 1 cm lattice: the hull 1.01 mm off, the barrel beside it 0.40 mm,
-    // the stone on the floor 0.12 mm, the floaters 7-30 um (on the former 2 cm lattice all
-    // under 1 mm). A restored b2World starts without its contacts' warm-starting impulses
-    // (docs/box2d.md, "Saving"); bodies that touch each other or the floor feel that most.
+    // A restored b2World starts without its contacts' warm-starting impulses, which bodies
+    // touching each other or the floor feel most (figures: docs/box2d.md, "Saving").
     CHECK(worstBody < 2e-3);
     CHECK(worstCentre < 1e-3);
     CHECK(restored.world.particleCount() == level.world.particleCount());

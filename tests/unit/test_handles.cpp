@@ -143,8 +143,8 @@ TEST_CASE("handles follow their particles through steps", "[unit][handles]") {
             worst = std::max(worst, std::sqrt(e.x * e.x + e.y * e.y));
         }
     }
-    // The position-based step is a 1/240 s sub-step: the marked particle pushes its
-    // neighbours up to 1.2 mm, still a ninth of the spacing.
+    // The position-based step is a 1/240 s sub-step, in which the marked particle pushes its
+    // neighbours farther, still a small share of the spacing.
     CHECK(worst < (solver == Solver::PositionBased ? 2e-3f : 1e-4f));
 
     // Removal after steps: the rest keep their identity.

@@ -20,7 +20,7 @@ TEST_CASE("a fresh resting block of each preset reads its rest density", "[unit]
         Material material = forSolver(preset, solver);
         if (solver == Solver::PositionBased) {
             // No surface tension, so that only a density correction could move the lattice in
-            // the sub-step (with it the edge is pulled to 1.6 cm/s in 1/240 s).
+            // the sub-step.
             material.surfaceTension = 0.0f;
         }
         const MaterialId id = world.addMaterial(material);
@@ -35,7 +35,7 @@ TEST_CASE("a fresh resting block of each preset reads its rest density", "[unit]
         CHECK(r.worst <= 0.01);
         if (solver == Solver::PositionBased) {
             // The material's lattice is the density constraint's rest state: no correction
-            // kicks it (a 0.4% one, 0.05 mm, in a 1/240 s sub-step would be 1.1 cm/s).
+            // kicks it.
             CHECK(maxSpeed(world) < 1e-3f);
         }
     }
