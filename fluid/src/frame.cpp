@@ -73,6 +73,7 @@ void runFrame(WorldState& s, float frameDt, Solver& solver) {
     s.time += frameDt;
     prof.substeps = plan.count;
     prof.particles = n;
+    prof.threads = s.threads();
     prof.step = std::chrono::duration<float, std::milli>(Clock::now() - start).count();
 }
 

@@ -775,7 +775,7 @@ void fillFluid(WorldState& s, const Layout& g) {
             cg.cell[i] = uint32_t(cj) * uint32_t(g.nx) + uint32_t(ci);
         }
     });
-    const uint32_t bands = std::clamp(s.tasks.workerCount, 1u, uint32_t(g.ny));
+    const uint32_t bands = std::clamp(s.threads(), 1u, uint32_t(g.ny));
     parallelFor(s.tasks, bands, 1, [&](uint32_t b0, uint32_t b1, uint32_t) {
         for (uint32_t band = b0; band < b1; ++band) {
             const size_t lo = size_t(g.ny) * band / bands * size_t(g.nx);

@@ -18,6 +18,10 @@
 #include <thread>
 #include <vector>
 
+#if defined(__linux__)
+#include <sched.h>
+#endif
+
 namespace fluid {
 
 namespace {
@@ -98,36 +102,40 @@ struct ThreadPool::Impl {
         return false;
     }
 
-    // Runs ranges of task `gen` as `worker` until none is left: its own part first, then the
-    // others' in turn. So each thread works the same items in every task of the same size (the
-    // data its last task wrote is still in its cache), and a thread another process keeps off
-    // its core costs at most the range it holds. A worker (not the caller) wakes the caller when
-    // it finishes the last range in flight.
-    void runRanges(uint32_t gen, uint32_t worker, bool notify) {
-        const auto count = uint32_t(parts.size());
-        for (uint32_t k = 0; k < count; ++k) {
-            Part& part = parts[(worker + k) % count];
-            for (;;) {
-                inFlight.fetch_add(1);
-                uint32_t begin = 0, end = 0;
-                const bool claimed = claim(part, gen, begin, end);
-                if (claimed) {
-                    callback.load()(begin, end, worker, context.load());
-                }
-                if (inFlight.fetch_sub(1) == 1 && notify) {
-                    // The caller may be asleep in finish: take the lock so that the
-                    // notification cannot fall between its check and its wait.
-                    std::lock_guard<std::mutex> lock(mutex);
-                    done.notify_one();
-                }
-                if (!claimed) {
-                    break;
-                }
+    // Runs the ranges of `part` for task `gen` as `worker` until none is left. A worker (not
+    // the caller) wakes the caller when it finishes the last range in flight.
+    void drain(Part& part, uint32_t gen, uint32_t worker, bool notify) {
+        for (;;) {
+            inFlight.fetch_add(1);
+            uint32_t begin = 0, end = 0;
+            const bool claimed = claim(part, gen, begin, end);
+            if (claimed) {
+                callback.load()(begin, end, worker, context.load());
+            }
+            if (inFlight.fetch_sub(1) == 1 && notify) {
+                // The caller may be asleep in finish: take the lock so that the
+                // notification cannot fall between its check and its wait.
+                std::lock_guard<std::mutex> lock(mutex);
+                done.notify_one();
+            }
+            if (!claimed) {
+                return;
             }
         }
     }
 
-    void workerMain(uint32_t worker) {
+    // Runs ranges of task `gen` on thread `thread` (also its worker index) until none is left:
+    // its own part first, then the others' in turn. So each thread works the same items in
+    // every task of the same size (the data its last task wrote is still in its cache), and a
+    // thread another process keeps off its core costs at most the range it holds.
+    void runRanges(uint32_t gen, uint32_t thread, bool notify) {
+        const auto count = uint32_t(parts.size());
+        for (uint32_t k = 0; k < count; ++k) {
+            drain(parts[(thread + k) % count], gen, thread, notify);
+        }
+    }
+
+    void threadMain(uint32_t thread) {
         uint32_t seen = 0;
         for (;;) {
             const auto woken = [&] {
@@ -142,20 +150,32 @@ struct ThreadPool::Impl {
                 return;
             }
             seen = generation.load(std::memory_order_acquire);
-            runRanges(seen, worker, true);
+            runRanges(seen, thread, true);
         }
     }
 };
+
+uint32_t usableCores() {
+#if defined(__linux__)
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof(set), &set) == 0) {
+        return std::max(1u, uint32_t(CPU_COUNT(&set)));
+    }
+#endif
+    return std::max(1u, std::thread::hardware_concurrency());
+}
 
 ThreadPool::ThreadPool(uint32_t workerCount) : m_workerCount(workerCount) {
     if (workerCount < 1 || workerCount > 256) {
         throw Error("ThreadPool: workerCount = " + std::to_string(workerCount) +
                     " is out of range [1, 256]");
     }
-    m_impl = std::make_unique<Impl>(workerCount);
-    m_impl->threads.reserve(workerCount - 1);
-    for (uint32_t w = 1; w < workerCount; ++w) {
-        m_impl->threads.emplace_back([impl = m_impl.get(), w] { impl->workerMain(w); });
+    m_threadCount = std::min(workerCount, usableCores());
+    m_impl = std::make_unique<Impl>(m_threadCount);
+    m_impl->threads.reserve(m_threadCount - 1);
+    for (uint32_t t = 1; t < m_threadCount; ++t) {
+        m_impl->threads.emplace_back([impl = m_impl.get(), t] { impl->threadMain(t); });
     }
 }
 
@@ -216,7 +236,7 @@ TaskHook ThreadPool::hook() {
             pool.done.wait(lock, idle);
         }
     };
-    hook.workerCount = m_workerCount;
+    hook.workerCount = m_threadCount; // the worker indices callbacks see
     hook.userContext = m_impl.get();
     return hook;
 }

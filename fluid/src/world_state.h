@@ -5,6 +5,7 @@
 
 #include <fluid/world.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -238,6 +239,11 @@ struct WorldState {
     WorldDef def;
     std::unique_ptr<ThreadPool> pool; // own pool when the host gave no hook
     TaskHook tasks;
+    // Threads that run `tasks` (the own pool's, or the hook's worker count): what splits work
+    // into one piece per thread uses it, never the worker count.
+    uint32_t threads() const {
+        return pool != nullptr ? pool->threadCount() : std::max(1u, tasks.workerCount);
+    }
 
     std::vector<Material> materials;
     std::vector<MaterialConstants> constants;

@@ -1,5 +1,7 @@
 // fluid tests — abuse, round 3: range bounds that are not floats, many sensors, control
 // characters in names and error texts, boxes that hold nothing.
+#include "test_support.h"
+
 #include <catch2/catch.hpp>
 
 #include <fluid/error.h>
@@ -9,6 +11,7 @@
 #include <fluid/plugins/builtin.h>
 #include <fluid/registry.h>
 #include <fluid/shape.h>
+#include <fluid/task.h>
 #include <fluid/world.h>
 
 #include <algorithm>
@@ -16,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -236,4 +240,38 @@ TEST_CASE("a box plugin with an empty inner rectangle is refused when it is made
     const auto box = registry.create("boundary.box", moved);
     CHECK_NOTHROW(box->checkParams());
     CHECK_NOTHROW(BoxContainer(5.0f, 0.0f, 6.0f, 1.0f));
+}
+
+TEST_CASE("more workers than cores run on as many threads as the cores, with the same results",
+          "[abuse3][threads]") {
+    const auto run = [](uint32_t workers, uint32_t& threads) {
+        WorldDef def;
+        def.positionBased = positionBasedPreset(Quality::Game);
+        def.workerCount = workers;
+        World world(def);
+        const MaterialId w = world.addMaterial(water());
+        world.addForce(std::make_unique<GravityForce>(0.0f, -9.81f));
+        world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 0.8f, 0.6f));
+        world.spawnBlob(test::latticeBlock(world, w, 0.0f, 0.0f, 20, 30));
+        CHECK(world.profile().threads == 1); // before the first step
+        for (int frame = 0; frame < 20; ++frame) {
+            world.step(1.0f / 60.0f);
+        }
+        threads = world.profile().threads;
+        return test::stateHash(world);
+    };
+    const uint32_t cores = usableCores();
+    REQUIRE(cores >= 1);
+    uint32_t threads = 0;
+    const uint64_t serial = run(1, threads);
+    CHECK(threads == 1);
+    for (const uint32_t workers : {2u, cores + 1, 256u}) {
+        INFO(workers << " workers on " << cores << " cores");
+        CHECK(run(workers, threads) == serial);
+        CHECK(threads == std::min(workers, cores));
+    }
+    ThreadPool pool(256);
+    CHECK(pool.workerCount() == 256);
+    CHECK(pool.threadCount() == cores);
+    CHECK(pool.hook().workerCount == cores);
 }

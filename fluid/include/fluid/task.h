@@ -28,12 +28,20 @@ struct TaskHook {
     void* userContext = nullptr;
 };
 
-/// A small fixed-size thread pool for hosts without their own: `workerCount - 1` background
-/// threads plus the calling thread. Thread rule: `hook()` may be shared by several worlds that
-/// step on the same thread; a pool must outlive the worlds using its hook.
+/// The cores this process may run on: its CPU affinity on Linux, else
+/// `std::thread::hardware_concurrency()` (unit: count; >= 1). Any thread.
+uint32_t usableCores();
+
+/// A small fixed-size thread pool for hosts without their own: `threadCount()` threads, the
+/// calling thread included, each with its share of every task; `workerCount` asks for them and
+/// is capped at `usableCores()`: a thread more than the cores only waits for a time slice (at 64
+/// workers on 2 cores a 4k dam frame took 94 ms against 3 ms before the cap; bench/scaling.md,
+/// More workers than cores). Results do not depend on the worker or thread count. Thread rule: `hook()` may be shared by
+/// several worlds that step on the same thread; a pool must outlive the worlds using its hook.
 class ThreadPool {
 public:
-    /// Starts `workerCount - 1` threads (unit: count; 1 .. 256; 1 means serial, no threads).
+    /// Starts `threadCount() - 1` threads for `workerCount` workers (unit: count; 1 .. 256;
+    /// 1 means serial, no threads; more than `usableCores()` runs as many as the cores).
     explicit ThreadPool(uint32_t workerCount);
     /// Joins the threads. Must not be called while a task runs.
     ~ThreadPool();
@@ -44,12 +52,16 @@ public:
 
     /// The hook to put in `WorldDef::tasks`.
     TaskHook hook();
-    /// Number of workers, the calling thread included (unit: count).
+    /// Workers asked for, the calling thread included (unit: count; the hook's `workerCount`).
     uint32_t workerCount() const { return m_workerCount; }
+    /// Threads that run the tasks, the calling thread included: `min(workerCount,
+    /// usableCores())` (unit: count; >= 1). Callbacks see worker indices below it.
+    uint32_t threadCount() const { return m_threadCount; }
 
 private:
     struct Impl; // threads and the running task (thread_pool.cpp)
     uint32_t m_workerCount = 1;
+    uint32_t m_threadCount = 1;
     std::unique_ptr<Impl> m_impl;
 };
 

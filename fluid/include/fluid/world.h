@@ -136,8 +136,9 @@ struct WorldDef {
     uint32_t maxSubsteps = 512;
     /// Most particles the world holds (unit: count; range [1, 2^26]); adding more throws.
     uint32_t maxParticles = 1u << 20;
-    /// Worker threads of the world's own pool when `tasks.enqueue` is null (unit: count; range
-    /// [1, 256]). 1 = serial on the stepping thread.
+    /// Workers of the world's own pool when `tasks.enqueue` is null (unit: count; range
+    /// [1, 256]). 1 = serial on the stepping thread. They run on at most `usableCores()` threads
+    /// (`Profile::threads`); results are the same for any count.
     uint32_t workerCount = 1;
     /// The host's thread system; when `enqueue` is set it is used and `workerCount` ignored.
     TaskHook tasks{};
@@ -231,6 +232,10 @@ struct Profile {
     uint32_t emitSkipped = 0;
     /// Particles drains and lifetimes removed at the end of the step (unit: count).
     uint32_t removed = 0;
+    /// Threads that ran the step's tasks (unit: count; >= 1): the world's own pool runs
+    /// `WorldDef::workerCount` workers on at most `usableCores()` threads; with the host's
+    /// `tasks` hook, its `workerCount`. Not saved: a loaded world reads 1 until it steps.
+    uint32_t threads = 1;
 };
 
 /// The instruction set the position-based solver's pair passes run on: "avx512", "avx2" or
