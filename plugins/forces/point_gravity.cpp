@@ -14,6 +14,10 @@ namespace {
 constexpr double kMinDistance2 = 1e-12;
 } // namespace
 
+void PointGravityForce::prepare(const StepContext& context) {
+    m_spacing = context.sampleSpacing;
+}
+
 PointGravityForce::PointGravityForce(glm::vec2 centre, float strength, float referenceRadius,
                                      float falloff)
     : PointGravityForce() {
@@ -30,7 +34,13 @@ void PointGravityForce::apply(const ForceContext& context, uint32_t begin, uint3
     // a = -k r_vec / d^(n+1), d^2 = r^2 + eps^2, k = g0 r0^n. Double precision: k reaches 1e16
     // and d^-(n+1) 1e24 before the product comes back into float range.
     const double k = value(kStrength) * std::pow(value(kReferenceRadius), n);
-    const double eps2 = value(kSoftening) * value(kSoftening);
+    // Softening at least the spacing; the pull at most kMaxPullShare spacings per sub-step
+    // squared (docs/plugins.md, Point gravity).
+    const double eps = std::max(value(kSoftening), m_spacing);
+    const double eps2 = eps * eps;
+    const double dt = context.dt;
+    const double maxPull = dt > 0.0 && m_spacing > 0.0 ? kMaxPullShare * m_spacing / (dt * dt)
+                                                       : std::numeric_limits<double>::infinity();
     const double cutoff = value(kCutoff);
     const double cut2 = cutoff > 0.0 ? cutoff * cutoff : std::numeric_limits<double>::infinity();
     const double exponent = -0.5 * (n + 1.0);
@@ -52,7 +62,10 @@ void PointGravityForce::apply(const ForceContext& context, uint32_t begin, uint3
         } else {
             inv = std::pow(d2, exponent);
         }
-        const double s = -k * inv;
+        double s = -k * inv; // the pull is |s| r
+        if (std::fabs(s) * std::sqrt(r2) > maxPull) {
+            s = std::copysign(maxPull / std::sqrt(r2), s);
+        }
         context.ax[i] += static_cast<float>(s * dx);
         context.ay[i] += static_cast<float>(s * dy);
     }

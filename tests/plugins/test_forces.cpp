@@ -230,6 +230,73 @@ TEST_CASE("point gravity: a circular orbit keeps its radius and angular momentum
     CHECK(length(momentum(s.world)) < 1e-6 * s.mass());
 }
 
+TEST_CASE("point gravity: softened to at least the spacing, the pull capped per sub-step",
+          "[unit][forces]") {
+    const glm::vec2 c{0.0f, 0.0f};
+    PointGravityForce g(c, 9.81f, 1.0f, 2.0f);
+    g.setParam("softening", 0.0);
+    StepContext step;
+    step.sampleSpacing = 0.01f;
+    g.prepare(step);
+    const float dt = 1.0f / 240.0f;
+    const double cap = PointGravityForce::kMaxPullShare * 0.01 / (double(dt) * dt); // 57.6
+    // Far out the pull is Newton's, softened by the spacing (not by 0).
+    const double r = 2.0, eps = 0.01;
+    CHECK(length(accelAt(g, {float(r), 0.0f}, {}, dt)) ==
+          Approx(9.81 * r / std::pow(r * r + eps * eps, 1.5)).epsilon(1e-5));
+    // Near the centre it is the cap, never more, pointing in; 0 on the centre.
+    for (const float x : {0.3f, 0.05f, 0.01f, 1e-4f}) {
+        CAPTURE(x);
+        const glm::dvec2 a = accelAt(g, {x, 0.0f}, {}, dt);
+        CHECK(a.x == Approx(-cap).epsilon(1e-5));
+        CHECK(a.y == 0.0);
+    }
+    CHECK(accelAt(g, c, {}, dt) == glm::dvec2{0.0, 0.0});
+    // A softening wider than the spacing is kept: the pull at 2 cm is below the cap there.
+    g.setParam("softening", 0.5);
+    const double soft = 9.81 * 0.02 / std::pow(0.02 * 0.02 + 0.25, 1.5);
+    CHECK(length(accelAt(g, {0.02f, 0.0f}, {}, dt)) == Approx(soft).epsilon(1e-5));
+    // The cap follows the sub-step: twice the sub-steps, four times the cap.
+    g.setParam("softening", 0.0);
+    CHECK(length(accelAt(g, {0.05f, 0.0f}, {}, dt / 2.0f)) == Approx(4.0 * cap).epsilon(1e-5));
+}
+
+TEST_CASE("point gravity inside a resting blob holds it: no burst at any softening",
+          "[physics][forces]") {
+    // The report's case: the centre inside a 0.3 m blob of water in zero g, game preset. With a
+    // softening of 0 the blob burst: 927 J, particles thrown 23 m; at the default 0.05 m, 800 J
+    // and 2.7 m.
+    const double softening = GENERATE(0.0, 0.05);
+    CAPTURE(softening);
+    WorldDef def;
+    def.positionBased = positionBasedPreset(Quality::Game);
+    World world(def);
+    const MaterialId w = world.addMaterial(fluid::water());
+    auto pull = std::make_unique<PointGravityForce>(glm::vec2{0.0f, 0.0f}, 9.81f, 1.0f, 2.0f);
+    pull->setParam("softening", softening);
+    world.addForce(std::move(pull));
+    BlobDef blob;
+    blob.shape = Shape::circle({0.0f, 0.0f}, 0.3f);
+    blob.material = w;
+    world.spawnBlob(blob);
+    const double mass = world.material(w).mass * world.particleCount();
+    double keMax = 0.0, reach = 0.0, ke = 0.0;
+    for (int frame = 0; frame < 300; ++frame) {
+        world.step(kFrame);
+        ke = energy(world, 0.0).kinetic;
+        keMax = std::max(keMax, ke);
+        const Bounds b = bounds(world);
+        reach = std::max({reach, -double(b.x0), -double(b.y0), double(b.x1), double(b.y1)});
+    }
+    std::printf("[measure] point gravity in a 0.3 m blob, softening %.2f m: largest kinetic "
+                "energy %.3f J (%.3f J/kg), at 5 s %.4f J; farthest particle %.3f m\n",
+                softening, keMax, keMax / mass, ke, reach);
+    REQUIRE(allFinite(world));
+    CHECK(reach < 0.31);        // it only packs in
+    CHECK(keMax / mass < 0.2);  // the collapse's speeds: well under 1 m/s
+    CHECK(ke / mass < 0.01);    // and it comes to rest
+}
+
 // ---- vortex --------------------------------------------------------------------------------
 
 TEST_CASE("vortex: tangential Rankine drag, no radial part, optional pull", "[unit][forces]") {

@@ -16,9 +16,14 @@ namespace fluid {
 /// |a| = g0 (r0 / r)^n: g0 is the pull at the reference radius, n = 2 is Newton's inverse
 /// square (GM = g0 r0^2), n = 1 the 1/r pull of a 2D (line) mass, n = 0 a constant pull of g0.
 /// The softening is Plummer's: the pull rises smoothly to 0 at the centre instead of diverging
-/// (the largest pull is near r = eps). Negative strength repels. Beyond `cutoff` (when > 0) the
-/// field is 0 (an island of gravity in an otherwise zero-g level). A particle exactly at an
-/// unsoftened centre gets 0, never NaN. Thread rule: see `ForcePlugin`.
+/// (the largest pull is near r = eps). eps is at least the particle spacing
+/// (`StepContext::sampleSpacing`); a smaller `softening` acts as the spacing. The pull is at most
+/// a tenth of the spacing per sub-step squared (`kMaxPullShare` s / dt^2: 57.6 m/s^2 for 1 cm
+/// water at the game preset's 240 Hz sub-steps): a stronger pull packs liquid at the centre
+/// faster than a sub-step's constraints part it, and a blob around the centre burst (a 0.3 m
+/// blob reached 800 J and 20 m; docs/plugins.md, Point gravity). Negative strength repels.
+/// Beyond `cutoff` (when > 0) the field is 0 (an island of gravity in an otherwise zero-g level).
+/// A particle exactly on the centre gets 0, never NaN. Thread rule: see `ForcePlugin`.
 class PointGravityForce final : public ForcePlugin {
 public:
     /// Registry type string.
@@ -36,7 +41,8 @@ public:
         {"falloff", "1", 2.0, 0.0, 3.0,
          "Exponent n of |a| ~ 1/r^n: 2 Newton, 1 a 2D (line) mass, 0 constant."},
         {"softening", "m", 0.05, 0.0, 1e4,
-         "Plummer softening: the pull goes smoothly to 0 inside about this distance."},
+         "Plummer softening: the pull goes smoothly to 0 inside about this distance; at least "
+         "the particle spacing."},
         {"cutoff", "m", 0.0, 0.0, 1e5, "No pull beyond this distance; 0 = unlimited."},
     }};
     /// Newton's pull of 9.81 m/s^2 at 1 m from the origin, softening 0.05 m, no cut-off.
@@ -48,6 +54,14 @@ public:
                       float falloff = 2.0f);
     /// Adds the pull to particles [begin, end).
     void apply(const ForceContext& context, uint32_t begin, uint32_t end) override;
+    /// Reads the particle spacing the softening and the cap follow.
+    void prepare(const StepContext& context) override;
+
+    /// The largest pull as a share of the particle spacing per sub-step squared (unit: 1).
+    static constexpr double kMaxPullShare = 0.1;
+
+private:
+    double m_spacing = 0.0; // StepContext::sampleSpacing of the step (unit: m)
 };
 
 } // namespace fluid
