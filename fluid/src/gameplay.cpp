@@ -230,7 +230,9 @@ uint32_t finishGameplay(WorldState& s) {
     Particles& p = s.particles;
     const uint32_t n = p.size();
     const auto drains = static_cast<uint32_t>(s.drains.size());
-    // cause[i]: 0 stays, 1 + d drain d (the first that holds it), drains + 1 lifetime.
+    const float limit = s.positionLimit();
+    // cause[i]: 0 stays, 1 + d drain d (the first that holds it), drains + 1 lifetime,
+    // drains + 2 out of the position range.
     std::vector<uint32_t> cause(n, 0);
     uint32_t removed = 0;
     for (uint32_t i = 0; i < n; ++i) {
@@ -245,11 +247,15 @@ uint32_t finishGameplay(WorldState& s) {
         if (cause[i] == 0 && p.expiry[i] <= s.time) {
             cause[i] = drains + 1;
         }
+        if (cause[i] == 0 && !(std::fabs(x.x) <= limit && std::fabs(x.y) <= limit)) {
+            cause[i] = drains + 2;
+        }
         removed += cause[i] != 0 ? 1 : 0;
     }
     if (removed > 0) {
-        // Events by drain in the order added, lifetimes last, then by slot (array index).
-        for (uint32_t c = 1; c <= drains + 1; ++c) {
+        // Events by drain in the order added, then lifetimes, then out of range; each by slot
+        // (array index).
+        for (uint32_t c = 1; c <= drains + 2; ++c) {
             for (uint32_t i = 0; i < n; ++i) {
                 if (cause[i] != c) {
                     continue;
@@ -259,7 +265,9 @@ uint32_t finishGameplay(WorldState& s) {
                 ev.position = {p.px[i], p.py[i]};
                 ev.velocity = {p.vx[i], p.vy[i]};
                 ev.material = MaterialId{p.material[i], s.tag.value()};
-                ev.cause = c <= drains ? RemovalCause::Drain : RemovalCause::Lifetime;
+                ev.cause = c <= drains      ? RemovalCause::Drain
+                           : c == drains + 1 ? RemovalCause::Lifetime
+                                             : RemovalCause::OutOfRange;
                 ev.drain = DrainId{c <= drains ? c - 1 : 0, s.tag.value()};
                 s.removed.push_back(ev);
             }

@@ -216,6 +216,7 @@ void checkParticles(const detail::WorldState& s) {
     const std::pair<const char*, const std::vector<float>*> state[] = {
         {"x", &p.px}, {"y", &p.py},     {"vx", &p.vx}, {"vy", &p.vy},
         {"sxx", &p.sxx}, {"sxy", &p.sxy}, {"kx", &p.kx}, {"ky", &p.ky}};
+    const float limit = s.positionLimit();
     for (size_t i = 0; i < n; ++i) {
         for (const auto& [name, channel] : state) {
             if (!std::isfinite((*channel)[i])) {
@@ -224,6 +225,12 @@ void checkParticles(const detail::WorldState& s) {
                      << " is not finite";
                 corrupt(text.str());
             }
+        }
+        if (!(std::fabs(p.px[i]) <= limit && std::fabs(p.py[i]) <= limit)) {
+            std::ostringstream text;
+            text << "particle " << i << " at (" << p.px[i] << ", " << p.py[i]
+                 << ") is outside the position range [" << -limit << ", " << limit << "] m";
+            corrupt(text.str());
         }
         if (std::isnan(p.expiry[i]) || p.material[i] >= s.materials.size() ||
             p.slot[i] >= s.slotIndex.size() || s.slotIndex[p.slot[i]] != i) {

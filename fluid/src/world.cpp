@@ -165,6 +165,39 @@ WorldTag::WorldTag() {
     m_value = tag;
 }
 
+float WorldState::positionLimit() const {
+    float finest = std::numeric_limits<float>::infinity();
+    for (const Material& m : materials) {
+        finest = std::min(finest, particleSpacing(m, def.depth));
+    }
+    return materials.empty() ? 0.0f : std::min(kPositionSpacings * finest, kMaxPositionLimit);
+}
+
+void WorldState::checkInRange(const char* function, const char* what, glm::vec2 x) const {
+    const float limit = positionLimit();
+    if (std::fabs(x.x) <= limit && std::fabs(x.y) <= limit) {
+        return;
+    }
+    std::ostringstream text;
+    text << function << ": " << what << " = (" << x.x << ", " << x.y
+         << ") is outside the position range [" << -limit << ", " << limit << "] (unit: m; ";
+    if (materials.empty()) {
+        text << "the world has no material yet)";
+    } else {
+        size_t finest = 0;
+        for (size_t k = 1; k < materials.size(); ++k) {
+            if (particleSpacing(materials[k], def.depth) <
+                particleSpacing(materials[finest], def.depth)) {
+                finest = k;
+            }
+        }
+        text << "2^18 spacings of the finest material, '" << materials[finest].name
+             << "' at " << particleSpacing(materials[finest], def.depth)
+             << " m; docs/gameplay.md, Far from the origin)";
+    }
+    throw Error(text.str());
+}
+
 std::optional<uint32_t> WorldState::findIndex(ParticleHandle handle) const {
     if (handle.isNull() || handle.world != tag.value() || handle.slot >= slotGeneration.size() ||
         slotGeneration[handle.slot] != handle.generation || slotIndex[handle.slot] == UINT32_MAX) {
@@ -281,6 +314,32 @@ void checkSolverTakes(const WorldDef& def, const Material& material, const char*
         throw Error(s.str());
     }
 }
+
+// The settings that only make sense together: the spacing mass, rest density and depth give,
+// and the smoothing distance in those spacings (kMinSpacing, kMinSupportSpacings).
+void checkSpacing(const WorldDef& def, const Material& material, const char* function) {
+    const double spacing =
+        std::sqrt(double(material.mass) / (double(material.restDensity) * double(def.depth)));
+    if (!(spacing >= double(kMinSpacing) * (1.0 - 1e-6) &&
+          spacing <= double(kMaxSpacing) * (1.0 + 1e-6))) {
+        std::ostringstream s;
+        s << function << ": material '" << material.name << "': mass = " << material.mass
+          << " kg, restDensity = " << material.restDensity << " kg/m^3 and depth = " << def.depth
+          << " m give a particle spacing of sqrt(mass / (restDensity depth)) = " << spacing
+          << " m; expected [" << kMinSpacing << ", " << kMaxSpacing << "] m";
+        throw Error(s.str());
+    }
+    const double support = double(material.smoothingDistance) / spacing;
+    if (!(support >= double(kMinSupportSpacings) * (1.0 - 1e-6) &&
+          support <= double(kMaxSupportSpacings) * (1.0 + 1e-6))) {
+        std::ostringstream s;
+        s << function << ": material '" << material.name
+          << "': smoothingDistance = " << material.smoothingDistance << " m is " << support
+          << " particle spacings (" << spacing << " m, from mass, restDensity and depth); expected "
+          << kMinSupportSpacings << " to " << kMaxSupportSpacings << " spacings";
+        throw Error(s.str());
+    }
+}
 } // namespace
 
 std::span<const Field<PositionBasedDef>> positionBasedFields() {
@@ -298,6 +357,7 @@ std::span<const Field<EmitterDef>> emitterFields() {
 MaterialId World::addMaterial(const Material& material) {
     validate(material);
     checkSolverTakes(m_state->def, material, "World::addMaterial");
+    checkSpacing(m_state->def, material, "World::addMaterial");
     if (m_state->materials.size() >= 65535) {
         throw Error("World::addMaterial: the world already has 65535 materials");
     }
@@ -310,6 +370,7 @@ void World::setMaterial(MaterialId id, const Material& material) {
     (void)this->material(id);
     validate(material);
     checkSolverTakes(m_state->def, material, "World::setMaterial");
+    checkSpacing(m_state->def, material, "World::setMaterial");
     // The material's spacing sets its emitters' lanes and rate limit: check them again, and
     // keep the old material if one no longer fits.
     const Material old = m_state->materials[id.index];
@@ -355,6 +416,7 @@ ParticleHandle World::addParticle(glm::vec2 position, glm::vec2 velocity, Materi
     checkVec("World::addParticle", "velocity", velocity);
     (void)material(materialId);
     detail::WorldState& s = *m_state;
+    s.checkInRange("World::addParticle", "position", position);
     if (s.particles.size() >= s.def.maxParticles) {
         throw Error("World::addParticle: particle cap exceeded: the world holds maxParticles = " +
                     std::to_string(s.def.maxParticles) + " particles");
@@ -386,6 +448,8 @@ uint32_t World::spawnBlob(const BlobDef& blob, uint32_t* insideSolids) {
         }
         break;
     }
+    m_state->checkInRange("spawnBlob", "the shape's lower corner", lo);
+    m_state->checkInRange("spawnBlob", "the shape's upper corner", hi);
     const float spacing = particleSpacing(mat, m_state->def.depth);
     const double cols = std::floor(double(hi.x - lo.x) / spacing);
     const double rows = std::floor(double(hi.y - lo.y) / spacing);
@@ -636,6 +700,7 @@ void World::validateEmitter(const EmitterDef& def, const char* function) const {
     }
     checkFields<EmitterDef>(def, kEmitterFields, prefix);
     const Material& mat = material(def.material);
+    m_state->checkInRange(function, "position", def.position);
     const float spacing = particleSpacing(mat, m_state->def.depth);
     const double lanes = detail::emitterLanes(def.width, spacing);
     if (!(lanes <= double(kMaxEmitterLanes))) {
@@ -871,6 +936,9 @@ const WorldDef& World::def() const {
 }
 float World::spacing(MaterialId id) const {
     return particleSpacing(material(id), m_state->def.depth);
+}
+float World::positionLimit() const {
+    return m_state->positionLimit();
 }
 
 } // namespace fluid

@@ -246,6 +246,11 @@ struct WorldState {
     }
 
     std::vector<Material> materials;
+    // World::positionLimit (unit: m).
+    float positionLimit() const;
+    // Throws unless `x` lies within positionLimit(): "<function>: <what> = (x, y) is outside
+    // the position range ...".
+    void checkInRange(const char* function, const char* what, glm::vec2 x) const;
     std::vector<MaterialConstants> constants;
     // Some particle is of a material that follows the Herschel-Bulkley law (refreshConstants
     // for the materials, the position-based step for the particles): the stress channels are

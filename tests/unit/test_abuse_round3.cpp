@@ -54,21 +54,75 @@ TEST_CASE("every float field of Material validates at its documented minimum and
                         : std::nextafter(float(f.lo), -std::numeric_limits<float>::infinity());
         CHECK_THROWS_AS(validate(m), Error);
     }
-    // The report's case: 1e-4 is not a float, and the float nearest to it is the minimum.
+    // The report's case: 0.003 is not a float, and the float nearest to it is the minimum.
     Material m = water();
-    m.smoothingDistance = 1e-4f;
+    m.smoothingDistance = 3e-3f;
     CHECK_NOTHROW(validate(m));
-    m.smoothingDistance = std::nextafter(1e-4f, 0.0f);
-    CHECK_THROWS_WITH(validate(m), "material 'water': smoothingDistance = 9.999999e-05 is out of "
-                                   "range [0.0001, 10] (unit: m)");
+    m.smoothingDistance = std::nextafter(3e-3f, 0.0f);
+    CHECK_THROWS_WITH(validate(m), "material 'water': smoothingDistance = 0.0029999998 is out of "
+                                   "range [0.003, 0.4] (unit: m)");
     m = water();
     m.flowIndex = 0.1f;
     CHECK_NOTHROW(validate(m));
-    // A world takes the smallest smoothing distance too.
+}
+
+TEST_CASE("a world takes every spacing and support its documented ranges give, and refuses "
+          "the settings that do not fit together, naming them",
+          "[abuse3][materials]") {
     World world;
-    m = water();
-    m.smoothingDistance = 1e-4f;
+    const float depth = world.def().depth;
+    Material m = water();
+    // The four corners of the spacing and support ranges.
+    for (const float spacing : {kMinSpacing, kMaxSpacing}) {
+        for (const float support : {kMinSupportSpacings, kMaxSupportSpacings}) {
+            INFO(spacing << " m, " << support << " spacings");
+            m.mass = spacing * spacing * m.restDensity * depth;
+            m.smoothingDistance = support * spacing;
+            CHECK_NOTHROW(world.addMaterial(m));
+            CHECK(world.spacing(MaterialId{uint16_t(world.materialCount() - 1)}) ==
+                  Approx(spacing).epsilon(1e-5));
+        }
+    }
+    // The smallest smoothing distance, at the finest spacing.
+    m.mass = kMinSpacing * kMinSpacing * m.restDensity * depth;
+    m.smoothingDistance = 3e-3f;
     CHECK_NOTHROW(world.addMaterial(m));
+    // Just outside: a spacing one percent off either end, a support one percent off either end.
+    m = water();
+    m.mass = 1000.0f;
+    CHECK_THROWS_WITH(world.addMaterial(m),
+                      "World::addMaterial: material 'water': mass = 1000 kg, restDensity = 1000 "
+                      "kg/m^3 and depth = 0.129313 m give a particle spacing of sqrt(mass / "
+                      "(restDensity depth)) = 2.78085 m; expected [0.001, 0.05] m");
+    m = water();
+    m.mass = 0.99f * 0.99f * kMinSpacing * kMinSpacing * m.restDensity * depth;
+    m.smoothingDistance = 3e-3f;
+    CHECK_THROWS_WITH(world.addMaterial(m), Catch::Contains("give a particle spacing of"));
+    m.mass = 1.01f * 1.01f * kMaxSpacing * kMaxSpacing * m.restDensity * depth;
+    m.smoothingDistance = 0.2f;
+    CHECK_THROWS_WITH(world.addMaterial(m), Catch::Contains("give a particle spacing of"));
+    m = water();
+    m.smoothingDistance = 0.1f;
+    CHECK_THROWS_WITH(world.addMaterial(m),
+                      "World::addMaterial: material 'water': smoothingDistance = 0.1 m is "
+                      "9.97356 particle spacings (0.0100265 m, from mass, restDensity and "
+                      "depth); expected 3 to 8 spacings");
+    m.smoothingDistance = 0.99f * 3.0f * particleSpacing(m, depth);
+    CHECK_THROWS_WITH(world.addMaterial(m), Catch::Contains("expected 3 to 8 spacings"));
+    // setMaterial checks the same, and keeps the old material.
+    m = water();
+    const MaterialId w = world.addMaterial(m);
+    m.smoothingDistance = 0.01f;
+    CHECK_THROWS_WITH(world.setMaterial(w, m),
+                      Catch::StartsWith("World::setMaterial: material 'water': smoothingDistance "
+                                        "= 0.01 m is 0.997356 particle spacings"));
+    CHECK(world.material(w).smoothingDistance == 0.032f);
+    // The depth is the world's: the water preset in a 1000 m deep slab has a 0.4 mm spacing.
+    WorldDef deep;
+    deep.depth = 1000.0f;
+    World thick(deep);
+    CHECK_THROWS_WITH(thick.addMaterial(water()), Catch::Contains("depth = 1000 m give a particle "
+                                                                  "spacing of"));
 }
 
 TEST_CASE("every float field of WorldDef validates at its documented minimum and maximum",

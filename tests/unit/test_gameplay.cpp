@@ -287,22 +287,32 @@ TEST_CASE("emitters and blobs refuse absurd sizes without undefined behaviour", 
     World world = openWorld();
     Material dust = water();
     dust.name = "dust";
-    dust.mass = 1e-30f; // a valid material with a vanishing spacing
+    // The finest spacing a world takes, 1 mm.
+    dust.mass = kMinSpacing * kMinSpacing * dust.restDensity * world.def().depth;
+    dust.smoothingDistance = 4.0f * kMinSpacing;
     const MaterialId id = world.addMaterial(dust);
     EmitterDef def = faucet({0.0f, 0.0f});
     def.material = id;
     def.width = 100.0f;
     CHECK_THROWS_WITH(world.addEmitter(def),
-                      "World::addEmitter: width = 100 m is 1.13716e+18 lanes at 8.79383e-17 m "
+                      "World::addEmitter: width = 100 m is 100001 lanes at 0.001 m "
                       "spacing; at most 10000");
     // A blob thinner than one spacing holds no lattice point, however long it is.
     BlobDef sliver;
-    sliver.shape.halfExtents = {1e30f, 0.001f};
+    sliver.material = id;
+    sliver.shape.halfExtents = {200.0f, 0.0004f};
     CHECK(world.spawnBlob(sliver) == 0);
+    // Larger than the position range: refused with the range and the material that sets it.
+    sliver.shape.halfExtents = {1e30f, 0.0004f};
+    CHECK_THROWS_WITH(world.spawnBlob(sliver),
+                      "spawnBlob: the shape's lower corner = (-1e+30, -0.0004) is outside the "
+                      "position range [-262.144, 262.144] (unit: m; 2^18 spacings of the finest "
+                      "material, 'dust' at 0.001 m; docs/gameplay.md, Far from the origin)");
     BlobDef huge;
-    huge.shape.halfExtents = {1e20f, 1e20f};
+    huge.material = id;
+    huge.shape.halfExtents = {200.0f, 200.0f};
     CHECK_THROWS_WITH(world.spawnBlob(huge),
-                      "spawnBlob: particle cap exceeded: the blob needs about 3.97887e+44 "
+                      "spawnBlob: particle cap exceeded: the blob needs about 1.59999e+11 "
                       "particles; maxParticles = 1048576");
 }
 
@@ -396,6 +406,7 @@ TEST_CASE("setMaterial keeps emitters valid, the registry refuses duplicate para
     world.addEmitter(faucet({0.0f, 0.0f})); // 600/s of 748 allowed at water's spacing
     Material heavy = water();
     heavy.mass = 0.03f; // a wider spacing: fewer lanes and a lower limit than 600/s
+    heavy.smoothingDistance = 0.05f; // 3.3 of its spacings
     CHECK_THROWS_WITH(world.setMaterial(MaterialId{0}, heavy),
                       Catch::Matchers::StartsWith("World::setMaterial: rate = 600 particles/s "
                                                   "overlaps"));

@@ -130,6 +130,8 @@ enum class RemovalCause : uint8_t {
     Drain,
     /// Its lifetime ran out.
     Lifetime,
+    /// It left the world's position range (`World::positionLimit`).
+    OutOfRange,
 };
 
 /// One particle removed by the world during the last step (not by `World::removeParticle`).
@@ -142,7 +144,7 @@ struct RemovedEvent {
     glm::vec2 velocity{0.0f, 0.0f};
     /// Its material.
     MaterialId material{};
-    /// Drain or lifetime.
+    /// Drain, lifetime or out of range.
     RemovalCause cause = RemovalCause::Drain;
     /// The drain, when `cause` is `RemovalCause::Drain`.
     DrainId drain{};

@@ -144,6 +144,13 @@ struct WorldDef {
     TaskHook tasks{};
 };
 
+/// Particle positions reach at most this many spacings of the world's finest material from the
+/// origin (unit: count; 2^18): beyond it float rounds a position by more than 1/32 spacing, and
+/// resting water at 1 cm spacing stirred 6x more at 1e4 m than at the origin, 25x at 3e4 m.
+inline constexpr float kPositionSpacings = 262144.0f;
+/// The position limit for coarse materials (unit: m): `World::positionLimit` never exceeds it.
+inline constexpr float kMaxPositionLimit = 1e5f;
+
 /// The numbers of `PositionBasedDef` (see `Field`), in the order snapshots store them. Static
 /// storage. Any thread.
 std::span<const Field<PositionBasedDef>> positionBasedFields();
@@ -267,9 +274,13 @@ public:
     /// Move assignment, as the move constructor.
     World& operator=(World&&) noexcept;
 
-    /// Adds a material (validated, see `validate(Material)`); at most 65535.
+    /// Adds a material (validated, see `validate(Material)`); at most 65535. Its spacing in this
+    /// world's depth must lie in [`kMinSpacing`, `kMaxSpacing`] and its smoothing distance in
+    /// [`kMinSupportSpacings`, `kMaxSupportSpacings`] spacings; the error names the fields.
+    /// Thread rule: the stepping thread, between steps.
     MaterialId addMaterial(const Material& material);
-    /// Replaces a material's parameters (validated). Throws for an unknown id.
+    /// Replaces a material's parameters (validated as by `addMaterial`). Throws for an unknown
+    /// id. Thread rule: the stepping thread, between steps.
     void setMaterial(MaterialId id, const Material& material);
     /// The material behind `id`; throws for an unknown id.
     const Material& material(MaterialId id) const;
@@ -457,6 +468,14 @@ public:
     const WorldDef& def() const;
     /// Lattice spacing of material `id` in this world's slab (unit: m).
     float spacing(MaterialId id) const;
+    /// Largest |x| and |y| a particle may have (unit: m; 0 before the first material): float
+    /// keeps positions to 1/32 of the finest spacing of the world's materials out to
+    /// `kPositionSpacings` spacings (2,621 m for 1 cm water), and never beyond
+    /// `kMaxPositionLimit`. Particles, blobs and emitters outside it are refused; a particle
+    /// that leaves it is removed at the end of the step (`RemovalCause::OutOfRange`); a world
+    /// larger than this moves its origin (docs/gameplay.md, Far from the origin). Any thread
+    /// while no step runs.
+    float positionLimit() const;
 
 private:
     friend detail::WorldState& detail::stateOf(World& world);
