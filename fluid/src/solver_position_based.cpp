@@ -377,12 +377,14 @@ private:
     void viscosity(const PbfConstants& spanned, uint32_t span, std::span<const YieldLaw> laws) {
         WorldState& s = m_s;
         Particles& p = m_p;
+        // Passes enough that each is stable (at most kViscosityFactor), up to
+        // kMaxViscosityPasses; beyond them each pass stays at the limit, so a viscosity higher
+        // than the run can hold acts as the highest it holds instead of blowing up.
+        const float needed = m_viscosityFactor * float(span) / float(m_interval) / kViscosityFactor;
         const auto passes = static_cast<uint32_t>(
-            std::clamp(std::ceil(m_viscosityFactor * float(span) / float(m_interval) /
-                                 kViscosityFactor),
-                       1.0f, 64.0f));
+            std::clamp(std::ceil(needed), 1.0f, float(kMaxViscosityPasses)));
         const float weight = spanned.dt / m_frameDt;
-        const float passScale = 1.0f / float(passes);
+        const float passScale = 1.0f / std::max(float(passes), needed);
         const float vorticity = s.def.positionBased.vorticity;
         for (uint32_t pass = 0; pass < passes; ++pass) {
             if (m_facts.wantsForces) {
@@ -398,7 +400,11 @@ private:
     // walls' reaction to the stress.
     void surface(const PbfConstants& spanned, std::span<const YieldLaw> laws) {
         WorldState& s = m_s;
-        pbfSurface(s, spanned, s.def.positionBased.vorticity, m_facts.surfaceTension);
+        // The confinement feeds the spin it reads: over a run longer than kVorticityRun it gives
+        // back proportionally less, so what it adds per second stays bounded.
+        const float vorticity = s.def.positionBased.vorticity *
+                                std::min(1.0f, kVorticityRun / std::max(spanned.dt, 1e-30f));
+        pbfSurface(s, spanned, vorticity, m_facts.surfaceTension);
         if (s.yielding) {
             pbfStress(s, spanned, laws);
         }

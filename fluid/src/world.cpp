@@ -61,17 +61,17 @@ void checkRange(const char* field, T value, T lo, T hi, const char* unit,
 
 // In the order snapshots store them (the struct's own order).
 constexpr Field<PositionBasedDef> kPositionBasedFields[] = {
-    {"substeps", nullptr, &PositionBasedDef::substeps, "count", 1, 64, false,
+    {"substeps", nullptr, &PositionBasedDef::substeps, "count", 1, 16, false,
      "Position-based sub-steps per 1/60 s frame (more for longer frames); more hold the water "
      "denser and cost more."},
-    {"iterations", nullptr, &PositionBasedDef::iterations, "count", 1, 100, false,
+    {"iterations", nullptr, &PositionBasedDef::iterations, "count", 1, 32, false,
      "Density-constraint (Jacobi) iterations per sub-step."},
     {"viscosityInterval", nullptr, &PositionBasedDef::viscosityInterval, "count", 1, 64, false,
      "Sub-steps between viscosity and surface tension runs."},
     {"coarseCorrection", &PositionBasedDef::coarseCorrection, nullptr, "1", 0, 1, false,
      "Share of the coarse-grid density correction per sub-step; 0 is off "
      "(docs/position_based.md, \"Coarse correction\")."},
-    {"vorticity", &PositionBasedDef::vorticity, nullptr, "1", 0, 10, false,
+    {"vorticity", &PositionBasedDef::vorticity, nullptr, "1", 0, 1, false,
      "Vorticity confinement: gives back the swirl that damping takes; 0 is off."},
 };
 

@@ -143,19 +143,19 @@ TEST_CASE("WorldDef with NaN or out-of-range fields throws", "[unit][bad-input]"
         def.positionBased.substeps = 0;
         CHECK_THROWS_MATCHES(World(def), Error,
                              Catch::Message("WorldDef: positionBased.substeps = 0 is out of range "
-                                            "[1, 64] (unit: count)"));
+                                            "[1, 16] (unit: count)"));
     }
     SECTION("too many position-based iterations") {
         def.positionBased.iterations = 101;
         CHECK_THROWS_MATCHES(World(def), Error,
                              Catch::Message("WorldDef: positionBased.iterations = 101 is out of "
-                                            "range [1, 100] (unit: count)"));
+                                            "range [1, 32] (unit: count)"));
     }
     SECTION("NaN vorticity confinement") {
         def.positionBased.vorticity = kNaN;
         CHECK_THROWS_MATCHES(World(def), Error,
                              Catch::Message("WorldDef: positionBased.vorticity = nan is out of "
-                                            "range [0, 10] (unit: 1)"));
+                                            "range [0, 1] (unit: 1)"));
     }
     SECTION("enqueue without finish") {
         def.tasks.enqueue = [](TaskCallback*, uint32_t, uint32_t, void*, void*) -> void* {

@@ -59,12 +59,12 @@ TEST_CASE("position-based settings change between steps and show in the profile"
     bad.iterations = 0;
     CHECK_THROWS_MATCHES(world.setPositionBased(bad), Error,
                          Catch::Message("World::setPositionBased: iterations = 0 is out of range "
-                                        "[1, 100] (unit: count)"));
+                                        "[1, 32] (unit: count)"));
     bad = settings;
     bad.vorticity = -1.0f;
     CHECK_THROWS_MATCHES(world.setPositionBased(bad), Error,
                          Catch::Message("World::setPositionBased: vorticity = -1 is out of range "
-                                        "[0, 10] (unit: 1)"));
+                                        "[0, 1] (unit: 1)"));
     bad.vorticity = std::numeric_limits<float>::infinity();
     CHECK_THROWS_AS(world.setPositionBased(bad), Error);
     // Unchanged by the rejected calls.

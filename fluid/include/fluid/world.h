@@ -49,7 +49,7 @@ enum class EquationOfState : uint8_t {
 /// Settings of `Solver::PositionBased`. Read them with `World::def().positionBased`; change them
 /// between steps with `World::setPositionBased` (stepping thread).
 struct PositionBasedDef {
-    /// Sub-steps per 1/60 s of simulated time (unit: count; range [1, 64]): each is 1/60 s over
+    /// Sub-steps per 1/60 s of simulated time (unit: count; range [1, 16]): each is 1/60 s over
     /// this count whatever the frame length, so a 1 s frame at 4 takes 240, a 1/240 s frame
     /// one, and a shorter one carries its time to the next frame (`World::step`); the settings
     /// hold at any frame rate at the same cost per simulated second (`Profile::substeps` reports
@@ -57,10 +57,13 @@ struct PositionBasedDef {
     /// iteration). Fewer are faster and
     /// more compressible; a particle moves at most two support radii per sub-step (faster ones
     /// are slowed and counted in `Profile::speedClamped`). Without the coarse correction, below
-    /// 3 x 3, 6 x 2 or 8 x 1 a deep tank boils (docs/position_based.md, "Settings").
+    /// 3 x 3, 6 x 2 or 8 x 1 a deep tank boils (docs/position_based.md, "Settings"). Above 16
+    /// a 2,000-particle dam took over 50 ms per frame (precise: 143 ms at 64) and the game
+    /// preset's coarse correction gained energy (2.2% at 64; docs/levels.md, Corners).
     uint32_t substeps = 4;
     /// Density-constraint iterations (Jacobi sweeps) per sub-step (unit: count; range
-    /// [1, 100]). Default 8 (`Quality::Precise`).
+    /// [1, 32]: at 100 a 2,000-particle dam took 93 ms per frame, at 32 31 ms). Default 8
+    /// (`Quality::Precise`).
     uint32_t iterations = 8;
     /// Sub-steps between runs of viscosity, vorticity confinement and surface tension (unit:
     /// count; range [1, 64]); each run covers the time since the last one, and the frame's last
@@ -73,8 +76,12 @@ struct PositionBasedDef {
     /// large-scale compression (above 5%) in one grid solve, which lets few sweeps hold deep
     /// water (docs/position_based.md, "Coarse correction"). Default 0 (`Quality::Precise`).
     float coarseCorrection = 0.0f;
-    /// Vorticity confinement strength epsilon (unit: 1; range [0, 10]): the share of a vortex's
-    /// rotation speed at one support radius given back per radian turned. 0 turns it off.
+    /// Vorticity confinement strength epsilon (unit: 1; range [0, 1]): the share of a vortex's
+    /// rotation speed at one support radius given back per radian turned, when the surface
+    /// pass runs every 1/120 s or more often (both presets); longer runs give back
+    /// proportionally less (the confinement feeds
+    /// the spin it reads: a dam at 1.2 gained 58x its energy, at 1 with 1/60 s sub-steps 29%).
+    /// 0 turns it off.
     float vorticity = 0.0f;
 };
 
