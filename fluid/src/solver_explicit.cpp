@@ -25,6 +25,10 @@
 namespace fluid::detail {
 namespace {
 
+// Explicit viscous diffusion holds dt <= kViscousStep h^2 / nu: the 2D viscosity Laplacian's
+// largest eigenvalue is about 27/h^2, so forward Euler is stable with margin.
+constexpr float kViscousStep = 0.06f;
+
 // Background pressure of the Tait equation of state in fluid-fluid pairs, p_b = min(kBackground
 // rho0 a_gamma h, kBackgroundStiff rho0 c^2): it keeps the particles of a splash apart without
 // pushing the free surface out or inflating a soft blob (docs/solver.md, "Background pressure").
@@ -221,6 +225,8 @@ public:
         if (m_probe) {
             plan.dt = std::min(plan.dt, frameDt / float(s.def.maxSubsteps));
             plan.count = s.def.maxSubsteps; // provisional, replanned by the probe stage
+        } else {
+            holdToSubsteps(plan.dt);
         }
         return plan;
     }
@@ -295,6 +301,35 @@ private:
         m_cflDt = cflDt();
         plan.count = 1 + substepsFor(m_frameDt - h, m_cflDt, m_s.def.maxSubsteps - 1);
         plan.respread = true;
+        holdToSubsteps((m_frameDt - h) / float(plan.count - 1));
+    }
+
+    // A frame whose sub-steps of `dt` are longer than the sound speed or the viscosity allow
+    // (the CFL limit asked for more than maxSubsteps): it steps with the largest sound speed
+    // (Tait), stiffness (linear) and viscosity those sub-steps hold, so a value beyond what
+    // maxSubsteps allows makes the liquid softer or thinner for the frame, never unstable
+    // (a dam with soundSpeed 1e4 reached 2.7e6 J and 492 m/s; docs/levels.md, Corners).
+    // Profile::soundSpeed reports the speed used. The materials are untouched: the constants
+    // are refreshed from them every frame.
+    void holdToSubsteps(float dt) {
+        const SceneFacts& f = m_facts;
+        const float wave = m_s.def.courant * f.minSpacing / dt;
+        const float speed = std::max(wave - m_maxSpeed, 0.5f * wave);
+        if (m_tait) {
+            if (m_soundSpeed > speed) {
+                m_soundSpeed = speed;
+                setEquationOfState(m_s, speed);
+            }
+        } else {
+            for (MaterialConstants& c : m_s.constants) {
+                c.stiffness = std::min(c.stiffness, speed * speed);
+            }
+        }
+        const float nu = kViscousStep * f.minSupport * f.minSupport /
+                         (dt * std::max(1.0f, f.maxFriction));
+        for (MaterialConstants& c : m_s.constants) {
+            c.viscosity = std::min(c.viscosity, nu * c.restDensity);
+        }
     }
 
     // Equal sub-steps of at most dt over `span` seconds, at most `cap` of them.
@@ -329,7 +364,7 @@ private:
             dt = std::min(dt, 0.25f * std::sqrt(f.minSupport / m_s.lastMaxAccel));
         }
         if (f.maxNu > 0.0f) {
-            dt = std::min(dt, 0.06f * f.minSupport * f.minSupport /
+            dt = std::min(dt, kViscousStep * f.minSupport * f.minSupport /
                                   (f.maxNu * std::max(1.0f, f.maxFriction)));
         }
         return dt;
