@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <sstream>
 
 namespace fluid {
@@ -462,6 +463,21 @@ uint32_t World::spawnBlob(const BlobDef& blob, uint32_t* insideSolids) {
           << " particles; maxParticles = " << m_state->def.maxParticles;
         throw Error(s.str());
     }
+    try {
+        return placeBlob(blob, lo, hi, spacing, cols, rows, insideSolids);
+    } catch (const std::bad_alloc&) {
+        std::ostringstream text;
+        text << "spawnBlob: memory ran out making room for the blob's about "
+             << uint64_t(cols * rows) << " particles beside the world's "
+             << m_state->particles.size()
+             << "; make the blob smaller or lower WorldDef::maxParticles";
+        throw Error(text.str());
+    }
+}
+
+uint32_t World::placeBlob(const BlobDef& blob, glm::vec2 lo, glm::vec2 hi, float spacing,
+                          double cols, double rows, uint32_t* insideSolids) {
+    const Shape& shape = blob.shape;
     // Lattice points at cell centres, spacing apart, centred in the shape's bounding box.
     const auto nx = static_cast<uint32_t>(cols);
     const auto ny = static_cast<uint32_t>(rows);

@@ -260,11 +260,9 @@ TEST_CASE("level abuse: a blob larger than memory is a load error, not std::bad_
     REQUIRE(child.started);
     const std::string& output = child.output;
     INFO(output);
-    CHECK(output.find(
-              "LevelError: t.json:1:97: at /blobs/0: memory ran out making room for the blob's "
-              "about 63648484 particles: the world would hold about 63648484 particles, about "
-              "12729696800 bytes (12.7 GB at about 200 bytes per particle); make them fewer or "
-              "lower world.maxParticles\n") != std::string::npos);
+    CHECK(output.find("LevelError: t.json:1:97: at /blobs/0: spawnBlob: memory ran out making "
+                      "room for the blob's about 63648484 particles beside the world's 0; make "
+                      "the blob smaller or lower WorldDef::maxParticles\n") != std::string::npos);
 #else
     WARN("skipped: needs /proc/self/exe and ulimit -v, and no sanitizer");
 #endif

@@ -329,3 +329,92 @@ TEST_CASE("more workers than cores run on as many threads as the cores, with the
     CHECK(pool.threadCount() == cores);
     CHECK(pool.hook().workerCount == cores);
 }
+
+TEST_CASE("positions outside the world's range are refused, and a particle that leaves it is "
+          "removed with an event",
+          "[abuse3][positions]") {
+    World world;
+    CHECK(world.positionLimit() == 0.0f); // no material yet
+    const MaterialId w = world.addMaterial(water());
+    const float limit = world.positionLimit();
+    CHECK(limit == Approx(kPositionSpacings * world.spacing(w)).epsilon(1e-6)); // 2,628 m
+    CHECK(limit > 2600.0f);
+    // The report's cases: refused with the value and the range, never a crash or NaN.
+    CHECK_THROWS_WITH(world.addParticle({1e20f, 0.0f}, {}, w),
+                      "World::addParticle: position = (1e+20, 0) is outside the position range "
+                      "[-2628.39, 2628.39] (unit: m; 2^18 spacings of the finest material, "
+                      "'water' at 0.0100265 m; docs/gameplay.md, Far from the origin)");
+    CHECK_THROWS_AS(world.addParticle({3e38f, 0.0f}, {}, w), Error);
+    CHECK_THROWS_AS(world.addParticle({-3e38f, -3e38f}, {}, w), Error);
+    EmitterDef emitter;
+    emitter.material = w;
+    emitter.position = {0.0f, -1e4f};
+    CHECK_THROWS_WITH(world.addEmitter(emitter),
+                      Catch::StartsWith("World::addEmitter: position = (0, -10000) is outside "
+                                        "the position range [-2628.39, 2628.39]"));
+    CHECK(world.particleCount() == 0);
+    // At the edge: accepted. Moving out at 10 m/s in zero g, it leaves within a frame and is
+    // removed at the end of that step, with its cause; the one beside it stays.
+    const ParticleHandle leaving = world.addParticle({limit - 0.05f, 0.0f}, {10.0f, 0.0f}, w);
+    const ParticleHandle staying = world.addParticle({limit - 0.05f, 1.0f}, {-10.0f, 0.0f}, w);
+    world.step(1.0f / 60.0f);
+    REQUIRE(world.removedEvents().size() == 1);
+    const RemovedEvent& event = world.removedEvents()[0];
+    CHECK(event.cause == RemovalCause::OutOfRange);
+    CHECK(event.particle == leaving);
+    CHECK(event.position.x > limit);
+    CHECK(event.velocity.x == Approx(10.0f));
+    CHECK_FALSE(world.isValid(leaving));
+    CHECK(world.isValid(staying));
+    CHECK(world.particleCount() == 1);
+    // A material with a finer spacing narrows the range; particles beyond it leave at the next
+    // step the same way.
+    Material fine = water();
+    fine.name = "fine";
+    fine.mass = 4.0f * kMinSpacing * kMinSpacing * fine.restDensity * world.def().depth; // 2 mm
+    fine.smoothingDistance = 4.0f * 2.0f * kMinSpacing;
+    world.addMaterial(fine);
+    CHECK(world.positionLimit() == Approx(kPositionSpacings * 2e-3f).epsilon(1e-5)); // 524 m
+    world.step(1.0f / 60.0f);
+    REQUIRE(world.removedEvents().size() == 1);
+    CHECK(world.removedEvents()[0].particle == staying);
+    CHECK(world.removedEvents()[0].cause == RemovalCause::OutOfRange);
+    CHECK(world.particleCount() == 0);
+}
+
+TEST_CASE("a resting tank at the edge of the position range rests as it does at the origin",
+          "[abuse3][positions][physics]") {
+    // Float keeps positions to 1/32 spacing out to the limit. Beyond it the same tank stirred
+    // 6x more at 1e4 m and 25x at 3e4 m (the report's dam at 3e4 m: 902,102 "separated" events).
+    const auto settle = [](float offset, uint32_t& separated) {
+        WorldDef def;
+        def.positionBased = positionBasedPreset(Quality::Game);
+        World world(def);
+        const MaterialId w = world.addMaterial(water());
+        const float s = world.spacing(w);
+        REQUIRE(offset + 1.3f <= world.positionLimit());
+        world.addForce(std::make_unique<GravityForce>(0.0f, -9.81f));
+        world.addBoundary(
+            std::make_unique<BoxContainer>(offset, offset, offset + 1.2f, offset + 0.8f));
+        BlobDef blob;
+        blob.material = w;
+        blob.shape =
+            Shape::box({offset + 0.5f * s, offset + 0.5f * s}, {offset + 1.2f, offset + 0.15f});
+        world.spawnBlob(blob);
+        separated = 0;
+        for (int frame = 0; frame < 240; ++frame) {
+            world.step(1.0f / 60.0f);
+            separated += world.profile().separated;
+        }
+        REQUIRE(test::allFinite(world));
+        return test::energy(world, 0.0).kinetic;
+    };
+    uint32_t separatedOrigin = 0, separatedEdge = 0;
+    const double origin = settle(0.0f, separatedOrigin);
+    const double edge = settle(2600.0f - 1.3f, separatedEdge);
+    std::printf("[measure] resting tank after 4 s: kinetic energy %.4f J at the origin, %.4f J "
+                "at 2,600 m; separated %u / %u\n",
+                origin, edge, separatedOrigin, separatedEdge);
+    CHECK(edge < 2.0 * origin);
+    CHECK(separatedEdge == 0);
+}

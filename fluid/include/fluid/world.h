@@ -487,6 +487,8 @@ public:
 private:
     friend detail::WorldState& detail::stateOf(World& world);
     void validateEmitter(const EmitterDef& def, const char* function) const;
+    uint32_t placeBlob(const BlobDef& blob, glm::vec2 lo, glm::vec2 hi, float spacing,
+                       double cols, double rows, uint32_t* insideSolids);
     std::unique_ptr<detail::WorldState> m_state;
 };
 
