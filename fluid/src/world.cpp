@@ -225,7 +225,27 @@ uint32_t WorldState::checkedIndex(ParticleHandle handle, const char* function) c
     return *index;
 }
 
+void WorldState::reserveParticles(size_t count) {
+    const auto grow = [count](auto& channel) {
+        if (channel.capacity() < count) {
+            channel.reserve(std::max(count, 2 * channel.capacity()));
+        }
+    };
+    Particles& p = particles;
+    for (std::vector<float>* channel :
+         {&p.px, &p.py, &p.vx, &p.vy, &p.density, &p.pressure, &p.sxx, &p.sxy, &p.kx, &p.ky}) {
+        grow(*channel);
+    }
+    grow(p.material);
+    grow(p.slot);
+    grow(p.expiry);
+    grow(slotIndex);
+    grow(slotGeneration);
+}
+
 ParticleHandle WorldState::append(glm::vec2 x, glm::vec2 v, uint16_t material, double expiry) {
+    // Room first: a bad_alloc then leaves the world as it was.
+    reserveParticles(size_t(particles.size()) + 1);
     uint32_t slot = 0;
     if (!freeSlots.empty()) {
         slot = freeSlots.back();
@@ -513,6 +533,7 @@ uint32_t World::placeBlob(const BlobDef& blob, glm::vec2 lo, glm::vec2 hi, float
                     std::to_string(m_state->def.maxParticles));
     }
     const double expiry = detail::expiryTime(m_state->time, blob.lifetime);
+    m_state->reserveParticles(size_t(m_state->particles.size()) + points.size());
     for (glm::vec2 p : points) {
         m_state->append(p, blob.velocity, blob.material.index, expiry);
     }

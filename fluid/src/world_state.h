@@ -246,6 +246,9 @@ struct WorldState {
     }
 
     std::vector<Material> materials;
+    // Capacity for `count` particles in every channel append fills and in the handle table
+    // (growing geometrically), so that appending cannot fail half way.
+    void reserveParticles(size_t count);
     // World::positionLimit (unit: m).
     float positionLimit() const;
     // Throws unless `x` lies within positionLimit(): "<function>: <what> = (x, y) is outside
