@@ -60,7 +60,7 @@ constexpr MaterialField kFields[] = {
      "Kernel support radius h: how far particles feel each other; 3 to 8 particle spacings."},
     {"kernelParticles", &Material::kernelParticles, nullptr, "count", 4.0, 400.0, false,
      "Particles in the support the material was tuned for (informational)."},
-    {"surfaceTension", &Material::surfaceTension, nullptr, "m^3/(kg s^2)", 0.0, 1.0, false,
+    {"surfaceTension", &Material::surfaceTension, nullptr, "m^3/(kg s^2)", 0.0, 0.5, false,
      "Cohesion gamma [Akinci 2013]: holds drops and blobs together; 0 is off."},
     {"yieldStress", &Material::yieldStress, nullptr, "Pa", 0.0, 1e5, false,
      "Herschel-Bulkley yield stress: below it the material holds its shape, heaps and sticks."},

@@ -106,7 +106,7 @@ TEST_CASE("level errors: wrong types say what was expected and what was found", 
     CHECK(errorOf(level(R"(, "world": {"solver": true})")) ==
           "t.json:1:70: at /world/solver: expected a string, got a boolean");
     CHECK(errorOf(level(R"(, "world": {"substeps": 2.5})")) ==
-          "t.json:1:72: at /world/substeps: expected a whole number in [1, 16] (unit: count), "
+          "t.json:1:72: at /world/substeps: expected a whole number in [1, 12] (unit: count), "
           "got 2.5");
     CHECK(errorOf(level(R"(, "blobs": {})")) ==
           "t.json:1:59: at /blobs: expected an array of blobs, got an object");

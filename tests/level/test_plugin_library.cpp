@@ -513,7 +513,7 @@ TEST_CASE("docs/levels.md's world and emitter numbers are their field tables", "
                    "fluid::worldFields(); see the test \"docs/levels.md's world and emitter "
                    "numbers are their field tables\" -->\n",
                    "<!-- end of the world table -->\n", settings);
-    CHECK(settings.find("| `substeps` | whole | count | [1, 16] | 4 |") != std::string::npos);
+    CHECK(settings.find("| `substeps` | whole | count | [1, 12] | 4 |") != std::string::npos);
     const std::string emitter = header + fieldRows(emitterFields(), EmitterDef{});
     checkGenerated("<!-- emitter table: generated from fluid::emitterFields(); see the test "
                    "\"docs/levels.md's world and emitter numbers are their field tables\" -->\n",

@@ -418,3 +418,23 @@ TEST_CASE("a resting tank at the edge of the position range rests as it does at 
     CHECK(edge < 2.0 * origin);
     CHECK(separatedEdge == 0);
 }
+
+TEST_CASE("one sweep per sub-step needs the coarse correction", "[abuse3][world]") {
+    WorldDef def;
+    def.positionBased.iterations = 1; // the precise preset's coarseCorrection is 0
+    CHECK_THROWS_WITH(World(def),
+                      "WorldDef: positionBased.iterations = 1 needs the coarse correction, but "
+                      "coarseCorrection = 0; use 2 or more iterations, or a coarseCorrection "
+                      "above 0 (the game preset: 1 iteration, 0.4)");
+    def.positionBased = positionBasedPreset(Quality::Game);
+    CHECK_NOTHROW(World(def));
+    World world(def);
+    PositionBasedDef pb = positionBasedPreset(Quality::Game);
+    pb.coarseCorrection = 0.0f;
+    CHECK_THROWS_WITH(world.setPositionBased(pb),
+                      Catch::StartsWith("World::setPositionBased: iterations = 1 needs the "
+                                        "coarse correction"));
+    CHECK(world.def().positionBased.coarseCorrection == 0.4f); // kept
+    pb.iterations = 2;
+    CHECK_NOTHROW(world.setPositionBased(pb));
+}

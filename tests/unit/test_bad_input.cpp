@@ -143,7 +143,7 @@ TEST_CASE("WorldDef with NaN or out-of-range fields throws", "[unit][bad-input]"
         def.positionBased.substeps = 0;
         CHECK_THROWS_MATCHES(World(def), Error,
                              Catch::Message("WorldDef: positionBased.substeps = 0 is out of range "
-                                            "[1, 16] (unit: count)"));
+                                            "[1, 12] (unit: count)"));
     }
     SECTION("too many position-based iterations") {
         def.positionBased.iterations = 101;

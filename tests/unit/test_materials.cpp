@@ -125,7 +125,7 @@ TEST_CASE("validate names the field, value, range and unit", "[unit][material]")
         m.surfaceTension = -0.5f;
         CHECK_THROWS_MATCHES(fluid::validate(m), fluid::Error,
                              Catch::Message("material 'yoghurt': surfaceTension = -0.5 is out of "
-                                            "range [0, 1] (unit: m^3/(kg s^2))"));
+                                            "range [0, 0.5] (unit: m^3/(kg s^2))"));
     }
     SECTION("NaN viscosity") {
         m.viscosity = nan;

@@ -45,8 +45,8 @@ struct Material {
     /// [4, 400]). Seed water: 32, yoghurt: 50. Informational: see the 2D reading above.
     float kernelParticles = 32.0f;
     /// Surface tension / cohesion coefficient gamma of [Akinci 2013] (unit: m^3/(kg s^2); range
-    /// [0, 1]: a dam at 3 gained 13% of its energy, at 10 four times it; docs/levels.md,
-    /// Corners). 0 disables it. Not in the seed's table; presets: water 0.1, yoghurt 0.1.
+    /// [0, 0.5]: a dam at 1 gained 1.2% of its energy at the game preset, at 3 13%, at 10 four
+    /// times it; docs/levels.md, Corners). 0 disables it. Not in the seed's table; presets: water 0.1, yoghurt 0.1.
     float surfaceTension = 0.1f;
     /// Yield stress tau_y of the Herschel-Bulkley law tau = tau_y + K gamma_dot^n (unit: Pa; range
     /// [0, 1e5]). Below it the material does not flow: it holds a heap, a shape in zero gravity,

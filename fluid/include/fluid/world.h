@@ -49,7 +49,7 @@ enum class EquationOfState : uint8_t {
 /// Settings of `Solver::PositionBased`. Read them with `World::def().positionBased`; change them
 /// between steps with `World::setPositionBased` (stepping thread).
 struct PositionBasedDef {
-    /// Sub-steps per 1/60 s of simulated time (unit: count; range [1, 16]): each is 1/60 s over
+    /// Sub-steps per 1/60 s of simulated time (unit: count; range [1, 12]): each is 1/60 s over
     /// this count whatever the frame length, so a 1 s frame at 4 takes 240, a 1/240 s frame
     /// one, and a shorter one carries its time to the next frame (`World::step`); the settings
     /// hold at any frame rate at the same cost per simulated second (`Profile::substeps` reports
@@ -57,12 +57,14 @@ struct PositionBasedDef {
     /// iteration). Fewer are faster and
     /// more compressible; a particle moves at most two support radii per sub-step (faster ones
     /// are slowed and counted in `Profile::speedClamped`). Without the coarse correction, below
-    /// 3 x 3, 6 x 2 or 8 x 1 a deep tank boils (docs/position_based.md, "Settings"). Above 16
-    /// a 2,000-particle dam took over 50 ms per frame (precise: 143 ms at 64) and the game
-    /// preset's coarse correction gained energy (2.2% at 64; docs/levels.md, Corners).
+    /// 3 x 3, 6 x 2 or 8 x 1 a deep tank boils (docs/position_based.md, "Settings"). Above 12
+    /// the game preset's coarse correction gains energy as a dam starts to fall (0.27% at 16,
+    /// 2.2% at 64) and the precise preset took 38 ms per frame at 16, 143 at 64, for 2,000
+    /// particles (docs/levels.md, Corners).
     uint32_t substeps = 4;
     /// Density-constraint iterations (Jacobi sweeps) per sub-step (unit: count; range
-    /// [1, 32]: at 100 a 2,000-particle dam took 93 ms per frame, at 32 31 ms). Default 8
+    /// [1, 32]: at 100 a 2,000-particle dam took 93 ms per frame, at 32 31 ms; 1 only with
+    /// `coarseCorrection` above 0: without it a dam gained 7.3% energy). Default 8
     /// (`Quality::Precise`).
     uint32_t iterations = 8;
     /// Sub-steps between runs of viscosity, vorticity confinement and surface tension (unit:
