@@ -175,7 +175,9 @@ std::vector<Corner> sweep(const char* setting, const WorldDef& base, const Mater
         for (const double c : {0.1, 1e4}) {
             WorldDef def = base;
             def.soundSpeed = float(c);
-            check(runCorner("soundSpeed = " + std::to_string(int(c)), def, preset));
+            char name[32];
+            std::snprintf(name, sizeof name, "soundSpeed = %g", c);
+            check(runCorner(name, def, preset));
         }
         WorldDef linear = base;
         linear.equationOfState = EquationOfState::Linear;
