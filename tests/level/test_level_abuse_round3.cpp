@@ -267,3 +267,18 @@ TEST_CASE("level abuse: a blob larger than memory is a load error, not std::bad_
     WARN("skipped: needs /proc/self/exe and ulimit -v, and no sanitizer");
 #endif
 }
+
+TEST_CASE("level abuse: a blob or an emitter outside the position range is a located error",
+          "[level][abuse3]") {
+    const std::string blob = errorOf(level(
+        R"(, "blobs": [{"material": "water", "shape": "box", "min": [10000, 0], "max": [10001, 1]}])"));
+    CHECK_THAT(blob, Catch::StartsWith("t.json:1:"));
+    CHECK_THAT(blob, Catch::Contains(
+                         " at /blobs/0: spawnBlob: the shape's lower corner = (10000, 0) is "
+                         "outside the position range [-2628.39, 2628.39] (unit: m; 2^18 spacings "
+                         "of the finest material, 'water' at 0.0100265 m;"));
+    const std::string emitter = errorOf(level(
+        R"(, "emitters": [{"name": "f", "material": "water", "position": [0, -1e5], "speed": 1, "rate": 1}])"));
+    CHECK_THAT(emitter, Catch::Contains(" at /emitters/0: "));
+    CHECK_THAT(emitter, Catch::Contains("position = (0, -100000) is outside the position range"));
+}
