@@ -46,11 +46,11 @@ inline constexpr float kMaxPredictedMove = 2.0f;
 inline constexpr float kViscosityFactor = 0.5f;
 // Longest run (unit: s) over which vorticity confinement gives back its full share (both
 // presets' runs: the game preset's 1/120 s, the precise one's 1/240 s); longer runs (fewer
-// sub-steps, a longer viscosityInterval) give back proportionally less. At the strength's
-// maximum, 1, a dam stepped in 1/60 s runs gained 29% of its energy at full share.
+// sub-steps, a longer viscosityInterval) give back proportionally less: at full share the
+// confinement outgrows the damping (docs/position_based.md, Velocity, viscosity, surface).
 inline constexpr float kVorticityRun = 1.0f / 120.0f;
 // Most viscosity passes per run: beyond them each pass stays at kViscosityFactor, and the
-// viscosity the run applies is capped (docs/solver.md, Viscosity).
+// viscosity the run applies is capped (docs/position_based.md, Velocity, viscosity, surface).
 inline constexpr uint32_t kMaxViscosityPasses = 32;
 /// Share of the support a shear wave may cross per viscosity run: the cap on a yielding
 /// material's shear modulus, G <= rho0 (kShearWave h / dt)^2.

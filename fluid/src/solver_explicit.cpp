@@ -308,7 +308,7 @@ private:
     // (the CFL limit asked for more than maxSubsteps): it steps with the largest sound speed
     // (Tait), stiffness (linear) and viscosity those sub-steps hold, so a value beyond what
     // maxSubsteps allows makes the liquid softer or thinner for the frame, never unstable
-    // (a dam with soundSpeed 1e4 reached 2.7e6 J and 492 m/s; docs/levels.md, Corners).
+    // (docs/solver.md, Sub-steps).
     // Profile::soundSpeed reports the speed used. The materials are untouched: the constants
     // are refreshed from them every frame.
     void holdToSubsteps(float dt) {

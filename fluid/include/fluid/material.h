@@ -45,8 +45,7 @@ struct Material {
     /// [4, 400]). Seed water: 32, yoghurt: 50. Informational: see the 2D reading above.
     float kernelParticles = 32.0f;
     /// Surface tension / cohesion coefficient gamma of [Akinci 2013] (unit: m^3/(kg s^2); range
-    /// [0, 0.5]: a dam at 1 gained 1.2% of its energy at the game preset, at 3 13%, at 10 four
-    /// times it; docs/levels.md, Corners). 0 disables it. Not in the seed's table; presets: water 0.1, yoghurt 0.1.
+    /// [0, 0.5]: above it a dam break gains energy; docs/levels.md, Corners). 0 disables it. Not in the seed's table; presets: water 0.1, yoghurt 0.1.
     float surfaceTension = 0.1f;
     /// Yield stress tau_y of the Herschel-Bulkley law tau = tau_y + K gamma_dot^n (unit: Pa; range
     /// [0, 1e5]). Below it the material does not flow: it holds a heap, a shape in zero gravity,
@@ -117,17 +116,14 @@ inline constexpr float kDefaultDepth = 0.12931339f;
 
 /// The particle spacings a world steps (unit: m; the spacing is sqrt(mass / (restDensity
 /// depth)), set by `Material::mass`, `Material::restDensity` and `WorldDef::depth` together).
-/// `World::addMaterial` refuses a material outside them: finer than 1 mm a frame costs more than
-/// the rest of the range (22 ms for a 2,000-particle dam at the game preset, 29 ms precise), and
-/// coarser than 5 cm the game preset's coarse correction gains energy as a dam starts to fall
-/// (0.56% at 5 cm, 1.7% at 10 cm, 3.2% at 20 cm; docs/levels.md, Corners).
+/// `World::addMaterial` refuses a material outside them: finer costs the most per frame, coarser
+/// lets the game preset's coarse correction gain energy (docs/levels.md, Corners).
 inline constexpr float kMinSpacing = 1e-3f;
 /// See `kMinSpacing` (unit: m).
 inline constexpr float kMaxSpacing = 0.05f;
 /// The kernel support a world steps, in particle spacings (unit: 1): `smoothingDistance` over
-/// the spacing. Below 3 a dam break gains energy (the game preset 24% at 2, the explicit solver
-/// 11%); above 8 it costs 2-3x the presets' 3.2-4 and the game preset gains again (0.3% at 10,
-/// 30% at 12). The presets: water 3.2, yoghurt 3.9.
+/// the spacing. Outside [3, 8] a dam break gains energy, and above 8 it also costs 2-3x the
+/// presets' (water 3.2, yoghurt 3.9; docs/levels.md, Corners).
 inline constexpr float kMinSupportSpacings = 3.0f;
 /// See `kMinSupportSpacings` (unit: 1).
 inline constexpr float kMaxSupportSpacings = 8.0f;

@@ -34,9 +34,8 @@ uint32_t usableCores();
 
 /// A small fixed-size thread pool for hosts without their own: `threadCount()` threads, the
 /// calling thread included, each with its share of every task; `workerCount` asks for them and
-/// is capped at `usableCores()`: a thread more than the cores only waits for a time slice (at 64
-/// workers on 2 cores a 4k dam frame took 94 ms against 3 ms before the cap; bench/scaling.md,
-/// More workers than cores). Results do not depend on the worker or thread count. Thread rule: `hook()` may be shared by
+/// is capped at `usableCores()`: a thread more than the cores only waits for a time slice
+/// (bench/scaling.md, More workers than cores). Results do not depend on the worker or thread count. Thread rule: `hook()` may be shared by
 /// several worlds that step on the same thread; a pool must outlive the worlds using its hook.
 class ThreadPool {
 public:

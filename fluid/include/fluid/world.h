@@ -58,13 +58,12 @@ struct PositionBasedDef {
     /// more compressible; a particle moves at most two support radii per sub-step (faster ones
     /// are slowed and counted in `Profile::speedClamped`). Without the coarse correction, below
     /// 3 x 3, 6 x 2 or 8 x 1 a deep tank boils (docs/position_based.md, "Settings"). Above 12
-    /// the game preset's coarse correction gains energy as a dam starts to fall (0.27% at 16,
-    /// 2.2% at 64) and the precise preset took 38 ms per frame at 16, 143 at 64, for 2,000
-    /// particles (docs/levels.md, Corners).
+    /// the game preset gains energy and the precise one costs over 38 ms per 2,000-particle
+    /// frame (docs/levels.md, Corners).
     uint32_t substeps = 4;
     /// Density-constraint iterations (Jacobi sweeps) per sub-step (unit: count; range
-    /// [1, 32]: at 100 a 2,000-particle dam took 93 ms per frame, at 32 31 ms; 1 only with
-    /// `coarseCorrection` above 0: without it a dam gained 7.3% energy). Default 8
+    /// [1, 32], more costs over 50 ms per 2,000-particle frame; 1 only with `coarseCorrection`
+    /// above 0, without it a dam gains energy: docs/levels.md, Corners). Default 8
     /// (`Quality::Precise`).
     uint32_t iterations = 8;
     /// Sub-steps between runs of viscosity, vorticity confinement and surface tension (unit:
@@ -82,7 +81,7 @@ struct PositionBasedDef {
     /// rotation speed at one support radius given back per radian turned, when the surface
     /// pass runs every 1/120 s or more often (both presets); longer runs give back
     /// proportionally less (the confinement feeds
-    /// the spin it reads: a dam at 1.2 gained 58x its energy, at 1 with 1/60 s sub-steps 29%).
+    /// the spin it reads; docs/position_based.md, Velocity, viscosity, surface).
     /// 0 turns it off.
     float vorticity = 0.0f;
 };
@@ -154,8 +153,8 @@ struct WorldDef {
 };
 
 /// Particle positions reach at most this many spacings of the world's finest material from the
-/// origin (unit: count; 2^18): beyond it float rounds a position by more than 1/32 spacing, and
-/// resting water at 1 cm spacing stirred 6x more at 1e4 m than at the origin, 25x at 3e4 m.
+/// origin (unit: count; 2^18): beyond it float rounds a position by more than 1/32 spacing
+/// (docs/gameplay.md, Far from the origin, has the figures).
 inline constexpr float kPositionSpacings = 262144.0f;
 /// The position limit for coarse materials (unit: m): `World::positionLimit` never exceeds it.
 inline constexpr float kMaxPositionLimit = 1e5f;

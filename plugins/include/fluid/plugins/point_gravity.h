@@ -20,8 +20,8 @@ namespace fluid {
 /// (`StepContext::sampleSpacing`); a smaller `softening` acts as the spacing. The pull is at most
 /// a tenth of the spacing per sub-step squared (`kMaxPullShare` s / dt^2: 57.6 m/s^2 for 1 cm
 /// water at the game preset's 240 Hz sub-steps): a stronger pull packs liquid at the centre
-/// faster than a sub-step's constraints part it, and a blob around the centre burst (a 0.3 m
-/// blob reached 800 J and 20 m; docs/plugins.md, Point gravity). Negative strength repels.
+/// faster than a sub-step's constraints part it (docs/plugins.md, Point gravity). Negative
+/// strength repels.
 /// Beyond `cutoff` (when > 0) the field is 0 (an island of gravity in an otherwise zero-g level).
 /// A particle exactly on the centre gets 0, never NaN. Thread rule: see `ForcePlugin`.
 class PointGravityForce final : public ForcePlugin {
