@@ -120,8 +120,8 @@ void checkFields(const Def& def, std::span<const Field<Def>> fields, const std::
 
 void validatePositionBased(const PositionBasedDef& pb, const char* prefix) {
     checkFields<PositionBasedDef>(pb, kPositionBasedFields, prefix);
-    // One sweep holds only with the coarse correction: without it a dam break compressed 18%
-    // and rebounded with 7.3% more energy than it started with (docs/levels.md, Corners).
+    // One sweep holds only with the coarse correction: without it a dam break compresses and
+    // rebounds with more energy than it started with (docs/levels.md, Corners).
     if (pb.iterations < 2 && !(pb.coarseCorrection > 0.0f)) {
         std::ostringstream s;
         s << prefix << "iterations = " << pb.iterations
@@ -176,12 +176,23 @@ WorldTag::WorldTag() {
     m_value = tag;
 }
 
-float WorldState::positionLimit() const {
-    float finest = std::numeric_limits<float>::infinity();
-    for (const Material& m : materials) {
-        finest = std::min(finest, particleSpacing(m, def.depth));
+size_t WorldState::finestMaterial() const {
+    size_t finest = 0;
+    for (size_t k = 1; k < materials.size(); ++k) {
+        if (particleSpacing(materials[k], def.depth) <
+            particleSpacing(materials[finest], def.depth)) {
+            finest = k;
+        }
     }
-    return materials.empty() ? 0.0f : std::min(kPositionSpacings * finest, kMaxPositionLimit);
+    return finest;
+}
+
+float WorldState::positionLimit() const {
+    if (materials.empty()) {
+        return 0.0f;
+    }
+    const float finest = particleSpacing(materials[finestMaterial()], def.depth);
+    return std::min(kPositionSpacings * finest, kMaxPositionLimit);
 }
 
 void WorldState::checkInRange(const char* function, const char* what, glm::vec2 x) const {
@@ -195,13 +206,7 @@ void WorldState::checkInRange(const char* function, const char* what, glm::vec2 
     if (materials.empty()) {
         text << "the world has no material yet)";
     } else {
-        size_t finest = 0;
-        for (size_t k = 1; k < materials.size(); ++k) {
-            if (particleSpacing(materials[k], def.depth) <
-                particleSpacing(materials[finest], def.depth)) {
-                finest = k;
-            }
-        }
+        const size_t finest = finestMaterial();
         text << "2^18 spacings of the finest material, '" << materials[finest].name
              << "' at " << particleSpacing(materials[finest], def.depth)
              << " m; docs/gameplay.md, Far from the origin)";
@@ -242,8 +247,7 @@ void WorldState::reserveParticles(size_t count) {
         }
     };
     Particles& p = particles;
-    for (std::vector<float>* channel :
-         {&p.px, &p.py, &p.vx, &p.vy, &p.density, &p.pressure, &p.sxx, &p.sxy, &p.kx, &p.ky}) {
+    for (std::vector<float>* channel : p.keptFloats()) {
         grow(*channel);
     }
     grow(p.material);

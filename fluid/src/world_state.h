@@ -249,6 +249,8 @@ struct WorldState {
     // Capacity for `count` particles in every channel append fills and in the handle table
     // (growing geometrically), so that appending cannot fail half way.
     void reserveParticles(size_t count);
+    // Index of the material with the finest spacing (0 without materials).
+    size_t finestMaterial() const;
     // World::positionLimit (unit: m).
     float positionLimit() const;
     // Throws unless `x` lies within positionLimit(): "<function>: <what> = (x, y) is outside

@@ -72,11 +72,15 @@ TEST_CASE("a world takes every spacing and support its documented ranges give, a
     World world;
     const float depth = world.def().depth;
     Material m = water();
+    // The mass that gives water's rest density a particle spacing of `spacing` (unit: kg).
+    const auto massAt = [rho = m.restDensity, depth](float spacing) {
+        return spacing * spacing * rho * depth;
+    };
     // The four corners of the spacing and support ranges.
     for (const float spacing : {kMinSpacing, kMaxSpacing}) {
         for (const float support : {kMinSupportSpacings, kMaxSupportSpacings}) {
             INFO(spacing << " m, " << support << " spacings");
-            m.mass = spacing * spacing * m.restDensity * depth;
+            m.mass = massAt(spacing);
             m.smoothingDistance = support * spacing;
             CHECK_NOTHROW(world.addMaterial(m));
             CHECK(world.spacing(MaterialId{uint16_t(world.materialCount() - 1)}) ==
@@ -84,7 +88,7 @@ TEST_CASE("a world takes every spacing and support its documented ranges give, a
         }
     }
     // The smallest smoothing distance, at the finest spacing.
-    m.mass = kMinSpacing * kMinSpacing * m.restDensity * depth;
+    m.mass = massAt(kMinSpacing);
     m.smoothingDistance = 3e-3f;
     CHECK_NOTHROW(world.addMaterial(m));
     // Just outside: a spacing one percent off either end, a support one percent off either end.
@@ -95,10 +99,10 @@ TEST_CASE("a world takes every spacing and support its documented ranges give, a
                       "kg/m^3 and depth = 0.129313 m give a particle spacing of sqrt(mass / "
                       "(restDensity depth)) = 2.78085 m; expected [0.001, 0.05] m");
     m = water();
-    m.mass = 0.99f * 0.99f * kMinSpacing * kMinSpacing * m.restDensity * depth;
+    m.mass = massAt(0.99f * kMinSpacing);
     m.smoothingDistance = 3e-3f;
     CHECK_THROWS_WITH(world.addMaterial(m), Catch::Contains("give a particle spacing of"));
-    m.mass = 1.01f * 1.01f * kMaxSpacing * kMaxSpacing * m.restDensity * depth;
+    m.mass = massAt(1.01f * kMaxSpacing);
     m.smoothingDistance = 0.2f;
     CHECK_THROWS_WITH(world.addMaterial(m), Catch::Contains("give a particle spacing of"));
     m = water();
@@ -384,8 +388,8 @@ TEST_CASE("positions outside the world's range are refused, and a particle that 
 
 TEST_CASE("a resting tank at the edge of the position range rests as it does at the origin",
           "[abuse3][positions][physics]") {
-    // Float keeps positions to 1/32 spacing out to the limit. Beyond it the same tank stirred
-    // 6x more at 1e4 m and 25x at 3e4 m (the report's dam at 3e4 m: 902,102 "separated" events).
+    // Float keeps positions to 1/32 spacing out to the limit; beyond it the same tank stirs
+    // more (docs/gameplay.md, Far from the origin).
     const auto settle = [](float offset, uint32_t& separated) {
         WorldDef def;
         def.positionBased = positionBasedPreset(Quality::Game);
