@@ -8,7 +8,7 @@
 #   bash bench/corners.sh build/release/tests/fluid-tests-physics [game|precise|explicit ...]
 #
 # One sweep after the other (their frame times are this machine's, one thread, nothing else
-# running); about 15 minutes with the explicit solver, 4 without.
+# running); about 25 minutes with the explicit solver, 4 without.
 set -euo pipefail
 
 tests="${1:?usage: bench/corners.sh path/to/fluid-tests-physics [game|precise|explicit ...]}"

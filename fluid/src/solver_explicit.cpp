@@ -6,7 +6,8 @@
 //   external    force plugins' accelerations (seed step 5, computed first: the boundary
 //               pressure extrapolation needs them)
 //   probe       the first frame's first sub-step only: the field measured, the frame replanned
-//   density     rho_i = (m_i/depth) sum_j W_ij + boundary samples            (seed eq. 2.3)
+//   density     rho_i = ((m_i/depth) sum_j W_ij + boundary samples) / L      (seed eq. 2.3; L the
+//               kernel sum of the material's resting square lattice, 1.0042 for water)
 //   pressure    p_i = k (rho_i - rho0) or Tait; boundary pressure [Adami 2012] (seed eq. 2.4)
 //   forces      symmetric pressure force (2.5), viscosity (2.6), surface tension [Akinci 2013]
 //   integrate   v += dt a, x += dt v: symplectic Euler                        (seed eq. 2.8, 2.9)

@@ -82,8 +82,12 @@ void computeDensity(WorldState& s, float sampleVolume) {
                     wall[l] += (t2 * t2) * (1.0f + 4.0f * q);
                 });
             });
-            p.density[i] = mt[i] * kW * laneSum(acc) +
-                           p.restDensity[i] * sampleVolume * kW * invH * invH * laneSum(wall);
+            // Over the lattice sum, as the position-based solver reads it: a particle inside
+            // its material's resting lattice reads the rest density, so a blob starts at rest
+            // instead of 0.42% compressed (water; docs/solver.md, Known limits).
+            p.density[i] = (mt[i] * kW * laneSum(acc) +
+                            p.restDensity[i] * sampleVolume * kW * invH * invH * laneSum(wall)) *
+                           p.invLattice[i];
         }
     });
 }

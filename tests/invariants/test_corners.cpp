@@ -198,7 +198,10 @@ std::vector<Corner> sweep(const char* setting, const WorldDef& base, const Mater
 // Every corner runs, or is refused by a check of settings that only make sense together, which
 // names them: the spacing (mass, rest density, depth, smoothing distance), the explicit solver
 // and a flow law, one sweep and the coarse correction.
-void checkCorners(const std::vector<Corner>& corners, bool energy) {
+// `energy(corner)` says whether the corner's kinetic + potential energy must stay at or below
+// the start's.
+template <class EnergyRule>
+void checkCorners(const std::vector<Corner>& corners, EnergyRule energy) {
     for (const Corner& c : corners) {
         INFO(c.name << (c.refused ? ": refused: " + c.error : ""));
         if (c.refused) {
@@ -210,7 +213,7 @@ void checkCorners(const std::vector<Corner>& corners, bool energy) {
         }
         CHECK(c.finite);
         CHECK(c.lost == 0); // a closed box keeps every particle
-        if (energy) {
+        if (energy(c)) {
             // No energy from nowhere: gravity is in the potential, the walls and the solver
             // only take. A thousandth of the start's for the float sums.
             CHECK(c.eMax <= c.e0 * 1.001);
@@ -224,24 +227,29 @@ TEST_CASE("every setting of the game preset at its documented minimum and maximu
           "[long][corners]") {
     WorldDef def;
     def.positionBased = positionBasedPreset(Quality::Game);
-    checkCorners(sweep("game", def, water()), true);
+    checkCorners(sweep("game", def, water()), [](const Corner&) { return true; });
 }
 
 TEST_CASE("every setting of the precise preset at its documented minimum and maximum holds a dam",
           "[long][corners]") {
     WorldDef def;
     def.positionBased = positionBasedPreset(Quality::Precise);
-    checkCorners(sweep("precise", def, water()), true);
+    checkCorners(sweep("precise", def, water()), [](const Corner&) { return true; });
 }
 
 // The explicit solver's corners stay finite and keep their particles (a frame whose sub-step
-// cap cannot hold the sound speed, stiffness or viscosity steps with the largest it holds); its
-// energy is reported, not asserted: it grows with the sound speed and the linear stiffness and
-// without viscosity (docs/levels.md, Corners), which the explicit solver still has to fix.
+// cap cannot hold the sound speed, stiffness or viscosity steps with the largest it holds) and
+// gain no energy, but for two corners reported, not asserted (docs/solver.md, Known limits):
+// the linear equation of state starts with its free surface under tension, energy that the
+// kinetic and potential terms do not count (tests/invariants/test_energy.cpp counts it), and
+// without viscosity the dam gains energy at the walls as it runs.
 TEST_CASE("every setting of the explicit solver at its documented minimum and maximum stays "
-          "finite and keeps every particle",
+          "finite, keeps every particle and gains no energy",
           "[long][corners]") {
     WorldDef def;
     def.solver = Solver::Explicit;
-    checkCorners(sweep("explicit", def, forSolver(water(), Solver::Explicit)), false);
+    checkCorners(sweep("explicit", def, forSolver(water(), Solver::Explicit)),
+                 [](const Corner& c) {
+                     return c.name.rfind("linear, ", 0) != 0 && c.name != "viscosity = 0";
+                 });
 }

@@ -56,10 +56,30 @@ struct Played {
     double xmin = 1e9, xmax = -1e9, ymax = -1e9; // the water's extent over the run (m)
     double bodySpeed = 0.0;   // fastest dynamic body at a frame's end (m/s)
     double bodySpin = 0.0;    // fastest turning one (rad/s)
+    double bodyPoint = 0.0;   // fastest point of a dynamic body, |v| + |omega| reach (m/s)
     double finalSpeed = 0.0;  // fastest at the last frame's end (m/s)
     bool bodiesInside = true; // every body's centre in the tank at every frame's end
     bool finite = true;
 };
+
+// The farthest a body's fixtures reach from its centre of mass (m).
+double reach(const b2Body& body) {
+    const b2Vec2 centre = body.GetLocalCenter();
+    double most = 0.0;
+    for (const b2Fixture* f = body.GetFixtureList(); f != nullptr; f = f->GetNext()) {
+        const b2Shape* shape = f->GetShape();
+        if (shape->GetType() == b2Shape::e_circle) {
+            const auto* c = static_cast<const b2CircleShape*>(shape);
+            most = std::max(most, double((c->m_p - centre).Length() + c->m_radius));
+        } else if (shape->GetType() == b2Shape::e_polygon) {
+            const auto* p = static_cast<const b2PolygonShape*>(shape);
+            for (int v = 0; v < p->m_count; ++v) {
+                most = std::max(most, double((p->m_vertices[v] - centre).Length()));
+            }
+        }
+    }
+    return most;
+}
 
 // Plays `seconds` of the level at its rate; the tank is [0, 2] x [0, 1] (open top).
 Played play(Level& level, double seconds) {
@@ -95,6 +115,7 @@ Played play(Level& level, double seconds) {
             r.bodiesInside = r.bodiesInside && p.x > 0.0f && p.x < 2.0f && p.y > 0.0f && p.y < 1.0f;
             r.bodySpeed = std::max(r.bodySpeed, speed);
             r.bodySpin = std::max(r.bodySpin, spin);
+            r.bodyPoint = std::max(r.bodyPoint, speed + spin * reach(*body));
             r.finalSpeed = std::max(r.finalSpeed, speed);
         }
     }
@@ -112,18 +133,22 @@ void sweep(bool explicitSolver, double seconds) {
         const Played r = play(level, seconds);
         std::printf("[measure] crates.json, %s solver at %d Hz, %.0f s: %.0f sub-steps per s; "
                     "water x %.4f..%.4f m, top %.3f m, %u particles out at worst (first at "
-                    "frame %d); bodies at most %.2f m/s, %.1f rad/s, %.2f m/s at the end\n",
+                    "frame %d); bodies at most %.2f m/s, %.1f rad/s, a point at %.2f m/s, "
+                    "%.2f m/s at the end\n",
                     explicitSolver ? "explicit" : "position-based", hz, seconds,
                     r.substepsPerSecond, r.xmin, r.xmax, r.ymax, r.particlesOut, r.firstOut,
-                    r.bodySpeed, r.bodySpin, r.finalSpeed);
+                    r.bodySpeed, r.bodySpin, r.bodyPoint, r.finalSpeed);
         CHECK(r.finite);
         // Every particle in the tank at every frame's end.
         CHECK(r.particlesOut == 0);
-        // Every body in the tank, never thrown: the fastest fall (the stone, from 0.6 m onto
-        // the water) is 2.6 m/s; before, bodies left at 7-16 m/s.
+        // Every body in the tank, never thrown: no point of a body moves faster than the
+        // fastest fall (the stone, from 0.6 m onto the water: 2.6 m/s); before, bodies left at
+        // 7-16 m/s. Spinning counts at each body's rim: the light hull beside the stone is
+        // kicked up by its splash at 9-28 rad/s (1.4 m/s, 7 cm reach) depending on where it
+        // stands within 3 cm, so a bound on the spin alone held by chance.
         CHECK(r.bodiesInside);
         CHECK(r.bodySpeed < 3.0);
-        CHECK(r.bodySpin < 15.0);
+        CHECK(r.bodyPoint < 3.0);
         CHECK(r.finalSpeed < 1.0);
         // The cost of 60 Hz per simulated second (the position-based solver exactly: 4 rounds
         // of one sub-step per 1/60 s; the explicit one as its CFL condition asks).
