@@ -88,23 +88,20 @@ void Grid::build(std::span<const float> px, std::span<const float> py, float rad
         }
     });
 
-    // Stable counting sort: points keep their previous relative order inside a cell.
+    // Stable counting sort: points keep their previous relative order inside a cell. Each
+    // cell's entry counts its points, then holds where the cell ends (an inclusive prefix
+    // sum); the points, placed from the last, move each entry back to where its cell begins.
     m_start.assign(cells + 1, 0);
     for (uint32_t i = 0; i < count; ++i) {
-        ++m_start[m_keys[i] + 1];
+        ++m_start[m_keys[i]];
     }
-    for (size_t c = 0; c < cells; ++c) {
-        m_start[c + 1] += m_start[c];
+    for (size_t c = 1; c < cells; ++c) {
+        m_start[c] += m_start[c - 1];
     }
-    // Each cell's start serves as its cursor: afterwards start[c] is where cell c + 1 begins,
-    // so one shift restores the starts (no second cells-sized array).
-    for (uint32_t i = 0; i < count; ++i) {
-        m_order[m_start[m_keys[i]]++] = i;
+    for (uint32_t i = count; i-- > 0;) {
+        m_order[--m_start[m_keys[i]]] = i;
     }
-    for (size_t c = cells; c > 0; --c) {
-        m_start[c] = m_start[c - 1];
-    }
-    m_start[0] = 0;
+    m_start[cells] = count;
     v.start = m_start.data();
 }
 
