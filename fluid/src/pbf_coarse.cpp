@@ -96,12 +96,12 @@ void splat(std::vector<float>& fill, const Layout& g, float x, float y, float am
 }
 
 // Particle i's coarse move: share times minus the bilinear gradient of the node values (in its
-// cell, with its fractions, as the fill found them), at most kCoarseMaxMove of its support, into
+// cell, with its fractions, as the fill found them at index `filledAs`), at most kCoarseMaxMove of its support, into
 // the correction (cx, cy) and onto its position.
-void moveParticle(Particles& p, PositionBasedScratch& x, const CoarseGrid& cg, const Layout& g, const float* value,
-                  float share, uint32_t i) {
-    const float fx = cg.fx[i], fy = cg.fy[i];
-    const size_t k = cg.cell[i];
+void moveParticle(Particles& p, PositionBasedScratch& x, const CoarseGrid& cg, const Layout& g,
+                  const float* value, float share, uint32_t i, uint32_t filledAs) {
+    const float fx = cg.fx[filledAs], fy = cg.fy[filledAs];
+    const size_t k = cg.cell[filledAs];
     const float v00 = value[k], v10 = value[k + 1];
     const float v01 = value[k + size_t(g.nx)], v11 = value[k + size_t(g.nx) + 1];
     float ux = -share * ((1.0f - fy) * (v10 - v00) + fy * (v11 - v01)) * g.invH;
@@ -785,7 +785,11 @@ void fillFluid(WorldState& s, const Layout& g) {
                 if (k + size_t(g.nx) + 1 < lo || k >= hi) {
                     continue;
                 }
-                const float amount = p.volume[i] * invArea, fx = cg.fx[i], fy = cg.fy[i];
+                // The volume from the material (fillMaterialChannels' formula): the fill may
+                // run before the channels follow a sort or a change of the particles.
+                const MaterialConstants& mc = s.constants[p.material[i]];
+                const float volume = mc.massPerDepth / mc.restDensity;
+                const float amount = volume * invArea, fx = cg.fx[i], fy = cg.fy[i];
                 const size_t corner[4] = {k, k + 1, k + size_t(g.nx), k + size_t(g.nx) + 1};
                 const float weight[4] = {amount * (1.0f - fx) * (1.0f - fy),
                                          amount * fx * (1.0f - fy), amount * (1.0f - fx) * fy,
@@ -984,21 +988,38 @@ const std::vector<float>& nodeValues(CoarseGrid& cg, int nx, int ny) {
     return value;
 }
 
-bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& settings) {
-    Particles& p = s.particles;
-    const uint32_t n = p.size();
-    const float share = settings.share, cellSize = settings.cellSize;
-    const float tolerance = settings.tolerance;
-    const uint32_t maxIterations = settings.maxIterations;
-    if (n == 0 || !(share > 0.0f)) {
+namespace {
+
+Layout layoutOf(const CoarseGrid& cg) {
+    Layout g;
+    g.x0 = cg.x0;
+    g.y0 = cg.y0;
+    g.invH = cg.invH;
+    g.nx = cg.nx;
+    g.ny = cg.ny;
+    return g;
+}
+
+} // namespace
+
+bool pbfCoarseFill(WorldState& s, const PbfConstants& c, const CoarseSettings& settings) {
+    CoarseGrid& cg = s.coarse;
+    cg.filled = cg.solved = cg.coupled = false;
+    const uint32_t n = s.particles.size();
+    const float cellSize = settings.cellSize;
+    if (n == 0 || !(settings.share > 0.0f)) {
         return false;
     }
     Layout g;
     if (!coarseLayout(s, cellSize, g)) {
         return false;
     }
+    cg.x0 = g.x0;
+    cg.y0 = g.y0;
+    cg.invH = g.invH;
+    cg.nx = g.nx;
+    cg.ny = g.ny;
     const size_t nodes = size_t(g.nx) * size_t(g.ny);
-    CoarseGrid& cg = s.coarse;
     cg.fluid.assign(nodes, 0.0f);
     cg.solid.assign(nodes, 0.0f);
     fillFluid(s, g);
@@ -1011,35 +1032,77 @@ bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& setti
             splat(cg.solid, g, x, y, c.sampleVolume * invArea);
         }
     }
-    const bool bodies = !s.bodies.empty();
-    if (bodies) {
+    if (!s.bodies.empty()) {
         markOwners(s, g, c.sampleVolume * invArea, settings.endTime);
     }
-    if (!classifyNodes(cg, nodes, tolerance, cellSize * cellSize, bodies)) {
-        return false;
+    cg.filled = true;
+    return true;
+}
+
+void pbfCoarseSolve(WorldState& s, const CoarseSettings& settings) {
+    CoarseGrid& cg = s.coarse;
+    if (!cg.filled) {
+        return;
+    }
+    const Layout g = layoutOf(cg);
+    const float cellSize = settings.cellSize;
+    const size_t nodes = size_t(g.nx) * size_t(g.ny);
+    const bool bodies = !s.bodies.empty();
+    if (!classifyNodes(cg, nodes, settings.tolerance, cellSize * cellSize, bodies)) {
+        return;
     }
     buildOperator(cg, g, cellSize, bodies);
     if (bodies) {
         extendIntoBodies(cg, g);
         gradientRows(cg, g);
     }
-    const bool coupled = !cg.bodyFaces.empty();
-    const std::vector<double> mobility = coupled ? bodyMobility(s) : std::vector<double>();
-    std::vector<double> bodySum(coupled ? 2 * s.bodies.size() : 0);
-    float* psi = solvePotential(cg, mobility, bodySum, coupled, maxIterations);
-    const std::vector<float>& value = nodeValues(cg, g.nx, g.ny);
+    cg.coupled = !cg.bodyFaces.empty();
+    if (cg.coupled) {
+        cg.mobility = bodyMobility(s);
+    } else {
+        cg.mobility.clear();
+    }
+    cg.bodySum.assign(cg.coupled ? 2 * s.bodies.size() : 0, 0.0);
+    solvePotential(cg, cg.mobility, cg.bodySum, cg.coupled, settings.maxIterations);
+    nodeValues(cg, g.nx, g.ny);
+    cg.solved = true;
+}
+
+bool pbfCoarseMove(WorldState& s, const CoarseSettings& settings,
+                   std::span<const uint32_t> order) {
+    CoarseGrid& cg = s.coarse;
+    if (!cg.solved) {
+        return false;
+    }
+    Particles& p = s.particles;
+    const uint32_t n = p.size();
+    const Layout g = layoutOf(cg);
+    const std::vector<float>& value = cg.rhs; // nodeValues' result
     // Each particle's move reads only the node values: the particles split over the workers.
+    // The fill kept each particle's cell and fractions at its index then; `order` maps each
+    // index now to that one (empty: the same).
     parallelFor(s.tasks, n, kMoveGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
-            moveParticle(p, s.pbfScratch, cg, g, value.data(), share, i);
+            moveParticle(p, s.pbfScratch, cg, g, value.data(), settings.share, i,
+                         order.empty() ? i : order[i]);
         }
     });
     double bodyMomentum[2] = {0.0, 0.0};
-    const bool moved = coupled && moveBodies(s, cg, mobility, bodySum, settings, psi, bodyMomentum);
+    const bool bodies = !s.bodies.empty();
+    const bool moved = cg.coupled && moveBodies(s, cg, cg.mobility, cg.bodySum, settings,
+                                                cg.psi.data(), bodyMomentum);
     if (!touchesWall(cg, bodies)) {
         keepMomentum(s, bodyMomentum);
     }
     return moved;
+}
+
+bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& settings) {
+    if (!pbfCoarseFill(s, c, settings)) {
+        return false;
+    }
+    pbfCoarseSolve(s, settings);
+    return pbfCoarseMove(s, settings, {});
 }
 
 } // namespace fluid::detail

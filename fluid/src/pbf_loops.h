@@ -108,4 +108,15 @@ struct CoarseSettings {
 /// samples must be placed again).
 bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& settings);
 
+/// pbfCoarse in three phases, so that the solve, which runs on one thread, can run beside the
+/// particles' sort. The fill reads the positions (with its loops on the world's workers) and
+/// returns false when there is nothing to solve; the solve touches only the coarse grid and the
+/// bodies (no particle, no task hook); the move runs after, with `order` mapping each particle's
+/// index now to its index at the fill (a sort's order; empty when none ran in between).
+/// The same result as pbfCoarse for the same particle order at the fill.
+bool pbfCoarseFill(WorldState& s, const PbfConstants& c, const CoarseSettings& settings);
+void pbfCoarseSolve(WorldState& s, const CoarseSettings& settings);
+bool pbfCoarseMove(WorldState& s, const CoarseSettings& settings,
+                   std::span<const uint32_t> order);
+
 } // namespace fluid::detail

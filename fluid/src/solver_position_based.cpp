@@ -289,16 +289,43 @@ public:
         stages.run(kExternal,
                    [&] { externalForces(s, dt, s.time + double(sub.begin), x.extX, x.extY); });
         stages.run(kPredict, [&] { predict(sub); });
+        const auto sort = [&](const TaskHook& tasks) {
+            sortParticles(s, m_facts.maxSupport, {&x.ox, &x.oy}, tasks);
+            s.profile.separated += separateStacked(s, m_facts.maxSupport, &x.ox, &x.oy, tasks);
+            fillMaterialChannels(s, tasks);
+        };
+        bool filled = false;
         stages.run(kSort, [&] {
-            sortParticles(s, m_facts.maxSupport, {&x.ox, &x.oy});
-            s.profile.separated += separateStacked(s, m_facts.maxSupport, &x.ox, &x.oy);
-            fillMaterialChannels(s);
+            // The samples do not depend on the particles' order: placed first, the coarse fill
+            // reads them, and the coarse solve (one thread; it touches only the coarse grid and
+            // the bodies) runs beside the sort, whose loops then run on the same thread (a task
+            // cannot hand out tasks). One worker runs the sort, then the solve.
             placeSamples(s, sub.end, m_facts.maxSupport, m_moving || m_corrected || sub.index == 0);
+            m_coarse.startTime = sub.begin;
+            m_coarse.endTime = sub.end;
+            filled = m_coarse.share > 0.0f && pbfCoarseFill(s, m_c, m_coarse);
+            if (!filled) {
+                sort(s.tasks);
+                return;
+            }
+            const TaskHook inlineTasks{};
+            parallelFor(s.tasks, 2, 1, [&](uint32_t begin, uint32_t end, uint32_t) {
+                for (uint32_t item = begin; item < end; ++item) {
+                    if (item == 0) {
+                        sort(inlineTasks);
+                    } else {
+                        pbfCoarseSolve(s, m_coarse);
+                    }
+                }
+            });
         });
         stages.run(kCoarse, [&] {
             resetSolve(s);
-            if (m_coarse.share > 0.0f) {
-                coarse(sub);
+            // The fill saw the particles in their order before the sort.
+            // Bodies it moved are placed again at once, and in every sub-step after this one.
+            if (filled && pbfCoarseMove(s, m_coarse, s.grid.order())) {
+                placeSamples(s, m_coarse.endTime, m_facts.maxSupport, true);
+                m_corrected = true;
             }
         });
         stages.run(kSweeps, [&] {
@@ -359,17 +386,6 @@ private:
             x.ox[i] = p.px[i];
             x.oy[i] = p.py[i];
         });
-    }
-
-    // The coarse correction (pbf_coarse.cpp); bodies it moved are placed again at once, and in
-    // every sub-step after this one.
-    void coarse(const Substep& sub) {
-        m_coarse.startTime = sub.begin;
-        m_coarse.endTime = sub.end;
-        if (pbfCoarse(m_s, m_c, m_coarse)) {
-            placeSamples(m_s, m_coarse.endTime, m_facts.maxSupport, true);
-            m_corrected = true;
-        }
     }
 
     // Viscosity over `span` sub-steps (spanned.dt), in as many passes as its stability asks,

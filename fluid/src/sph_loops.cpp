@@ -22,14 +22,14 @@
 
 namespace fluid::detail {
 
-void fillMaterialChannels(WorldState& s) {
+void fillMaterialChannels(WorldState& s, const TaskHook& tasks) {
     Particles& p = s.particles;
     const uint32_t n = p.size();
     for (auto* channel : {&p.h, &p.massPerDepth, &p.viscosity, &p.mass, &p.restDensity, &p.gamma,
                           &p.invMass, &p.volume, &p.pairPressure, &p.invLattice}) {
         channel->resize(n);
     }
-    parallelFor(s.tasks, n, 1024, [&](uint32_t b, uint32_t e, uint32_t) {
+    parallelFor(tasks, n, 1024, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
             const MaterialConstants& c = s.constants[p.material[i]];
             p.h[i] = c.support;

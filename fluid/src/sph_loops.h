@@ -5,8 +5,10 @@
 
 namespace fluid::detail {
 
-/// Copies each particle's material properties into the per-particle channels (after a sort).
-void fillMaterialChannels(WorldState& s);
+/// Copies each particle's material properties into the per-particle channels (after a sort),
+/// its loop on `tasks` (the world's by default).
+void fillMaterialChannels(WorldState& s, const TaskHook& tasks);
+inline void fillMaterialChannels(WorldState& s) { fillMaterialChannels(s, s.tasks); }
 
 /// Seed eq. 2.3 in the multi-material form of [Solenthaler & Pajarola 2008]:
 /// rho_i = (m_i/depth) sum_j W(r_ij, h_ij) over fluid neighbours (identical to the seed's sum

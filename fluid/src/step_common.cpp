@@ -289,33 +289,33 @@ void externalForces(WorldState& s, float dt, double time, std::vector<float>& ax
 }
 
 void sortParticles(WorldState& s, float cellSize,
-                   std::initializer_list<std::vector<float>*> extra) {
+                   std::initializer_list<std::vector<float>*> extra, const TaskHook& tasks) {
     Particles& p = s.particles;
     ++s.sorts;
-    s.grid.build(p.px, p.py, cellSize, s.tasks);
+    s.grid.build(p.px, p.py, cellSize, tasks);
     const std::span<const uint32_t> order = s.grid.order();
     for (auto* channel : {&p.px, &p.py, &p.vx, &p.vy}) {
-        permute(*channel, order, s.sortScratch, s.tasks);
+        permute(*channel, order, s.sortScratch, tasks);
     }
     // In a step without yielding particles the stress channels are all zero: nothing to
     // permute (WorldState::yielding). The pending kicks are zero at every sort.
     if (s.yielding) {
         for (auto* channel : {&p.sxx, &p.sxy}) {
-            permute(*channel, order, s.sortScratch, s.tasks);
+            permute(*channel, order, s.sortScratch, tasks);
         }
     }
     // Most worlds have no lifetimes: an all-infinite channel needs no permutation (and no
     // scratch of 8 bytes per particle).
     if (!std::all_of(p.expiry.begin(), p.expiry.end(), [](double t) { return std::isinf(t); })) {
-        permute(p.expiry, order, s.sortScratchD, s.tasks);
+        permute(p.expiry, order, s.sortScratchD, tasks);
     }
     for (auto* channel : extra) {
-        permute(*channel, order, s.sortScratch, s.tasks);
+        permute(*channel, order, s.sortScratch, tasks);
     }
     // Slots and materials pass through the float scratch too: no scratch array of their own.
-    permute(p.slot, order, s.sortScratch, s.tasks);
-    permute(p.material, order, s.sortScratch, s.tasks);
-    parallelFor(s.tasks, p.size(), kPermuteGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+    permute(p.slot, order, s.sortScratch, tasks);
+    permute(p.material, order, s.sortScratch, tasks);
+    parallelFor(tasks, p.size(), kPermuteGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t k = b; k < e; ++k) {
             s.slotIndex[p.slot[k]] = k; // slots are distinct: one write each
         }
@@ -323,7 +323,7 @@ void sortParticles(WorldState& s, float cellSize,
 }
 
 uint32_t separateStacked(WorldState& s, float cellSize, std::vector<float>* alsoX,
-                         std::vector<float>* alsoY) {
+                         std::vector<float>* alsoY, const TaskHook& tasks) {
     Particles& p = s.particles;
     const GridView& g = s.grid.view();
     if (p.size() < 2 || g.count != p.size()) {
@@ -334,7 +334,7 @@ uint32_t separateStacked(WorldState& s, float cellSize, std::vector<float>* also
     // Cell by cell (bucket by bucket in a hashed grid): only cells of two or more can stack.
     // Each cell's particles are its own, so the cells split over the workers freely.
     std::atomic<uint32_t> moved{0};
-    parallelFor(s.tasks, uint32_t(ranges), kStackedGrain, [&](uint32_t c0, uint32_t c1, uint32_t) {
+    parallelFor(tasks, uint32_t(ranges), kStackedGrain, [&](uint32_t c0, uint32_t c1, uint32_t) {
         uint32_t count = 0;
         for (size_t c = c0; c < c1; ++c) {
             const uint32_t b = g.start[c], e = g.start[c + 1];

@@ -106,9 +106,14 @@ void externalForces(WorldState& s, float dt, double time, std::vector<float>& ax
                     std::vector<float>& ay);
 
 /// Counting sort by grid cell (cell size `cellSize`); positions, velocities, material, slot and
-/// the `extra` channels follow; handles are remapped.
+/// the `extra` channels follow; handles are remapped. Its loops run on `tasks` (the world's, or
+/// a hook with no enqueue to run them all on the calling thread).
 void sortParticles(WorldState& s, float cellSize,
-                   std::initializer_list<std::vector<float>*> extra = {});
+                   std::initializer_list<std::vector<float>*> extra, const TaskHook& tasks);
+inline void sortParticles(WorldState& s, float cellSize,
+                          std::initializer_list<std::vector<float>*> extra = {}) {
+    sortParticles(s, cellSize, extra, s.tasks);
+}
 
 /// After `sortParticles`: every particle at exactly the position of another one of its cell is
 /// moved 1/64 of `cellSize` the way its slot picks (a golden-angle step per slot), together
@@ -116,8 +121,13 @@ void sortParticles(WorldState& s, float cellSize,
 /// the velocity does not change). Such stacks come from projections onto a wall's corner; the
 /// pair terms have no direction to part them. Cells are independent, so the result does not
 /// depend on the workers. Returns how many particles it moved.
-uint32_t separateStacked(WorldState& s, float cellSize, std::vector<float>* alsoX = nullptr,
-                         std::vector<float>* alsoY = nullptr);
+/// Its loops run on `tasks`.
+uint32_t separateStacked(WorldState& s, float cellSize, std::vector<float>* alsoX,
+                         std::vector<float>* alsoY, const TaskHook& tasks);
+inline uint32_t separateStacked(WorldState& s, float cellSize, std::vector<float>* alsoX = nullptr,
+                                std::vector<float>* alsoY = nullptr) {
+    return separateStacked(s, cellSize, alsoX, alsoY, s.tasks);
+}
 
 /// Counters of one `integrate` call.
 struct IntegrateStats {

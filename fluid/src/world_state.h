@@ -213,6 +213,13 @@ struct CoarseGrid {
     };
     std::vector<uint32_t> extStart;
     std::vector<ExtTerm> extTerms;
+    // Between the phases of one correction (pbfCoarseFill, pbfCoarseSolve, pbfCoarseMove): the
+    // grid's origin, 1 / cell and nodes, whether the fill found work, the bodies' mobility and
+    // flux sums, and whether the solve coupled bodies.
+    float x0 = 0, y0 = 0, invH = 0;
+    int nx = 0, ny = 0;
+    bool filled = false, solved = false, coupled = false;
+    std::vector<double> mobility, bodySum;
 };
 
 // A world object's tag in its handles (ParticleHandle::world): 1 for the first world the
