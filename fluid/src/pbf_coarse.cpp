@@ -838,29 +838,78 @@ void buildPreconditioner(CoarseGrid& cg, size_t count) {
 
 // z = M^-1 r with M = L L^T the MIC(0) factor: L t = r forward in unknown order, then L^T z = t
 // backward (L's off-diagonal entries: -1 times the neighbour's precon). Along a row each value
-// waits on the one before it; that chain is one multiply-add, the lower (upper) row's part is
-// read from memory. z keeps slot `count` at 0.
+// waits on the one before it (one multiply-add), and on its lower (upper) neighbour in the row
+// before: so two rows run interleaved, the second one behind the first by at least its lower
+// (upper) neighbour, and the processor works both chains at once. Each value takes the same
+// operations on the same values as in plain unknown order. `rows`: the first unknown of each
+// node row, then the count (cg.rowStart). z keeps slot `count` at 0.
 void applyPreconditioner(const CoarseGrid& cg, size_t count, const float* r, float* z) {
     const int32_t* nb = cg.neighbours.data();
     const float* precon = cg.precon.data();
     const float* left = cg.micLeft.data();
+    const uint32_t* rows = cg.rowStart.data();
+    const auto rowCount = int64_t(cg.rowStart.size()) - 1;
     const auto none = int32_t(count);
     z[count] = 0.0f;
-    float previous = 0.0f;
-    for (size_t a = 0; a < count; ++a) {
-        const int32_t b = nb[4 * a + 2];
+    // Forward: t_a = precon_a (r_a + precon_b t_b) + micLeft_a t_(a-1) (micLeft_a = 0 at the
+    // start of a run of the row).
+    const auto forward = [&](uint32_t a, float& previous) {
+        const int32_t b = nb[4 * size_t(a) + 2];
         previous = precon[a] * (r[a] + precon[b] * z[b]) + left[a] * previous;
         z[a] = previous;
+    };
+    for (int64_t j = 0; j < rowCount; j += 2) {
+        uint32_t a = rows[j];
+        const uint32_t end = rows[j + 1];
+        uint32_t a2 = end;
+        const uint32_t end2 = j + 1 < rowCount ? rows[j + 2] : end;
+        float p1 = 0.0f, p2 = 0.0f;
+        while (a < end) {
+            forward(a, p1);
+            ++a;
+            if (a2 < end2) {
+                const int32_t below = nb[4 * size_t(a2) + 2];
+                if (below == none || below < int32_t(a)) {
+                    forward(a2, p2);
+                    ++a2;
+                }
+            }
+        }
+        for (; a2 < end2; ++a2) {
+            forward(a2, p2);
+        }
     }
     // Backward: z_a = precon_a (t_a + precon_a (z_right + z_up)), z_right = z_a+1 when a has a
-    // right neighbour (then micLeft_a+1 = precon_a+1 precon_a is not 0).
-    float next = 0.0f;
-    for (size_t a = count; a-- > 0;) {
-        const int32_t up = nb[4 * a + 3];
+    // right neighbour (then micLeft_a+1 = precon_a+1 precon_a is not 0); row by row from the
+    // top, the row below behind by at least its upper neighbour.
+    const auto backward = [&](uint32_t a, float& next) {
+        const int32_t up = nb[4 * size_t(a) + 3];
         const float pa = precon[a];
-        const float right = nb[4 * a + 1] != none ? next : 0.0f;
+        const float right = nb[4 * size_t(a) + 1] != none ? next : 0.0f;
         next = pa * (z[a] + pa * (right + z[up]));
         z[a] = next;
+    };
+    for (int64_t j = rowCount - 1; j >= 0; j -= 2) {
+        uint32_t c1 = rows[j + 1];
+        const uint32_t low1 = rows[j];
+        uint32_t c2 = low1;
+        const uint32_t low2 = j >= 1 ? rows[j - 1] : low1;
+        float n1 = 0.0f, n2 = 0.0f;
+        while (c1 > low1) {
+            --c1;
+            backward(c1, n1);
+            if (c2 > low2) {
+                const int32_t up = nb[4 * size_t(c2 - 1) + 3];
+                if (up == none || up >= int32_t(c1)) {
+                    --c2;
+                    backward(c2, n2);
+                }
+            }
+        }
+        while (c2 > low2) {
+            --c2;
+            backward(c2, n2);
+        }
     }
 }
 
@@ -868,9 +917,17 @@ void applyPreconditioner(const CoarseGrid& cg, size_t count, const float* r, flo
 // potential psi of the active unknowns (with the bodies' terms when `coupled`: the
 // preconditioner of the grid part stays symmetric positive definite, and the solve converges
 // for the whole operator); bodySum gathers the bodies' flux. Returns cg.psi's data.
-float* solvePotential(CoarseGrid& cg, const std::vector<double>& mobility,
+float* solvePotential(CoarseGrid& cg, int nx, int ny, const std::vector<double>& mobility,
                       std::vector<double>& bodySum, bool coupled, uint32_t maxIterations) {
     const size_t count = cg.active.size();
+    // The first unknown of each node row (the unknowns are in node order), then the count.
+    cg.rowStart.assign(size_t(ny) + 1, uint32_t(count));
+    for (size_t a = count; a-- > 0;) {
+        cg.rowStart[cg.active[a] / uint32_t(nx)] = uint32_t(a);
+    }
+    for (size_t j = size_t(ny); j-- > 0;) {
+        cg.rowStart[j] = std::min(cg.rowStart[j], cg.rowStart[j + 1]);
+    }
     const auto none = int32_t(count);
     // (A psi)_a = diagonal_a psi_a - sum of the fluid neighbours' psi (air holds 0); the
     // diagonal's small shift keeps a closed container full of fluid solvable. The dot products
@@ -1063,7 +1120,7 @@ void pbfCoarseSolve(WorldState& s, const CoarseSettings& settings) {
         cg.mobility.clear();
     }
     cg.bodySum.assign(cg.coupled ? 2 * s.bodies.size() : 0, 0.0);
-    solvePotential(cg, cg.mobility, cg.bodySum, cg.coupled, settings.maxIterations);
+    solvePotential(cg, g.nx, g.ny, cg.mobility, cg.bodySum, cg.coupled, settings.maxIterations);
     nodeValues(cg, g.nx, g.ny);
     cg.solved = true;
 }

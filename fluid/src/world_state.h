@@ -176,6 +176,7 @@ struct CoarseGrid {
     std::vector<float> z, precon, micLeft; // preconditioned residual; per unknown the MIC(0)
                                            // factor and its product with its left neighbour's
     std::vector<uint32_t> active;         // the fluid nodes, in order (the unknowns)
+    std::vector<uint32_t> rowStart;       // first unknown of each node row, then the count
     std::vector<int32_t> slot;            // per node: its unknown, -1 for air and solid
     std::vector<float> diagonal;          // per unknown: the operator's diagonal
     std::vector<int32_t> neighbours;      // per unknown: 4 neighbouring unknowns (the unknowns'
