@@ -63,8 +63,6 @@ public:
             for (size_t m = 0; m < m_areas.size(); ++m) {
                 m_areas[m] = particleArea(m_s.materials[m], m_s.def.depth);
             }
-            const float spacing = particleSpacing(m_s.materials[0], m_s.def.depth);
-            m_sampleArea = spacing * spacing; // samples lie at material 0's spacing
             m_ready = true;
             m_gridded = UINT32_MAX;
         }
@@ -89,10 +87,15 @@ public:
         }
         const Samples& w = m_s.samples;
         if (w.size() > 0 && w.grid.size() == w.size()) {
+            // The samples lie at the spacing of the last step's first material present.
+            const float spacing = m_s.sampleSpacing > 0.0f
+                                      ? m_s.sampleSpacing
+                                      : particleSpacing(m_s.materials[0], m_s.def.depth);
+            const float sampleArea = spacing * spacing;
             w.grid.forEachRange(x.x, x.y, [&](uint32_t b, uint32_t e) {
                 for (uint32_t k = b; k < e; ++k) {
                     const float r = glm::length(glm::vec2(w.px[k], w.py[k]) - x);
-                    sum += double(m_sampleArea) * kernel::wendland(r, h);
+                    sum += double(sampleArea) * kernel::wendland(r, h);
                 }
             });
         }
@@ -108,7 +111,6 @@ private:
     uint32_t m_gridded = 0; // particles [0, m_gridded) are in m_grid
     float m_support = 0.0f;
     std::vector<float> m_areas;
-    float m_sampleArea = 0.0f;
 };
 
 } // namespace

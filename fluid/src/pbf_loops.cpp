@@ -67,14 +67,20 @@ PbfView makeView(const WorldState& s, const PbfConstants& c) {
     v.artificial = c.artificial;
     v.invWdq = c.invWdq;
     // One support for all: pair supports need no division.
+    // Over the materials the particles have.
     float lo = 0.0f, hi = 0.0f;
+    uint32_t present = 0;
     for (size_t m = 0; m < s.materials.size(); ++m) {
+        if (!s.isPresent(m)) {
+            continue;
+        }
         const float h = s.constants[m].support;
-        lo = m == 0 ? h : std::min(lo, h);
-        hi = m == 0 ? h : std::max(hi, h);
+        lo = present == 0 ? h : std::min(lo, h);
+        hi = present == 0 ? h : std::max(hi, h);
+        ++present;
     }
     v.invSupport = lo == hi && lo > 0.0f ? 1.0f / lo : 0.0f;
-    v.oneMaterial = s.materials.size() == 1;
+    v.oneMaterial = present == 1;
     return v;
 }
 

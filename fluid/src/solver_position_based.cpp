@@ -224,8 +224,8 @@ PbfConstants pbfConstants(const WorldState& s, const SceneFacts& facts, float dt
     // 40 / (m h^2) for the heaviest particle with the largest support; only an isolated
     // particle comes near it.
     float heaviest = 0.0f;
-    for (const Material& m : s.materials) {
-        heaviest = std::max(heaviest, m.mass);
+    for (size_t m = 0; m < s.materials.size(); ++m) {
+        heaviest = s.isPresent(m) ? std::max(heaviest, s.materials[m].mass) : heaviest;
     }
     c.epsilon = 1e-6f * 40.0f / (heaviest * facts.maxSupport * facts.maxSupport);
     c.floorShare = kDiagonalFloor;

@@ -460,11 +460,49 @@ IntegrateStats integrate(WorldState& s, const std::vector<float>& ax, const std:
         });
 }
 
+std::vector<uint8_t> presentMaterials(const WorldState& s) {
+    const size_t count = s.materials.size();
+    const Particles& p = s.particles;
+    std::vector<uint8_t> present(count, p.size() == 0 ? 1 : 0);
+    if (p.size() == 0) {
+        return present;
+    }
+    if (count <= 64) {
+        // One bit per material, or-ed over fixed blocks (any order gives the same mask).
+        const uint64_t mask = blockReduce<uint64_t>(
+            s.tasks, p.size(), 0,
+            [&](uint32_t b, uint32_t e) {
+                uint64_t bits = 0;
+                for (uint32_t i = b; i < e; ++i) {
+                    bits |= uint64_t(1) << p.material[i];
+                }
+                return bits;
+            },
+            [](uint64_t a, uint64_t b) { return a | b; });
+        for (size_t m = 0; m < count; ++m) {
+            present[m] = (mask >> m) & 1u;
+        }
+        return present;
+    }
+    for (const uint16_t m : p.material) {
+        present[m] = 1;
+    }
+    return present;
+}
+
 SceneFacts sceneFacts(const WorldState& s) {
     SceneFacts f;
     f.minSupport = std::numeric_limits<float>::max();
     f.minSpacing = std::numeric_limits<float>::max();
-    for (const Material& m : s.materials) {
+    // Only the materials some particle has: a material registered for later (a level's
+    // yoghurt before its first blob) changes nothing of a step.
+    size_t first = s.materials.size();
+    for (size_t i = 0; i < s.materials.size(); ++i) {
+        if (!s.isPresent(i)) {
+            continue;
+        }
+        first = std::min(first, i);
+        const Material& m = s.materials[i];
         f.minSupport = std::min(f.minSupport, m.smoothingDistance);
         f.maxSupport = std::max(f.maxSupport, m.smoothingDistance);
         f.minSpacing = std::min(f.minSpacing, particleSpacing(m, s.def.depth));
@@ -472,7 +510,8 @@ SceneFacts sceneFacts(const WorldState& s) {
         f.maxK = std::max(f.maxK, m.stiffness);
         f.surfaceTension = f.surfaceTension || m.surfaceTension > 0.0f;
     }
-    f.sampleSpacing = particleSpacing(s.materials[0], s.def.depth);
+    // Boundary samples on the lattice of the first material present.
+    f.sampleSpacing = particleSpacing(s.materials[first], s.def.depth);
     for (const auto& plugin : s.boundaries) {
         f.maxFriction = std::max(f.maxFriction, plugin->friction());
         f.wantsForces = f.wantsForces || plugin->wantsForces();

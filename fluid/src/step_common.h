@@ -23,11 +23,16 @@ template <class F> void timed(float& total, F&& f) {
     total += std::chrono::duration<float, std::milli>(Clock::now() - t0).count();
 }
 
-/// What a step needs to know about the materials and boundaries, gathered once per step.
+/// Per material: 1 when some particle has it (every material when there are no particles).
+std::vector<uint8_t> presentMaterials(const WorldState& s);
+
+/// What a step needs to know about the materials its particles have and the boundaries,
+/// gathered once per step.
 struct SceneFacts {
     float minSupport = 0, maxSupport = 0; // smallest and largest h (m)
     float minSpacing = 0;                 // smallest lattice spacing (m)
-    float sampleSpacing = 0;              // spacing of boundary samples: material 0's (m)
+    float sampleSpacing = 0;              // spacing of boundary samples: the first present
+                                          // material's (m)
     float maxNu = 0;                      // largest kinematic viscosity mu/rho0 (m^2/s)
     float maxK = 0;                       // largest stiffness (m^2/s^2)
     float maxFriction = 0;                // largest boundary friction (1)

@@ -310,6 +310,13 @@ struct WorldState {
     double carry = 0.0;
     uint32_t plannedSubsteps = 0;
     float soundSpeed = 0.0f; // derived Tait sound speed, never decreasing
+    float sampleSpacing = 0.0f; // the boundary samples' spacing in the last step (m; 0 before)
+    // Per material: 1 when some particle has it at the start of the step being stepped (or the
+    // last one); steps read only these materials (presentMaterials in step_common.h).
+    std::vector<uint8_t> present;
+    bool isPresent(size_t material) const {
+        return present.size() != materials.size() || present[material] != 0;
+    }
     float fieldGH = 0.0f;    // g H of the external field, measured in the last step (m^2/s^2)
     bool fieldMeasured = false;
     float lastMaxAccel = 0.0f;

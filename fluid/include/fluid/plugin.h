@@ -205,10 +205,12 @@ struct StepContext {
     float frameDt = 0.0f;
     /// Simulated time at the start of the step (unit: s).
     double time = 0.0;
-    /// Spacing at which boundary samples are laid (unit: m): the first material's lattice
-    /// spacing.
+    /// Spacing at which boundary samples are laid (unit: m): the lattice spacing of the first
+    /// material (by index) that some particle has, or of material 0 in a world without
+    /// particles; it changes when that material does (rebuild the samples then).
     float sampleSpacing = 0.0f;
-    /// Largest smoothing distance of the world's materials (unit: m).
+    /// Largest smoothing distance of the materials the particles have (unit: m; all of the
+    /// world's materials when it has no particles).
     float supportRadius = 0.0f;
 };
 
@@ -280,7 +282,7 @@ struct ProjectContext {
     /// s): the start of the sub-step for the first call, `timeInStep` for a position-based
     /// sub-step's second call.
     float prevTimeInStep = 0.0f;
-    /// Lattice spacing of the world's first material (unit: m).
+    /// The step's boundary sample spacing, `StepContext::sampleSpacing` (unit: m).
     float spacing = 0.0f;
 };
 
