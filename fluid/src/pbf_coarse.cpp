@@ -357,7 +357,7 @@ void markOwners(WorldState& s, const Layout& g, float amount, float time) {
 }
 
 // The rest density of the liquid the bodies float in: the particles' mean, weighted by their
-// rest area (one material: its own). The world has particles (pbfCoarse returns before
+// rest area (one material: its own). The world has particles (pbfCoarseFill returns before
 // otherwise).
 double fluidDensity(const WorldState& s) {
     const Particles& p = s.particles;
@@ -1091,6 +1091,10 @@ bool pbfCoarseFill(WorldState& s, const PbfConstants& c, const CoarseSettings& s
     }
     if (!s.bodies.empty()) {
         markOwners(s, g, c.sampleVolume * invArea, settings.endTime);
+        // Read here, beside the particles: the solve must not (the sort may be moving them).
+        cg.mobility = bodyMobility(s);
+    } else {
+        cg.mobility.clear();
     }
     cg.filled = true;
     return true;
@@ -1114,11 +1118,6 @@ void pbfCoarseSolve(WorldState& s, const CoarseSettings& settings) {
         gradientRows(cg, g);
     }
     cg.coupled = !cg.bodyFaces.empty();
-    if (cg.coupled) {
-        cg.mobility = bodyMobility(s);
-    } else {
-        cg.mobility.clear();
-    }
     cg.bodySum.assign(cg.coupled ? 2 * s.bodies.size() : 0, 0.0);
     solvePotential(cg, g.nx, g.ny, cg.mobility, cg.bodySum, cg.coupled, settings.maxIterations);
     nodeValues(cg, g.nx, g.ny);
@@ -1152,14 +1151,6 @@ bool pbfCoarseMove(WorldState& s, const CoarseSettings& settings,
         keepMomentum(s, bodyMomentum);
     }
     return moved;
-}
-
-bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& settings) {
-    if (!pbfCoarseFill(s, c, settings)) {
-        return false;
-    }
-    pbfCoarseSolve(s, settings);
-    return pbfCoarseMove(s, settings, {});
 }
 
 } // namespace fluid::detail

@@ -104,16 +104,14 @@ struct CoarseSettings {
 /// conjugate-gradient iterations. The rigid bodies of `WorldState::bodies` are unknowns of the
 /// same solve: each gets `share` of its displacement as a velocity change from `startTime`
 /// (BodyState's corrections; placeSamples moves its samples). Moves nothing when nothing is
-/// compressed or the world is too wide for the grid. Returns true when a body moved (its
-/// samples must be placed again).
-bool pbfCoarse(WorldState& s, const PbfConstants& c, const CoarseSettings& settings);
-
-/// pbfCoarse in three phases, so that the solve, which runs on one thread, can run beside the
-/// particles' sort. The fill reads the positions (with its loops on the world's workers) and
+/// compressed or the world is too wide for the grid.
+///
+/// In three phases, so that the solve, which runs on one thread, can run beside the particles'
+/// sort. The fill reads the positions and the samples (its loops on the world's workers) and
 /// returns false when there is nothing to solve; the solve touches only the coarse grid and the
-/// bodies (no particle, no task hook); the move runs after, with `order` mapping each particle's
-/// index now to its index at the fill (a sort's order; empty when none ran in between).
-/// The same result as pbfCoarse for the same particle order at the fill.
+/// bodies (no particle, no task hook); the move runs after, with `order` mapping each
+/// particle's index now to its index at the fill (a sort's order; empty when none ran in
+/// between), and returns true when a body moved (its samples must be placed again).
 bool pbfCoarseFill(WorldState& s, const PbfConstants& c, const CoarseSettings& settings);
 void pbfCoarseSolve(WorldState& s, const CoarseSettings& settings);
 bool pbfCoarseMove(WorldState& s, const CoarseSettings& settings,
