@@ -25,7 +25,6 @@ void runFrame(WorldState& s, float frameDt, Solver& solver) {
     const uint32_t n = s.particles.size();
     s.present = presentMaterials(s);
     const SceneFacts facts = sceneFacts(s);
-    s.sampleSpacing = facts.sampleSpacing;
     const StepContext context{frameDt, s.time, facts.sampleSpacing, facts.maxSupport};
 
     // Opening: plugins, boundary samples, material constants, then the solver's plan.

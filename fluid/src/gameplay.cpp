@@ -63,6 +63,15 @@ public:
             for (size_t m = 0; m < m_areas.size(); ++m) {
                 m_areas[m] = particleArea(m_s.materials[m], m_s.def.depth);
             }
+            // The samples lie on the lattice of the first material the particles have (as a
+            // step lays them), read from the particles as they stand: the same in a world
+            // restored from a save.
+            const std::vector<uint8_t> present = presentMaterials(m_s);
+            const size_t first = size_t(
+                std::find(present.begin(), present.end(), uint8_t(1)) - present.begin());
+            const float spacing = particleSpacing(
+                m_s.materials[first < present.size() ? first : 0], m_s.def.depth);
+            m_sampleArea = spacing * spacing;
             m_ready = true;
             m_gridded = UINT32_MAX;
         }
@@ -87,15 +96,10 @@ public:
         }
         const Samples& w = m_s.samples;
         if (w.size() > 0 && w.grid.size() == w.size()) {
-            // The samples lie at the spacing of the last step's first material present.
-            const float spacing = m_s.sampleSpacing > 0.0f
-                                      ? m_s.sampleSpacing
-                                      : particleSpacing(m_s.materials[0], m_s.def.depth);
-            const float sampleArea = spacing * spacing;
             w.grid.forEachRange(x.x, x.y, [&](uint32_t b, uint32_t e) {
                 for (uint32_t k = b; k < e; ++k) {
                     const float r = glm::length(glm::vec2(w.px[k], w.py[k]) - x);
-                    sum += double(sampleArea) * kernel::wendland(r, h);
+                    sum += double(m_sampleArea) * kernel::wendland(r, h);
                 }
             });
         }
@@ -111,6 +115,7 @@ private:
     uint32_t m_gridded = 0; // particles [0, m_gridded) are in m_grid
     float m_support = 0.0f;
     std::vector<float> m_areas;
+    float m_sampleArea = 0.0f; // the boundary samples' area, spacing^2 (m^2)
 };
 
 } // namespace

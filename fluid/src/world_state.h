@@ -310,7 +310,6 @@ struct WorldState {
     double carry = 0.0;
     uint32_t plannedSubsteps = 0;
     float soundSpeed = 0.0f; // derived Tait sound speed, never decreasing
-    float sampleSpacing = 0.0f; // the boundary samples' spacing in the last step (m; 0 before)
     // Per material: 1 when some particle has it at the start of the step being stepped (or the
     // last one); steps read only these materials (presentMaterials in step_common.h).
     std::vector<uint8_t> present;
