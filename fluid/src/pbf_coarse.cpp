@@ -66,18 +66,7 @@ double laneDot(const float* x, const float* y, size_t count) {
     return combineLanes(lanes);
 }
 
-struct Layout {
-    float x0 = 0, y0 = 0, invH = 0;
-    int nx = 0, ny = 0;
-    // Cell of a point and its bilinear fractions.
-    void cell(float x, float y, int& i, int& j, float& fx, float& fy) const {
-        const float gx = (x - x0) * invH, gy = (y - y0) * invH;
-        i = std::clamp(int(std::floor(gx)), 0, nx - 2);
-        j = std::clamp(int(std::floor(gy)), 0, ny - 2);
-        fx = std::clamp(gx - float(i), 0.0f, 1.0f);
-        fy = std::clamp(gy - float(j), 0.0f, 1.0f);
-    }
-};
+using Layout = CoarseLayout;
 
 // `amount` spread over the four nodes of the cell whose lower-left node is k (rows `stride`
 // nodes long) with bilinear fractions (fx, fy).
@@ -1045,20 +1034,6 @@ const std::vector<float>& nodeValues(CoarseGrid& cg, int nx, int ny) {
     return value;
 }
 
-namespace {
-
-Layout layoutOf(const CoarseGrid& cg) {
-    Layout g;
-    g.x0 = cg.x0;
-    g.y0 = cg.y0;
-    g.invH = cg.invH;
-    g.nx = cg.nx;
-    g.ny = cg.ny;
-    return g;
-}
-
-} // namespace
-
 bool pbfCoarseFill(WorldState& s, const PbfConstants& c, const CoarseSettings& settings) {
     CoarseGrid& cg = s.coarse;
     cg.filled = cg.solved = cg.coupled = false;
@@ -1067,15 +1042,10 @@ bool pbfCoarseFill(WorldState& s, const PbfConstants& c, const CoarseSettings& s
     if (n == 0 || !(settings.share > 0.0f)) {
         return false;
     }
-    Layout g;
+    Layout& g = cg.layout;
     if (!coarseLayout(s, cellSize, g)) {
         return false;
     }
-    cg.x0 = g.x0;
-    cg.y0 = g.y0;
-    cg.invH = g.invH;
-    cg.nx = g.nx;
-    cg.ny = g.ny;
     const size_t nodes = size_t(g.nx) * size_t(g.ny);
     cg.fluid.assign(nodes, 0.0f);
     cg.solid.assign(nodes, 0.0f);
@@ -1105,7 +1075,7 @@ void pbfCoarseSolve(WorldState& s, const CoarseSettings& settings) {
     if (!cg.filled) {
         return;
     }
-    const Layout g = layoutOf(cg);
+    const Layout& g = cg.layout;
     const float cellSize = settings.cellSize;
     const size_t nodes = size_t(g.nx) * size_t(g.ny);
     const bool bodies = !s.bodies.empty();
@@ -1132,7 +1102,7 @@ bool pbfCoarseMove(WorldState& s, const CoarseSettings& settings,
     }
     Particles& p = s.particles;
     const uint32_t n = p.size();
-    const Layout g = layoutOf(cg);
+    const Layout& g = cg.layout;
     const std::vector<float>& value = cg.rhs; // nodeValues' result
     // Each particle's move reads only the node values: the particles split over the workers.
     // The fill kept each particle's cell and fractions at its index then; `order` maps each

@@ -165,6 +165,21 @@ struct EmitterState {
     uint64_t random = 0;  // splitmix64 state, seeded from def.seed
 };
 
+/// The coarse grid's placement: its lower-left node (x0, y0) (m), 1 / cell (1/m) and nodes
+/// across and up (count). Thread rule: read-only while a correction's phases run.
+struct CoarseLayout {
+    float x0 = 0, y0 = 0, invH = 0;
+    int nx = 0, ny = 0;
+    /// Cell (i, j) of the point (x, y) (clamped to the grid) and its bilinear fractions in it.
+    void cell(float x, float y, int& i, int& j, float& fx, float& fy) const {
+        const float gx = (x - x0) * invH, gy = (y - y0) * invH;
+        i = std::clamp(int(std::floor(gx)), 0, nx - 2);
+        j = std::clamp(int(std::floor(gy)), 0, ny - 2);
+        fx = std::clamp(gx - float(i), 0.0f, 1.0f);
+        fy = std::clamp(gy - float(j), 0.0f, 1.0f);
+    }
+};
+
 /// The position-based solver's coarse grid (pbf_coarse.cpp), kept between sub-steps so that
 /// its arrays are allocated once.
 struct CoarseGrid {
@@ -215,10 +230,9 @@ struct CoarseGrid {
     std::vector<uint32_t> extStart;
     std::vector<ExtTerm> extTerms;
     // Between the phases of one correction (pbfCoarseFill, pbfCoarseSolve, pbfCoarseMove): the
-    // grid's origin, 1 / cell and nodes, whether the fill found work, the bodies' mobility and
-    // flux sums, and whether the solve coupled bodies.
-    float x0 = 0, y0 = 0, invH = 0;
-    int nx = 0, ny = 0;
+    // grid's placement, whether the fill found work, the bodies' mobility and flux sums, and
+    // whether the solve coupled bodies.
+    CoarseLayout layout;
     bool filled = false, solved = false, coupled = false;
     std::vector<double> mobility, bodySum;
 };
