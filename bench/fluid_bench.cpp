@@ -87,6 +87,8 @@ struct Options {
     uint32_t viscosityInterval = 0;
     /// PositionBasedDef::coarseCorrection (unit: 1; negative keeps the quality preset's).
     float coarse = -1.0f;
+    /// PositionBasedDef::shearConstraint (unit: switch; negative keeps the preset's).
+    int shearConstraint = -1;
     /// "tait" or "linear" (explicit solver).
     std::string eos = "tait";
     /// The scene's liquid: "water" or "yoghurt" (the presets of fluid/material.h).
@@ -431,6 +433,9 @@ int run(const Options& opt) {
     if (opt.coarse >= 0.0f) {
         def.positionBased.coarseCorrection = opt.coarse;
     }
+    if (opt.shearConstraint >= 0) {
+        def.positionBased.shearConstraint = uint32_t(opt.shearConstraint);
+    }
     def.equationOfState =
         opt.eos == "linear" ? fluid::EquationOfState::Linear : fluid::EquationOfState::Tait;
     fluid::World world(def);
@@ -698,6 +703,10 @@ int main(int argc, char** argv) {
     app.add_option("--coarse", opt.coarse,
                    "Position-based coarse-grid correction share, 0 to 1 (default: the preset's)")
         ->check(CLI::Range(0.0f, 1.0f));
+    app.add_option("--shear-constraint", opt.shearConstraint,
+                   "Yield-stress materials: 1 steps them with the shear constraint, 0 with the "
+                   "stress pass (default: the preset's)")
+        ->check(CLI::Range(0, 1));
     app.add_option("--iterations", opt.iterations,
                    "Position-based constraint iterations per sub-step (0: the preset's)")
         ->check(CLI::Range(0u, 100u));

@@ -8,8 +8,8 @@
 #
 # A case is NAME:YIELD:SETTINGS[|MATERIAL], SETTINGS a JSON fragment for the level's "world"
 # object and MATERIAL one for the yoghurt's (after its yield stress); without cases, the set in
-# docs/position_based.md ("Why heaps creep"). One thread, one case after the other; about a
-# minute in all.
+# docs/position_based.md ("Why heaps creep" and "The shear constraint"). One thread, one case
+# after the other; about two minutes in all.
 set -euo pipefail
 
 run="${1:?usage: bench/yoghurt_rest.sh path/to/fluid-run [NAME:YIELD:SETTINGS[|MATERIAL] ...]}"
@@ -26,6 +26,11 @@ if [ ${#cases[@]} -eq 0 ]; then
         '16x1-every:300:"quality": "game", "substeps": 16, "viscosityInterval": 1'
         '12x1-every-1Pas:300:"quality": "game", "substeps": 12, "viscosityInterval": 1|"viscosity": 1'
         '16x1-every-1Pas:300:"quality": "game", "substeps": 16, "viscosityInterval": 1|"viscosity": 1'
+        'shear-constraint:300:"quality": "game", "shearConstraint": 1|"surfaceTension": 0'
+        'shear-constraint-30Pa:30:"quality": "game", "shearConstraint": 1|"surfaceTension": 0'
+        'shear-constraint-100Pa:100:"quality": "game", "shearConstraint": 1|"surfaceTension": 0'
+        'shear-constraint-surface-tension:300:"quality": "game", "shearConstraint": 1'
+        'shear-constraint-precise:300:"quality": "precise", "shearConstraint": 1|"surfaceTension": 0'
     )
 fi
 

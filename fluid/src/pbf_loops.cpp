@@ -52,7 +52,7 @@ PbfView makeView(const WorldState& s, const PbfConstants& c) {
     v.tx = y.tx.data();
     v.ty = y.ty.data();
     v.rigidity = y.rigidity.data();
-    v.yielding = s.yielding;
+    v.yielding = s.stressPass();
     v.grid = s.grid.view();
     v.samples = w.size();
     v.wx = w.px.data();
@@ -161,7 +161,7 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first,
     o.nx = x.normalX.data();
     o.ny = x.normalY.data();
     o.density = p.density.data();
-    if (first && s.yielding) {
+    if (first && s.stressPass()) {
         v.yield = laws.data();
         o.sxx = p.sxx.data();
         o.sxy = p.sxy.data();
@@ -177,7 +177,7 @@ void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surf
     Particles& p = s.particles;
     YieldScratch& y = s.yieldScratch;
     const bool forces = vorticity > 0.0f || surfaceTension;
-    if (s.yielding && !forces) {
+    if (s.stressPass() && !forces) {
         // The stress pass starts from no acceleration: exactly +0, as a sum of no terms.
         y.surfaceAx.assign(p.size(), 0.0f);
         y.surfaceAy.assign(p.size(), 0.0f);
@@ -191,7 +191,8 @@ void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surf
     o.vx = p.vx.data();
     o.vy = p.vy.data();
     if (s.yielding) {
-        // The acceleration waits for the stress pass's terms (pbfStress).
+        // The acceleration waits for the stress pass's terms (pbfStress), or, with the shear
+        // constraint, for the next prediction (Particles::kx).
         y.surfaceAx.resize(p.size());
         y.surfaceAy.resize(p.size());
         o.ax = y.surfaceAx.data();
@@ -199,6 +200,15 @@ void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surf
     }
     const PbfPairs& k = pbfPairs();
     pairs(s, [&](uint32_t b, uint32_t e) { k.surface(v, o, vorticity, surfaceTension, b, e); });
+    if (s.elastoplastic) {
+        // The change waits for the next prediction (Particles::kx), as the stress pass's.
+        parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
+            for (uint32_t i = b; i < e; ++i) {
+                p.kx[i] += c.dt * y.surfaceAx[i];
+                p.ky[i] += c.dt * y.surfaceAy[i];
+            }
+        });
+    }
 }
 
 void pbfStress(WorldState& s, const PbfConstants& c, std::span<const YieldLaw> laws) {

@@ -60,6 +60,16 @@ inline constexpr float kAdhesion = 0.5f;
 /// The largest elastic strain a yielding material stores: the stress is advanced as a rate,
 /// true to small strains only.
 inline constexpr float kCarriedStrain = 1.0f;
+/// The shear constraint (pbf_shear.cpp): how much a rebuilt structure raises the yield stress
+/// at rest (tau_y (1 + this r)). A 300 Pa block let go at five places 2.5 mm apart, the game
+/// preset, width from 10 to 40 s: without it 1-17 mm (median 8.2); at 0.5 0.1-15 mm (8.9); at 1
+/// 0-28 mm (median 0.4: three of five rest) (docs/position_based.md, "The shear constraint").
+inline constexpr float kStructureGain = 1.0f;
+/// Time over which a structure rebuilds at rest (s): r += (1 - r) dt / this per sub-step.
+inline constexpr float kStructureTime = 0.5f;
+/// Least eigenvalue of the kernel gradient's correction matrix before it is inverted (1): a
+/// particle with few neighbours reads at most 1 / this times the plain kernel sum.
+inline constexpr float kLeastCorrection = 0.25f;
 
 // ---- the coarse correction (pbf_coarse.cpp) -------------------------------------------------
 

@@ -32,8 +32,9 @@ namespace fluid {
 namespace {
 
 constexpr char kMagic[8] = {'F', 'L', 'U', 'I', 'D', 'S', 'N', 'P'};
-constexpr uint32_t kVersion = 5; // 4: Herschel-Bulkley fields, stress and pending kicks; 5: the
-                                 // position-based solver's carried frame time
+constexpr uint32_t kVersion = 6; // 4: Herschel-Bulkley fields, stress and pending kicks; 5: the
+                                 // position-based solver's carried frame time; 6: the yielding
+                                 // particles' structure (Particles::structure)
 
 // The last step's profile as a snapshot holds it: its counts and figures, in the order of the
 // format since version 2. The eight floats where the stage times once stood are written as 0
@@ -215,7 +216,8 @@ void checkParticles(const detail::WorldState& s) {
     }
     const std::pair<const char*, const std::vector<float>*> state[] = {
         {"x", &p.px}, {"y", &p.py},     {"vx", &p.vx}, {"vy", &p.vy},
-        {"sxx", &p.sxx}, {"sxy", &p.sxy}, {"kx", &p.kx}, {"ky", &p.ky}};
+        {"sxx", &p.sxx}, {"sxy", &p.sxy}, {"structure", &p.structure}, {"kx", &p.kx},
+        {"ky", &p.ky}};
     const float limit = s.positionLimit();
     for (size_t i = 0; i < n; ++i) {
         for (const auto& [name, channel] : state) {
@@ -237,9 +239,14 @@ void checkParticles(const detail::WorldState& s) {
             corrupt("particle " + std::to_string(i) +
                     " has a non-finite state, a bad material or a bad handle");
         }
-        if ((p.sxx[i] != 0.0f || p.sxy[i] != 0.0f) && !hasYield(s.materials[p.material[i]])) {
+        if ((p.sxx[i] != 0.0f || p.sxy[i] != 0.0f || p.structure[i] != 0.0f) &&
+            !hasYield(s.materials[p.material[i]])) {
             corrupt("particle " + std::to_string(i) +
                     " holds a stress, but its material has no yield stress or consistency");
+        }
+        if (!(p.structure[i] >= 0.0f && p.structure[i] <= 1.0f)) {
+            corrupt("particle " + std::to_string(i) + " structure = " +
+                    std::to_string(p.structure[i]) + " is outside [0, 1]");
         }
     }
     std::vector<uint8_t> free(s.slotIndex.size(), 0);

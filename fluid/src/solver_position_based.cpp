@@ -13,20 +13,27 @@
 //                   removed on a coarse grid, bodies included (pbf_coarse.cpp)
 //   density sweeps  `iterations` Jacobi sweeps of the one-sided density constraint:
 //                   multipliers, then the position corrections (s_corr in the first),
-//                   Chebyshev-accelerated [Wang 2015]
-//   velocity        v = (x* - x) / dt, as v + (corrections) / dt
+//                   Chebyshev-accelerated [Wang 2015]; with PositionBasedDef::shearConstraint
+//                   in a yielding world, after each sweep the shear constraint's sweep at the
+//                   positions it left (pbf_shear.cpp), its lists and corrections built first
+//   velocity        with the shear constraint, the walls' reaction to it and each yielding
+//                   particle's stress and structure from the final positions; then
+//                   v = (x* - x) / dt, as v + (corrections) / dt
 //   viscosity       every PositionBasedDef::viscosityInterval sub-steps, over their time: seed
 //                   eq. 2.6 as an explicit velocity update, in as many passes as its stability
-//                   asks; vorticity, normals, density and the yield stress at x* on the way
-//   surface         then vorticity confinement and surface tension [Akinci 2013] into v, and
-//                   in a yielding world the stress pass: the stress's divergence, rigid plugs
-//                   and the walls' grip (yield_law.h), as a pending change
+//                   asks; vorticity, normals, density and, with the stress pass, the yield
+//                   stress at x* on the way
+//   surface         then vorticity confinement and surface tension [Akinci 2013] into v; in a
+//                   yielding world as a pending change (Particles::kx), to which the stress
+//                   pass (without the shear constraint) adds the stress's divergence, rigid
+//                   plugs and the walls' grip (yield_law.h)
 //   boundaries      boundary plugins project out of solids (safety net)
 // Pressure for readers is p = -lambda rho0 / (m dt^2): the multipliers' displacement
 // dx = -dt^2 grad p / rho0 read back. Scratch: WorldState::pbfScratch and yieldScratch.
 #include "frame.h"
 #include "parallel.h"
 #include "pbf_loops.h"
+#include "pbf_shear.h"
 #include "pbf_tuning.h"
 #include "sph_loops.h"
 #include "step_common.h"
@@ -107,7 +114,8 @@ void resetSolve(WorldState& s) {
 // change. Positions are Chebyshev-accelerated between sweeps [Wang 2015]:
 // x_k+1 = omega_k+1 (x^_k+1 - x_k-1) + x_k-1. The sweeps start from the coarse correction
 // (cx, cy; 0 without one). `push`: the reporting samples take the sweeps' reactions.
-void densitySweeps(WorldState& s, const PbfConstants& c, uint32_t iterations, bool push) {
+void densitySweeps(WorldState& s, const PbfConstants& c, uint32_t iterations, bool push,
+                   std::span<const YieldLaw> shearLaws) {
     Particles& p = s.particles;
     PositionBasedScratch& x = s.pbfScratch;
     std::vector<float>& change = x.change;
@@ -128,6 +136,23 @@ void densitySweeps(WorldState& s, const PbfConstants& c, uint32_t iterations, bo
         // C and D at the current positions, and the multipliers' update (their change).
         pbfConstraint(s, c, relaxation.data());
         pbfDisplace(s, c, change, it == 0);
+        // The shear constraint after each density sweep, at the positions it left (not
+        // accelerated: the Chebyshev recurrence carries its displacement along unchanged).
+        const auto shearSweep = [&] {
+            if (!s.elastoplastic) {
+                return;
+            }
+            pbfShearSweep(s, c, shearLaws);
+            const YieldScratch& y = s.yieldScratch;
+            each(s, [&](uint32_t i) {
+                x.cx[i] += y.shearDx[i];
+                x.cy[i] += y.shearDy[i];
+                prevX[i] += y.shearDx[i];
+                prevY[i] += y.shearDy[i];
+                p.px[i] = x.ox[i] + x.cx[i];
+                p.py[i] = x.oy[i] + x.cy[i];
+            });
+        };
         const float rho2 = kChebyshev * kChebyshev;
         const uint32_t start = iterations >= kChebyshevEarly ? 0 : kChebyshevStart;
         omega = it <= start
@@ -143,6 +168,7 @@ void densitySweeps(WorldState& s, const PbfConstants& c, uint32_t iterations, bo
                 total[i] = change[i];
             });
             applyCorrections(s);
+            shearSweep();
             continue;
         }
         each(s, [&](uint32_t i) {
@@ -161,6 +187,7 @@ void densitySweeps(WorldState& s, const PbfConstants& c, uint32_t iterations, bo
             prevTotal[i] = total[i];
             total[i] = l;
         });
+        shearSweep();
     }
 }
 
@@ -200,6 +227,7 @@ void beginYielding(WorldState& s) {
         s.yielding = std::any_of(p.material.begin(), p.material.end(),
                                  [&](uint16_t m) { return mc[m].yielding; });
     }
+    s.elastoplastic = s.yielding && s.def.positionBased.shearConstraint != 0;
     if (s.yielding) {
         YieldScratch& y = s.yieldScratch;
         for (auto* channel : {&y.tx, &y.ty, &y.rigidity, &y.wallNx, &y.wallNy, &y.wallAdhesion}) {
@@ -264,6 +292,7 @@ public:
         s.plannedSubsteps = 0;
         plan.dt = frameDt / float(plan.count);
         m_c = pbfConstants(s, facts, plan.dt);
+        m_shearLaws = s.elastoplastic ? shearLaws(s, plan.dt) : std::vector<YieldLaw>{};
         // Viscosity, vorticity and surface tension run every `interval` sub-steps, each time
         // over the time since the last run (the frame's last sub-step closes a shorter run).
         m_interval = std::min(settings.viscosityInterval, plan.count);
@@ -290,7 +319,13 @@ public:
                    [&] { externalForces(s, dt, s.time + double(sub.begin), x.extX, x.extY); });
         stages.run(kPredict, [&] { predict(sub); });
         const auto sort = [&](const TaskHook& tasks) {
-            sortParticles(s, m_facts.maxSupport, {&x.ox, &x.oy}, tasks);
+            if (s.elastoplastic) {
+                // The shear constraint measures the displacement from the sub-step's start.
+                sortParticles(s, m_facts.maxSupport, {&x.ox, &x.oy, &x.startX, &x.startY},
+                              tasks);
+            } else {
+                sortParticles(s, m_facts.maxSupport, {&x.ox, &x.oy}, tasks);
+            }
             s.profile.separated += separateStacked(s, m_facts.maxSupport, &x.ox, &x.oy, tasks);
             fillMaterialChannels(s, tasks);
         };
@@ -329,9 +364,19 @@ public:
             }
         });
         stages.run(kSweeps, [&] {
-            densitySweeps(s, m_c, s.def.positionBased.iterations, m_facts.wantsForces);
+            if (s.elastoplastic) {
+                pbfShearPrepare(s, m_c);
+            }
+            densitySweeps(s, m_c, s.def.positionBased.iterations, m_facts.wantsForces,
+                          m_shearLaws);
         });
         stages.run(kVelocity, [&] {
+            if (s.elastoplastic) {
+                if (m_facts.wantsForces) {
+                    pbfShearSamples(s, m_c, dt / m_frameDt);
+                }
+                pbfShearFinish(s, m_c, m_shearLaws);
+            }
             updateVelocity(s, dt);
             // Each force on a reporting sample is the reaction to what the solver did to the
             // particles, with the positions and velocities it did it with: the fluid's momentum
@@ -421,10 +466,10 @@ private:
         const float vorticity = s.def.positionBased.vorticity *
                                 std::min(1.0f, kVorticityRun / std::max(spanned.dt, 1e-30f));
         pbfSurface(s, spanned, vorticity, m_facts.surfaceTension);
-        if (s.yielding) {
+        if (s.stressPass()) {
             pbfStress(s, spanned, laws);
         }
-        if (m_facts.wantsForces && s.yielding) {
+        if (m_facts.wantsForces && s.stressPass()) {
             pbfSampleStress(s, spanned, spanned.dt / m_frameDt);
         }
     }
@@ -434,6 +479,7 @@ private:
     SceneFacts m_facts;
     PbfConstants m_c;
     CoarseSettings m_coarse;
+    std::vector<YieldLaw> m_shearLaws;
     float m_frameDt = 0.0f;
     uint32_t m_interval = 1;
     float m_viscosityFactor = 0.0f;

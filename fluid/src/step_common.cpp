@@ -300,7 +300,7 @@ void sortParticles(WorldState& s, float cellSize,
     // In a step without yielding particles the stress channels are all zero: nothing to
     // permute (WorldState::yielding). The pending kicks are zero at every sort.
     if (s.yielding) {
-        for (auto* channel : {&p.sxx, &p.sxy}) {
+        for (auto* channel : {&p.sxx, &p.sxy, &p.structure}) {
             permute(*channel, order, s.sortScratch, tasks);
         }
     }

@@ -74,6 +74,9 @@ constexpr Field<PositionBasedDef> kPositionBasedFields[] = {
      "(docs/position_based.md, \"Coarse correction\")."},
     {"vorticity", &PositionBasedDef::vorticity, nullptr, "1", 0, 1, false,
      "Vorticity confinement: gives back the swirl that damping takes; 0 is off."},
+    {"shearConstraint", nullptr, &PositionBasedDef::shearConstraint, "switch", 0, 1, false,
+     "Yield-stress materials: 1 steps them with the elastoplastic shear constraint (heaps come "
+     "to rest), 0 with the stress pass."},
 };
 
 // In the order snapshots store them.
@@ -279,6 +282,7 @@ ParticleHandle WorldState::append(glm::vec2 x, glm::vec2 v, uint16_t material, d
     p.pressure.push_back(0.0f);
     p.sxx.push_back(0.0f);
     p.sxy.push_back(0.0f);
+    p.structure.push_back(0.0f);
     p.kx.push_back(0.0f);
     p.ky.push_back(0.0f);
     p.material.push_back(material);
@@ -428,6 +432,7 @@ void World::setMaterial(MaterialId id, const Material& material) {
             if (p.material[i] == id.index) {
                 p.sxx[i] = 0.0f;
                 p.sxy[i] = 0.0f;
+                p.structure[i] = 0.0f;
             }
         }
     }

@@ -28,6 +28,10 @@ struct Particles {
     // (= -syy) and sxy of the symmetric traceless 2D tensor. 0 for Newtonian particles, and not
     // permuted by the sort in a step without yielding particles (all zeros then).
     std::vector<float> sxx, sxy;
+    // The structure of a yielding material with the shear constraint, in [0, 1]: broken by
+    // plastic flow, rebuilt at rest; it raises the yield stress at rest (pbf_shear.cpp). 0 for
+    // Newtonian particles, permuted as the stress.
+    std::vector<float> structure;
     // Yielding worlds, position-based: the velocity change of the last surface and stress
     // passes (m/s), applied before the next prediction instead of at once, so that the density
     // solve meets the cohesion and stress forces in the same sub-step as gravity: a resting
@@ -47,12 +51,12 @@ struct Particles {
 
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }
     /// The float channels that persist between steps (besides material, slot and expiry).
-    std::array<std::vector<float>*, 10> keptFloats() {
-        return {&px, &py, &vx, &vy, &density, &pressure, &sxx, &sxy, &kx, &ky};
+    std::array<std::vector<float>*, 11> keptFloats() {
+        return {&px, &py, &vx, &vy, &density, &pressure, &sxx, &sxy, &structure, &kx, &ky};
     }
     /// See `keptFloats`.
-    std::array<const std::vector<float>*, 10> keptFloats() const {
-        return {&px, &py, &vx, &vy, &density, &pressure, &sxx, &sxy, &kx, &ky};
+    std::array<const std::vector<float>*, 11> keptFloats() const {
+        return {&px, &py, &vx, &vy, &density, &pressure, &sxx, &sxy, &structure, &kx, &ky};
     }
 };
 
@@ -99,6 +103,27 @@ struct YieldScratch {
     std::vector<float> wallNx, wallNy, wallAdhesion;
     // The surface pass's acceleration (m/s^2), which the stress pass adds to.
     std::vector<float> surfaceAx, surfaceAy;
+    // The shear constraint (pbf_shear.cpp), per sub-step: the prediction's displacement from
+    // the sub-step's start (m), the inverse of the kernel gradient's correction matrix
+    // (symmetric: xx, xy, yy; 1), the multiplier applied so far and its change in the current
+    // sweep (the stress times -2 V dt^2: components xx and xy; m^4 kg/(m s^2) s^2 = kg m per
+    // depth), and the sweep's displacement (m).
+    std::vector<float> ux0, uy0;
+    std::vector<float> mxx, mxy, myy;
+    std::vector<float> appliedA, appliedB, changeA, changeB;
+    std::vector<float> shearDx, shearDy;
+    // The sub-step's neighbour lists of the yielding particles, at the positions the sweeps
+    // start from (pbfShearPrepare): particle i's entries are [first[i], first[i + 1]), each a
+    // neighbour (a particle index, or the particle count plus a sample index) and V_j grad_i
+    // W_ij (friction-weighted for samples; 1/m).
+    std::vector<uint32_t> first, neighbour;
+    std::vector<float> gradX, gradY;
+    // The lists as each block of kShearBlock particles found them, before they are joined.
+    struct Block {
+        std::vector<uint32_t> neighbour;
+        std::vector<float> gradX, gradY;
+    };
+    std::vector<Block> blocks;
 };
 
 /// Per-material constants the hot loops read, refreshed at the start of every step.
@@ -284,6 +309,11 @@ struct WorldState {
     // sorted and stepped. A world with a yielding material but no such particle, such as a
     // water tank in a level that also lists yoghurt, steps as a Newtonian one.
     bool yielding = false;
+    // The yielding particles step with the elastoplastic shear constraint (pbf_shear.cpp)
+    // instead of the stress pass.
+    bool elastoplastic = false;
+    /// The stress pass's model: a yielding step without the shear constraint.
+    bool stressPass() const { return yielding && !elastoplastic; }
     // Particles::kx, ky hold changes not yet applied (a yielding step wrote them).
     bool kicksPending = false;
 

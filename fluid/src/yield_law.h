@@ -80,9 +80,35 @@ static inline float plasticRate(float excess, float gdt, float consistency, floa
     return x;
 }
 
+/// Returns a trial stress (a, b) (Pa) reached over `dt` (s) to the Herschel-Bulkley surface of
+/// `law`: unchanged below law.flowStress; above it scaled to flowStress + K g^n, at most
+/// law.carriedStress, with g the plastic shear rate taken implicitly (plasticRate). A
+/// non-finite trial returns 0.
+static inline void returnStress(const YieldLaw& law, float dt, float& a, float& b) {
+    const float norm = __builtin_sqrtf(a * a + b * b);
+    const float excess = norm - law.flowStress;
+    if (!(excess > 0.0f)) {
+        const bool finite = __builtin_isfinite(norm);
+        a = finite ? a : 0.0f;
+        b = finite ? b : 0.0f;
+        return;
+    }
+    const float gdt = law.shearModulus * dt;
+    float target = law.flowStress;
+    if (law.consistency > 0.0f && gdt > 0.0f) {
+        const float rate = plasticRate(excess, gdt, law.consistency, law.flowIndex);
+        target += law.consistency * __builtin_powf(rate, law.flowIndex);
+        target = __builtin_fminf(target, law.carriedStress);
+    }
+    const float scale = __builtin_fminf(target / norm, 1.0f);
+    a = __builtin_isfinite(scale) ? a * scale : 0.0f;
+    b = __builtin_isfinite(scale) ? b * scale : 0.0f;
+}
+
 /// Advances the stress (a, b) of one particle over `dt` (s) with deviatoric strain rate (dxx,
-/// dxy) (1/s) and spin `spin` (1/s) under `law`. A non-finite result (from non-finite input)
-/// resets the stress to 0, so a bad velocity cannot leave a NaN stress behind.
+/// dxy) (1/s) and spin `spin` (1/s) under `law`: the trial step, then returnStress. A
+/// non-finite result (from non-finite input) resets the stress to 0, so a bad velocity cannot
+/// leave a NaN stress behind.
 static inline void yieldStep(const YieldLaw& law, float dxx, float dxy, float spin, float dt,
                              float& a, float& b) {
     // The Jaumann terms turn (a, b) by the angle 2 spin dt; turned exactly (a Cayley rotation:
@@ -94,24 +120,9 @@ static inline void yieldStep(const YieldLaw& law, float dxx, float dxy, float sp
     const float g2 = 2.0f * law.shearModulus;
     const float ta = (a * cosine + b * sine) + dt * g2 * dxx;
     const float tb = (b * cosine - a * sine) + dt * g2 * dxy;
-    const float norm = __builtin_sqrtf(ta * ta + tb * tb);
-    const float excess = norm - law.flowStress;
-    if (!(excess > 0.0f)) {
-        const bool finite = __builtin_isfinite(norm);
-        a = finite ? ta : 0.0f;
-        b = finite ? tb : 0.0f;
-        return;
-    }
-    const float gdt = law.shearModulus * dt;
-    float target = law.flowStress;
-    if (law.consistency > 0.0f && gdt > 0.0f) {
-        const float rate = plasticRate(excess, gdt, law.consistency, law.flowIndex);
-        target += law.consistency * __builtin_powf(rate, law.flowIndex);
-        target = __builtin_fminf(target, law.carriedStress);
-    }
-    const float scale = __builtin_fminf(target / norm, 1.0f);
-    a = __builtin_isfinite(scale) ? ta * scale : 0.0f;
-    b = __builtin_isfinite(scale) ? tb * scale : 0.0f;
+    a = ta;
+    b = tb;
+    returnStress(law, dt, a, b);
 }
 
 } // namespace fluid::detail

@@ -76,7 +76,8 @@ TEST_CASE("level errors: unknown keys are named with the allowed ones", "[level]
     CHECK(errorOf(level(R"(, "world": {"zz": 1, "frameRate": 60, "aa": 2})")) ==
           "t.json:1:60: at /world/zz: unknown key 'zz'; allowed: gravity, frameRate, solver, "
           "quality, substeps, iterations, viscosityInterval, coarseCorrection, vorticity, "
-          "equationOfState, soundSpeed, workers, depth, courant, maxSubsteps, maxParticles");
+          "shearConstraint, equationOfState, soundSpeed, workers, depth, courant, maxSubsteps, "
+          "maxParticles");
     // Keys that belong to another shape are unknown too.
     CHECK(
         errorOf(level(

@@ -191,7 +191,7 @@ TEST_CASE("snapshot: truncated, corrupt or foreign data is refused", "[snapshot]
     std::string version = bytes;
     version[8] = 7;
     CHECK_THROWS_WITH(restored(version, registry),
-                      "snapshot: format version 7 is not supported; this fluid reads version 5");
+                      "snapshot: format version 7 is not supported; this fluid reads version 6");
     // Every truncation point is refused, none crashes.
     for (size_t cut = 0; cut < bytes.size(); cut += 97) {
         CHECK_THROWS_AS(restored(bytes.substr(0, cut), registry), Error);
@@ -218,12 +218,12 @@ TEST_CASE("snapshot: a huge file is refused from its header, before its body is 
         CHECK_THROWS_MATCHES(
             World::load(in, registry), Error,
             Catch::Message("snapshot: format version 9 is not supported; this fluid reads "
-                           "version 5"));
+                           "version 6"));
         CHECK(file.served() <= 65536); // the first window only
     }
     {
         // The right version, but the header promises more than the file holds.
-        test::VirtualFile file(header(5, uint64_t(1) << 40), body);
+        test::VirtualFile file(header(6, uint64_t(1) << 40), body);
         std::istream in(&file);
         CHECK_THROWS_MATCHES(
             World::load(in, registry), Error,

@@ -84,6 +84,13 @@ struct PositionBasedDef {
     /// the spin it reads; docs/position_based.md, Velocity, viscosity, surface).
     /// 0 turns it off.
     float vorticity = 0.0f;
+    /// How materials with a yield stress step (unit: switch; range [0, 1]): 1 with the
+    /// elastoplastic shear constraint inside the sweeps, an elastic state and a structure per
+    /// particle returned to the Herschel-Bulkley surface after every sweep, heaps that come to
+    /// rest at the game preset; 0 with the stress pass after the solve (heaps creep at the game
+    /// preset; docs/position_based.md, "Yield stress"). Newtonian materials step the same
+    /// either way, bit for bit. Default 0 (both presets). Stepping thread, between steps.
+    uint32_t shearConstraint = 0;
 };
 
 /// Named accuracy presets of the position-based solver (`positionBasedPreset`;
@@ -458,8 +465,10 @@ public:
     std::span<const float> pressure() const;
     /// Deviatoric stress s_xx (= -s_yy) per slot (unit: Pa): the stress a yielding material
     /// (`Material::yieldStress`, `consistency`) holds, at most the yield stress at rest and
-    /// tau_y + K rate^n in flow; 0 for a Newtonian material. hypot(s_xx, s_xy) over the yield
-    /// stress tells how close a particle is to flowing (1: flowing). Thread rule: as `density`.
+    /// tau_y + K rate^n in flow (with `PositionBasedDef::shearConstraint`, up to twice the yield
+    /// stress at rest once the particle's structure has rebuilt); 0 for a Newtonian material.
+    /// hypot(s_xx, s_xy) over the yield stress tells how close a particle is to flowing (1:
+    /// flowing). Thread rule: as `density`.
     std::span<const float> stressXX() const;
     /// Deviatoric shear stress s_xy per slot (unit: Pa); see `stressXX`.
     std::span<const float> stressXY() const;

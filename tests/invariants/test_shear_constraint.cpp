@@ -1,0 +1,353 @@
+// Yield-stress materials stepped with the elastoplastic shear constraint
+// (PositionBasedDef::shearConstraint = 1; fluid/src/pbf_shear.cpp): heaps that come to rest at
+// the game preset and follow the heap law, stirred yoghurt that stops, momentum kept, the same
+// bits for any number of workers and after a snapshot, no energy from the corners of the
+// ranges, and Newtonian materials stepped bit for bit as without it.
+#include "test_support.h"
+
+#include <fluid/plugins/boundaries.h>
+#include <fluid/plugins/forces.h>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+using namespace fluid;
+using namespace fluid::test;
+
+namespace {
+
+/// The game preset with the shear constraint.
+WorldDef gameDef(uint32_t workers = 0) {
+    WorldDef def = physicsDef();
+    def.positionBased = positionBasedPreset(Quality::Game);
+    def.positionBased.shearConstraint = 1;
+    if (workers > 0) {
+        def.workerCount = workers;
+    }
+    return def;
+}
+
+/// The yoghurt preset at `tauY` (Pa) without surface tension: the pastes these tests rest
+/// (with the preset's 0.1 a 300 Pa heap at rest is shaken into creeping again; the docs'
+/// figures, docs/position_based.md "The shear constraint").
+Material paste(float tauY) {
+    Material m = yoghurt();
+    m.yieldStress = tauY;
+    m.surfaceTension = 0.0f;
+    return m;
+}
+
+/// Width of the particles' x extent, from the outermost ones (m).
+float width(const World& world) {
+    const Bounds b = bounds(world);
+    return b.x1 - b.x0;
+}
+
+/// Kinetic energy per unit mass, sum v^2 / 2 over the particles (one material) (unit: J/kg).
+double kineticPerMass(const World& world) {
+    double e = 0.0;
+    const std::span<const float> vx = world.velocityX(), vy = world.velocityY();
+    for (size_t i = 0; i < vx.size(); ++i) {
+        e += 0.5 * (double(vx[i]) * vx[i] + double(vy[i]) * vy[i]);
+    }
+    return vx.empty() ? 0.0 : e / double(vx.size());
+}
+
+/// A block of `paste(tauY)` on a 3 m no-slip floor, its lower left corner at (x0, 0).
+World blockOnFloor(const WorldDef& def, float tauY, uint32_t cols, uint32_t rows, float x0) {
+    World world(def);
+    const MaterialId id = world.addMaterial(paste(tauY));
+    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
+    world.addBoundary(std::make_unique<BoxContainer>(-1.5f, 0.0f, 1.5f, 1.0f));
+    REQUIRE(world.spawnBlob(latticeBlock(world, id, x0, 0.0f, cols, rows)) == cols * rows);
+    return world;
+}
+
+} // namespace
+
+// Issue 47's rest case: a 0.2 x 0.2 m block of 300 Pa yoghurt let go on a wide floor, the game
+// preset, at five places 2.5 mm apart (where it settles is chaotic). Measured: each slumps
+// within 10 s to a heap 0.50-0.52 m wide (the heap law: 0.49 m); from 10 to 40 s three grow
+// by under half a millimetre and two slide once more, by 21 and 28 mm; 3e-7 to 8e-7 J/kg at 40
+// s. The issue's target, under 2 mm for every start, is met by three of five. With the stress
+// pass (the default) the same block tears into crawling lumps: 374 mm of width in those 30 s,
+// 6.6e-4 J/kg (docs/position_based.md, "Why heaps creep").
+TEST_CASE("with the shear constraint a yoghurt block slumps into a heap that comes to rest at "
+          "the game preset",
+          "[slow][long][invariants][yield][shear]") {
+    std::vector<float> growth;
+    for (int k = -2; k <= 2; ++k) {
+        const float x0 = -0.1f + 0.0025f * float(k);
+        World world = blockOnFloor(gameDef(), 300.0f, 20, 20, x0);
+        float at10 = 0.0f;
+        for (int frame = 1; frame <= 2400; ++frame) {
+            world.step(kFrame);
+            if (frame == 600) {
+                at10 = width(world);
+            }
+        }
+        REQUIRE(allFinite(world));
+        const float at40 = width(world);
+        const double rest = kineticPerMass(world);
+        std::printf("[measure] shear constraint, 300 Pa block at x0 = %.4f m: width %.1f mm at 10 "
+                    "s, %.1f mm at 40 s, %.3g J/kg at 40 s\n",
+                    x0, 1e3 * at10, 1e3 * at40, rest);
+        CAPTURE(x0, at10, at40, rest);
+        CHECK(rest < 1e-5);
+        CHECK(at10 > 0.4f);                  // it did slump from 0.2 m
+        CHECK(at40 < 0.6f);                  // into a heap about the law's width
+        CHECK(at40 - at10 < 0.04f);          // each at most one late slide
+        growth.push_back(at40 - at10);
+    }
+    std::sort(growth.begin(), growth.end());
+    CHECK(growth[2] < 0.002f); // most come to rest
+}
+
+// The heap law h^2 = 2 tau_y d / (rho g), d the distance from the nearer front, on a 100 Pa
+// heap of 1 cm particles (a 0.6 x 0.1 m block, the game preset), after 20 s, over the columns
+// between a tenth and nine tenths of the half width. Measured: 0.98 m wide (the law: 0.93 m),
+// h / sqrt(c d) 0.93 on average (the issue's target, within 10%, met); column by column from
+// 0.45 to 1.36, the top particle of each 1 cm column read against a surface with crevices down
+// between the columns and a crack to the floor in the middle (the target, within 20%, missed;
+// docs/position_based.md, "The shear constraint").
+TEST_CASE("with the shear constraint a heap follows h^2 = 2 tau_y d / (rho g)",
+          "[slow][invariants][yield][shear]") {
+    const float tauY = 100.0f;
+    World world = blockOnFloor(gameDef(), tauY, 60, 10, -0.3f);
+    const float s = world.spacing(MaterialId{0});
+    for (int frame = 1; frame <= 1200; ++frame) {
+        world.step(kFrame);
+    }
+    REQUIRE(allFinite(world));
+    std::map<int, float> top;
+    float left = 1e9f, right = -1e9f;
+    for (const glm::vec2 x : positions(world)) {
+        const int column = int(std::floor(x.x / s));
+        auto [it, fresh] = top.try_emplace(column, x.y + 0.5f * s);
+        if (!fresh) {
+            it->second = std::max(it->second, x.y + 0.5f * s);
+        }
+        left = std::min(left, x.x - 0.5f * s);
+        right = std::max(right, x.x + 0.5f * s);
+    }
+    const float c = 2.0f * tauY / (world.material(MaterialId{0}).restDensity * kG);
+    const float half = 0.5f * (right - left);
+    double worst = 0.0, mean = 0.0;
+    int columns = 0;
+    for (const auto& [column, height] : top) {
+        const float x = (float(column) + 0.5f) * s;
+        const float d = std::min(x - left, right - x);
+        if (d >= 0.1f * half && d <= 0.9f * half) {
+            const double ratio = double(height) / std::sqrt(double(c) * d);
+            worst = std::max(worst, std::fabs(ratio - 1.0));
+            mean += ratio;
+            ++columns;
+        }
+    }
+    mean /= std::max(columns, 1);
+    std::printf("[measure] shear constraint, 100 Pa heap after 20 s: width %.3f m; h / sqrt(c "
+                "d): mean %.3f, farthest from 1 by %.3f over %d columns\n",
+                right - left, mean, worst, columns);
+    CAPTURE(right - left, mean, worst, columns);
+    CHECK(columns >= 40);
+    CHECK(mean == Approx(1.0).margin(0.10));
+    CHECK(worst <= 0.6);
+}
+
+// Stirred by the pointer well above its yield stress for 1 s, the yoghurt flows; left alone,
+// it stops (the issue's rest target: under 1e-6 J/kg within 3 s of release).
+TEST_CASE("with the shear constraint stirred yoghurt flows and stops after release",
+          "[slow][invariants][yield][shear]") {
+    World world(gameDef());
+    const MaterialId id = world.addMaterial(paste(300.0f));
+    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
+    auto pointer = std::make_unique<PointerForce>(0.1f, 40.0f);
+    PointerForce* stir = pointer.get();
+    world.addForce(std::move(pointer));
+    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 0.45f, 0.6f));
+    REQUIRE(world.spawnBlob(latticeBlock(world, id, 0.0f, 0.0f, 40, 20)) == 800);
+    for (int frame = 1; frame <= 60; ++frame) { // settle
+        world.step(kFrame);
+    }
+    std::vector<std::pair<ParticleHandle, glm::vec2>> before;
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        const ParticleHandle h = world.handleAt(i);
+        before.emplace_back(h, world.position(h));
+    }
+    for (int frame = 1; frame <= 60; ++frame) { // stir in a circle for 1 s
+        const float angle = 2.0f * 3.14159265f * float(frame) / 60.0f;
+        stir->setPointer({0.2f + 0.08f * std::cos(angle), 0.1f + 0.05f * std::sin(angle)}, 1.0f);
+        world.step(kFrame);
+    }
+    const double stirred = kineticPerMass(world);
+    stir->setPointer({0.2f, 0.1f}, 0.0f);
+    double moved = 0.0;
+    for (const auto& [h, x] : before) {
+        const glm::vec2 now = world.position(h);
+        moved = std::max(moved, std::hypot(double(now.x - x.x), double(now.y - x.y)));
+    }
+    double rest = 0.0;
+    for (int frame = 1; frame <= 180; ++frame) { // 3 s alone
+        world.step(kFrame);
+        rest = kineticPerMass(world);
+    }
+    std::printf("[measure] shear constraint, stirred yoghurt: moved up to %.3f m, %.3g J/kg "
+                "while stirred, %.3g J/kg 3 s after\n",
+                moved, stirred, rest);
+    CAPTURE(moved, stirred, rest);
+    CHECK(moved > 0.05);
+    CHECK(rest < 1e-6);
+}
+
+// Two blobs, yoghurt and water, thrown at each other in zero gravity: the shear constraint's
+// displacements sum to zero over the particles each constraint moves, so momentum is kept,
+// and each pass writes only its own particles: the same bits for 1, 2 and 4 workers.
+TEST_CASE("with the shear constraint yoghurt keeps momentum and gives the same bits for 1, 2, "
+          "4 workers",
+          "[slow][invariants][yield][shear][determinism]") {
+    auto run = [](uint32_t workers, glm::dvec2& p0, glm::dvec2& p1) {
+        World world(gameDef(workers));
+        const MaterialId y = world.addMaterial(yoghurt());
+        const MaterialId w = world.addMaterial(water());
+        BlobDef a;
+        a.shape.type = ShapeType::Circle;
+        a.shape.center = {-0.12f, 0.0f};
+        a.shape.radius = 0.08f;
+        a.velocity = {1.0f, 0.2f};
+        a.material = y;
+        BlobDef b = a;
+        b.shape.center = {0.12f, 0.03f};
+        b.velocity = {-0.5f, 0.0f};
+        b.material = w;
+        world.spawnBlob(a);
+        world.spawnBlob(b);
+        p0 = momentum(world);
+        for (int k = 0; k < 90; ++k) {
+            world.step(kFrame);
+        }
+        REQUIRE(allFinite(world));
+        p1 = momentum(world);
+        return stateHash(world);
+    };
+    glm::dvec2 p0{}, p1{}, q0{}, q1{};
+    const uint64_t one = run(1, p0, p1);
+    const uint64_t two = run(2, q0, q1);
+    const uint64_t four = run(4, q0, q1);
+    const double scale = std::hypot(p0.x, p0.y);
+    std::printf("[measure] shear constraint, yoghurt and water blobs: momentum (%.6f, %.6f) -> "
+                "(%.6f, %.6f) kg m/s\n",
+                p0.x, p0.y, p1.x, p1.y);
+    CHECK(std::hypot(p1.x - p0.x, p1.y - p0.y) <= 1e-4 * scale);
+    CHECK(two == one);
+    CHECK(four == one);
+}
+
+// A snapshot saved while the block slumps restores the stress and the structure: the restored
+// world steps on to the same bits as the original.
+TEST_CASE("with the shear constraint a snapshot mid-slump continues bit for bit",
+          "[slow][invariants][yield][shear][snapshot]") {
+    World world = blockOnFloor(gameDef(), 300.0f, 15, 15, -0.075f);
+    for (int frame = 1; frame <= 45; ++frame) {
+        world.step(kFrame);
+    }
+    std::stringstream bytes;
+    world.save(bytes);
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    World restored = World::load(bytes, registry);
+    REQUIRE(restored.def().positionBased.shearConstraint == 1);
+    for (int frame = 1; frame <= 60; ++frame) {
+        world.step(kFrame);
+        restored.step(kFrame);
+    }
+    CHECK(stateHash(restored) == stateHash(world));
+}
+
+// Newtonian materials step the same bits with the switch on: a water dam, and a water dam
+// beside a registered yoghurt that no particle has.
+TEST_CASE("the shear constraint changes no bit of a water world", "[invariants][shear]") {
+    auto dam = [](uint32_t shear, bool yoghurtRegistered) {
+        WorldDef def = physicsDef();
+        def.positionBased = positionBasedPreset(Quality::Game);
+        def.positionBased.shearConstraint = shear;
+        World world(def);
+        const MaterialId id = world.addMaterial(water());
+        if (yoghurtRegistered) {
+            world.addMaterial(yoghurt());
+        }
+        const float s = world.spacing(id);
+        world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
+        world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 80.0f * s, 40.0f * s));
+        world.spawnBlob(latticeBlock(world, id, 0.0f, 0.0f, 20, 20));
+        for (int f = 0; f < 60; ++f) {
+            world.step(kFrame);
+        }
+        REQUIRE(allFinite(world));
+        return stateHash(world);
+    };
+    const uint64_t off = dam(0, false);
+    CHECK(dam(1, false) == off);
+    CHECK(dam(1, true) == off);
+}
+
+// The corners of the yielding fields' documented ranges, as the stress pass's test
+// (test_yield_stress.cpp): a 0.15 x 0.3 m block let go or thrown at 3 m/s in a closed box,
+// both presets. It never moves with more energy than it has lost, keeps every particle inside.
+// The stiffest stands soft: the shear modulus is capped (kShearWave), so a 1e5 Pa paste is a
+// jelly of about 2.2 kPa, its top after 4 s printed (the stress pass's test asks 0.27 m of 0.3
+// at the precise preset; docs/position_based.md, "The shear constraint").
+TEST_CASE("with the shear constraint a block at the corners of the yield-stress ranges never "
+          "gains energy",
+          "[slow][invariants][yield][shear]") {
+    struct Corner {
+        float tauY, k, n, g, vx;
+    };
+    const Corner corner =
+        GENERATE(Corner{1e5f, 2.0f, 0.7f, 0.0f, 0.0f}, Corner{1e5f, 2.0f, 0.7f, 0.0f, 3.0f},
+                 Corner{1e4f, 1e4f, 0.1f, 0.0f, 3.0f}, Corner{1e4f, 1e4f, 2.0f, 1e6f, 3.0f},
+                 Corner{0.0f, 1e4f, 0.1f, 0.0f, 3.0f}, Corner{0.0f, 1e4f, 2.0f, 0.0f, 3.0f},
+                 Corner{1e5f, 1e4f, 0.1f, 1e6f, 0.0f}, Corner{1e5f, 0.0f, 1.0f, 1e6f, 0.0f});
+    const Quality quality = GENERATE(Quality::Precise, Quality::Game);
+    CAPTURE(corner.tauY, corner.k, corner.n, corner.g, corner.vx, quality == Quality::Game);
+    WorldDef def = physicsDef();
+    def.positionBased = positionBasedPreset(quality);
+    def.positionBased.shearConstraint = 1;
+    World world(def);
+    Material m = yoghurt();
+    m.yieldStress = corner.tauY;
+    m.consistency = corner.k;
+    m.flowIndex = corner.n;
+    m.shearModulus = corner.g;
+    const MaterialId id = world.addMaterial(m);
+    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
+    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 0.6f, 0.5f));
+    BlobDef blob;
+    blob.material = id;
+    blob.shape.center = {0.125f, 0.15f};
+    blob.shape.halfExtents = {0.075f, 0.15f};
+    blob.velocity = {corner.vx, 0.0f};
+    const uint32_t count = world.spawnBlob(blob);
+    const Energy start = energy(world, kG);
+    const double mass = totalMass(world);
+    for (int frame = 1; frame <= 240; ++frame) {
+        world.step(kFrame);
+        const Energy now = energy(world, kG);
+        const double gain =
+            (now.kinetic - start.kinetic - (start.potential - now.potential)) / mass;
+        CAPTURE(frame, now.kinetic / mass);
+        REQUIRE(gain < 0.0);
+        REQUIRE(allFinite(world));
+    }
+    CHECK(world.particleCount() == count);
+    CHECK(countOutside(world, 0.0f, 0.0f, 0.6f, 0.5f) == 0);
+    if (corner.tauY == 1e5f && corner.vx == 0.0f && quality == Quality::Precise) {
+        std::printf("[measure] shear constraint, a block of tau_y 1e5 Pa, G %.0f Pa: top at %.3f "
+                    "m after 4 s (0.3 m at the start)\n",
+                    corner.g, bounds(world).y1);
+    }
+}
