@@ -5,7 +5,8 @@
 // (Particles::structure). In a sub-step its elastic strain is the stored one, turned by the
 // sub-step's spin, plus the deviatoric strain of the sub-step's displacement u = x* - x_n, read
 // with a corrected kernel gradient:
-//   grad u_i = sum_j (u_j - u_i) (x) M_i^-1 V_j grad W_ij,  M_i = sum_j V_j (x_j - x_i) (x) grad W_ij
+//   grad u_i = sum_j (u_j - u_i) (x) M_i^-1 V_j grad W_ij,
+//   M_i = sum_j V_j (x_j - x_i) (x) grad W_ij,
 // so a linear field reads exactly next to walls and at the free surface [Bonet & Lok 1999]. That
 // trial stress is returned to the Herschel-Bulkley surface (yield_law.h: returnStress, the
 // plastic rate implicit) of yield stress tau_y (1 + kStructureGain r), and the returned stress
@@ -430,7 +431,9 @@ void pbfShearSamples(WorldState& s, const PbfConstants& c, float weight) {
     const std::vector<uint8_t> yields = yieldingMaterials(s);
     const auto count = static_cast<uint32_t>(w.reporting.size());
     // Particle j's own constraint moved it by -w_j/2 S(l_j) M_j^-1 G_jw for each wall sample
-    // w (gatherShear's self term); the sample takes the opposite momentum over dt^2.
+    // w (gatherShear's self term, l_j the whole multiplier the sweeps applied); the sample
+    // takes the opposite momentum over dt^2. G_jw is read at the final positions (the sweeps
+    // used the lists' from their start: a sub-step's motion apart).
     const float scale = 0.5f * s.def.depth / (c.dt * c.dt) * weight;
     samplePass<2>(
         s, count, w.reporting.data(),
