@@ -352,16 +352,15 @@ void pbfShearPrepare(WorldState& s, const PbfConstants& c) {
         const float radius = std::sqrt(half * half + mxy * mxy);
         const float l1 = std::clamp(mean + radius, least, 1.0f / least);
         const float l2 = std::clamp(mean - radius, least, 1.0f / least);
-        float cs = 1.0f, sn = 0.0f;
-        if (radius > 0.0f) {
-            const float angle = 0.5f * std::atan2(mxy, half);
-            cs = std::cos(angle);
-            sn = std::sin(angle);
-        }
+        // The first eigenvector at angle theta: cos 2 theta = half / radius, sin 2 theta = mxy /
+        // radius (no trigonometry: the same bits wherever the library's differs).
+        const float c2 = radius > 0.0f ? half / radius : 1.0f;
+        const float s2 = radius > 0.0f ? mxy / radius : 0.0f;
         const float i1 = 1.0f / l1, i2 = 1.0f / l2;
-        y.mxx[i] = i1 * cs * cs + i2 * sn * sn;
-        y.mxy[i] = (i1 - i2) * cs * sn;
-        y.myy[i] = i1 * sn * sn + i2 * cs * cs;
+        const float sum = 0.5f * (i1 + i2), difference = 0.5f * (i1 - i2);
+        y.mxx[i] = sum + difference * c2;
+        y.mxy[i] = difference * s2;
+        y.myy[i] = sum - difference * c2;
     });
 }
 
