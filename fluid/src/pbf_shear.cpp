@@ -247,8 +247,8 @@ std::vector<YieldLaw> shearLaws(const WorldState& s, float dt) {
     for (size_t m = 0; m < laws.size(); ++m) {
         const MaterialConstants& mc = s.constants[m];
         // The stiffest shear modulus whose wave crosses kShearWave of the support per sub-step:
-        // the stress is read at the positions a sweep leaves, so the elastic part is explicit
-        // in the sub-step (0.4 of the support per 1/240 s threw a 1e4 Pa block apart).
+        // the stress is read at the positions a sweep leaves, so the elastic part is explicit in
+        // the sub-step (what a stiffer one did: docs/position_based.md, "The shear constraint").
         const float speed = tuning::kShearWave * mc.support / dt;
         const float stiffest = mc.restDensity * speed * speed;
         const float g =

@@ -61,9 +61,8 @@ inline constexpr float kAdhesion = 0.5f;
 /// true to small strains only.
 inline constexpr float kCarriedStrain = 1.0f;
 /// The shear constraint (pbf_shear.cpp): how much a rebuilt structure raises the yield stress
-/// at rest (tau_y (1 + this r)). A 300 Pa block let go at five places 2.5 mm apart, the game
-/// preset, width from 10 to 40 s: without it 1-17 mm (median 8.2); at 0.5 0.1-15 mm (8.9); at 1
-/// 0-28 mm (median 0.4: three of five rest) (docs/position_based.md, "The shear constraint").
+/// at rest (tau_y (1 + this r)), so the solver's noise does not set a resting heap creeping
+/// again (the figures for 0, 0.5 and 1: docs/position_based.md, "The shear constraint").
 inline constexpr float kStructureGain = 1.0f;
 /// Time over which a structure rebuilds at rest (s): r += (1 - r) dt / this per sub-step.
 inline constexpr float kStructureTime = 0.5f;
