@@ -91,6 +91,10 @@ template <class F> void pairs(WorldState& s, F&& f) {
 
 } // namespace
 
+PbfView pbfView(const WorldState& s, const PbfConstants& c) {
+    return makeView(s, c);
+}
+
 void pbfConstraint(WorldState& s, const PbfConstants& c, const float* relaxation) {
     Particles& p = s.particles;
     PositionBasedScratch& x = s.pbfScratch;

@@ -20,6 +20,12 @@ struct PbfConstants {
     float invWdq = 0;       // 1 / ((1-dq)^4 (1+4 dq)): s_corr's kernel ratio at r = dq h
 };
 
+struct PbfView;
+
+/// The particles, samples and grids of the current sub-step as plain data for the neighbour
+/// passes (simd/pair_view.h).
+PbfView pbfView(const WorldState& s, const PbfConstants& c);
+
 /// The density constraint C_i = (V_i sum_j W_ij + V_w sum_w W_iw) / L_i - 1 at the current
 /// positions (rest area V = m/(depth rho0), boundary samples of area V_w, L_i the kernel sum of
 /// the material's own lattice, so the spawn lattice reads 0) into `constraint`, the diagonal of

@@ -44,15 +44,6 @@ namespace {
 
 using kernel::kG;
 
-struct ShearView {
-    const float *px, *py, *h, *volume;
-    const uint16_t* material;
-    const uint8_t* yields; // per material: 1 when it yields
-    GridView grid, sampleGrid;
-    const float *wx, *wy, *wvx, *wvy, *friction;
-    float sampleVolume = 0, dt = 0;
-};
-
 std::vector<uint8_t> yieldingMaterials(const WorldState& s) {
     std::vector<uint8_t> y(s.constants.size());
     for (size_t m = 0; m < y.size(); ++m) {
@@ -61,32 +52,11 @@ std::vector<uint8_t> yieldingMaterials(const WorldState& s) {
     return y;
 }
 
-ShearView makeShearView(const WorldState& s, const PbfConstants& c,
-                        const std::vector<uint8_t>& yields) {
-    const Particles& p = s.particles;
-    const Samples& w = s.samples;
-    ShearView v;
-    v.px = p.px.data();
-    v.py = p.py.data();
-    v.h = p.h.data();
-    v.volume = p.volume.data();
-    v.material = p.material.data();
-    v.yields = yields.data();
-    v.grid = s.grid.view();
-    v.sampleGrid = w.grid.view();
-    v.wx = w.px.data();
-    v.wy = w.py.data();
-    v.wvx = w.vx.data();
-    v.wvy = w.vy.data();
-    v.friction = w.friction.data();
-    v.sampleVolume = c.sampleVolume;
-    v.dt = c.dt;
-    return v;
-}
-
-// f(j, gx, gy) for every yielding particle j != i within the pair support (h_i + h_j) / 2 of
-// i, with (gx, gy) = V_j grad_i W_ij (1/m), in the grid's fixed order.
-template <class Fn> inline void eachYielding(const ShearView& v, uint32_t i, Fn&& f) {
+// f(j, gx, gy) for every yielding particle j != i (yields: per material, 1 when it yields)
+// within the pair support (h_i + h_j) / 2 of i, with (gx, gy) = V_j grad_i W_ij (1/m), in the
+// grid's fixed order.
+template <class Fn>
+inline void eachYielding(const PbfView& v, const uint8_t* yields, uint32_t i, Fn&& f) {
     const float xi = v.px[i], yi = v.py[i], hi = v.h[i];
     gridRanges(v.grid, xi, yi, [&](uint32_t b, uint32_t e) {
         // Blocks of 16: every lane's kernel gradient first (a loop the compiler vectorises;
@@ -108,7 +78,7 @@ template <class Fn> inline void eachYielding(const ShearView& v, uint32_t i, Fn&
             }
             for (uint32_t l = 0; l < m; ++l) {
                 const uint32_t j = c + l;
-                if (!(ts[l] > 0.0f) || j == i || v.yields[v.material[j]] == 0) {
+                if (!(ts[l] > 0.0f) || j == i || yields[v.material[j]] == 0) {
                     continue;
                 }
                 f(j, gxs[l], gys[l]);
@@ -121,7 +91,7 @@ template <class Fn> inline void eachYielding(const ShearView& v, uint32_t i, Fn&
 // (gx, gy) = friction V_w grad_i W_ik (1/m) and (ux, uy) the sample's displacement over the
 // sub-step (m). Frictionless samples do not take part: the particle reads the gradient from
 // its material alone, as at a free surface.
-template <class Fn> inline void eachSample(const ShearView& v, uint32_t i, Fn&& f) {
+template <class Fn> inline void eachSample(const PbfView& v, uint32_t i, Fn&& f) {
     const float xi = v.px[i], yi = v.py[i];
     const float invH = 1.0f / v.h[i];
     const float invH2 = invH * invH;
@@ -153,7 +123,7 @@ struct Gradient {
     float xx, xy, yx, yy;
 };
 
-Gradient displacementGradient(const ShearView& v, const YieldScratch& y, uint32_t n,
+Gradient displacementGradient(const PbfView& v, const YieldScratch& y, uint32_t n,
                               const float* cx, const float* cy, uint32_t i) {
     const float uxi = y.ux0[i] + cx[i], uyi = y.uy0[i] + cy[i];
     float hxx = 0.0f, hxy = 0.0f, hyx = 0.0f, hyy = 0.0f;
@@ -271,7 +241,7 @@ void pbfShearPrepare(WorldState& s, const PbfConstants& c) {
         channel->resize(n);
     }
     const std::vector<uint8_t> yields = yieldingMaterials(s);
-    const ShearView v = makeShearView(s, c, yields);
+    const PbfView v = pbfView(s, c);
     // The lists: each block of kBlock particles fills its own (blocks in parallel, each in
     // the grid's order), then they are joined in block order: the same lists for any number
     // of workers.
@@ -297,7 +267,7 @@ void pbfShearPrepare(WorldState& s, const PbfConstants& c) {
                 y.mxx[i] = y.mxy[i] = y.myy[i] = 0.0f;
                 const size_t start = out.neighbour.size();
                 if (yields[p.material[i]] != 0) {
-                    eachYielding(v, i, [&](uint32_t j, float gx, float gy) {
+                    eachYielding(v, yields.data(), i, [&](uint32_t j, float gx, float gy) {
                         out.neighbour.push_back(j);
                         out.gradX.push_back(gx);
                         out.gradY.push_back(gy);
@@ -368,8 +338,7 @@ void pbfShearSweep(WorldState& s, const PbfConstants& c, std::span<const YieldLa
     const Particles& p = s.particles;
     const PositionBasedScratch& x = s.pbfScratch;
     YieldScratch& y = s.yieldScratch;
-    const std::vector<uint8_t> yields = yieldingMaterials(s);
-    const ShearView v = makeShearView(s, c, yields);
+    const PbfView v = pbfView(s, c);
     const uint32_t n = p.size();
     const float toMultiplier = -2.0f * c.dt * c.dt;
     eachParticle(s, [&](uint32_t i) {
@@ -396,8 +365,7 @@ void pbfShearFinish(WorldState& s, const PbfConstants& c, std::span<const YieldL
     Particles& p = s.particles;
     const PositionBasedScratch& x = s.pbfScratch;
     YieldScratch& y = s.yieldScratch;
-    const std::vector<uint8_t> yields = yieldingMaterials(s);
-    const ShearView v = makeShearView(s, c, yields);
+    const PbfView v = pbfView(s, c);
     const uint32_t n = p.size();
     // The trial reads only particle i's own stress, so the new one can be written in place.
     eachParticle(s, [&](uint32_t i) {
