@@ -103,6 +103,17 @@ inline Energy energy(const World& world, double g) {
     return e;
 }
 
+/// Kinetic energy per unit mass, sum v^2 / 2 over the particles (one material: equal masses)
+/// (unit: J/kg).
+inline double kineticPerMass(const World& world) {
+    double e = 0.0;
+    const std::span<const float> vx = world.velocityX(), vy = world.velocityY();
+    for (size_t i = 0; i < vx.size(); ++i) {
+        e += 0.5 * (double(vx[i]) * vx[i] + double(vy[i]) * vy[i]);
+    }
+    return vx.empty() ? 0.0 : e / double(vx.size());
+}
+
 /// Largest speed (unit: m/s).
 inline float maxSpeed(const World& world) {
     const auto vx = world.velocityX(), vy = world.velocityY();

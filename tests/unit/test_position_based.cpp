@@ -25,16 +25,6 @@ World tank(uint32_t rows, WorldDef def = {}) {
     return world;
 }
 
-// Kinetic energy per unit mass (unit: J/kg).
-double kinetic(const World& world) {
-    const auto vx = world.velocityX(), vy = world.velocityY();
-    double e = 0.0;
-    for (uint32_t i = 0; i < world.particleCount(); ++i) {
-        e += 0.5 * (double(vx[i]) * vx[i] + double(vy[i]) * vy[i]);
-    }
-    return e / world.particleCount();
-}
-
 } // namespace
 
 TEST_CASE("position-based settings change between steps and show in the profile",
@@ -172,12 +162,12 @@ TEST_CASE("vorticity confinement keeps a spinning zero-g blob spinning longer",
             const glm::vec2 x = world.position(h);
             world.setVelocity(h, {-10.0f * x.y, 10.0f * x.x});
         }
-        const double e0 = kinetic(world);
+        const double e0 = kineticPerMass(world);
         for (int frame = 0; frame < 30; ++frame) {
             world.step(kFrame);
         }
         REQUIRE(allFinite(world));
-        return kinetic(world) / e0;
+        return kineticPerMass(world) / e0;
     };
     const double plain = spin(0.0f);
     const double confined = spin(0.5f);
