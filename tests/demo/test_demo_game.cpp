@@ -50,6 +50,8 @@ Summary play(const std::string& name, const std::string& level, int frames,
     Summary summary;
     summary.status = run.status;
     summary.output = run.output;
+    // What the demo said, for any failure below (a run without its summary line included).
+    INFO("fluid-demo exited with " << summary.status << ", saying: " << summary.output);
     const auto at = summary.output.rfind("fluid-demo: level=");
     REQUIRE(at != std::string::npos);
     std::istringstream words(summary.output.substr(at + 12));
@@ -60,7 +62,6 @@ Summary play(const std::string& name, const std::string& level, int frames,
             summary.fields[word.substr(0, eq)] = word.substr(eq + 1);
         }
     }
-    INFO(summary.output);
     REQUIRE(summary.status == 0);
     return summary;
 }
