@@ -15,7 +15,8 @@
 //                   multipliers, then the position corrections (s_corr in the first),
 //                   Chebyshev-accelerated [Wang 2015]; with PositionBasedDef::shearConstraint
 //                   in a yielding world, after each sweep the shear constraint's sweep at the
-//                   positions it left (pbf_shear.cpp), its lists and corrections built first
+//                   positions it left (pbf_shear.cpp), its gradients taken at the sweeps'
+//                   start
 //   velocity        with the shear constraint, the walls' reaction to it and each yielding
 //                   particle's stress and structure from the final positions; then
 //                   v = (x* - x) / dt, as v + (corrections) / dt

@@ -103,27 +103,20 @@ struct YieldScratch {
     std::vector<float> wallNx, wallNy, wallAdhesion;
     // The surface pass's acceleration (m/s^2), which the stress pass adds to.
     std::vector<float> surfaceAx, surfaceAy;
-    // The shear constraint (pbf_shear.cpp), per sub-step: the prediction's displacement from
-    // the sub-step's start (m), the inverse of the kernel gradient's correction matrix
-    // (symmetric: xx, xy, yy; 1), the multiplier applied so far and its change in the current
-    // sweep (the stress times -2 V dt^2: components xx and xy; m^4 kg/(m s^2) s^2 = kg m per
-    // depth), and the sweep's displacement (m).
-    std::vector<float> ux0, uy0;
+    // The shear constraint (pbf_shear.cpp), per sub-step: the positions the sweeps start from,
+    // where its kernel gradients are taken, and the displacement since the sub-step's start
+    // (m); 1 for a particle of a yielding material, else 0; the inverse of the kernel gradient's correction matrix (symmetric: xx,
+    // xy, yy; 1; shearRead leaves M itself there until the particle's return inverts it), the
+    // gradient sum H (xx, xy, yx, yy; 1) and sum V_j grad W_ij (1/m) of the last reading; the
+    // multiplier applied so far (the stress times -2 V dt^2: components xx and xy; kg m per
+    // depth), its last change times M^-1 (t00..t11), and the sweep's displacement (m).
+    std::vector<float> refX, refY, ux, uy, yields;
+    bool matrixRead = false; // M and S of this sub-step read (its first reading)
     std::vector<float> mxx, mxy, myy;
-    std::vector<float> appliedA, appliedB, changeA, changeB;
+    std::vector<float> hxx, hxy, hyx, hyy, sumX, sumY;
+    std::vector<float> appliedA, appliedB;
+    std::vector<float> t00, t01, t10, t11;
     std::vector<float> shearDx, shearDy;
-    // The sub-step's neighbour lists of the yielding particles, at the positions the sweeps
-    // start from (pbfShearPrepare): particle i's entries are [first[i], first[i + 1]), each a
-    // neighbour (a particle index, or the particle count plus a sample index) and V_j grad_i
-    // W_ij (friction-weighted for samples; 1/m).
-    std::vector<uint32_t> first, neighbour;
-    std::vector<float> gradX, gradY;
-    // The lists as each block of kShearBlock particles found them, before they are joined.
-    struct Block {
-        std::vector<uint32_t> neighbour;
-        std::vector<float> gradX, gradY;
-    };
-    std::vector<Block> blocks;
 };
 
 /// Per-material constants the hot loops read, refreshed at the start of every step.

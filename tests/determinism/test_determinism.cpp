@@ -117,9 +117,13 @@ namespace {
 
 // A water dam (one material: the pair passes' one-material path, one support), and the same
 // with a yoghurt block beside it (two materials and supports: their general path), 40 frames of
-// the position-based solver each; the hash of the final state.
-uint64_t runDams(bool mixed) {
-    World world(WorldDef{});
+// the position-based solver each; the hash of the final state. `shear`: the yoghurt steps with
+// the shear constraint (PositionBasedDef::shearConstraint), whose pair passes have the same two
+// paths.
+uint64_t runDams(bool mixed, bool shear = false) {
+    WorldDef def;
+    def.positionBased.shearConstraint = shear ? 1 : 0;
+    World world(def);
     const MaterialId w = world.addMaterial(water());
     const float s = world.spacing(w);
     const uint32_t cols = 30, rows = 40;
@@ -130,6 +134,23 @@ uint64_t runDams(bool mixed) {
         const MaterialId y = world.addMaterial(yoghurt());
         world.spawnBlob(latticeBlock(world, y, 3.0f * cols * s, 0.0f, 20, 20));
     }
+    for (int step = 0; step < 40; ++step) {
+        world.step(kFrame);
+    }
+    REQUIRE(allFinite(world));
+    return stateHash(world);
+}
+
+// A yoghurt block alone with the shear constraint (its passes' one-material path), 40 frames.
+uint64_t runPaste() {
+    WorldDef def;
+    def.positionBased.shearConstraint = 1;
+    World world(def);
+    const MaterialId y = world.addMaterial(yoghurt());
+    const float s = world.spacing(y);
+    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
+    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 60.0f * s, 40.0f * s));
+    world.spawnBlob(latticeBlock(world, y, 0.0f, 0.0f, 20, 20));
     for (int step = 0; step < 40; ++step) {
         world.step(kFrame);
     }
@@ -160,7 +181,8 @@ TEST_CASE("the game preset (coarse correction) is bit-identical for 1, 2 and 4 w
 
 TEST_CASE("instruction-set hash (child of the test below)", "[.isa-hash]") {
     std::printf("isa=%s hash=%016" PRIx64 "\n", instructionSet(),
-                runDams(false) * 31u + runDams(true));
+                ((runDams(false) * 31u + runDams(true)) * 31u + runDams(true, true)) * 31u +
+                    runPaste());
 }
 
 TEST_CASE("bit-identical state on every instruction set the machine runs", "[slow][determinism]") {

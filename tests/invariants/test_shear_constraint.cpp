@@ -61,18 +61,20 @@ World blockOnFloor(const WorldDef& def, float tauY, uint32_t cols, uint32_t rows
 } // namespace
 
 // Issue 47's rest case: a 0.2 x 0.2 m block of 300 Pa yoghurt let go on a wide floor, the game
-// preset, at five places 2.5 mm apart (where it settles is chaotic). Measured: each slumps
-// within 10 s to a heap 0.50-0.53 m wide (the heap law: 0.49 m); from 10 to 40 s four grow by
-// at most 1.2 mm and one slides once more, by 5.9 mm; 4e-7 to 8e-7 J/kg at 40 s. The issue's
-// target, under 2 mm for every start, is met by four of five. With the stress
-// pass (the default) the same block tears into crawling lumps: 374 mm of width in those 30 s,
-// 6.6e-4 J/kg (docs/position_based.md, "Why heaps creep").
+// preset, at ten places 1.25 mm apart (where it settles, and whether it slides once more, is
+// chaotic: one start tells little). Measured: each slumps within 10 s to a heap 0.50-0.54 m
+// wide (the heap law: 0.49 m); from 10 to 40 s seven grow by at most 1.1 mm, two by 2.1 and
+// 3.7 mm and one slides once more, by 21 mm; 2e-7 to 7e-7 J/kg at 40 s. The issue's target,
+// under 2 mm for every start, is met by seven of ten (the neighbour lists this model had
+// before its pair passes, other rounding: eight of ten, 6.0 and 10.0 mm the slides). With the
+// stress pass (the default) the same block tears into crawling lumps: 374 mm of width in those
+// 30 s, 6.6e-4 J/kg (docs/position_based.md, "Why heaps creep").
 TEST_CASE("with the shear constraint a yoghurt block slumps into a heap that comes to rest at "
           "the game preset",
           "[slow][long][invariants][yield][shear]") {
     std::vector<float> growth;
-    for (int k = -2; k <= 2; ++k) {
-        const float x0 = -0.1f + 0.0025f * float(k);
+    for (int k = -5; k < 5; ++k) {
+        const float x0 = -0.1f + 0.00125f * float(k);
         World world = blockOnFloor(gameDef(), 300.0f, 20, 20, x0);
         float at10 = 0.0f;
         for (int frame = 1; frame <= 2400; ++frame) {
@@ -95,58 +97,71 @@ TEST_CASE("with the shear constraint a yoghurt block slumps into a heap that com
         growth.push_back(at40 - at10);
     }
     std::sort(growth.begin(), growth.end());
-    CHECK(growth[2] < 0.002f); // most come to rest
+    CHECK(growth[growth.size() / 2] < 0.002f); // most come to rest
 }
 
 // The heap law h^2 = 2 tau_y d / (rho g), d the distance from the nearer front, on a 100 Pa
 // heap of 1 cm particles (a 0.6 x 0.1 m block, the game preset), after 20 s, over the columns
-// between a tenth and nine tenths of the half width. Measured: 0.98 m wide (the law: 0.93 m),
-// h / sqrt(c d) 0.94 on average (the issue's target, within 10%, met); the farthest column
-// 0.49 from 1, the top particle of each 1 cm column read against a surface with crevices down
-// between the columns and a crack to the floor in the middle (the target, within 20%, missed;
-// docs/position_based.md, "The shear constraint").
+// between a tenth and nine tenths of the half width, at five starts 2.5 mm apart (chaotic, as
+// the block above). Measured: 0.98-1.00 m wide (the law: 0.93 m), h / sqrt(c d) 0.90-0.94 on
+// average over a heap's columns, 0.918 over the five (the issue's target, within 10%, met); the
+// farthest column 0.51-0.68 from 1 (median 0.57; the neighbour lists before: 0.49-0.60, median
+// 0.56 over six starts), the top particle of each 1 cm column read against a surface with
+// crevices down between the columns and a crack to the floor in the middle (the target,
+// within 20%, missed; docs/position_based.md, "The shear constraint").
 TEST_CASE("with the shear constraint a heap follows h^2 = 2 tau_y d / (rho g)",
           "[slow][invariants][yield][shear]") {
     const float tauY = 100.0f;
-    World world = blockOnFloor(gameDef(), tauY, 60, 10, -0.3f);
-    const float s = world.spacing(MaterialId{0});
-    for (int frame = 1; frame <= 1200; ++frame) {
-        world.step(kFrame);
-    }
-    REQUIRE(allFinite(world));
-    std::map<int, float> top;
-    float left = 1e9f, right = -1e9f;
-    for (const glm::vec2 x : positions(world)) {
-        const int column = int(std::floor(x.x / s));
-        auto [it, fresh] = top.try_emplace(column, x.y + 0.5f * s);
-        if (!fresh) {
-            it->second = std::max(it->second, x.y + 0.5f * s);
+    std::vector<double> means, worsts;
+    for (int start = -2; start <= 2; ++start) {
+        World world = blockOnFloor(gameDef(), tauY, 60, 10, -0.3f + 0.0025f * float(start));
+        const float s = world.spacing(MaterialId{0});
+        for (int frame = 1; frame <= 1200; ++frame) {
+            world.step(kFrame);
         }
-        left = std::min(left, x.x - 0.5f * s);
-        right = std::max(right, x.x + 0.5f * s);
-    }
-    const float c = 2.0f * tauY / (world.material(MaterialId{0}).restDensity * kG);
-    const float half = 0.5f * (right - left);
-    double worst = 0.0, mean = 0.0;
-    int columns = 0;
-    for (const auto& [column, height] : top) {
-        const float x = (float(column) + 0.5f) * s;
-        const float d = std::min(x - left, right - x);
-        if (d >= 0.1f * half && d <= 0.9f * half) {
-            const double ratio = double(height) / std::sqrt(double(c) * d);
-            worst = std::max(worst, std::fabs(ratio - 1.0));
-            mean += ratio;
-            ++columns;
+        REQUIRE(allFinite(world));
+        std::map<int, float> top;
+        float left = 1e9f, right = -1e9f;
+        for (const glm::vec2 x : positions(world)) {
+            const int column = int(std::floor(x.x / s));
+            auto [it, fresh] = top.try_emplace(column, x.y + 0.5f * s);
+            if (!fresh) {
+                it->second = std::max(it->second, x.y + 0.5f * s);
+            }
+            left = std::min(left, x.x - 0.5f * s);
+            right = std::max(right, x.x + 0.5f * s);
         }
+        const float c = 2.0f * tauY / (world.material(MaterialId{0}).restDensity * kG);
+        const float half = 0.5f * (right - left);
+        double worst = 0.0, mean = 0.0;
+        int columns = 0;
+        for (const auto& [column, height] : top) {
+            const float x = (float(column) + 0.5f) * s;
+            const float d = std::min(x - left, right - x);
+            if (d >= 0.1f * half && d <= 0.9f * half) {
+                const double ratio = double(height) / std::sqrt(double(c) * d);
+                worst = std::max(worst, std::fabs(ratio - 1.0));
+                mean += ratio;
+                ++columns;
+            }
+        }
+        mean /= std::max(columns, 1);
+        std::printf("[measure] shear constraint, 100 Pa heap after 20 s (start %d): width %.3f m; "
+                    "h / sqrt(c d): mean %.3f, farthest from 1 by %.3f over %d columns\n",
+                    start, right - left, mean, worst, columns);
+        CAPTURE(start, right - left, mean, worst, columns);
+        CHECK(columns >= 40);
+        means.push_back(mean);
+        worsts.push_back(worst);
     }
-    mean /= std::max(columns, 1);
-    std::printf("[measure] shear constraint, 100 Pa heap after 20 s: width %.3f m; h / sqrt(c "
-                "d): mean %.3f, farthest from 1 by %.3f over %d columns\n",
-                right - left, mean, worst, columns);
-    CAPTURE(right - left, mean, worst, columns);
-    CHECK(columns >= 40);
+    double mean = 0.0;
+    for (const double m : means) {
+        mean += m / double(means.size());
+    }
+    std::sort(worsts.begin(), worsts.end());
+    CAPTURE(mean, worsts[2]);
     CHECK(mean == Approx(1.0).margin(0.10));
-    CHECK(worst <= 0.6);
+    CHECK(worsts[2] <= 0.6); // the median heap's farthest column
 }
 
 // Stirred by the pointer well above its yield stress for 1 s, the yoghurt flows; left alone,

@@ -153,6 +153,26 @@ struct PbfOut {
     float *wallNx = nullptr, *wallNy = nullptr, *wallAdhesion = nullptr;
 };
 
+/// The shear constraint's channels (pbf_shear.cpp), all in sorted order: its inputs (the
+/// reference positions the kernel gradients are taken at (the sweeps' start) and the
+/// displacement since the sub-step's start u = x - x_start (m), 1 for a particle of a yielding
+/// material and 0 for the others, and each particle's multiplier change times its inverse
+/// correction matrix, S(dl) M^-1: xx, xy, yx, yy) and its outputs (each pass writes only
+/// particle i's slots).
+struct ShearView {
+    const float *refX = nullptr, *refY = nullptr, *ux = nullptr, *uy = nullptr;
+    const float* yields = nullptr;
+    const float *t00 = nullptr, *t01 = nullptr, *t10 = nullptr, *t11 = nullptr;
+    // shearRead: the gradient sum H = sum (u_j - u_i) (x) V_j grad W_ij (xx, xy, yx, yy; 1)
+    // and, with `matrix`, the correction matrix M (xx, xy, yy; 1) and S = sum V_j grad W_ij
+    // (1/m), walls included.
+    float *mxx = nullptr, *mxy = nullptr, *myy = nullptr;
+    float *hxx = nullptr, *hxy = nullptr, *hyx = nullptr, *hyy = nullptr;
+    float *sumX = nullptr, *sumY = nullptr;
+    // shearGather: sum_j S(dl_j) M_j^-1 V_i grad_j W_ji - S(dl_i) M_i^-1 sum (kg m per depth).
+    float *dx = nullptr, *dy = nullptr;
+};
+
 /// One instruction set's pair passes over particles [b, e); see pbf_loops.h for what each
 /// computes.
 struct PbfPairs {
@@ -165,6 +185,8 @@ struct PbfPairs {
     void (*surface)(const PbfView&, const PbfOut&, float vorticity, bool surfaceTension, uint32_t b,
                     uint32_t e);
     void (*stress)(const PbfView&, const PbfOut&, uint32_t b, uint32_t e);
+    void (*shearRead)(const PbfView&, const ShearView&, bool matrix, uint32_t b, uint32_t e);
+    void (*shearGather)(const PbfView&, const ShearView&, uint32_t b, uint32_t e);
 };
 
 /// The passes of each instruction set (pbf_pairs_*.cpp; "sse2" is plain C++ off x86).
