@@ -1,9 +1,11 @@
-// fluid-float: one Box2D body floating in a tank of resting water, coupled by
+// fluid-float: one Box2D body floating in a tank of resting water (or yoghurt), coupled by
 // fluid::box2d::Coupling; prints how deep it floats against Archimedes and how still it holds.
 //
 //   fluid-float [--shape box|circle] [--ratio R] [--size N] [--depth D] [--width W]
 //               [--quality game|precise] [--seconds T] [--threads K] [--drop]
 //               [--substeps S] [--iterations I] [--coarse C] [--hold MM] [--trace]
+//               [--material water|yoghurt] [--yield-stress Y] [--surface-tension G]
+//               [--shear-constraint 0|1] [--guided]
 //
 // The tank: W m wide (default 0.6), water D m deep (default 0.2), gravity (0, -9.81) m/s^2. The
 // body: a box N water spacings wide and 2N/3 tall, or a circle N spacings across (default 12),
@@ -22,6 +24,12 @@
 // middle half at the end (spacings). --hold MM holds the body MM above its draft (Box2D's
 // gravity off, its pose reset every frame) and prints the fluid's force on it first; --trace
 // prints its pose and velocity every frame of the last second.
+//
+// In yoghurt (--material yoghurt: the preset, with --yield-stress and --surface-tension if
+// given) a box also reads the paste's bearing: carried = (R H - d) rho g / ((2 + pi) tau_y), H
+// its height and d its draft: what the paste carries under its base beyond its buoyancy, over
+// Prandtl's strip footing (1: Prandtl's; 0: a liquid's). --guided keeps the body from turning
+// (a footing in a load test: a narrow box that tips reads nothing).
 #include "command_line.h"
 
 #include <fluid/box2d/coupling.h>
@@ -59,6 +67,11 @@ struct Options {
     float coarse = -1.0f;
     float hold = NAN; // mm above the draft to hold the body at; NaN: free
     bool trace = false;
+    std::string material = "water";
+    float yieldStress = -1.0f;    // Pa; < 0: the preset's
+    float surfaceTension = -1.0f; // < 0: the preset's
+    uint32_t shearConstraint = 0;
+    bool guided = false;
 };
 
 // Height of the box's or circle's draft below its top... the draft d of a body of `ratio`:
@@ -90,8 +103,16 @@ int run(const Options& opt) {
     if (opt.coarse >= 0.0f) {
         def.positionBased.coarseCorrection = opt.coarse;
     }
+    def.positionBased.shearConstraint = opt.shearConstraint;
     World world(def);
-    const MaterialId water = world.addMaterial(fluid::water());
+    Material liquid = opt.material == "yoghurt" ? fluid::yoghurt() : fluid::water();
+    if (opt.yieldStress >= 0.0f) {
+        liquid.yieldStress = opt.yieldStress;
+    }
+    if (opt.surfaceTension >= 0.0f) {
+        liquid.surfaceTension = opt.surfaceTension;
+    }
+    const MaterialId water = world.addMaterial(liquid);
     const float s = world.spacing(water);
     const float h = world.material(water).smoothingDistance;
     const auto cols = uint32_t(std::floor(opt.width / s));
@@ -114,6 +135,7 @@ int run(const Options& opt) {
     b2Body* body = circle ? addCircle(physics, b2_dynamicBody, centre, hw, opt.ratio * rho)
                           : addBox(physics, b2_dynamicBody, centre, hw, hh, opt.ratio * rho);
     body->GetFixtureList()->SetFriction(0.0f);
+    body->SetFixedRotation(opt.guided);
     box2d::CouplingDef cdef;
     cdef.categoryMask = kFluidMask;
     box2d::Coupling coupling(world, physics, cdef);
@@ -183,12 +205,19 @@ int run(const Options& opt) {
     }
     const double error = submerged / double(opt.ratio) - 1.0;
     const double high = lowest - (level - draft);
+    // The paste's bearing beyond buoyancy over Prandtl's, as heads of the fluid (m).
+    const Material& used = world.material(water);
+    const double prandtl = (2.0 + std::numbers::pi) * double(used.yieldStress) /
+                           (double(used.restDensity) * double(kG));
+    const double carried =
+        !circle && prandtl > 0.0 ? (double(opt.ratio) - submerged) * 2.0 * hh / prandtl : NAN;
     std::printf("shape=%s ratio=%.2f size=%.0f depth=%.2f quality=%s submerged=%.4f error=%+.4f "
                 "high_mm=%+.2f speed=%.4f spin=%.4f reported=%.4f gap=%.2f particles=%u "
-                "ms_per_frame=%.3f\n",
+                "ms_per_frame=%.3f material=%s yield=%.1f carried=%.3f\n",
                 opt.shape.c_str(), double(opt.ratio), double(opt.size), double(opt.depth),
                 opt.quality.c_str(), submerged, error, 1000.0 * high, speed, spin, reported, gap,
-                world.particleCount(), 1000.0 * seconds / frames);
+                world.particleCount(), 1000.0 * seconds / frames, opt.material.c_str(),
+                double(used.yieldStress), carried);
     return allFinite(world) ? 0 : 1;
 }
 
@@ -196,13 +225,13 @@ int run(const Options& opt) {
 
 int main(int argc, char** argv) {
     Options opt;
-    CLI::App app{"fluid-float: one Box2D body floating in a tank of resting water"};
+    CLI::App app{"fluid-float: one Box2D body floating in a tank of resting water or yoghurt"};
     app.add_option("--shape", opt.shape, "box or circle")->check(CLI::IsMember({"box", "circle"}));
-    app.add_option("--ratio", opt.ratio, "body density over water's (1)")
+    app.add_option("--ratio", opt.ratio, "body density over the fluid's (1)")
         ->check(CLI::Range(0.05, 4.0));
-    app.add_option("--size", opt.size, "body width in water spacings (count)")
+    app.add_option("--size", opt.size, "body width in the fluid's spacings (count)")
         ->check(CLI::Range(2.0, 200.0));
-    app.add_option("--depth", opt.depth, "water depth (m)")->check(CLI::Range(0.05, 3.0));
+    app.add_option("--depth", opt.depth, "fluid depth (m)")->check(CLI::Range(0.05, 3.0));
     app.add_option("--width", opt.width, "tank width (m)")->check(CLI::Range(0.1, 10.0));
     app.add_option("--quality", opt.quality, "game or precise")
         ->check(CLI::IsMember({"game", "precise"}));
@@ -219,6 +248,17 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 64));
     app.add_option("--coarse", opt.coarse, "override the coarse correction's share (0 = off)")
         ->check(CLI::Range(0.0, 1.0));
+    app.add_option("--material", opt.material, "water or yoghurt (the presets)")
+        ->check(CLI::IsMember({"water", "yoghurt"}));
+    app.add_option("--yield-stress", opt.yieldStress, "override the material's yield stress (Pa)")
+        ->check(CLI::Range(0.0, 1e5));
+    app.add_option("--surface-tension", opt.surfaceTension,
+                   "override the material's surface tension (m^3/(kg s^2))")
+        ->check(CLI::Range(0.0, 0.5));
+    app.add_option("--shear-constraint", opt.shearConstraint,
+                   "1: yielding materials step with the shear constraint")
+        ->check(CLI::Range(0, 1));
+    app.add_flag("--guided", opt.guided, "keep the body from turning");
     if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
         return status;
     }

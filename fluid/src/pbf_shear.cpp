@@ -87,6 +87,7 @@ ShearView shearView(WorldState& s) {
     w.hyy = y.hyy.data();
     w.sumX = y.sumX.data();
     w.sumY = y.sumY.data();
+    w.trace = y.trace.data();
     w.dx = y.shearDx.data();
     w.dy = y.shearDy.data();
     return w;
@@ -172,19 +173,42 @@ YieldLaw structuredLaw(const YieldLaw& law, float structure) {
 
 // The stress the sub-step's displacement gives particle i: the stored stress (a, b) turned by
 // the spin (a Cayley turn, norm kept, as yieldStep), plus 2 G times the deviatoric strain of L,
-// returned to the surface of `law`. `trial` takes the norm before the return (Pa).
+// returned to the surface of `law`. With q > 0 the update from the stress the sweeps applied so
+// far (sa, sb) is scaled by 1 / (1 + q), and the return sees G / (1 + q). `trial` takes the
+// norm before the return (Pa).
 void shearStress(const YieldLaw& law, const Gradient& l, float dt, float& a, float& b,
-                 float& trial) {
+                 float& trial, float q = 0.0f, float sa = 0.0f, float sb = 0.0f) {
     const float u = 0.5f * (l.xy - l.yx);
     const float inv = 1.0f / (1.0f + u * u);
     const float cosine = (1.0f - u * u) * inv, sine = 2.0f * u * inv;
     const float g2 = 2.0f * law.shearModulus;
-    const float ta = (a * cosine + b * sine) + g2 * 0.5f * (l.xx - l.yy);
-    const float tb = (b * cosine - a * sine) + g2 * 0.5f * (l.xy + l.yx);
+    float ta = (a * cosine + b * sine) + g2 * 0.5f * (l.xx - l.yy);
+    float tb = (b * cosine - a * sine) + g2 * 0.5f * (l.xy + l.yx);
+    YieldLaw scaled = law;
+    if (q > 0.0f) {
+        const float scale = 1.0f / (1.0f + q);
+        ta = sa + (ta - sa) * scale;
+        tb = sb + (tb - sb) * scale;
+        scaled.shearModulus = law.shearModulus * scale;
+    }
     trial = std::sqrt(ta * ta + tb * tb);
     a = ta;
     b = tb;
-    returnStress(law, dt, a, b);
+    returnStress(scaled, dt, a, b);
+}
+
+// The scale q of particle i's sweep update (shearStress): 0 up to the explicit cap; above it
+// kShearJacobi times 2 G over the particle's own compliance, G V dt^2 depth tr(T) (the strain
+// its own stress change takes back through the gather: ShearView::trace), times the share of G
+// above the cap.
+float jacobiScale(const YieldLaw& law, const YieldScratch& y, const Particles& p, float dt,
+                  float depth, uint32_t i) {
+    if (!(law.shearModulus > law.explicitModulus)) {
+        return 0.0f;
+    }
+    const float above = 1.0f - law.explicitModulus / law.shearModulus;
+    return tuning::kShearJacobi * above * law.shearModulus * p.volume[i] * dt * dt * depth *
+           y.trace[i];
 }
 
 } // namespace
@@ -193,14 +217,16 @@ std::vector<YieldLaw> shearLaws(const WorldState& s, float dt) {
     std::vector<YieldLaw> laws(s.constants.size());
     for (size_t m = 0; m < laws.size(); ++m) {
         const MaterialConstants& mc = s.constants[m];
-        // The stiffest shear modulus whose wave crosses kShearWave of the support per sub-step:
-        // the stress is read at the positions a sweep leaves, so the elastic part is explicit in
-        // the sub-step (what a stiffer one did: docs/position_based.md, "The shear constraint").
+        // The stiffest shear modulus whose wave crosses kShearWave of the support per sub-step
+        // is read explicitly (the stress is read at the positions a sweep leaves): the modulus
+        // of a material that asks for none (0), and where a stiffer one's sweeps start to scale
+        // their update (jacobiScale). Softer than that cap, a paste's strain stays above the
+        // game preset's noise (docs/position_based.md, "The shear constraint").
         const float speed = tuning::kShearWave * mc.support / dt;
         const float stiffest = mc.restDensity * speed * speed;
-        const float g =
-            mc.shearModulus > 0.0f ? std::min(mc.shearModulus, stiffest) : stiffest;
+        const float g = mc.shearModulus > 0.0f ? mc.shearModulus : stiffest;
         laws[m] = makeYieldLaw(mc.yielding, mc.yieldStress, mc.consistency, mc.flowIndex, g);
+        laws[m].explicitModulus = stiffest;
         // The strain is read from the positions, not accumulated as a rate: no cap on it.
         laws[m].carriedStress = std::numeric_limits<float>::max();
         laws[m].flowStress = mc.yieldStress;
@@ -212,9 +238,10 @@ void pbfShearPrepare(WorldState& s, const PbfConstants&) {
     const Particles& p = s.particles;
     YieldScratch& y = s.yieldScratch;
     const uint32_t n = p.size();
-    for (auto* channel : {&y.refX, &y.refY, &y.ux, &y.uy, &y.yields, &y.mxx, &y.mxy, &y.myy, &y.hxx, &y.hxy, &y.hyx, &y.hyy,
-                          &y.sumX, &y.sumY, &y.t00, &y.t01, &y.t10, &y.t11, &y.appliedA,
-                          &y.appliedB, &y.shearDx, &y.shearDy}) {
+    for (auto* channel :
+         {&y.refX, &y.refY, &y.ux,  &y.uy,       &y.yields,   &y.mxx,     &y.mxy,    &y.myy,
+          &y.hxx,  &y.hxy,  &y.hyx, &y.hyy,      &y.sumX,     &y.sumY,    &y.trace,  &y.t00,
+          &y.t01,  &y.t10,  &y.t11, &y.appliedA, &y.appliedB, &y.shearDx, &y.shearDy}) {
         channel->resize(n);
     }
     const std::vector<uint8_t> yields = yieldingMaterials(s);
@@ -234,9 +261,15 @@ void pbfShearSweep(WorldState& s, const PbfConstants& c, std::span<const YieldLa
     const Particles& p = s.particles;
     YieldScratch& y = s.yieldScratch;
     const float toMultiplier = -2.0f * c.dt * c.dt;
+    const float depth = s.def.depth;
     readEach(s, c, [&](uint32_t i, const Gradient& l) {
         float a = p.sxx[i], b = p.sxy[i], trial = 0.0f;
-        shearStress(structuredLaw(laws[p.material[i]], p.structure[i]), l, c.dt, a, b, trial);
+        const YieldLaw& law = laws[p.material[i]];
+        // The stress the sweeps applied so far in this sub-step.
+        const float toStress = 1.0f / (toMultiplier * p.volume[i]);
+        const float q = jacobiScale(law, y, p, c.dt, depth, i);
+        shearStress(structuredLaw(law, p.structure[i]), l, c.dt, a, b, trial, q,
+                    y.appliedA[i] * toStress, y.appliedB[i] * toStress);
         const float na = toMultiplier * p.volume[i] * a, nb = toMultiplier * p.volume[i] * b;
         const float da = na - y.appliedA[i], db = nb - y.appliedB[i];
         y.appliedA[i] = na;
@@ -251,7 +284,6 @@ void pbfShearSweep(WorldState& s, const PbfConstants& c, std::span<const YieldLa
     const PbfView v = pbfView(s, c);
     const ShearView w = shearView(s);
     const PbfPairs& k = pbfPairs();
-    const float depth = s.def.depth;
     parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         k.shearGather(v, w, b, e);
         for (uint32_t i = b; i < e; ++i) {
@@ -268,6 +300,8 @@ void pbfShearFinish(WorldState& s, const PbfConstants& c, std::span<const YieldL
     readEach(s, c, [&](uint32_t i, const Gradient& l) {
         const YieldLaw structured = structuredLaw(laws[p.material[i]], p.structure[i]);
         float a = p.sxx[i], b = p.sxy[i], trial = 0.0f;
+        // Read in full, unscaled: scaled too, a resting stiff paste would need strain every
+        // sub-step to keep its stress, that is creep.
         shearStress(structured, l, c.dt, a, b, trial);
         p.sxx[i] = a;
         p.sxy[i] = b;

@@ -69,6 +69,12 @@ inline constexpr float kStructureTime = 0.5f;
 /// Least eigenvalue of the kernel gradient's correction matrix before it is inverted (1): a
 /// particle with few neighbours reads at most 1 / this times the plain kernel sum.
 inline constexpr float kLeastCorrection = 0.25f;
+/// The shear constraint with a shear modulus above the cap kShearWave sets (a material's own
+/// Material::shearModulus): each sweep's stress update is scaled by 1 / (1 + q), q this times
+/// 2 G over the particle's own compliance (a Jacobi step whose diagonal stands for its
+/// neighbours' too), times the share of G above the cap. Below the cap q is 0: the explicit
+/// update (docs/position_based.md, "The shear constraint": *Stiff pastes*).
+inline constexpr float kShearJacobi = 20.0f;
 
 // ---- the coarse correction (pbf_coarse.cpp) -------------------------------------------------
 

@@ -113,7 +113,7 @@ struct YieldScratch {
     std::vector<float> refX, refY, ux, uy, yields;
     bool matrixRead = false; // M and S of this sub-step read (its first reading)
     std::vector<float> mxx, mxy, myy;
-    std::vector<float> hxx, hxy, hyx, hyy, sumX, sumY;
+    std::vector<float> hxx, hxy, hyx, hyy, sumX, sumY, trace;
     std::vector<float> appliedA, appliedB;
     std::vector<float> t00, t01, t10, t11;
     std::vector<float> shearDx, shearDy;

@@ -33,6 +33,8 @@ struct YieldLaw {
     float shearModulus = 0;  // G this step (Pa): the material's, capped by the solver
     float carriedStress = 0; // G kCarriedStrain (Pa): the most stress the step stores
     float flowStress = 0;    // where the return starts (Pa): tau_y, at most carriedStress
+    float explicitModulus = 0; // the shear constraint: the stiffest G its sweeps read
+                               // explicitly (Pa); 0 for the stress pass
 };
 
 /// The law of a material with yield stress `tauY` (Pa), consistency `k` (Pa s^n), flow index `n`

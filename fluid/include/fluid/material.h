@@ -66,10 +66,12 @@ struct Material {
     /// thins with shear, above 1 it thickens. Water: 1; yoghurt: 0.7 (measured 0.6-0.85).
     float flowIndex = 1.0f;
     /// Shear modulus G below the yield stress (unit: Pa; range [0, 1e6]): how far the material
-    /// bends before it yields (a strain of yieldStress / G). The solver uses at most what its
-    /// step can carry, rho0 (0.15 h / dt)^2 for a viscosity run of dt (about 2,200 Pa for the
-    /// yoghurt preset at the default settings, 540 Pa at `Quality::Game`); 0 asks for that
-    /// bound. Only read when `yieldStress` or `consistency` is positive. Water: 200 (unused);
+    /// bends before it yields (a strain of yieldStress / G). The stress pass uses at most what
+    /// its step can carry, rho0 (0.15 h / dt)^2 for a viscosity run of dt (about 2,200 Pa for
+    /// the yoghurt preset at the default settings, 540 Pa at `Quality::Game`); 0 asks for that
+    /// bound. The shear constraint (`PositionBasedDef::shearConstraint`) uses a stiffer one as
+    /// it is, its sweeps' update scaled (0 asks for the same bound per sub-step). Only read
+    /// when `yieldStress` or `consistency` is positive. Water: 200 (unused);
     /// yoghurt: 0. Stirred yoghurt's storage modulus is about 100-500 Pa, but at 200 Pa a
     /// stirred yoghurt wobbles like jelly after the spoon leaves (docs/position_based.md).
     float shearModulus = 200.0f;

@@ -169,6 +169,7 @@ struct ShearView {
     float *mxx = nullptr, *mxy = nullptr, *myy = nullptr;
     float *hxx = nullptr, *hxy = nullptr, *hyx = nullptr, *hyy = nullptr;
     float *sumX = nullptr, *sumY = nullptr;
+    float* trace = nullptr; // tr (sum_j w_j G_ij (x) G_ij + w_i S_i (x) S_i) (1/(kg m^2))
     // shearGather: sum_j S(dl_j) M_j^-1 V_i grad_j W_ji - S(dl_i) M_i^-1 sum (kg m per depth).
     float *dx = nullptr, *dy = nullptr;
 };
