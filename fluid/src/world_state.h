@@ -105,11 +105,12 @@ struct YieldScratch {
     std::vector<float> surfaceAx, surfaceAy;
     // The shear constraint (pbf_shear.cpp), per sub-step: the positions the sweeps start from,
     // where its kernel gradients are taken, and the displacement since the sub-step's start
-    // (m); 1 for a particle of a yielding material, else 0; the inverse of the kernel gradient's correction matrix (symmetric: xx,
-    // xy, yy; 1; shearRead leaves M itself there until the particle's return inverts it), the
-    // gradient sum H (xx, xy, yx, yy; 1) and sum V_j grad W_ij (1/m) of the last reading; the
-    // multiplier applied so far (the stress times -2 V dt^2: components xx and xy; kg m per
-    // depth), its last change times M^-1 (t00..t11), and the sweep's displacement (m).
+    // (m); 1 for a particle of a yielding material, else 0; the inverse of the kernel
+    // gradient's correction matrix (symmetric: xx, xy, yy; 1; shearRead leaves M itself there
+    // until the particle's return inverts it), the gradient sum H (xx, xy, yx, yy; 1), sum V_j
+    // grad W_ij (1/m) and the compliance trace (1/(kg m^2)) of the last reading; the multiplier
+    // applied so far (the stress times -2 V dt^2: components xx and xy; kg m per depth), its
+    // last change times M^-1 (t00..t11), and the sweep's displacement (m).
     std::vector<float> refX, refY, ux, uy, yields;
     bool matrixRead = false; // M and S of this sub-step read (its first reading)
     std::vector<float> mxx, mxy, myy;
