@@ -53,6 +53,9 @@ fi
 if [[ -n "${programs[fluid-float]:-}" ]]; then
     expect 2 fluid-float --ratio 9
     expect 2 fluid-float --shape square
+    expect 2 fluid-float --material honey
+    expect 2 fluid-float --shear-constraint 2
+    expect 2 fluid-float --yield-stress -1
 fi
 if [[ -n "${programs[fluid-demo]:-}" ]]; then
     expect 2 fluid-demo --frames abc
