@@ -221,36 +221,8 @@ TEST_CASE("stirred yoghurt flows above its yield stress and stops within 1 s of 
           "[slow][invariants][yield]") {
     World world(physicsDef());
     const MaterialId id = world.addMaterial(yoghurt());
-    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
-    auto pointer = std::make_unique<PointerForce>(0.1f, 20.0f);
-    PointerForce* stir = pointer.get();
-    world.addForce(std::move(pointer));
-    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 0.45f, 0.6f));
-    REQUIRE(world.spawnBlob(latticeBlock(world, id, 0.0f, 0.0f, 40, 20)) == 800);
-    for (int frame = 1; frame <= 60; ++frame) { // settle
-        world.step(kFrame);
-    }
-    std::vector<std::pair<ParticleHandle, glm::vec2>> before;
-    for (uint32_t i = 0; i < world.particleCount(); ++i) {
-        const ParticleHandle h = world.handleAt(i);
-        before.emplace_back(h, world.position(h));
-    }
-    for (int frame = 1; frame <= 60; ++frame) { // stir in a circle for 1 s
-        const float angle = 2.0f * 3.14159265f * float(frame) / 60.0f;
-        stir->setPointer({0.2f + 0.08f * std::cos(angle), 0.1f + 0.05f * std::sin(angle)}, 1.0f);
-        world.step(kFrame);
-    }
-    const double stirred = kineticPerMass(world);
-    stir->setPointer({0.2f, 0.1f}, 0.0f);
-    double moved = 0.0;
-    for (const auto& [h, x] : before) {
-        const glm::vec2 now = world.position(h);
-        moved = std::max(moved, std::hypot(double(now.x - x.x), double(now.y - x.y)));
-    }
-    for (int frame = 1; frame <= 60; ++frame) { // 1 s alone
-        world.step(kFrame);
-    }
-    const double rest = kineticPerMass(world);
+    const auto [count, moved, stirred, rest] = stirAndRelease(world, id, 20.0f, 60); // 1 s alone
+    REQUIRE(count == 800);
     std::printf("[measure] stirred yoghurt: moved up to %.3f m, %.3g J/kg while stirred, %.3g "
                 "J/kg 1 s after\n",
                 moved, stirred, rest);

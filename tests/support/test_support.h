@@ -316,6 +316,51 @@ inline BlobDef latticeBlock(const World& world, MaterialId material, float x0, f
     return b;
 }
 
+/// What a stirred paste did (stirAndRelease): the farthest any particle moved while stirred
+/// (m), and the kinetic energy per kilogram at the end of the stirring and of the rest (J/kg).
+struct Stirred {
+    uint32_t particles = 0; // spawned (800 asked for)
+    double moved = 0.0, stirred = 0.0, rest = 0.0;
+};
+
+/// In `world`, holding `material` and nothing else yet: gravity, a 40 x 20 lattice block in a
+/// closed 0.45 x 0.6 m box, settled for 1 s, stirred in a circle for 1 s by a pointer force of
+/// `acceleration` (m/s^2, radius 0.1 m), then released for `restFrames` frames of kFrame.
+inline Stirred stirAndRelease(World& world, MaterialId material, float acceleration,
+                              int restFrames) {
+    Stirred out;
+    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
+    auto pointer = std::make_unique<PointerForce>(0.1f, acceleration);
+    PointerForce* stir = pointer.get();
+    world.addForce(std::move(pointer));
+    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 0.45f, 0.6f));
+    out.particles = world.spawnBlob(latticeBlock(world, material, 0.0f, 0.0f, 40, 20));
+    for (int frame = 1; frame <= 60; ++frame) { // settle
+        world.step(kFrame);
+    }
+    std::vector<std::pair<ParticleHandle, glm::vec2>> before;
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        const ParticleHandle h = world.handleAt(i);
+        before.emplace_back(h, world.position(h));
+    }
+    for (int frame = 1; frame <= 60; ++frame) { // stir in a circle for 1 s
+        const float angle = 2.0f * 3.14159265f * float(frame) / 60.0f;
+        stir->setPointer({0.2f + 0.08f * std::cos(angle), 0.1f + 0.05f * std::sin(angle)}, 1.0f);
+        world.step(kFrame);
+    }
+    out.stirred = kineticPerMass(world);
+    stir->setPointer({0.2f, 0.1f}, 0.0f);
+    for (const auto& [h, x] : before) {
+        const glm::vec2 now = world.position(h);
+        out.moved = std::max(out.moved, std::hypot(double(now.x - x.x), double(now.y - x.y)));
+    }
+    for (int frame = 1; frame <= restFrames; ++frame) {
+        world.step(kFrame);
+    }
+    out.rest = kineticPerMass(world);
+    return out;
+}
+
 /// Wall-clock and process CPU seconds since construction; prints one line with the label on
 /// destruction, so each test's cost shows in its log (CPU time counts every worker thread, and
 /// is the better measure when the machine is shared).
