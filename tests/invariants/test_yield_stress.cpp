@@ -286,12 +286,9 @@ TEST_CASE("yoghurt keeps momentum in zero gravity and gives bit-identical states
 // more energy than it lost, since the step stores no stress above a strain of 1 (kCarriedStrain;
 // the figures before and after: docs/position_based.md, "No stress above a strain of 1"). The
 // same with the shear constraint (PositionBasedDef::shearConstraint): at the precise preset a
-// 1e5 Pa block of its own shear modulus (1e6 Pa) stands as the stress pass's does (measured: top
-// at 0.286 m after 4 s; the stress pass 0.285), while the modulus the solver picks
-// (shearModulus 0, capped at about 2.2 kPa) makes it a jelly (0.125 m). At the game preset
-// both sag (shear constraint 0.161-0.164 m with 1e6 Pa, 0.116 m with the cap; stress pass
-// 0.144 m): those tops are printed, not asked (docs/position_based.md, "The shear
-// constraint": *Stiff pastes*).
+// 1e5 Pa block of its own shear modulus stands as the stress pass's does; with the modulus the
+// solver picks, and at the game preset with either model, it sags, so those tops are printed,
+// not asked (the figures: docs/position_based.md, "The shear constraint": *Stiff pastes*).
 TEST_CASE("a block at the corners of the yield-stress ranges never gains energy, and a stiff "
           "block stands",
           "[slow][invariants][yield]") {
@@ -346,7 +343,7 @@ TEST_CASE("a block at the corners of the yield-stress ranges never gains energy,
                     shear == 0 ? "stress pass" : "shear constraint",
                     quality == Quality::Precise ? "precise" : "game", corner.g, top);
         if (quality == Quality::Precise && (shear == 0 || corner.g > 0.0f)) {
-            // The stiff block stands at the precise settings (its measured top: the docs above).
+            // The stiff block stands at the precise settings.
             CHECK(top > 0.27f);
         }
     }
