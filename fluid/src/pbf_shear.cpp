@@ -54,9 +54,7 @@ std::vector<uint8_t> yieldingMaterials(const WorldState& s) {
     return y;
 }
 
-// f(j, gx, gy) for every yielding particle j != i (yields: per material, 1 when it yields)
-// within the pair support (h_i + h_j) / 2 of i, with (gx, gy) = V_j grad_i W_ij (1/m), in the
-// grid's fixed order.
+// f(i) for every particle, in ranges of the pair passes' grain over the workers.
 template <class F> void eachParticle(WorldState& s, F&& f) {
     parallelFor(s.tasks, s.particles.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
@@ -139,13 +137,12 @@ Gradient correctedGradient(const YieldScratch& y, uint32_t i) {
             hyx * ixy + hyy * iyy};
 }
 
-// One reading at the current positions (shearRead) and, for each yielding particle, f(i, L):
-// the first of a sub-step also takes M and S and inverts M.
-template <class F> void readEach(WorldState& s, const PbfConstants& c, F&& f) {
+// One reading at the current positions (shearRead, through the views v and w) and, for each
+// yielding particle, f(i, L): the first of a sub-step also takes M and S and inverts M.
+template <class F>
+void readEach(WorldState& s, const PbfView& v, const ShearView& w, F&& f) {
     const Particles& p = s.particles;
     YieldScratch& y = s.yieldScratch;
-    const PbfView v = pbfView(s, c);
-    const ShearView w = shearView(s);
     const PbfPairs& k = pbfPairs();
     const bool matrix = !y.matrixRead;
     y.matrixRead = true;
@@ -262,7 +259,9 @@ void pbfShearSweep(WorldState& s, const PbfConstants& c, std::span<const YieldLa
     YieldScratch& y = s.yieldScratch;
     const float toMultiplier = -2.0f * c.dt * c.dt;
     const float depth = s.def.depth;
-    readEach(s, c, [&](uint32_t i, const Gradient& l) {
+    const PbfView v = pbfView(s, c);
+    const ShearView w = shearView(s);
+    readEach(s, v, w, [&](uint32_t i, const Gradient& l) {
         float a = p.sxx[i], b = p.sxy[i], trial = 0.0f;
         const YieldLaw& law = laws[p.material[i]];
         // The stress the sweeps applied so far in this sub-step.
@@ -281,8 +280,6 @@ void pbfShearSweep(WorldState& s, const PbfConstants& c, std::span<const YieldLa
         y.t10[i] = db * mxx - da * mxy;
         y.t11[i] = db * mxy - da * myy;
     });
-    const PbfView v = pbfView(s, c);
-    const ShearView w = shearView(s);
     const PbfPairs& k = pbfPairs();
     parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         k.shearGather(v, w, b, e);
@@ -297,7 +294,7 @@ void pbfShearSweep(WorldState& s, const PbfConstants& c, std::span<const YieldLa
 void pbfShearFinish(WorldState& s, const PbfConstants& c, std::span<const YieldLaw> laws) {
     Particles& p = s.particles;
     // The trial reads only particle i's own stress, so the new one can be written in place.
-    readEach(s, c, [&](uint32_t i, const Gradient& l) {
+    readEach(s, pbfView(s, c), shearView(s), [&](uint32_t i, const Gradient& l) {
         const YieldLaw structured = structuredLaw(laws[p.material[i]], p.structure[i]);
         float a = p.sxx[i], b = p.sxy[i], trial = 0.0f;
         // Read in full, unscaled: scaled too, a resting stiff paste would need strain every
