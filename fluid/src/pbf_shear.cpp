@@ -88,6 +88,11 @@ ShearView shearView(WorldState& s) {
     w.trace = y.trace.data();
     w.dx = y.shearDx.data();
     w.dy = y.shearDy.data();
+    w.wallX = y.wallX.data();
+    w.wallY = y.wallY.data();
+    w.wallWeight = y.wallWeight.data();
+    w.wallVx = y.wallVx.data();
+    w.wallVy = y.wallVy.data();
     return w;
 }
 
@@ -208,6 +213,53 @@ float jacobiScale(const YieldLaw& law, const YieldScratch& y, const Particles& p
            y.trace[i];
 }
 
+// The walls' hold on yielding particle i, after a sweep's gather: the particle's motion
+// relative to the walls since the sub-step's start (at the position the gather leaves) is
+// taken back, away from the walls up to kWallHoldAcross and along them up to kWallHoldAlong r^4
+// times dt^2 2 tau |S_w| / rho0 over the sub-step (tau the yield stress its structure r holds,
+// S_w the walls' part of the kernel gradient sum): what holds a layer on a wall and a rested
+// heap on its floor. It only takes back motion, never pulls: nothing for the density sweeps to
+// push back. The walls take the reaction (pbfShearSamples).
+void holdOnWalls(WorldState& s, std::span<const YieldLaw> laws, float dt, uint32_t i) {
+    const Particles& p = s.particles;
+    const PositionBasedScratch& x = s.pbfScratch;
+    YieldScratch& y = s.yieldScratch;
+    const float gx = y.wallX[i], gy = y.wallY[i];
+    const float length = std::sqrt(gx * gx + gy * gy);
+    if (!(length > 0.0f)) {
+        return;
+    }
+    // The walls' direction from the particle's side (kG < 0: S_w points at the walls).
+    const float nx = -gx / length, ny = -gy / length;
+    const float mx = (p.px[i] + y.shearDx[i]) - x.startX[i] - y.wallVx[i] * dt;
+    const float my = (p.py[i] + y.shearDy[i]) - x.startY[i] - y.wallVy[i] * dt;
+    const float away = mx * nx + my * ny;
+    const float r = p.structure[i];
+    const float unit = 2.0f * structuredLaw(laws[p.material[i]], r).flowStress /
+                       p.restDensity[i] * length * (dt * dt);
+    float hx = 0.0f, hy = 0.0f;
+    const float across = std::min(away, tuning::kWallHoldAcross * unit - y.heldAcross[i]);
+    if (across > 0.0f) {
+        hx -= across * nx;
+        hy -= across * ny;
+        y.heldAcross[i] += across;
+    }
+    const float tx = mx - away * nx, ty = my - away * ny;
+    const float slip = std::sqrt(tx * tx + ty * ty);
+    const float rested = (r * r) * (r * r);
+    const float left = tuning::kWallHoldAlong * rested * unit - y.heldAlong[i];
+    if (slip > 0.0f && left > 0.0f) {
+        const float along = std::min(slip, left);
+        hx -= tx * (along / slip);
+        hy -= ty * (along / slip);
+        y.heldAlong[i] += along;
+    }
+    y.shearDx[i] += hx;
+    y.shearDy[i] += hy;
+    y.holdX[i] += hx;
+    y.holdY[i] += hy;
+}
+
 } // namespace
 
 std::vector<YieldLaw> shearLaws(const WorldState& s, float dt) {
@@ -238,7 +290,9 @@ void pbfShearPrepare(WorldState& s, const PbfConstants&) {
     for (auto* channel :
          {&y.refX, &y.refY, &y.ux,  &y.uy,       &y.yields,   &y.mxx,     &y.mxy,    &y.myy,
           &y.hxx,  &y.hxy,  &y.hyx, &y.hyy,      &y.sumX,     &y.sumY,    &y.trace,  &y.t00,
-          &y.t01,  &y.t10,  &y.t11, &y.appliedA, &y.appliedB, &y.shearDx, &y.shearDy}) {
+          &y.t01,  &y.t10,  &y.t11, &y.appliedA, &y.appliedB, &y.shearDx, &y.shearDy,
+          &y.wallX, &y.wallY, &y.wallWeight, &y.wallVx, &y.wallVy, &y.heldAcross,
+          &y.heldAlong, &y.holdX, &y.holdY}) {
         channel->resize(n);
     }
     const std::vector<uint8_t> yields = yieldingMaterials(s);
@@ -248,6 +302,8 @@ void pbfShearPrepare(WorldState& s, const PbfConstants&) {
         y.yields[i] = yields[p.material[i]] != 0 ? 1.0f : 0.0f;
         y.appliedA[i] = 0.0f;
         y.appliedB[i] = 0.0f;
+        y.heldAcross[i] = y.heldAlong[i] = 0.0f;
+        y.holdX[i] = y.holdY[i] = 0.0f;
         // The gather reads 0 for particles of other materials; the sweeps write the others'.
         y.t00[i] = y.t01[i] = y.t10[i] = y.t11[i] = 0.0f;
     });
@@ -287,6 +343,9 @@ void pbfShearSweep(WorldState& s, const PbfConstants& c, std::span<const YieldLa
             const float scale = 0.5f * p.invMass[i] * depth;
             y.shearDx[i] *= scale;
             y.shearDy[i] *= scale;
+            if (y.yields[i] > 0.0f) {
+                holdOnWalls(s, laws, c.dt, i);
+            }
         }
     });
 }
@@ -317,25 +376,37 @@ void pbfShearSamples(WorldState& s, const PbfConstants& c, float weight) {
     const float* __restrict px = p.px.data();
     const float* __restrict py = p.py.data();
     const float* __restrict hs = p.h.data();
+    const float* __restrict mass = p.mass.data();
     const uint16_t* __restrict material = p.material.data();
     const std::vector<uint8_t> yields = yieldingMaterials(s);
     const auto count = static_cast<uint32_t>(w.reporting.size());
     // Particle j's own constraint moved it by -w_j/2 S(l_j) M_j^-1 G_jw for each wall sample
     // w (shearGather's self term, l_j the whole multiplier the sweeps applied); the sample
     // takes the opposite momentum over dt^2. G_jw is read at the final positions (the sweeps
-    // used the reference positions': a sub-step's motion apart).
+    // used the reference positions': a sub-step's motion apart). The walls' hold moved j by
+    // (holdX, holdY): each sample takes the opposite momentum in its share of j's wall weight,
+    // read at the reference positions as the hold's weights were (the shares sum to 1).
     const float scale = 0.5f * s.def.depth / (c.dt * c.dt) * weight;
-    samplePass<2>(
+    const float holdScale = -weight / (c.dt * c.dt);
+    samplePass<4>(
         s, count, w.reporting.data(),
         [&](uint32_t k) {
             const float xw = w.px[k], yw = w.py[k];
             const float friction = std::min(w.friction[k], 1.0f);
-            return [&, xw, yw, friction](size_t j, SampleLane<2> a) {
+            return [&, xw, yw, friction](size_t j, SampleLane<4> a) {
                 if (yields[material[j]] == 0 || !(friction > 0.0f)) {
                     return;
                 }
-                const float dx = px[j] - xw, dy = py[j] - yw;
                 const float invH = 1.0f / hs[j];
+                const float rx = y.refX[j] - xw, ry = y.refY[j] - yw;
+                const float qr = std::sqrt(rx * rx + ry * ry) * invH;
+                if (qr < 1.0f && y.wallWeight[j] > 0.0f) {
+                    const float t = 1.0f - qr;
+                    const float share = friction * (t * t * t) / y.wallWeight[j] * mass[j];
+                    a[2] += share * y.holdX[j];
+                    a[3] += share * y.holdY[j];
+                }
+                const float dx = px[j] - xw, dy = py[j] - yw;
                 const float q = std::sqrt(dx * dx + dy * dy) * invH;
                 if (!(q < 1.0f)) {
                     return;
@@ -351,9 +422,9 @@ void pbfShearSamples(WorldState& s, const PbfConstants& c, float weight) {
                 a[1] += lb * bx - la * by;
             };
         },
-        [&](uint32_t, uint32_t k, const float(&sum)[2]) {
-            w.fx[w.source[k]] += scale * sum[0];
-            w.fy[w.source[k]] += scale * sum[1];
+        [&](uint32_t, uint32_t k, const float(&sum)[4]) {
+            w.fx[w.source[k]] += scale * sum[0] + holdScale * sum[2];
+            w.fy[w.source[k]] += scale * sum[1] + holdScale * sum[3];
         });
 }
 

@@ -66,6 +66,14 @@ inline constexpr float kCarriedStrain = 1.0f;
 inline constexpr float kStructureGain = 1.0f;
 /// Time over which a structure rebuilds at rest (s): r += (1 - r) dt / this per sub-step.
 inline constexpr float kStructureTime = 0.5f;
+/// The shear constraint's walls (pbf_shear.cpp): how far a yielding particle is held back, per
+/// sub-step, from moving away from the walls within its support, and along them, in units of
+/// dt^2 2 tau |S_w| / rho0 (what its yield stress carries across the walls' band, S_w the walls'
+/// kernel gradient sum: the stress pass's adhesion). Along the walls times r^4 of its structure
+/// r, so only paste that has rested there sticks (the figures: docs/position_based.md, "The
+/// shear constraint").
+inline constexpr float kWallHoldAcross = 3.0f;
+inline constexpr float kWallHoldAlong = 1.5f;
 /// Least eigenvalue of the kernel gradient's correction matrix before it is inverted (1): a
 /// particle with few neighbours reads at most 1 / this times the plain kernel sum.
 inline constexpr float kLeastCorrection = 0.25f;

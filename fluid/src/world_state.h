@@ -112,6 +112,12 @@ struct YieldScratch {
     // applied so far (the stress times -2 V dt^2: components xx and xy; kg m per depth), its
     // last change times M^-1 (t00..t11), and the sweep's displacement (m).
     std::vector<float> refX, refY, ux, uy, yields;
+    // The walls' hold (pbf_shear.cpp, holdOnWalls): the walls' part of S (1/m), their velocity
+    // (m/s) and weight (sum of friction-weighted kernel values; 1), as the first reading
+    // took them; what the hold took back so far across and along the walls (m), and its
+    // displacement (m).
+    std::vector<float> wallX, wallY, wallVx, wallVy, wallWeight;
+    std::vector<float> heldAcross, heldAlong, holdX, holdY;
     bool matrixRead = false; // M and S of this sub-step read (its first reading)
     std::vector<float> mxx, mxy, myy;
     std::vector<float> hxx, hxy, hyx, hyy, sumX, sumY, trace;

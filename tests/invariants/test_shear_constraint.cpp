@@ -9,6 +9,7 @@
 #include <fluid/plugins/forces.h>
 
 #include <catch2/catch.hpp>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -61,9 +62,11 @@ World blockOnFloor(const WorldDef& def, float tauY, uint32_t cols, uint32_t rows
 } // namespace
 
 // Issue 47's rest case: a 0.2 x 0.2 m block of 300 Pa yoghurt let go on a wide floor, the game
-// preset, at ten places 1.25 mm apart, since where it settles (and whether it slides once more)
-// is chaotic and one start tells little. Most must come to rest; the figures per start, and the
-// stress pass's creep on the same block: docs/position_based.md, "The shear constraint".
+// preset, at ten places 1.25 mm apart, since where it settles (and whether its toe slides once
+// more) is chaotic and one start tells little. Seven of ten must not change width by 2 mm from
+// 10 to 40 s, and every one must be at rest at 40 s within the heap law's width; the figures
+// per start, and the stress pass's creep on the same block: docs/position_based.md, "The shear
+// constraint".
 TEST_CASE("with the shear constraint a yoghurt block slumps into a heap that comes to rest at "
           "the game preset",
           "[slow][long][invariants][yield][shear]") {
@@ -86,13 +89,14 @@ TEST_CASE("with the shear constraint a yoghurt block slumps into a heap that com
                     x0, 1e3 * at10, 1e3 * at40, rest);
         CAPTURE(x0, at10, at40, rest);
         CHECK(rest < 1e-5);
-        CHECK(at10 > 0.4f);                  // it did slump from 0.2 m
-        CHECK(at40 < 0.6f);                  // into a heap about the law's width
-        CHECK(at40 - at10 < 0.04f);          // each at most one late slide
+        CHECK(at10 > 0.4f);  // it did slump from 0.2 m
+        CHECK(at40 < 0.55f); // into a heap within the law's width (0.49 m)
         growth.push_back(at40 - at10);
     }
-    std::sort(growth.begin(), growth.end());
-    CHECK(growth[growth.size() / 2] < 0.002f); // most come to rest
+    const auto still = std::count_if(growth.begin(), growth.end(),
+                                     [](float g) { return std::fabs(g) < 0.002f; });
+    CAPTURE(still);
+    CHECK(still >= 7);
 }
 
 // The heap law h^2 = 2 tau_y d / (rho g), d the distance from the nearer front, on a 100 Pa
@@ -154,6 +158,51 @@ TEST_CASE("with the shear constraint a heap follows h^2 = 2 tau_y d / (rho g)",
     CAPTURE(mean, worsts[2]);
     CHECK(mean == Approx(1.0).margin(0.10));
     CHECK(worsts[2] <= 0.6); // the median heap's farthest column
+}
+
+// Issue 47's wall case: a 3 x 30 cm layer hanging on a vertical no-slip wall, 40 cm above the
+// floor, held by the walls' hold (pbf_shear.cpp, holdOnWalls) once its structure has rebuilt.
+// At 450 Pa its weight per metre of wall (rho g t L over L: 309 Pa) is below the yield stress
+// and it stays (under 1 mm from 1 to 11 s); at 30 Pa it is ten times the yield stress and the
+// layer slides to the floor: the hold is bounded by what the paste carries, not glue.
+TEST_CASE("with the shear constraint a layer of thick yoghurt hangs on a wall, a thin one slides "
+          "down",
+          "[slow][invariants][yield][shear]") {
+    const float tauY = GENERATE(450.0f, 30.0f);
+    World world(gameDef());
+    const MaterialId id = world.addMaterial(paste(tauY));
+    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
+    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 1.0f, 1.0f));
+    REQUIRE(world.spawnBlob(latticeBlock(world, id, 0.0f, 0.4f, 3, 30)) == 90);
+    const auto centroid = [&] {
+        glm::vec2 sum{0.0f, 0.0f};
+        for (const glm::vec2 x : positions(world)) {
+            sum += x;
+        }
+        return sum / float(world.particleCount());
+    };
+    for (int frame = 1; frame <= 60; ++frame) {
+        world.step(kFrame);
+    }
+    const glm::vec2 at1 = centroid();
+    for (int frame = 61; frame <= 660; ++frame) {
+        world.step(kFrame);
+    }
+    REQUIRE(allFinite(world));
+    const glm::vec2 at11 = centroid();
+    const Bounds end = bounds(world);
+    const float moved = glm::length(at11 - at1);
+    std::printf("[measure] shear constraint, %.0f Pa layer on a wall: centroid moved %.2f mm "
+                "from 1 to 11 s; lowest particle at %.3f m\n",
+                tauY, 1e3f * moved, end.y0);
+    CAPTURE(tauY, moved, end.y0, end.x1);
+    if (tauY > 300.0f) {
+        CHECK(moved < 1e-3f);
+        CHECK(end.y0 > 0.2f); // still on the wall, clear of the floor
+        CHECK(end.x1 < 0.05f);
+    } else {
+        CHECK(end.y0 < 0.01f); // down on the floor
+    }
 }
 
 // Stirred by the pointer well above its yield stress for 1 s, the yoghurt flows; left alone,

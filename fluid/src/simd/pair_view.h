@@ -170,6 +170,10 @@ struct ShearView {
     float *hxx = nullptr, *hxy = nullptr, *hyx = nullptr, *hyy = nullptr;
     float *sumX = nullptr, *sumY = nullptr;
     float* trace = nullptr; // tr (sum_j w_j G_ij (x) G_ij + w_i S_i (x) S_i) (1/(kg m^2))
+    // With `matrix`: the walls' part of S (1/m), their friction-weighted kernel sum (1) and
+    // their velocity weighted by it (m/s).
+    float *wallX = nullptr, *wallY = nullptr, *wallWeight = nullptr;
+    float *wallVx = nullptr, *wallVy = nullptr;
     // shearGather: sum_j S(dl_j) M_j^-1 V_i grad_j W_ji - S(dl_i) M_i^-1 sum (kg m per depth).
     float *dx = nullptr, *dy = nullptr;
 };
