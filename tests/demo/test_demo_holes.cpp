@@ -243,7 +243,8 @@ double contrast(sf::Color a, sf::Color b) {
 
 TEST_CASE("no background shows through the liquid of any level", "[demo][holes]") {
     // Every level after 150 frames (2.5 s), the crates once the heavy ones lie on the floor
-    // (6 s) and the yoghurt dollop once its spouts have emptied (4 s), 960 x 540 without HUD.
+    // (6 s), the yoghurt dollop once its spouts have emptied (4 s), and a 300 Pa yoghurt heap
+    // slumped for 20 s with the shear constraint (yoghurt_heap.json), 960 x 540 without HUD.
     const std::vector<Shot> shots = holeShots();
     REQUIRE(shots.size() >= 15);
     size_t withLiquid = 0;

@@ -33,13 +33,12 @@ WorldDef gameDef(uint32_t workers = 0) {
     return def;
 }
 
-/// The yoghurt preset at `tauY` (Pa) without surface tension: the pastes these tests rest
-/// (with the preset's 0.1 a 300 Pa heap at rest is shaken into creeping again; the docs'
-/// figures, docs/position_based.md "The shear constraint").
-Material paste(float tauY) {
+/// The yoghurt preset at `tauY` (Pa), by default without surface tension: the heap law has
+/// none (the preset's 0.1 holds heaps taller; docs/position_based.md "The shear constraint").
+Material paste(float tauY, float surfaceTension = 0.0f) {
     Material m = yoghurt();
     m.yieldStress = tauY;
-    m.surfaceTension = 0.0f;
+    m.surfaceTension = surfaceTension;
     return m;
 }
 
@@ -49,10 +48,12 @@ float width(const World& world) {
     return b.x1 - b.x0;
 }
 
-/// A block of `paste(tauY)` on a 3 m no-slip floor, its lower left corner at (x0, 0).
-World blockOnFloor(const WorldDef& def, float tauY, uint32_t cols, uint32_t rows, float x0) {
+/// A block of `paste(tauY, surfaceTension)` on a 3 m no-slip floor, its lower left corner at
+/// (x0, 0).
+World blockOnFloor(const WorldDef& def, float tauY, uint32_t cols, uint32_t rows, float x0,
+                   float surfaceTension = 0.0f) {
     World world(def);
-    const MaterialId id = world.addMaterial(paste(tauY));
+    const MaterialId id = world.addMaterial(paste(tauY, surfaceTension));
     world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
     world.addBoundary(std::make_unique<BoxContainer>(-1.5f, 0.0f, 1.5f, 1.0f));
     REQUIRE(world.spawnBlob(latticeBlock(world, id, x0, 0.0f, cols, rows)) == cols * rows);
@@ -64,16 +65,19 @@ World blockOnFloor(const WorldDef& def, float tauY, uint32_t cols, uint32_t rows
 // Issue 47's rest case: a 0.2 x 0.2 m block of 300 Pa yoghurt let go on a wide floor, the game
 // preset, at ten places 1.25 mm apart, since where it settles (and whether its toe slides once
 // more) is chaotic and one start tells little. Seven of ten must not change width by 2 mm from
-// 10 to 40 s, and every one must be at rest at 40 s within the heap law's width; the figures
-// per start, and the stress pass's creep on the same block: docs/position_based.md, "The shear
-// constraint".
+// 10 to 40 s, and every one must be at rest at 40 s within the heap law's width; without
+// surface tension and with the preset's (0.1: the heap rests taller, and without the walls'
+// hold it crept 71-95 mm). The figures per start, and the stress pass's creep on the same
+// block: docs/position_based.md, "The shear constraint".
 TEST_CASE("with the shear constraint a yoghurt block slumps into a heap that comes to rest at "
           "the game preset",
           "[slow][long][invariants][yield][shear]") {
+    const float tension = GENERATE(0.0f, 0.1f);
+    CAPTURE(tension);
     std::vector<float> growth;
     for (int k = -5; k < 5; ++k) {
         const float x0 = -0.1f + 0.00125f * float(k);
-        World world = blockOnFloor(gameDef(), 300.0f, 20, 20, x0);
+        World world = blockOnFloor(gameDef(), 300.0f, 20, 20, x0, tension);
         float at10 = 0.0f;
         for (int frame = 1; frame <= 2400; ++frame) {
             world.step(kFrame);
@@ -84,12 +88,12 @@ TEST_CASE("with the shear constraint a yoghurt block slumps into a heap that com
         REQUIRE(allFinite(world));
         const float at40 = width(world);
         const double rest = kineticPerMass(world);
-        std::printf("[measure] shear constraint, 300 Pa block at x0 = %.4f m: width %.1f mm at 10 "
-                    "s, %.1f mm at 40 s, %.3g J/kg at 40 s\n",
-                    x0, 1e3 * at10, 1e3 * at40, rest);
+        std::printf("[measure] shear constraint, 300 Pa block, surface tension %.1f, at x0 = %.4f "
+                    "m: width %.1f mm at 10 s, %.1f mm at 40 s, %.3g J/kg at 40 s\n",
+                    tension, x0, 1e3 * at10, 1e3 * at40, rest);
         CAPTURE(x0, at10, at40, rest);
         CHECK(rest < 1e-5);
-        CHECK(at10 > 0.4f);  // it did slump from 0.2 m
+        CHECK(at10 > 0.3f);  // it did slump from 0.2 m (0.40 m wide with surface tension)
         CHECK(at40 < 0.55f); // into a heap within the law's width (0.49 m)
         growth.push_back(at40 - at10);
     }
