@@ -23,7 +23,10 @@
 // (docs/position_based.md, "Yield stress").
 //
 // Only yielding particles take part, only with yielding neighbours and the walls (boundary
-// samples, as material moving with the wall, weighted by their friction, at most 1). The
+// samples, as material moving with the wall, weighted by their friction, at most 1). Within a
+// support of the walls, each sweep also holds a particle back from moving away from them and,
+// once its structure has rebuilt, along them, up to what its yield stress carries
+// (holdOnWalls): what keeps a layer on a wall. The
 // neighbour sums are pair passes (simd/pbf_pairs.inc: shearRead, shearGather) with the kernel
 // gradients at the positions the sweeps started from, kept as reference positions for the
 // sub-step. Each pass writes only its own particles' slots, lanes summed in a fixed order: the

@@ -21,15 +21,15 @@ void pbfShearPrepare(WorldState& s, const PbfConstants& c);
 
 /// One sweep of the shear constraint at the current positions: each yielding particle's stress
 /// read and returned, its multiplier's change, and the displacement of the changes into
-/// YieldScratch::shearDx, shearDy (momentum kept, walls aside).
+/// YieldScratch::shearDx, shearDy (momentum kept, walls aside), with the walls' hold added.
 void pbfShearSweep(WorldState& s, const PbfConstants& c, std::span<const YieldLaw> laws);
 
 /// After the sweeps: each yielding particle's stress (Particles::sxx, sxy) read from the final
 /// positions and returned, and its structure broken by plastic flow or rebuilt at rest.
 void pbfShearFinish(WorldState& s, const PbfConstants& c, std::span<const YieldLaw> laws);
 
-/// The reaction of each reporting sample to the sub-step's shear constraint (N), times
-/// `weight`, added to the sample's force. After the sweeps, before pbfShearFinish.
+/// The reaction of each reporting sample to the sub-step's shear constraint and walls' hold
+/// (N), times `weight`, added to the sample's force. After the sweeps, before pbfShearFinish.
 void pbfShearSamples(WorldState& s, const PbfConstants& c, float weight);
 
 } // namespace fluid::detail
