@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <sstream>
 
 using namespace fluid;
@@ -120,39 +119,17 @@ TEST_CASE("with the shear constraint a heap follows h^2 = 2 tau_y d / (rho g)",
             world.step(kFrame);
         }
         REQUIRE(allFinite(world));
-        std::map<int, float> top;
-        float left = 1e9f, right = -1e9f;
-        for (const glm::vec2 x : positions(world)) {
-            const int column = int(std::floor(x.x / s));
-            auto [it, fresh] = top.try_emplace(column, x.y + 0.5f * s);
-            if (!fresh) {
-                it->second = std::max(it->second, x.y + 0.5f * s);
-            }
-            left = std::min(left, x.x - 0.5f * s);
-            right = std::max(right, x.x + 0.5f * s);
-        }
+        const HeapProfile p = profileOf(world, s);
         const float c = 2.0f * tauY / (world.material(MaterialId{0}).restDensity * kG);
-        const float half = 0.5f * (right - left);
-        double worst = 0.0, mean = 0.0;
-        int columns = 0;
-        for (const auto& [column, height] : top) {
-            const float x = (float(column) + 0.5f) * s;
-            const float d = std::min(x - left, right - x);
-            if (d >= 0.1f * half && d <= 0.9f * half) {
-                const double ratio = double(height) / std::sqrt(double(c) * d);
-                worst = std::max(worst, std::fabs(ratio - 1.0));
-                mean += ratio;
-                ++columns;
-            }
-        }
-        mean /= std::max(columns, 1);
+        const float half = p.halfWidth();
+        const HeapLawFit fit = heapLawFit(p, c, 0.1f * half, 0.9f * half);
         std::printf("[measure] shear constraint, 100 Pa heap after 20 s (start %d): width %.3f m; "
                     "h / sqrt(c d): mean %.3f, farthest from 1 by %.3f over %d columns\n",
-                    start, right - left, mean, worst, columns);
-        CAPTURE(start, right - left, mean, worst, columns);
-        CHECK(columns >= 40);
-        means.push_back(mean);
-        worsts.push_back(worst);
+                    start, p.right - p.left, fit.mean, fit.worst, fit.columns);
+        CAPTURE(start, p.right - p.left, fit.mean, fit.worst, fit.columns);
+        CHECK(fit.columns >= 40);
+        means.push_back(fit.mean);
+        worsts.push_back(fit.worst);
     }
     double mean = 0.0;
     for (const double m : means) {

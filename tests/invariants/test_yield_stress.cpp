@@ -11,38 +11,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 
 using namespace fluid;
 using namespace fluid::test;
 
 namespace {
-
-/// A heap's free-surface profile: per lattice column, the top particle's height plus half a
-/// spacing, and the fronts (outermost particles plus half a spacing).
-struct HeapProfile {
-    float left = 0.0f, right = 0.0f; // fronts (m)
-    std::map<int, float> top;        // column index -> surface height (m)
-    float spacing = 0.0f;
-    float halfWidth() const { return 0.5f * (right - left); }
-};
-
-HeapProfile profileOf(const World& world, float spacing) {
-    HeapProfile p;
-    p.spacing = spacing;
-    p.left = 1e9f;
-    p.right = -1e9f;
-    for (const glm::vec2 x : positions(world)) {
-        const int column = int(std::floor(x.x / spacing));
-        auto [it, fresh] = p.top.try_emplace(column, x.y + 0.5f * spacing);
-        if (!fresh) {
-            it->second = std::max(it->second, x.y + 0.5f * spacing);
-        }
-        p.left = std::min(p.left, x.x - 0.5f * spacing);
-        p.right = std::max(p.right, x.x + 0.5f * spacing);
-    }
-    return p;
-}
 
 } // namespace
 
@@ -85,19 +58,10 @@ TEST_CASE("a yield-stress block slumps into a heap that follows h^2 = 2 tau_y d 
     const float width = p.right - p.left;
     const float c = 2.0f * tauY / (m.restDensity * kG);
     const float half = p.halfWidth();
-    double worst = 0.0, mean = 0.0;
-    int columns = 0;
-    for (const auto& [column, height] : p.top) {
-        const float x = (float(column) + 0.5f) * s;
-        const float d = std::min(x - p.left, p.right - x);
-        if (tauY > 0.0f && d >= half / 6.0f && d <= 5.0f * half / 6.0f) {
-            const double ratio = double(height) / std::sqrt(double(c) * d);
-            worst = std::max(worst, std::fabs(ratio - 1.0));
-            mean += ratio;
-            ++columns;
-        }
-    }
-    mean /= std::max(columns, 1);
+    const HeapLawFit fit =
+        tauY > 0.0f ? heapLawFit(p, c, half / 6.0f, 5.0f * half / 6.0f) : HeapLawFit{};
+    const double worst = fit.worst, mean = fit.mean;
+    const int columns = fit.columns;
     std::printf("[measure] heap tau_y %.0f Pa after 10 s: width %.3f m (%.3f m a second before); "
                 "h / sqrt(c d) over the middle two thirds: mean %.3f, farthest from 1 by %.3f\n",
                 tauY, width, widthBefore, mean, worst);

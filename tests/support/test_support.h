@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -144,6 +145,55 @@ inline Bounds bounds(const World& world, int material = -1) {
         ++b.count;
     }
     return b;
+}
+
+/// A heap's free-surface profile: per lattice column, the top particle's height plus half a
+/// spacing, and the fronts (outermost particles plus half a spacing).
+struct HeapProfile {
+    float left = 0.0f, right = 0.0f; // fronts (m)
+    std::map<int, float> top;        // column index -> surface height (m)
+    float spacing = 0.0f;
+    float halfWidth() const { return 0.5f * (right - left); }
+};
+
+inline HeapProfile profileOf(const World& world, float spacing) {
+    HeapProfile p;
+    p.spacing = spacing;
+    p.left = 1e9f;
+    p.right = -1e9f;
+    for (const glm::vec2 x : positions(world)) {
+        const int column = int(std::floor(x.x / spacing));
+        auto [it, fresh] = p.top.try_emplace(column, x.y + 0.5f * spacing);
+        if (!fresh) {
+            it->second = std::max(it->second, x.y + 0.5f * spacing);
+        }
+        p.left = std::min(p.left, x.x - 0.5f * spacing);
+        p.right = std::max(p.right, x.x + 0.5f * spacing);
+    }
+    return p;
+}
+
+/// A heap against the law h^2 = c d (d the distance from the nearer front, c = 2 tau_y /
+/// (rho g), m): the mean of h / sqrt(c d) and its farthest from 1 over the columns with d in
+/// [dMin, dMax] (m), and their number.
+struct HeapLawFit {
+    double mean = 0.0, worst = 0.0;
+    int columns = 0;
+};
+inline HeapLawFit heapLawFit(const HeapProfile& p, float c, float dMin, float dMax) {
+    HeapLawFit f;
+    for (const auto& [column, height] : p.top) {
+        const float x = (float(column) + 0.5f) * p.spacing;
+        const float d = std::min(x - p.left, p.right - x);
+        if (d >= dMin && d <= dMax) {
+            const double ratio = double(height) / std::sqrt(double(c) * d);
+            f.worst = std::max(f.worst, std::fabs(ratio - 1.0));
+            f.mean += ratio;
+            ++f.columns;
+        }
+    }
+    f.mean /= std::max(f.columns, 1);
+    return f;
 }
 
 /// Count of particles whose centre lies outside [x0, x1] x [y0, y1] (or is NaN).
