@@ -36,7 +36,7 @@ Material seedYoghurt() {
 
 Material yoghurt() {
     Material m = seedYoghurt();
-    m.yieldStress = 30.0f;
+    m.yieldStress = 400.0f;
     m.consistency = 2.0f;
     m.flowIndex = 0.7f;
     m.shearModulus = 0.0f;

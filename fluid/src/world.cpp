@@ -260,7 +260,8 @@ void WorldState::reserveParticles(size_t count) {
     grow(slotGeneration);
 }
 
-ParticleHandle WorldState::append(glm::vec2 x, glm::vec2 v, uint16_t material, double expiry) {
+ParticleHandle WorldState::append(glm::vec2 x, glm::vec2 v, uint16_t material, double expiry,
+                                  float structure) {
     // Room first: a bad_alloc then leaves the world as it was.
     reserveParticles(size_t(particles.size()) + 1);
     uint32_t slot = 0;
@@ -282,7 +283,7 @@ ParticleHandle WorldState::append(glm::vec2 x, glm::vec2 v, uint16_t material, d
     p.pressure.push_back(0.0f);
     p.sxx.push_back(0.0f);
     p.sxy.push_back(0.0f);
-    p.structure.push_back(0.0f);
+    p.structure.push_back(hasYield(materials[material]) ? structure : 0.0f);
     p.kx.push_back(0.0f);
     p.ky.push_back(0.0f);
     p.material.push_back(material);
@@ -468,6 +469,7 @@ uint32_t World::spawnBlob(const BlobDef& blob, uint32_t* insideSolids) {
     const Material& mat = material(blob.material);
     checkVec("spawnBlob", "velocity", blob.velocity);
     checkLifetime("spawnBlob: ", blob.lifetime);
+    checkRange("structure", blob.structure, 0.0f, 1.0f, "1", "spawnBlob: ");
     const Shape& shape = blob.shape;
     validate(shape, "spawnBlob");
     glm::vec2 lo{}, hi{};
@@ -554,7 +556,7 @@ uint32_t World::placeBlob(const BlobDef& blob, glm::vec2 lo, glm::vec2 hi, float
     const double expiry = detail::expiryTime(m_state->time, blob.lifetime);
     m_state->reserveParticles(size_t(m_state->particles.size()) + points.size());
     for (glm::vec2 p : points) {
-        m_state->append(p, blob.velocity, blob.material.index, expiry);
+        m_state->append(p, blob.velocity, blob.material.index, expiry, blob.structure);
     }
     return static_cast<uint32_t>(points.size());
 }

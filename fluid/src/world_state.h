@@ -365,8 +365,10 @@ struct WorldState {
     float lastMaxAccel = 0.0f;
 
     std::optional<uint32_t> findIndex(ParticleHandle handle) const; // nullopt: null or stale
-    /// Adds a particle at the end of the arrays (the caller checked inputs and capacity).
-    ParticleHandle append(glm::vec2 x, glm::vec2 v, uint16_t material, double expiry);
+    /// Adds a particle at the end of the arrays (the caller checked inputs and capacity), with
+    /// `structure` (in [0, 1]) when its material yields and 0 otherwise.
+    ParticleHandle append(glm::vec2 x, glm::vec2 v, uint16_t material, double expiry,
+                          float structure = 0.0f);
     /// The handle of the particle in `slot` now: its generation and this world's tag.
     ParticleHandle handleOf(uint32_t slot) const {
         return ParticleHandle{slot, slotGeneration[slot], tag.value()};

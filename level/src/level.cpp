@@ -65,6 +65,7 @@ constexpr Range kCoordinate{-1e5, 1e5, "m"};
 constexpr Range kSize{0.0, 1e5, "m", true};
 constexpr Range kVelocity{-1e3, 1e3, "m/s"};
 constexpr Range kLifetime{0.0, 1e6, "s"};
+constexpr Range kStructure{0.0, 1.0, "1"};
 constexpr Range kFrameRate{1.0, 1000.0, "Hz"};
 // Most vertices of a blob, drain or sensor polygon: validation and containment are quadratic
 // and linear in it.
@@ -439,7 +440,7 @@ private:
         for (std::size_t i = 0; list != nullptr && i < list->size(); ++i) {
             const std::string at = childPointer(root.pointer("blobs"), i);
             const ObjectReader b(m_doc, (*list)[i], at, "a blob");
-            const Shape shape = readShape(b, {"material", "velocity", "lifetime"});
+            const Shape shape = readShape(b, {"material", "velocity", "lifetime", "structure"});
             BlobDef blob;
             blob.shape = shape;
             blob.material =
@@ -447,6 +448,7 @@ private:
                                  b.pointer("material"));
             blob.velocity = b.point("velocity", kVelocity, {0.0f, 0.0f});
             blob.lifetime = float(b.number("lifetime", kLifetime, 0.0));
+            blob.structure = float(b.number("structure", kStructure, 0.0));
             const double lattice = checkBlobSize(b, shape, blob.material);
             const uint32_t first = m_level.world.particleCount();
             uint32_t inside = 0;

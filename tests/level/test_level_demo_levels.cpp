@@ -432,7 +432,7 @@ TEST_CASE("yoghurt_dollop.json: yoghurt heaps on its table, water runs off and s
     Level level = loadLevel(levelPath("yoghurt_dollop"), builtins());
     const MaterialId water = requireMaterial(level, "water");
     const MaterialId yog = requireMaterial(level, "yoghurt");
-    CHECK(level.world.material(yog).yieldStress == 30.0f); // the preset
+    CHECK(level.world.material(yog).yieldStress == 400.0f); // the preset
     CHECK(level.world.material(water).yieldStress == 0.0f);
     REQUIRE(level.emitters.size() == 2);
     REQUIRE(level.goal.present);
@@ -477,7 +477,7 @@ TEST_CASE("sticky_plank.json: the yoghurt clings to the tilted plank, carried an
     const Registry& registry = builtins();
     Level level = loadLevel(levelPath("sticky_plank"), registry);
     const MaterialId yog = requireMaterial(level, "yoghurt");
-    CHECK(level.world.material(yog).yieldStress == 300.0f);
+    CHECK(level.world.material(yog).yieldStress == 400.0f); // the preset
     b2Body* plank = bodyNamed(level, "plank");
     REQUIRE(plank != nullptr);
     CHECK(plank->GetType() == b2_kinematicBody);
@@ -486,7 +486,7 @@ TEST_CASE("sticky_plank.json: the yoghurt clings to the tilted plank, carried an
     CHECK(count >= 50);
     CHECK(level.goal.amount <= 0.8 * count);
     // The bowl's inside, as the goal's sensor.
-    const auto inBowl = [&] { return countIn(level.world, yog, 0.82f, 0.02f, 1.18f, 0.16f); };
+    const auto inBowl = [&] { return countIn(level.world, yog, 0.86f, 0.02f, 1.38f, 0.16f); };
     // The demo's shift + drag of a kinematic plank (demo/app.cpp, Grab): the grabbed point (the
     // plank's centre here) gets the velocity that brings it to the cursor in one frame, at most
     // 3 m/s, and Q / E held turn it at 2 rad/s (E clockwise). Plays `frames` frames with the
@@ -508,38 +508,40 @@ TEST_CASE("sticky_plank.json: the yoghurt clings to the tilted plank, carried an
         plank->SetLinearVelocity({0.0f, 0.0f});
         plank->SetAngularVelocity(0.0f);
     };
-    // 1.5 s of an eased move of the cursor from the plank's centre (0.32, 0.5) to `to`.
+    // 1.5 s of an eased move of the cursor from the plank's centre (0.36, 0.5) to `to`.
     const auto carry = [](int f, glm::vec2 to) -> glm::vec2 {
         const float t = 0.5f - 0.5f * std::cos(3.14159265f * float(std::min(f, 90)) / 90.0f);
-        return glm::vec2(0.32f, 0.5f) + t * (to - glm::vec2(0.32f, 0.5f));
+        return glm::vec2(0.36f, 0.5f) + t * (to - glm::vec2(0.36f, 0.5f));
     };
 
-    SECTION("left alone, the dollop creeps a little down the plank and stays on it") {
+    SECTION("left alone, the layer settles and stays on the plank") {
         play(level, 60 * 61);
         const Bounds b = bounds(level.world, yog.index);
         std::printf("[measure] sticky_plank left alone: lowest yoghurt at %.3f m after 61 s (the "
-                    "plank's low end at 0.42 m), %u in the bowl, goal %s\n",
+                    "plank's low end at 0.39 m), %u in the bowl, goal %s\n",
                     b.y0, inBowl(), level.goalState() == GoalState::Lost ? "lost" : "not lost");
         CHECK(level.goalState() == GoalState::Lost);
         CHECK(inBowl() == 0);
-        // Measured 0.464 m (0.492 m at load, 0.472 m at 5 s): the dollop's front, a film at the
-        // plank, creeps 5 cm down it (3 cm in the first 5 s) and stays 7 cm short of the end.
-        CHECK(b.y0 > 0.44f);
+        // Measured 0.428 m (0.442 m at load, 0.430 m at 5 s, the same from 30 to 61 s): the
+        // layer's front settles 3 cm down the plank in the first 5 s and stays 9 cm short of its
+        // end. A 6 cm layer, or one at the precise preset, keeps creeping and drips off the end.
+        CHECK(b.y0 > 0.41f);
         CHECK(test::allFinite(level.world));
     }
 
+    // Where the cursor holds the plank's centre to shake it (S) and to turn it (T).
+    const float SX = 1.0f, SY = 0.34f, TX = 1.1f, TY = 0.35f;
     SECTION("carried low over the bowl and shaken hard as the demo's grab does, it falls in") {
-        // The cursor: 1.5 s to (0.8, 0.32), the plank's low end 9 cm over the bowl's rim, then
-        // twelve shakes of +-6 cm, 10 frames each (2 s), then still. Measured 55 of 58 in the
-        // bowl (48-58 with the plank 2 cm higher or lower or 5 cm further left or right; shaken
-        // +-7 cm 53-58, +-5 cm only 39-53). Six shakes of +-5 cm with the plank 10 cm higher, as
-        // this test had them before walls held yoghurt, throw 16 against the room's right wall,
-        // where they stick, and leave 9 on the plank: 33 in the bowl.
+        // The cursor: 1.5 s to (1.0, 0.34), the plank's low end 11 cm over the bowl's rim, then
+        // twelve shakes of +-6 cm, 10 frames each (2 s), then still. Measured 120 of 205 in the
+        // bowl (108-133 with the plank 4-6 cm higher or lower or 5 cm further left or right;
+        // with its centre at 1.1 m the plank throws the layer against the room's right wall,
+        // where it sticks: 0). The goal asks 100.
         const auto cursor = [&](int f) -> glm::vec2 {
             if (f > 100 && f <= 220) {
-                return {((f - 101) / 5) % 2 == 0 ? 0.86f : 0.74f, 0.32f};
+                return {((f - 101) / 5) % 2 == 0 ? SX + 0.06f : SX - 0.06f, SY};
             }
-            return carry(f, {0.8f, 0.32f});
+            return carry(f, {SX, SY});
         };
         const auto carried = [&](int f) {
             if (f == 90) {
@@ -558,19 +560,32 @@ TEST_CASE("sticky_plank.json: the yoghurt clings to the tilted plank, carried an
         CHECK(test::allFinite(level.world));
     }
 
-    SECTION("carried over the bowl's middle and turned upside down with E, it falls in") {
-        // The cursor: 1.5 s to (1.0, 0.45), then E held for 1.5 s turns the plank by 3 rad. Held
-        // vertical (0.6 s of E), 50 of the 58 still cling after 15 s; upside down it drops off.
-        // Measured 54 of 58 in the bowl after 5 s (41-58 with the plank 5 cm further left or
-        // right, or turned the other way with Q).
-        const auto cursor = [&](int f) { return carry(f, {1.0f, 0.45f}); };
+    SECTION("carried over the bowl and turned upside down with E, most of it hangs on; shaken, "
+            "it falls in") {
+        // The cursor: 1.5 s to (1.12, 0.35), then E held for 1.5 s turns the plank by 3 rad;
+        // then twelve shakes of +-6 cm as above. The layer weighs rho g t = 440 Pa per unit of
+        // plank, under what the walls' hold carries once the paste has rested (up to twice the
+        // yield stress): upside down, 4 of 205 are in the bowl after the turn (4-24 with the plank 5-10 cm
+        // further left or higher, or 5 cm lower); shaken, 137 (136-146), the goal asks 100.
+        const auto cursor = [&](int f) -> glm::vec2 {
+            if (f > 200 && f <= 320) {
+                return {((f - 201) / 5) % 2 == 0 ? TX + 0.06f : TX - 0.06f, TY};
+            }
+            return carry(f, {TX, TY});
+        };
         const auto holdE = [](int f) { return f > 100 && f <= 190; };
-        grab(300, cursor, holdE, [](int) {});
+        uint32_t turned = 0;
+        grab(400, cursor, holdE, [&](int f) {
+            if (f == 200) {
+                turned = inBowl();
+            }
+        });
         std::printf("[measure] sticky_plank turned over the bowl: %u of %u in the bowl after "
-                    "%.1f s, plank at %.2f rad, goal %s\n",
-                    inBowl(), count, level.world.time(), plank->GetAngle(),
+                    "turning (3.3 s), %u after shaking (%.1f s), plank at %.2f rad, goal %s\n",
+                    turned, count, inBowl(), level.world.time(), plank->GetAngle(),
                     level.goalState() == GoalState::Won ? "won" : "not won");
         CHECK(plank->GetAngle() == Approx(-3.4).margin(0.05));
+        CHECK(turned < level.goal.amount);
         CHECK(level.goalState() == GoalState::Won);
         CHECK(test::allFinite(level.world));
     }
@@ -583,9 +598,12 @@ TEST_CASE("yoghurt_or_water.json: the water runs down its chute into its cup, th
     Level level = loadLevel(levelPath("yoghurt_or_water"), registry);
     const MaterialId water = requireMaterial(level, "water");
     const MaterialId yog = requireMaterial(level, "yoghurt");
-    CHECK(level.world.material(yog).yieldStress == 450.0f);
+    CHECK(level.world.material(yog).yieldStress == 400.0f); // the preset
     const uint32_t nWater = countOf(level.world, water), nYog = countOf(level.world, yog);
-    CHECK(nWater == nYog); // the same dollop on each chute
+    // The same polygon on each chute; the materials' spacings differ (1.14 and 1.15 cm), so the
+    // counts differ by a few: 121 water and 118 yoghurt particles.
+    CHECK(nYog >= 100);
+    CHECK(std::abs(int(nWater) - int(nYog)) <= int(nYog) / 20);
     REQUIRE(level.goal.present);
     // The cups' insides: water x in [0.42, 0.58], yoghurt x in [1.08, 1.24], y up to 0.16.
     const auto waterCup = [&] { return countIn(level.world, water, 0.42f, 0.02f, 0.58f, 0.16f); };
@@ -602,13 +620,13 @@ TEST_CASE("yoghurt_or_water.json: the water runs down its chute into its cup, th
                     "%s\n",
                     nWater, nWater, y5.y0, y.y0,
                     level.goalState() == GoalState::Lost ? "lost" : "not lost");
-        // The chutes fall 19 degrees, from 0.45 m to 0.30 m; the dollop is 3 cm thick. Measured:
-        // the yoghurt's lowest point 0.3502 m at 5 s and at 61 s (under 0.1 mm apart). On the
-        // level's former 24 degree chute, with 300 Pa and a 3.5 cm dollop, it crept 18.5 mm in
-        // those 56 s and still moved at 0.4 mm/s: the particle row at the wall spreads out from
-        // under the dollop's front. A 3.5 cm dollop here still creeps 2.5-6.7 mm.
+        // The chutes fall 19 degrees, from 0.45 m to 0.30 m; the dollop is 4 cm thick and 30 cm
+        // long, its lowest point 0.346 m at load. Measured with the preset (400 Pa, the shear
+        // constraint): the lowest point 0.3377 m at 5 s, 0.3365 m at 61 s. With the stress
+        // pass, 450 Pa and a 3 cm dollop, a 3.5 cm dollop crept 2.5-6.7 mm here, and on the
+        // level's former 24 degree chute 300 Pa crept 18.5 mm in those 56 s.
         CHECK(yogCup() == 0);
-        CHECK(y.y0 > 0.34f);                   // 4 cm above the chute's end
+        CHECK(y.y0 > 0.33f);                   // 3 cm above the chute's end
         CHECK(std::abs(y.y0 - y5.y0) < 0.01f); // and not creeping
         CHECK(level.goalState() == GoalState::Lost);
         CHECK(test::allFinite(level.world));
@@ -618,9 +636,8 @@ TEST_CASE("yoghurt_or_water.json: the water runs down its chute into its cup, th
         // The demo's left drag: a force.pointer of radius 0.12 x the level's size (1.3 m) and
         // 40 m/s^2, pushing away from the cursor, dragged in 1 s from behind the dollop, 3 cm
         // over the chute, to beyond the chute's end, 6 cm over it there. The chute keeps a film:
-        // measured 42 of 72 reach the cup (38-42 with the path 1 cm higher or lower, its end 5
-        // cm nearer or farther, or the drag 0.8-1.2 s long; 35 dragged from 7 cm over the
-        // chute's top to 5 cm over it at x = 1 m).
+        // measured 81 of 118 reach the cup (77-89 with the path 1 cm higher or lower, its end 5
+        // cm nearer or farther, or the drag 0.8-1.2 s long); the goal asks 60.
         const std::array<ParamValue, 2> params{{{"radius", 0.156}, {"strength", 40.0}}};
         auto& pointer = static_cast<PointerForce&>(
             level.world.addForce(registry.createForce(PointerForce::kType, params)));

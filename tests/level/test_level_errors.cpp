@@ -83,7 +83,12 @@ TEST_CASE("level errors: unknown keys are named with the allowed ones", "[level]
         errorOf(level(
             R"(, "blobs": [{"material": "water", "shape": "box", "min": [0, 0], "max": [1, 1], "radius": 1}])")) ==
         "t.json:1:128: at /blobs/0/radius: unknown key 'radius'; allowed: material, velocity, "
-        "lifetime, shape, min, max");
+        "lifetime, structure, shape, min, max");
+    // A blob's starting structure is a share in [0, 1].
+    CHECK(
+        errorOf(level(
+            R"(, "blobs": [{"material": "water", "shape": "box", "min": [0, 0], "max": [1, 1], "structure": 1.5}])")) ==
+        "t.json:1:141: at /blobs/0/structure: 1.5 is out of range [0, 1] (unit: 1)");
     // Pointers escape '/' and '~' (RFC 6901).
     CHECK(errorOf(level(R"(, "a/b~": 1)")) ==
           "t.json:1:50: at /a~1b~0: unknown key 'a/b~'; allowed: version, name, description, "
@@ -148,7 +153,7 @@ TEST_CASE("level errors: out-of-range values give the range and unit", "[level][
     CHECK(errorOf(R"({"version": 1, "world": {"solver": "explicit"},
   "materials": [{"name": "y", "preset": "yoghurt"}]})") ==
           "t.json:2:17: at /materials/0: World::addMaterial: material 'y' has a Herschel-Bulkley "
-          "flow law (yieldStress = 30 Pa, consistency = 2 Pa*s^n), which the explicit solver "
+          "flow law (yieldStress = 400 Pa, consistency = 2 Pa*s^n), which the explicit solver "
           "does not step; use Solver::PositionBased, or set yieldStress and consistency to 0");
     // Plugin parameters: the registry's declared range.
     CHECK(

@@ -499,7 +499,7 @@ TEST_CASE("docs/levels.md's material table is materialFields()", "[level][docs]"
     checkGenerated("<!-- material table: generated from fluid::materialFields(); see the test "
                    "\"docs/levels.md's material table is materialFields()\" -->\n",
                    "<!-- end of the material table -->\n", expected);
-    CHECK(expected.find("| `yieldStress` | Pa | [0, 1e5] | 0 | 30 |") != std::string::npos);
+    CHECK(expected.find("| `yieldStress` | Pa | [0, 1e5] | 0 | 400 |") != std::string::npos);
     CHECK(expected.find("| `mass` | kg | (0, 1000] | 0.013 | 0.014 |") != std::string::npos);
 }
 

@@ -174,6 +174,17 @@ TEST_CASE("blob geometry errors", "[unit][blob][bad-input]") {
             world.spawnBlob(b), Error,
             Catch::Message("spawnBlob: polygon vertex 1 = (nan, 0) is not finite"));
     }
+    SECTION("a starting structure outside [0, 1] or NaN") {
+        b.shape.type = ShapeType::Circle;
+        b.shape.radius = 0.05f;
+        const auto [value, text] = GENERATE(table<float, const char*>(
+            {{-0.5f, "-0.5"}, {1.5f, "1.5"}, {std::numeric_limits<float>::quiet_NaN(), "nan"}}));
+        b.structure = value;
+        CHECK_THROWS_MATCHES(world.spawnBlob(b), Error,
+                             Catch::Message(std::string("spawnBlob: structure = ") + text +
+                                            " is out of range [0, 1] (unit: 1)"));
+        CHECK(world.particleCount() == 0);
+    }
     SECTION("degenerate (zero area)") {
         b.shape.vertices = {{0.0f, 0.0f}, {0.1f, 0.1f}, {0.2f, 0.2f}};
         CHECK_THROWS_MATCHES(world.spawnBlob(b), Error,

@@ -91,7 +91,7 @@ TEST_CASE("the stress update stays finite at extreme parameters", "[unit][yield]
 
 TEST_CASE("yield-stress fields: validation and the explicit solver's refusal", "[unit][yield]") {
     Material m = yoghurt();
-    CHECK(m.yieldStress == 30.0f);
+    CHECK(m.yieldStress == 400.0f);
     CHECK(m.consistency == 2.0f);
     CHECK(m.flowIndex == 0.7f);
     CHECK(m.shearModulus == 0.0f);
@@ -115,7 +115,7 @@ TEST_CASE("yield-stress fields: validation and the explicit solver's refusal", "
     World world(def);
     CHECK_THROWS_WITH(world.addMaterial(yoghurt()),
                       "World::addMaterial: material 'yoghurt' has a Herschel-Bulkley flow law "
-                      "(yieldStress = 30 Pa, consistency = 2 Pa*s^n), which the explicit solver "
+                      "(yieldStress = 400 Pa, consistency = 2 Pa*s^n), which the explicit solver "
                       "does not step; use Solver::PositionBased, or set yieldStress and "
                       "consistency to 0");
     Material newtonian = yoghurt();
@@ -124,7 +124,7 @@ TEST_CASE("yield-stress fields: validation and the explicit solver's refusal", "
     const MaterialId id = world.addMaterial(newtonian);
     CHECK_THROWS_WITH(world.setMaterial(id, yoghurt()),
                       "World::setMaterial: material 'yoghurt' has a Herschel-Bulkley flow law "
-                      "(yieldStress = 30 Pa, consistency = 2 Pa*s^n), which the explicit solver "
+                      "(yieldStress = 400 Pa, consistency = 2 Pa*s^n), which the explicit solver "
                       "does not step; use Solver::PositionBased, or set yieldStress and "
                       "consistency to 0");
     CHECK(world.material(id).yieldStress == 0.0f);

@@ -51,7 +51,9 @@ struct Material {
     /// [0, 1e5]). Below it the material does not flow: it holds a heap, a shape in zero gravity,
     /// and sticks to walls, deforming elastically (`shearModulus`); above it it flows. 0 with
     /// `consistency` 0 (the default): a Newtonian liquid, stepped exactly as without these
-    /// fields. Water preset: 0; yoghurt: 30 (stirred yoghurt measures 5-30 Pa). Position-based
+    /// fields. Water preset: 0; yoghurt: 400 (yoghurt as a player sees it at the preset's 1 cm
+    /// spacing: a dollop heaps, a 4 cm layer holds on a 23 degree plank, a splash sticks to a
+    /// wall; stirred yoghurt measures 5-30 Pa, docs/position_based.md). Position-based
     /// solver only: the explicit solver refuses a material with a yield stress or a consistency.
     /// The step stores no stress above G times a strain of 1 (G as `shearModulus` says: about
     /// 2,200 Pa for the yoghurt preset at the default settings, 540 Pa at `Quality::Game`): a
@@ -87,7 +89,8 @@ Material water();
 /// (it refuses `yoghurt()`), and the one to compare with the report. Thread rule: any thread.
 Material seedYoghurt();
 /// The seed's yoghurt (Table 4.1, values unchanged) with a Herschel-Bulkley flow law: yield
-/// stress 30 Pa, consistency 2 Pa*s^n, flow index 0.7, shear modulus 0 (as stiff as the step
+/// stress 400 Pa (thick yoghurt as a game shows it; the measured 5-30 Pa barely heaps at the
+/// preset's spacing), consistency 2 Pa*s^n, flow index 0.7, shear modulus 0 (as stiff as the step
 /// allows). Table 4.1's viscosity of 20 Pa*s stays as the law's high-shear limit. Thread rule:
 /// any thread.
 Material yoghurt();

@@ -89,8 +89,8 @@ struct PositionBasedDef {
     /// particle returned to the Herschel-Bulkley surface after every sweep, heaps that come to
     /// rest at the game preset; 0 with the stress pass after the solve (heaps creep at the game
     /// preset; docs/position_based.md, "Yield stress"). Newtonian materials step the same
-    /// either way, bit for bit. Default 0 (both presets). Stepping thread, between steps.
-    uint32_t shearConstraint = 0;
+    /// either way, bit for bit. Default 1 (both presets). Stepping thread, between steps.
+    uint32_t shearConstraint = 1;
 };
 
 /// Named accuracy presets of the position-based solver (`positionBasedPreset`;
@@ -185,6 +185,14 @@ struct BlobDef {
     MaterialId material{};
     /// Lifetime of every particle (unit: s; range [0, 1e6]; 0 = lives forever).
     float lifetime = 0.0f;
+    /// Structure a yielding material's particles start with (unit: 1; range [0, 1]; read only
+    /// with `PositionBasedDef::shearConstraint`): 0, the default, is freshly sheared paste, as
+    /// an emitter pours it, which holds its yield stress at once but grips walls only as its
+    /// structure rebuilds (about 0.5 s: a layer put on a wall first sags 1.5-11 cm); 1 is paste
+    /// that has rested, which grips walls and holds up to twice its yield stress from the
+    /// first step (docs/position_based.md, "The shear constraint"). Unused for other
+    /// materials.
+    float structure = 0.0f;
 };
 
 /// The most stages a step's profile names (unit: count).
