@@ -70,7 +70,7 @@ struct Options {
     std::string material = "water";
     float yieldStress = -1.0f;    // Pa; < 0: the preset's
     float surfaceTension = -1.0f; // < 0: the preset's
-    uint32_t shearConstraint = 0;
+    uint32_t shearConstraint = fluid::PositionBasedDef{}.shearConstraint;
     bool guided = false;
 };
 
@@ -256,7 +256,8 @@ int main(int argc, char** argv) {
                    "override the material's surface tension (m^3/(kg s^2))")
         ->check(CLI::Range(0.0, 0.5));
     app.add_option("--shear-constraint", opt.shearConstraint,
-                   "1: yielding materials step with the shear constraint")
+                   "1 (the default): yielding materials step with the shear constraint; 0: "
+                   "with the stress pass")
         ->check(CLI::Range(0, 1));
     app.add_flag("--guided", opt.guided, "keep the body from turning");
     if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
