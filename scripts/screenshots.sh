@@ -2,8 +2,8 @@
 # Render the README's pictures into docs/screenshots/: every level of levels/ after 2.5 s
 # (metaballs, HUD on), the dam break in the pressure and particle views mid-collapse, and
 # "Fill the cup" after the planks were dragged into a slide (scripted input, as a player would),
-# the yoghurt dollop once both spouts have emptied (4 s), and the sticky plank carried over the
-# bowl with its yoghurt still on it.
+# the yoghurt dollop pushed onto its table once both spouts have emptied (4 s), and the sticky
+# plank carried over the bowl with its yoghurt still on it.
 # Usage: bash scripts/screenshots.sh [path/to/fluid-demo]   (build it first; runs under Xvfb
 # when there is no display)
 set -euo pipefail
@@ -50,19 +50,22 @@ drag() { # x0 y0 x1 y1
 run "$demo" --level cup_and_planks --frames 330 --size "$size" --script "$script" \
     --screenshot "$out/cup_and_planks.png" >/dev/null
 
-# Yoghurt dollop: after 4 s both spouts have emptied; the mound stands on its table.
-run "$demo" --level yoghurt_dollop --frames 240 --size "$size" \
+# Yoghurt dollop: the yoghurt's stream pushed onto its table (left drag held just left of it
+# and low while the spouts pour, 3 s); at 4 s the mound stands on the table.
+script="$tmp/dollop.script"
+printf '1 press left 0.86 0.14\n180 release left\n' >"$script"
+run "$demo" --level yoghurt_dollop --frames 240 --size "$size" --script "$script" \
     --screenshot "$out/yoghurt_dollop.png" >/dev/null
 
-# Sticky plank: shift + drag the plank from (0.32, 0.5) to (0.8, 0.32), low over the bowl, in
+# Sticky plank: shift + drag the plank from (0.36, 0.5) to (1.0, 0.34), low over the bowl, in
 # 1.5 s (eased, so the yoghurt rides along); the picture is taken before the shake.
 script="$tmp/plank.script"
 {
-    echo "10 press left 0.32 0.5 shift"
+    echo "10 press left 0.36 0.5 shift"
     for k in $(seq 1 90); do
         awk -v f=$((10 + k)) -v k="$k" \
             'BEGIN { t = 0.5 - 0.5 * cos(3.14159265 * k / 90);
-                     printf "%d move %.4f %.4f\n", f, 0.32 + t * 0.48, 0.5 - t * 0.18 }'
+                     printf "%d move %.4f %.4f\n", f, 0.36 + t * 0.64, 0.5 - t * 0.16 }'
     done
 } >"$script"
 run "$demo" --level sticky_plank --frames 100 --size "$size" --script "$script" \
