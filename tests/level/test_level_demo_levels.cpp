@@ -427,8 +427,8 @@ uint32_t countIn(const World& world, MaterialId material, float x0, float y0, fl
 
 } // namespace
 
-TEST_CASE("yoghurt_dollop.json: poured beside their tables, water and yoghurt miss them; pushed "
-          "onto its table the yoghurt heaps there",
+TEST_CASE("yoghurt_dollop.json: poured beside their tables, water and yoghurt miss them, and "
+          "pushed onto its table the yoghurt heaps there",
           "[level][demo][yield][slow]") {
     const Registry& registry = builtins();
     Level level = loadLevel(levelPath("yoghurt_dollop"), registry);
