@@ -52,8 +52,9 @@ struct Material {
     /// and sticks to walls, deforming elastically (`shearModulus`); above it it flows. 0 with
     /// `consistency` 0 (the default): a Newtonian liquid, stepped exactly as without these
     /// fields. Water preset: 0; yoghurt: 400 (yoghurt as a player sees it at the preset's 1 cm
-    /// spacing: a dollop heaps, a 4 cm layer holds on a 23 degree plank, a splash sticks to a
-    /// wall; stirred yoghurt measures 5-30 Pa, docs/position_based.md). Position-based
+    /// spacing: a dollop heaps, a splash sticks to a wall, a rested 4 cm layer holds on a 23
+    /// degree plank at `Quality::Game`; stirred yoghurt measures 5-30 Pa,
+    /// docs/position_based.md). Position-based
     /// solver only: the explicit solver refuses a material with a yield stress or a consistency.
     /// The step stores no stress above G times a strain of 1 (G as `shearModulus` says: about
     /// 2,200 Pa for the yoghurt preset at the default settings, 540 Pa at `Quality::Game`): a
