@@ -234,33 +234,35 @@ void holdOnWalls(WorldState& s, std::span<const YieldLaw> laws, float dt, uint32
     }
     // The walls' direction from the particle's side (kG < 0: S_w points at the walls).
     const float nx = -gx / length, ny = -gy / length;
-    const float mx = (p.px[i] + y.shearDx[i]) - x.startX[i] - y.wallVx[i] * dt;
-    const float my = (p.py[i] + y.shearDy[i]) - x.startY[i] - y.wallVy[i] * dt;
+    // The motion the particle would have made without the hold (what it made, minus what the
+    // hold took back so far in this sub-step): the hold is a bound on its net take-back, not on
+    // the sum of its sweeps' (which the density sweeps' pushes back and forth would use up).
+    const float mx = (p.px[i] + y.shearDx[i]) - x.startX[i] - y.wallVx[i] * dt - y.holdX[i];
+    const float my = (p.py[i] + y.shearDy[i]) - x.startY[i] - y.wallVy[i] * dt - y.holdY[i];
     const float away = mx * nx + my * ny;
     const float r = p.structure[i];
     const float unit = 2.0f * structuredLaw(laws[p.material[i]], r).flowStress /
                        p.restDensity[i] * length * (dt * dt);
     float hx = 0.0f, hy = 0.0f;
-    const float across = std::min(away, tuning::kWallHoldAcross * unit - y.heldAcross[i]);
+    const float across = std::min(away, tuning::kWallHoldAcross * unit);
     if (across > 0.0f) {
         hx -= across * nx;
         hy -= across * ny;
-        y.heldAcross[i] += across;
     }
     const float tx = mx - away * nx, ty = my - away * ny;
     const float slip = std::sqrt(tx * tx + ty * ty);
     const float rested = (r * r) * (r * r);
-    const float left = tuning::kWallHoldAlong * rested * unit - y.heldAlong[i];
+    const float left = tuning::kWallHoldAlong * rested * unit;
     if (slip > 0.0f && left > 0.0f) {
         const float along = std::min(slip, left);
         hx -= tx * (along / slip);
         hy -= ty * (along / slip);
-        y.heldAlong[i] += along;
     }
-    y.shearDx[i] += hx;
-    y.shearDy[i] += hy;
-    y.holdX[i] += hx;
-    y.holdY[i] += hy;
+    // The change of the net take-back.
+    y.shearDx[i] += hx - y.holdX[i];
+    y.shearDy[i] += hy - y.holdY[i];
+    y.holdX[i] = hx;
+    y.holdY[i] = hy;
 }
 
 } // namespace
@@ -294,8 +296,7 @@ void pbfShearPrepare(WorldState& s, const PbfConstants&) {
          {&y.refX, &y.refY, &y.ux,  &y.uy,       &y.yields,   &y.mxx,     &y.mxy,    &y.myy,
           &y.hxx,  &y.hxy,  &y.hyx, &y.hyy,      &y.sumX,     &y.sumY,    &y.trace,  &y.t00,
           &y.t01,  &y.t10,  &y.t11, &y.appliedA, &y.appliedB, &y.shearDx, &y.shearDy,
-          &y.wallX, &y.wallY, &y.wallWeight, &y.wallVx, &y.wallVy, &y.heldAcross,
-          &y.heldAlong, &y.holdX, &y.holdY}) {
+          &y.wallX, &y.wallY, &y.wallWeight, &y.wallVx, &y.wallVy, &y.holdX, &y.holdY}) {
         channel->resize(n);
     }
     const std::vector<uint8_t> yields = yieldingMaterials(s);
@@ -305,7 +306,6 @@ void pbfShearPrepare(WorldState& s, const PbfConstants&) {
         y.yields[i] = yields[p.material[i]] != 0 ? 1.0f : 0.0f;
         y.appliedA[i] = 0.0f;
         y.appliedB[i] = 0.0f;
-        y.heldAcross[i] = y.heldAlong[i] = 0.0f;
         y.holdX[i] = y.holdY[i] = 0.0f;
         // The gather reads 0 for particles of other materials; the sweeps write the others'.
         y.t00[i] = y.t01[i] = y.t10[i] = y.t11[i] = 0.0f;

@@ -114,10 +114,9 @@ struct YieldScratch {
     std::vector<float> refX, refY, ux, uy, yields;
     // The walls' hold (pbf_shear.cpp, holdOnWalls): the walls' part of S (1/m), their velocity
     // (m/s) and weight (sum of friction-weighted kernel values; 1), as the first reading
-    // took them; what the hold took back so far across and along the walls (m), and its
-    // displacement (m).
+    // took them; and the hold's net displacement so far in the sub-step (m).
     std::vector<float> wallX, wallY, wallVx, wallVy, wallWeight;
-    std::vector<float> heldAcross, heldAlong, holdX, holdY;
+    std::vector<float> holdX, holdY;
     bool matrixRead = false; // M and S of this sub-step read (its first reading)
     std::vector<float> mxx, mxy, myy;
     std::vector<float> hxx, hxy, hyx, hyy, sumX, sumY, trace;

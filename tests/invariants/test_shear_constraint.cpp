@@ -103,17 +103,23 @@ TEST_CASE("with the shear constraint a yoghurt block slumps into a heap that com
 }
 
 // The heap law h^2 = 2 tau_y d / (rho g), d the distance from the nearer front, on a 100 Pa
-// heap of 1 cm particles (a 0.6 x 0.1 m block, the game preset), after 20 s, over the columns
-// between a tenth and nine tenths of the half width, at five starts 2.5 mm apart (chaotic, as
-// the block above). The issue's average target (within 10%) is asked; its column-by-column one
-// (20%) is missed, so the median heap's farthest column is held where it is measured
-// (docs/position_based.md, "The shear constraint").
+// heap of 1 cm particles (a 0.6 x 0.1 m block), after 20 s, over the columns between a tenth
+// and nine tenths of the half width, at five starts 2.5 mm apart with the game preset and three
+// with the precise preset (chaotic, as the block above). The issue's average target (within
+// 10%) is asked; its column-by-column one (20%) is missed, so the median heap's farthest column
+// is held where it is measured (docs/position_based.md, "The shear constraint"). Measured: game
+// mean 0.998, farthest columns 0.47-0.55; precise 1.023, 0.49-0.57 (0.78 and 0.82-0.88 before
+// the walls' hold bounded its net take-back instead of the sum of its sweeps').
 TEST_CASE("with the shear constraint a heap follows h^2 = 2 tau_y d / (rho g)",
           "[slow][invariants][yield][shear]") {
+    const bool precise = GENERATE(false, true);
+    CAPTURE(precise);
+    WorldDef def = gameDef();
+    def.positionBased = positionBasedPreset(precise ? Quality::Precise : Quality::Game);
     const float tauY = 100.0f;
     std::vector<double> means, worsts;
-    for (int start = -2; start <= 2; ++start) {
-        World world = blockOnFloor(gameDef(), tauY, 60, 10, -0.3f + 0.0025f * float(start));
+    for (int start = -2; start <= 2; start += precise ? 2 : 1) {
+        World world = blockOnFloor(def, tauY, 60, 10, -0.3f + 0.0025f * float(start));
         const float s = world.spacing(MaterialId{0});
         for (int frame = 1; frame <= 1200; ++frame) {
             world.step(kFrame);
@@ -123,9 +129,11 @@ TEST_CASE("with the shear constraint a heap follows h^2 = 2 tau_y d / (rho g)",
         const float c = 2.0f * tauY / (world.material(MaterialId{0}).restDensity * kG);
         const float half = p.halfWidth();
         const HeapLawFit fit = heapLawFit(p, c, 0.1f * half, 0.9f * half);
-        std::printf("[measure] shear constraint, 100 Pa heap after 20 s (start %d): width %.3f m; "
-                    "h / sqrt(c d): mean %.3f, farthest from 1 by %.3f over %d columns\n",
-                    start, p.right - p.left, fit.mean, fit.worst, fit.columns);
+        std::printf("[measure] shear constraint, %s preset, 100 Pa heap after 20 s (start %d): "
+                    "width %.3f m; h / sqrt(c d): mean %.3f, farthest from 1 by %.3f over %d "
+                    "columns\n",
+                    precise ? "precise" : "game", start, p.right - p.left, fit.mean, fit.worst,
+                    fit.columns);
         CAPTURE(start, p.right - p.left, fit.mean, fit.worst, fit.columns);
         CHECK(fit.columns >= 40);
         means.push_back(fit.mean);
@@ -136,9 +144,10 @@ TEST_CASE("with the shear constraint a heap follows h^2 = 2 tau_y d / (rho g)",
         mean += m / double(means.size());
     }
     std::sort(worsts.begin(), worsts.end());
-    CAPTURE(mean, worsts[2]);
+    const double median = worsts[worsts.size() / 2];
+    CAPTURE(mean, median);
     CHECK(mean == Approx(1.0).margin(0.10));
-    CHECK(worsts[2] <= 0.6); // the median heap's farthest column
+    CHECK(median <= 0.6); // the median heap's farthest column
 }
 
 // Issue 47's wall case: a 3 x 30 cm layer hanging on a vertical no-slip wall, 40 cm above the

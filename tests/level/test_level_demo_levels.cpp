@@ -572,7 +572,7 @@ TEST_CASE("sticky_plank.json: the yoghurt clings to the tilted plank, carried an
         CHECK(inBowl() == 0);
         // Measured 0.428 m (0.442 m at load, 0.430 m at 5 s, the same from 30 to 61 s): the
         // layer's front settles 3 cm down the plank in the first 5 s and stays 9 cm short of its
-        // end. A 6 cm layer, or one at the precise preset, keeps creeping and drips off the end.
+        // end. A 6 cm layer keeps creeping and drips off the end.
         CHECK(b.y0 > 0.41f);
         CHECK(test::allFinite(level.world));
     }
