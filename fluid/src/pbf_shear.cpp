@@ -219,10 +219,11 @@ float jacobiScale(const YieldLaw& law, const YieldScratch& y, const Particles& p
 // The walls' hold on yielding particle i, after a sweep's gather: the particle's motion
 // relative to the walls since the sub-step's start (at the position the gather leaves) is
 // taken back, away from the walls up to kWallHoldAcross and along them up to kWallHoldAlong r^4
-// times dt^2 2 tau |S_w| / rho0 over the sub-step (tau the yield stress its structure r holds,
-// S_w the walls' part of the kernel gradient sum): what holds a layer on a wall and a rested
-// heap on its floor. It only takes back motion, never pulls: nothing for the density sweeps to
-// push back. The walls take the reaction (pbfShearSamples).
+// times dt^2 2 tau |S_w| / rho0 in all over the sub-step, however many sweeps apply it (tau the
+// yield stress its structure r holds, S_w the walls' part of the kernel gradient sum): what
+// holds a layer on a wall and a rested heap on its floor. It only takes back motion, never
+// pulls a particle past where the sweeps would put it: nothing for the density sweeps to push
+// back. The walls take the reaction (pbfShearSamples).
 void holdOnWalls(WorldState& s, std::span<const YieldLaw> laws, float dt, uint32_t i) {
     const Particles& p = s.particles;
     const PositionBasedScratch& x = s.pbfScratch;
