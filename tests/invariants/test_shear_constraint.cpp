@@ -107,9 +107,8 @@ TEST_CASE("with the shear constraint a yoghurt block slumps into a heap that com
 // and nine tenths of the half width, at five starts 2.5 mm apart with the game preset and three
 // with the precise preset (chaotic, as the block above). The issue's average target (within
 // 10%) is asked; its column-by-column one (20%) is missed, so the median heap's farthest column
-// is held where it is measured (docs/position_based.md, "The shear constraint"). Measured: game
-// mean 0.998, farthest columns 0.47-0.55; precise 1.023, 0.49-0.57 (0.78 and 0.82-0.88 before
-// the walls' hold bounded its net take-back instead of the sum of its sweeps').
+// is held where it is measured (docs/position_based.md, "The shear constraint" and "The hold
+// over many sweeps").
 TEST_CASE("with the shear constraint a heap follows h^2 = 2 tau_y d / (rho g)",
           "[slow][invariants][yield][shear]") {
     const bool precise = GENERATE(false, true);
@@ -197,8 +196,8 @@ TEST_CASE("with the shear constraint a layer of thick yoghurt hangs on a wall, a
 
 // The same layer of the preset (400 Pa) spawned with a rested structure (BlobDef::structure 1)
 // grips the wall from the first step; spawned freshly sheared (0, the default) it slides down
-// until its structure has rebuilt. Measured: rested 0.00 mm in the first second and from 1 to
-// 11 s; fresh 80.5 mm in the first second, then 1.8 mm.
+// until its structure has rebuilt (the figures: docs/position_based.md, "The starting
+// structure").
 TEST_CASE("with the shear constraint a rested layer grips a wall from the first step, a fresh one "
           "slides first",
           "[slow][invariants][yield][shear]") {

@@ -425,6 +425,15 @@ uint32_t countIn(const World& world, MaterialId material, float x0, float y0, fl
     return n;
 }
 
+// The demo's pointer as its left drag makes it (demo/session.cpp): a force.pointer of 40 m/s^2
+// pushing away from the cursor, of radius 0.12 x the view's size, which is the level's box
+// `size` (m) and the walls drawn 4% of it thick on each side.
+PointerForce& addDemoPointer(Level& level, const Registry& registry, double size) {
+    const std::array<ParamValue, 2> params{{{"radius", 0.12 * 1.08 * size}, {"strength", 40.0}}};
+    return static_cast<PointerForce&>(
+        level.world.addForce(registry.createForce(PointerForce::kType, params)));
+}
+
 } // namespace
 
 TEST_CASE("yoghurt_dollop.json: poured beside their tables, water and yoghurt miss them, and "
@@ -455,9 +464,8 @@ TEST_CASE("yoghurt_dollop.json: poured beside their tables, water and yoghurt mi
         CHECK(countOf(level.world, water) == 160);
         CHECK(countOf(level.world, yog) == 160);
         CHECK(level.goalState() == GoalState::Lost);
-        // Measured: the water lies flat from the wall to its table's stem, 4.2 cm deep; the
-        // yoghurt stands in a heap 12.2 cm high and 0.17 m wide under its table's edge, none of
-        // it on the table.
+        // The water flat from the wall to the stem, the yoghurt heaped beside its table (the
+        // figures: docs/levels.md, after the level table).
         CHECK(yogOn() <= 10);
         CHECK(w.x0 < 0.01f);
         CHECK(w.x1 > 0.34f); // from the wall to the stem
@@ -468,17 +476,9 @@ TEST_CASE("yoghurt_dollop.json: poured beside their tables, water and yoghurt mi
     }
 
     SECTION("the yoghurt's stream pushed onto its table (left drag) heaps there") {
-        // The demo's left drag: a force.pointer of radius 0.12 x the view's size (the 1.52 m
-        // tank and the walls drawn 4% of it thick each side: 0.197 m) and 40 m/s^2, pushing
-        // away from the cursor, held at (0.86, 0.14), 7 cm left of the stream and 2 cm over the
-        // table, for the 3 s the spout pours. Measured: 131 of 160 on the table after 6 s, won
-        // at 2.13 s. The aim matters: 2 cm left 74 (won at 2.75 s), 2 cm lower 66 (not won); 2
-        // cm right or higher the push throws the stream past or under the table (0). The right
-        // button's pull, the cursor held over the table's middle 8-13 cm up, also wins (92-95,
-        // at 3.1-3.2 s).
-        const std::array<ParamValue, 2> params{{{"radius", 0.12 * 1.08 * 1.52}, {"strength", 40.0}}};
-        auto& pointer = static_cast<PointerForce&>(
-            level.world.addForce(registry.createForce(PointerForce::kType, params)));
+        // The demo's left drag held at (0.86, 0.14), 7 cm left of the stream and 2 cm over the
+        // table, for the 3 s the spout pours; the aim matters to about 2 cm (docs/levels.md).
+        PointerForce& pointer = addDemoPointer(level, registry, 1.52);
         double wonAt = -1.0;
         for (int f = 1; f <= 60 * 6; ++f) {
             pointer.setPointer({0.86f, 0.14f}, f <= 180 ? 1.0f : 0.0f);
@@ -500,11 +500,7 @@ TEST_CASE("yoghurt_dollop.json: poured beside their tables, water and yoghurt mi
 
     SECTION("the water's stream pushed the same way does not stay on its table") {
         // The cursor as far left of the water's stream and as high (0.11, 0.14) for 3 s.
-        // Measured: at most 5 water particles on the table at once, none after 6 s (the
-        // yoghurt's push above: 120).
-        const std::array<ParamValue, 2> params{{{"radius", 0.12 * 1.08 * 1.52}, {"strength", 40.0}}};
-        auto& pointer = static_cast<PointerForce&>(
-            level.world.addForce(registry.createForce(PointerForce::kType, params)));
+        PointerForce& pointer = addDemoPointer(level, registry, 1.52);
         uint32_t most = 0;
         for (int f = 1; f <= 60 * 6; ++f) {
             pointer.setPointer({0.11f, 0.14f}, f <= 180 ? 1.0f : 0.0f);
@@ -571,9 +567,8 @@ TEST_CASE("sticky_plank.json: the yoghurt clings to the tilted plank, carried an
                     b.y0, inBowl(), level.goalState() == GoalState::Lost ? "lost" : "not lost");
         CHECK(level.goalState() == GoalState::Lost);
         CHECK(inBowl() == 0);
-        // Measured 0.428 m (0.442 m at load, 0.430 m at 5 s, the same from 30 to 61 s): the
-        // layer's front settles 3 cm down the plank in the first 5 s and stays 9 cm short of its
-        // end. A 6 cm layer keeps creeping and drips off the end.
+        // The front settles 3 cm in the first 5 s, then stays short of the plank's end (the
+        // figures: docs/levels.md, after the level table).
         CHECK(b.y0 > 0.41f);
         CHECK(test::allFinite(level.world));
     }
@@ -582,10 +577,8 @@ TEST_CASE("sticky_plank.json: the yoghurt clings to the tilted plank, carried an
     const float SX = 1.0f, SY = 0.34f, TX = 1.1f, TY = 0.35f;
     SECTION("carried low over the bowl and shaken hard as the demo's grab does, it falls in") {
         // The cursor: 1.5 s to (1.0, 0.34), the plank's low end 11 cm over the bowl's rim, then
-        // twelve shakes of +-6 cm, 10 frames each (2 s), then still. Measured 120 of 205 in the
-        // bowl (108-133 with the plank 4-6 cm higher or lower or 5 cm further left or right;
-        // with its centre at 1.1 m the plank throws the layer against the room's right wall,
-        // where it sticks: 0). The goal asks 100.
+        // twelve shakes of +-6 cm, 10 frames each (2 s), then still (how far this may move and
+        // still win: docs/levels.md).
         const auto cursor = [&](int f) -> glm::vec2 {
             if (f > 100 && f <= 220) {
                 return {((f - 101) / 5) % 2 == 0 ? SX + 0.06f : SX - 0.06f, SY};
@@ -611,11 +604,10 @@ TEST_CASE("sticky_plank.json: the yoghurt clings to the tilted plank, carried an
 
     SECTION("carried over the bowl and turned upside down with E, most of it hangs on; shaken, "
             "it falls in") {
-        // The cursor: 1.5 s to (1.12, 0.35), then E held for 1.5 s turns the plank by 3 rad;
-        // then twelve shakes of +-6 cm as above. The layer weighs rho g t = 440 Pa per unit of
-        // plank, under what the walls' hold carries once the paste has rested (up to twice the
-        // yield stress): upside down, 4 of 205 are in the bowl after the turn (4-24 with the plank 5-10 cm
-        // further left or higher, or 5 cm lower); shaken, 137 (136-146), the goal asks 100.
+        // The cursor: 1.5 s to (1.1, 0.35), then E held for 1.5 s turns the plank by 3 rad; then
+        // twelve shakes of +-6 cm as above. Upside down the layer's weight, rho g t = 440 Pa per
+        // unit of plank, is under what the walls' hold carries once the paste has rested (up to
+        // twice the yield stress), so it hangs until shaken (docs/levels.md).
         const auto cursor = [&](int f) -> glm::vec2 {
             if (f > 200 && f <= 320) {
                 return {((f - 201) / 5) % 2 == 0 ? TX + 0.06f : TX - 0.06f, TY};
@@ -669,12 +661,8 @@ TEST_CASE("yoghurt_or_water.json: the water runs down its chute into its cup, th
                     "%s\n",
                     nWater, nWater, y5.y0, y.y0,
                     level.goalState() == GoalState::Lost ? "lost" : "not lost");
-        // The chutes fall 19 degrees, from 0.45 m to 0.30 m; the dollop is 4 cm thick and 30 cm
-        // long, its lowest point 0.346 m at load. Measured with the preset (400 Pa, the shear
-        // constraint), the layer rested ("structure": 1): the lowest point 0.3465 m at 5 s and
-        // at 61 s (spawned fresh, it settled to 0.3377 m by 5 s and 0.3365 m by 61 s). With the
-        // stress pass, 450 Pa and a 3 cm dollop, a 3.5 cm dollop crept 2.5-6.7 mm here, and on
-        // the level's former 24 degree chute 300 Pa crept 18.5 mm in those 56 s.
+        // The chutes fall 19 degrees, from 0.45 m to 0.30 m; the rested dollop is 4 cm thick and
+        // 30 cm long, its lowest point 0.346 m at load (the figures: docs/levels.md).
         CHECK(yogCup() == 0);
         CHECK(y.y0 > 0.33f);                   // 3 cm above the chute's end
         CHECK(std::abs(y.y0 - y5.y0) < 0.01f); // and not creeping
@@ -683,14 +671,9 @@ TEST_CASE("yoghurt_or_water.json: the water runs down its chute into its cup, th
     }
 
     SECTION("pushed down the chute with the demo's pointer (left drag), it fills its cup") {
-        // The demo's left drag: a force.pointer of radius 0.12 x the view's size (the 1.3 m
-        // room and the walls drawn 4% of it thick each side: 0.168 m) and 40 m/s^2, pushing away from the cursor, dragged in 1 s from behind the dollop, 3 cm
-        // over the chute, to beyond the chute's end, 6 cm over it there. The chute keeps a film:
-        // measured 71 of 118 reach the cup (69-86 with the path 1 cm higher or lower, its end 5
-        // cm nearer or farther, or the drag 0.8-1.2 s long); the goal asks 60.
-        const std::array<ParamValue, 2> params{{{"radius", 0.12 * 1.08 * 1.3}, {"strength", 40.0}}};
-        auto& pointer = static_cast<PointerForce&>(
-            level.world.addForce(registry.createForce(PointerForce::kType, params)));
+        // The demo's left drag, dragged in 1 s from behind the dollop, 3 cm over the chute, to
+        // beyond the chute's end, 6 cm over it there; the chute keeps a film (docs/levels.md).
+        PointerForce& pointer = addDemoPointer(level, registry, 1.3);
         for (int f = 1; f <= 300; ++f) {
             const float t = std::clamp(float(f - 10) / 60.0f, 0.0f, 1.0f);
             pointer.setPointer({0.66f + 0.54f * t, 0.48f - 0.15f * t},

@@ -264,11 +264,10 @@ TEST_CASE("Archimedes: boxes and circles at 0.25, 0.5, 0.75 of yoghurt's density
     floating(newtonian);
 }
 
-// The yoghurt here is the preset with stirred yoghurt's measured yield stress, 30 Pa. In the
+// The yoghurt here is the preset with stirred yoghurt's measured yield stress, 30 Pa: in the
 // preset's 400 Pa the 0.2 m box at twice the density presses rho g h = 2,060 Pa beyond its
-// buoyancy, Prandtl's (2 + pi) 400 Pa = 2,056 Pa: at the edge of what the paste carries, it
-// was 7.5 cm above the floor and still sank at 3.4 cm/s after 2.5 s. That is the bearing
-// study's case (bench/yoghurt.md, "Bearing"), not Archimedes'.
+// buoyancy, about Prandtl's (2 + pi) 400 Pa, the bearing study's case (docs/position_based.md,
+// *Bearing*), not Archimedes'.
 TEST_CASE("Archimedes: boxes and circles at twice the fluid's density sink and rest on the floor",
           "[slow][box2d][archimedes]") {
     const bool yoghurt = GENERATE(false, true);
