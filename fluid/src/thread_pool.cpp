@@ -170,7 +170,11 @@ struct ThreadPool::Impl {
 };
 
 uint32_t usableCores() {
-#if defined(__linux__)
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+    // A WebAssembly build without threads (docs/web.md): no thread can start, every task runs
+    // on the stepping thread.
+    return 1;
+#elif defined(__linux__)
     cpu_set_t set;
     CPU_ZERO(&set);
     if (sched_getaffinity(0, sizeof(set), &set) == 0) {

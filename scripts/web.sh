@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# Builds fluid for the web (WebAssembly) with Debian 12's emscripten: the core, the built-in
+# plugins, fluid::box2d, fluid::level and fluid-run, into build/web (the `web` CMake preset).
+# What Debian ships only as native builds comes from Debian's source packages, compiled here by
+# emscripten: Box2D 2.4.1 (`apt-get source box2d`, with a deb-src line for bookworm added when
+# the machine has none). Header-only packages (glm, nlohmann-json, CLI11) are Debian's own,
+# copied into a prefix of the build's (build/web-deps/prefix) so that the compiler never sees
+# the system's whole include folder. Nothing is downloaded from anywhere but Debian.
+#
+#   bash scripts/web.sh              install what is missing (as root), build build/web
+#   bash scripts/web.sh --deps-only  only the packages and build/web-deps
+#
+# The programs run in Node.js (`node --no-experimental-fetch build/web/bench/fluid-run.js`, the
+# file system of the machine reachable as it is natively). Same bits as the native build:
+# bash scripts/same_bits.sh --web build/release build/web. docs/web.md tells the rest.
+set -euo pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+deps="$root/build/web-deps"
+prefix="$deps/prefix"
+deps_only=0
+for arg in "$@"; do
+    case $arg in
+    --deps-only) deps_only=1 ;;
+    *)
+        echo "usage: $0 [--deps-only]" >&2
+        exit 2
+        ;;
+    esac
+done
+
+# Debian packages: emscripten (and the Node.js it runs with), the header-only libraries, the
+# tools that unpack a source package.
+PACKAGES=(emscripten nodejs cmake ninja-build dpkg-dev libglm-dev nlohmann-json3-dev libcli11-dev)
+missing=()
+for pkg in "${PACKAGES[@]}"; do
+    status=$(dpkg-query -W -f='${db:Status-Status}' "$pkg" 2>/dev/null || true)
+    [[ "$status" == "installed" ]] || missing+=("$pkg")
+done
+if [[ ${#missing[@]} -gt 0 ]]; then
+    if [[ $(id -u) -ne 0 ]]; then
+        echo "web.sh: missing Debian packages: ${missing[*]} (run as root to install them)" >&2
+        exit 1
+    fi
+    echo "web.sh: installing ${missing[*]}"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq </dev/null
+    apt-get install -y -qq --no-install-recommends "${missing[@]}" </dev/null >/dev/null
+fi
+
+# The header-only libraries, each with Debian's CMake package files, under the prefix (their
+# package files find the headers relative to themselves).
+mkdir -p "$prefix/include" "$prefix/share/cmake"
+for pair in glm:glm nlohmann:nlohmann_json CLI:CLI11; do
+    headers=${pair%%:*} package=${pair##*:}
+    rm -rf "${prefix:?}/include/$headers" "${prefix:?}/share/cmake/$package"
+    cp -r "/usr/include/$headers" "$prefix/include/"
+    cp -r "/usr/share/cmake/$package" "$prefix/share/cmake/"
+done
+
+# Box2D from Debian's source package, built once per version.
+box2d_version=$(dpkg-query -W -f='${Version}' libbox2d-dev 2>/dev/null || true)
+box2d_version=${box2d_version:-2.4.1}
+if [[ ! -f "$prefix/lib/cmake/box2d/box2dConfig.cmake" ]]; then
+    src="$deps/src"
+    mkdir -p "$src"
+    if ! ls -d "$src"/box2d-*/ >/dev/null 2>&1; then
+        if ! apt-get source --print-uris box2d >/dev/null 2>&1; then
+            if [[ $(id -u) -ne 0 ]]; then
+                echo "web.sh: apt has no deb-src line for Box2D's source (run as root to add one)" >&2
+                exit 1
+            fi
+            echo "web.sh: adding Debian bookworm's source packages (deb-src) to apt"
+            cat >/etc/apt/sources.list.d/fluid-web-sources.sources <<'EOF'
+Types: deb-src
+URIs: http://deb.debian.org/debian
+Suites: bookworm
+Components: main
+Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
+EOF
+            apt-get update -qq </dev/null
+        fi
+        (cd "$src" && apt-get source -qq box2d </dev/null >/dev/null)
+    fi
+    box2d_src=$(ls -d "$src"/box2d-*/ | head -1)
+    echo "web.sh: building Box2D from $box2d_src"
+    emcmake cmake -S "$box2d_src" -B "$deps/box2d-build" -G Ninja \
+        -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX="$prefix" \
+        -DBOX2D_BUILD_UNIT_TESTS=OFF -DBOX2D_BUILD_TESTBED=OFF -DBOX2D_BUILD_DOCS=OFF \
+        -DBUILD_SHARED_LIBS=OFF -DCMAKE_CXX_FLAGS="-ffp-contract=off" </dev/null >/dev/null
+    cmake --build "$deps/box2d-build" </dev/null >/dev/null
+    cmake --install "$deps/box2d-build" </dev/null >/dev/null
+fi
+echo "web.sh: dependencies in $prefix (Box2D $box2d_version from Debian's source package)"
+[[ $deps_only -eq 1 ]] && exit 0
+
+cd "$root"
+cmake --preset web </dev/null
+cmake --build --preset web </dev/null
+echo "web.sh: built build/web (node --no-experimental-fetch build/web/bench/fluid-run.js LEVEL --frames N)"
