@@ -6,13 +6,12 @@
 #include "demo/frame_pacer.h"
 #include "demo/imgui_bridge.h"
 #include "demo/overlay.h"
+#include "demo/platform.h"
 #include "demo/session.h"
 #include "demo/ui.h"
 
 #include <fluid/gl/renderer.h>
 
-#include <SFML/System/Err.hpp>
-#include <SFML/Window.hpp>
 #include <box2d/box2d.h>
 
 #include <algorithm>
@@ -24,7 +23,6 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 
 namespace fluid::demo {
@@ -125,7 +123,7 @@ public:
         if (!loadLevel(m_index)) {
             return 1;
         }
-        sf::Clock clock;
+        auto last = std::chrono::steady_clock::now();
         const bool scripted = m_options.frames > 0;
         size_t next = 0; // next script action
         for (uint32_t frame = 1; m_window.isOpen() && !m_quit; ++frame) {
@@ -136,18 +134,20 @@ public:
                  ++next) {
                 play(m_options.script[next]);
             }
-            sf::Event event;
-            while (m_window.pollEvent(event)) {
+            Event event;
+            while (m_window.poll(event)) {
                 // A scripted run plays its script only: the display's own pointer, focus and
                 // key events (another window, a desktop) must not change the result.
-                if (!scripted || event.type == sf::Event::Closed) {
+                if (!scripted || event.type == Event::Type::Closed) {
                     handleEvent(event);
                 }
             }
             if (!m_window.isOpen() || m_quit) {
                 break;
             }
-            double real = clock.restart().asSeconds();
+            const auto now = std::chrono::steady_clock::now();
+            double real = std::chrono::duration<double>(now - last).count();
+            last = now;
             m_fps =
                 m_fps <= 0.0f ? 60.0f : 0.95f * m_fps + 0.05f * float(1.0 / std::max(real, 1e-4));
             if (scripted) {
@@ -168,56 +168,52 @@ public:
     }
 
 private:
-    // Plays one scripted action as the SFML events a player would cause.
+    // Plays one scripted action as the events a player would cause.
     void play(const ScriptAction& action) {
         const glm::vec2 pixel = camera().worldToPixel(action.position);
-        auto modifier = [&](sf::Event::EventType type, sf::Keyboard::Key key) {
-            sf::Event e{};
+        const glm::ivec2 at{int(std::lround(pixel.x)), int(std::lround(pixel.y))};
+        auto key = [&](Event::Type type, Key k) {
+            Event e;
             e.type = type;
-            e.key.code = key;
+            e.key = k;
             handleEvent(e);
         };
-        sf::Event event{};
+        Event event;
+        const MouseButton button = action.button == 0 ? MouseButton::Left : MouseButton::Right;
         switch (action.kind) {
         case ScriptAction::Kind::Key:
-            event.type = sf::Event::KeyPressed;
-            event.key.code = sf::Keyboard::Key(action.key);
-            handleEvent(event);
-            event.type = sf::Event::KeyReleased;
-            handleEvent(event);
+            key(Event::Type::KeyPressed, action.key);
+            key(Event::Type::KeyReleased, action.key);
             break;
         case ScriptAction::Kind::Move:
         case ScriptAction::Kind::Press:
-            event.type = sf::Event::MouseMoved;
-            event.mouseMove.x = int(std::lround(pixel.x));
-            event.mouseMove.y = int(std::lround(pixel.y));
+            event.type = Event::Type::MouseMoved;
+            event.position = at;
             handleEvent(event);
             if (action.kind == ScriptAction::Kind::Move) {
                 break;
             }
             if (action.shift) {
-                modifier(sf::Event::KeyPressed, sf::Keyboard::LShift);
+                key(Event::Type::KeyPressed, Key::LShift);
             }
             if (action.ctrl) {
-                modifier(sf::Event::KeyPressed, sf::Keyboard::LControl);
+                key(Event::Type::KeyPressed, Key::LControl);
             }
-            event.type = sf::Event::MouseButtonPressed;
-            event.mouseButton.button = action.button == 0 ? sf::Mouse::Left : sf::Mouse::Right;
-            event.mouseButton.x = int(std::lround(pixel.x));
-            event.mouseButton.y = int(std::lround(pixel.y));
+            event.type = Event::Type::MousePressed;
+            event.button = button;
+            event.position = at;
             handleEvent(event);
             break;
         case ScriptAction::Kind::Release:
-            event.type = sf::Event::MouseButtonReleased;
-            event.mouseButton.button = action.button == 0 ? sf::Mouse::Left : sf::Mouse::Right;
-            event.mouseButton.x = int(std::lround(m_mousePixel.x));
-            event.mouseButton.y = int(std::lround(m_mousePixel.y));
+            event.type = Event::Type::MouseReleased;
+            event.button = button;
+            event.position = {int(std::lround(m_mousePixel.x)), int(std::lround(m_mousePixel.y))};
             handleEvent(event);
             if (m_shift) {
-                modifier(sf::Event::KeyReleased, sf::Keyboard::LShift);
+                key(Event::Type::KeyReleased, Key::LShift);
             }
             if (m_ctrl) {
-                modifier(sf::Event::KeyReleased, sf::Keyboard::LControl);
+                key(Event::Type::KeyReleased, Key::LControl);
             }
             break;
         }
@@ -278,44 +274,19 @@ private:
         // shared between contexts).
         m_imgui.reset();
         m_renderer.reset();
-        // SFML turns vertical sync off on every new window and says on sf::err() when the
-        // display cannot (a virtual one); a scripted run never waits for the screen, so there
-        // that line is dropped and anything else SFML says is passed on.
-        std::stringstream sfmlSays;
-        std::streambuf* const sfmlErr =
-            m_options.frames > 0 ? sf::err().rdbuf(sfmlSays.rdbuf()) : nullptr;
-        if (fullscreen) {
-            m_window.create(sf::VideoMode::getDesktopMode(), "fluid", sf::Style::Fullscreen,
-                            glContextSettings());
-        } else {
-            m_window.create(sf::VideoMode(unsigned(m_options.size.x), unsigned(m_options.size.y)),
-                            "fluid", sf::Style::Default, glContextSettings());
-            m_window.setPosition({0, 0}); // without a window manager SFML places it off-screen
-        }
+        WindowDef def;
+        def.size = m_options.size;
+        def.fullscreen = fullscreen;
+        // A scripted run never waits for the screen.
+        def.verticalSync = m_options.frames == 0;
+        m_window.open(def);
         m_fullscreen = fullscreen;
-        if (m_options.frames == 0) {
-            m_window.setVerticalSyncEnabled(true);
-        } else {
-            sf::err().rdbuf(sfmlErr);
-            for (std::string line; std::getline(sfmlSays, line);) {
-                if (line != "Setting vertical sync not supported") {
-                    sf::err() << line << '\n';
-                }
-            }
-        }
-        m_window.setKeyRepeatEnabled(false);
-        checkContext(m_window);
         gl::loadFunctions();
-        m_renderer = std::make_unique<gl::Renderer>(windowSize());
+        m_renderer = std::make_unique<gl::Renderer>(m_window.size());
         m_imgui = std::make_unique<ImGuiBridge>();
         if (m_session) {
             m_renderer->setMaterials(m_session->styles());
         }
-    }
-
-    glm::ivec2 windowSize() const {
-        const sf::Vector2u s = m_window.getSize();
-        return {std::max(1u, s.x), std::max(1u, s.y)};
     }
 
     gl::Camera camera() const { return m_session->camera(m_renderer->size()); }
@@ -365,9 +336,9 @@ private:
         toast(savePng(*m_renderer, path) ? "Saved " + path : "Could not write " + path);
     }
 
-    void handleKey(const sf::Event::KeyEvent& key) {
-        using K = sf::Keyboard;
-        switch (key.code) {
+    void handleKey(Key key) {
+        using K = Key;
+        switch (key) {
         case K::S:
             m_view = (m_view + 1) % kViews.size();
             break;
@@ -428,8 +399,8 @@ private:
             m_grab.spin = -2.0f;
             break;
         default:
-            if (key.code >= K::Num1 && key.code <= K::Num9) {
-                const int index = int(key.code - K::Num1);
+            if (key >= K::Num1 && key <= K::Num9) {
+                const int index = int(key) - int(K::Num1);
                 if (index < int(m_options.levels.size())) {
                     loadLevel(index);
                 }
@@ -470,74 +441,74 @@ private:
         }
     }
 
-    void trackModifier(sf::Keyboard::Key key, bool down) {
-        if (key == sf::Keyboard::LShift || key == sf::Keyboard::RShift) {
+    void trackModifier(Key key, bool down) {
+        if (key == Key::LShift || key == Key::RShift) {
             m_shift = down;
-        } else if (key == sf::Keyboard::LControl || key == sf::Keyboard::RControl) {
+        } else if (key == Key::LControl || key == Key::RControl) {
             m_ctrl = down;
         }
     }
 
-    void handleEvent(const sf::Event& event) {
+    void handleEvent(const Event& event) {
         m_imgui->processEvent(event);
         switch (event.type) {
-        case sf::Event::Closed:
+        case Event::Type::Closed:
             m_window.close();
             break;
-        case sf::Event::Resized:
-            m_renderer->resize(windowSize());
+        case Event::Type::Resized:
+            m_renderer->resize(m_window.size());
             break;
-        case sf::Event::LostFocus:
+        case Event::Type::LostFocus:
             m_shift = m_ctrl = false;
             m_push = 0.0f;
             m_session->setPointer(mouseWorld(), 0.0f);
             m_grab.end(m_session->level().physics.get());
             break;
-        case sf::Event::KeyPressed:
-            trackModifier(event.key.code, true);
+        case Event::Type::KeyPressed:
+            trackModifier(event.key, true);
             if (!m_imgui->wantsKeyboard()) {
                 handleKey(event.key);
             }
             break;
-        case sf::Event::KeyReleased:
-            trackModifier(event.key.code, false);
-            if (event.key.code == sf::Keyboard::Q || event.key.code == sf::Keyboard::E) {
+        case Event::Type::KeyReleased:
+            trackModifier(event.key, false);
+            if (event.key == Key::Q || event.key == Key::E) {
                 m_grab.spin = 0.0f;
             }
             break;
-        case sf::Event::MouseMoved:
-            m_mousePixel = {float(event.mouseMove.x), float(event.mouseMove.y)};
+        case Event::Type::MouseMoved:
+            m_mousePixel = glm::vec2(event.position);
             break;
-        case sf::Event::MouseButtonPressed: {
+        case Event::Type::MousePressed: {
             if (m_imgui->wantsMouse()) {
                 break;
             }
-            m_mousePixel = {float(event.mouseButton.x), float(event.mouseButton.y)};
+            m_mousePixel = glm::vec2(event.position);
             const glm::vec2 p = mouseWorld();
-            const bool shift = m_shift || sf::Keyboard::isKeyPressed(sf::Keyboard::LShift) ||
-                               sf::Keyboard::isKeyPressed(sf::Keyboard::RShift);
-            const bool ctrl = m_ctrl || sf::Keyboard::isKeyPressed(sf::Keyboard::LControl) ||
-                              sf::Keyboard::isKeyPressed(sf::Keyboard::RControl);
+            const bool shift =
+                m_shift || m_window.keyHeld(Key::LShift) || m_window.keyHeld(Key::RShift);
+            const bool ctrl =
+                m_ctrl || m_window.keyHeld(Key::LControl) || m_window.keyHeld(Key::RControl);
             b2World* physics = m_session->level().physics.get();
-            if (event.mouseButton.button == sf::Mouse::Left && ctrl) {
+            if (event.button == MouseButton::Left && ctrl) {
                 if (!m_session->dropCrate(p)) {
                     toast("This level has no bodies: crates drop in levels with Box2D bodies");
                 }
-            } else if (event.mouseButton.button == sf::Mouse::Left && shift) {
+            } else if (event.button == MouseButton::Left && shift) {
                 if (physics != nullptr) {
                     if (b2Body* body = bodyAt(*physics, p)) {
                         m_grab.begin(*physics, body, p);
                     }
                 }
-            } else if (event.mouseButton.button == sf::Mouse::Left) {
+            } else if (event.button == MouseButton::Left) {
                 m_push = 1.0f;
-            } else if (event.mouseButton.button == sf::Mouse::Right) {
+            } else if (event.button == MouseButton::Right) {
                 m_push = -1.0f;
             }
             break;
         }
-        case sf::Event::MouseButtonReleased:
-            if (event.mouseButton.button == sf::Mouse::Left) {
+        case Event::Type::MouseReleased:
+            if (event.button == MouseButton::Left) {
                 m_grab.end(m_session->level().physics.get());
             }
             m_push = 0.0f;
@@ -622,7 +593,7 @@ private:
             drawToast(m_toast);
         }
         m_imgui->render();
-        m_renderer->present(windowSize());
+        m_renderer->present(m_window.size());
         m_window.display();
         if (m_pendingLevel >= 0) {
             // Switch after the frame: the menu was drawn from the old level's state.
@@ -634,7 +605,7 @@ private:
 
     GameOptions m_options;
     int m_index = 0;
-    sf::Window m_window;
+    Window m_window;
     bool m_fullscreen = false;
     std::unique_ptr<gl::Renderer> m_renderer;
     std::unique_ptr<ImGuiBridge> m_imgui;

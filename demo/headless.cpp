@@ -3,13 +3,11 @@
 
 #include "demo/imgui_bridge.h"
 #include "demo/overlay.h"
+#include "demo/platform.h"
 #include "demo/session.h"
 #include "demo/ui.h"
 
 #include <fluid/gl/renderer.h>
-
-#include <SFML/System/Err.hpp>
-#include <SFML/Window.hpp>
 
 #include <cstdio>
 #include <exception>
@@ -55,24 +53,17 @@ int runHeadless(const HeadlessOptions& options) {
             return 1;
         }
     }
-    // SFML turns vertical sync off on every new window and says on sf::err() that a virtual
-    // display cannot; a headless run never waits for the screen, so that line is dropped and
-    // anything else SFML says while the window is made is passed on.
-    std::stringstream sfmlSays;
-    std::streambuf* const sfmlErr = sf::err().rdbuf(sfmlSays.rdbuf());
-    sf::Window window(sf::VideoMode(unsigned(options.size.x), unsigned(options.size.y)),
-                      "fluid-demo (headless)", sf::Style::Titlebar, glContextSettings());
-    sf::err().rdbuf(sfmlErr);
-    for (std::string line; std::getline(sfmlSays, line);) {
-        if (line != "Setting vertical sync not supported") {
-            sf::err() << line << '\n';
-        }
-    }
-    window.setVisible(false);
+    // An off-screen window for its context; a headless run never waits for the screen.
+    Window window;
+    WindowDef def;
+    def.size = options.size;
+    def.title = "fluid-demo (headless)";
+    def.verticalSync = false;
+    def.visible = false;
     std::unique_ptr<gl::Renderer> renderer;
     std::unique_ptr<ImGuiBridge> imgui;
     try {
-        checkContext(window);
+        window.open(def);
         gl::loadFunctions();
         renderer = std::make_unique<gl::Renderer>(options.size);
         if (options.hud) {

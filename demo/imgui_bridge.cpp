@@ -1,13 +1,10 @@
-// fluid-demo — Dear ImGui 1.86 on an SFML window (see imgui_bridge.h).
+// fluid-demo — Dear ImGui 1.86 on the platform layer's window (see imgui_bridge.h).
 #include "imgui_bridge.h"
 
 #include <fluid/error.h>
 
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
-
-#include <SFML/Window/Keyboard.hpp>
-#include <SFML/Window/Mouse.hpp>
 
 #include <algorithm>
 #include <cfloat>
@@ -22,32 +19,19 @@ constexpr const char* kFontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.t
 constexpr float kFontSize = 15.0f;
 constexpr float kBannerFontSize = 28.0f;
 
-// ImGui's button index for an SFML button, or -1.
-int buttonIndex(sf::Mouse::Button button) {
-    switch (button) {
-    case sf::Mouse::Left:
-        return 0;
-    case sf::Mouse::Right:
-        return 1;
-    case sf::Mouse::Middle:
-        return 2;
-    case sf::Mouse::XButton1:
-        return 3;
-    case sf::Mouse::XButton2:
-        return 4;
-    default:
-        return -1;
-    }
+// ImGui's button index for a mouse button: 0 left, 1 right, 2 middle, 3 and 4 the extra ones.
+int buttonIndex(MouseButton button) {
+    return int(button);
 }
 
-// io.KeysDown is indexed by SFML key codes (0 .. KeyCount-1, all below 512).
-static_assert(sf::Keyboard::KeyCount <= 512, "SFML key codes must fit io.KeysDown");
-bool validKey(sf::Keyboard::Key key) {
-    return key >= 0 && key < sf::Keyboard::KeyCount;
+// io.KeysDown is indexed by the platform layer's key values (below Key::Count).
+static_assert(int(Key::Count) <= 512, "key values must fit io.KeysDown");
+bool validKey(Key key) {
+    return key != Key::Unknown && key < Key::Count;
 }
 
-void setModifiers(ImGuiIO& io, const sf::Event::KeyEvent& key) {
-    io.KeyCtrl = key.control;
+void setModifiers(ImGuiIO& io, const Event& key) {
+    io.KeyCtrl = key.ctrl;
     io.KeyShift = key.shift;
     io.KeyAlt = key.alt;
     io.KeySuper = key.system;
@@ -80,31 +64,31 @@ ImGuiBridge::ImGuiBridge() {
     // The demo keeps no window layout between runs (and must not write files in tests).
     io.IniFilename = nullptr;
     io.LogFilename = nullptr;
-    io.BackendPlatformName = "fluid_demo_sfml";
+    io.BackendPlatformName = "fluid_demo";
 
-    io.KeyMap[ImGuiKey_Tab] = sf::Keyboard::Tab;
-    io.KeyMap[ImGuiKey_LeftArrow] = sf::Keyboard::Left;
-    io.KeyMap[ImGuiKey_RightArrow] = sf::Keyboard::Right;
-    io.KeyMap[ImGuiKey_UpArrow] = sf::Keyboard::Up;
-    io.KeyMap[ImGuiKey_DownArrow] = sf::Keyboard::Down;
-    io.KeyMap[ImGuiKey_PageUp] = sf::Keyboard::PageUp;
-    io.KeyMap[ImGuiKey_PageDown] = sf::Keyboard::PageDown;
-    io.KeyMap[ImGuiKey_Home] = sf::Keyboard::Home;
-    io.KeyMap[ImGuiKey_End] = sf::Keyboard::End;
-    io.KeyMap[ImGuiKey_Insert] = sf::Keyboard::Insert;
-    io.KeyMap[ImGuiKey_Delete] = sf::Keyboard::Delete;
-    io.KeyMap[ImGuiKey_Backspace] = sf::Keyboard::Backspace;
-    io.KeyMap[ImGuiKey_Space] = sf::Keyboard::Space;
-    io.KeyMap[ImGuiKey_Enter] = sf::Keyboard::Enter;
-    io.KeyMap[ImGuiKey_Escape] = sf::Keyboard::Escape;
-    // SFML 2.5 reports the keypad's Enter as Enter.
-    io.KeyMap[ImGuiKey_KeyPadEnter] = sf::Keyboard::Enter;
-    io.KeyMap[ImGuiKey_A] = sf::Keyboard::A;
-    io.KeyMap[ImGuiKey_C] = sf::Keyboard::C;
-    io.KeyMap[ImGuiKey_V] = sf::Keyboard::V;
-    io.KeyMap[ImGuiKey_X] = sf::Keyboard::X;
-    io.KeyMap[ImGuiKey_Y] = sf::Keyboard::Y;
-    io.KeyMap[ImGuiKey_Z] = sf::Keyboard::Z;
+    io.KeyMap[ImGuiKey_Tab] = int(Key::Tab);
+    io.KeyMap[ImGuiKey_LeftArrow] = int(Key::Left);
+    io.KeyMap[ImGuiKey_RightArrow] = int(Key::Right);
+    io.KeyMap[ImGuiKey_UpArrow] = int(Key::Up);
+    io.KeyMap[ImGuiKey_DownArrow] = int(Key::Down);
+    io.KeyMap[ImGuiKey_PageUp] = int(Key::PageUp);
+    io.KeyMap[ImGuiKey_PageDown] = int(Key::PageDown);
+    io.KeyMap[ImGuiKey_Home] = int(Key::Home);
+    io.KeyMap[ImGuiKey_End] = int(Key::End);
+    io.KeyMap[ImGuiKey_Insert] = int(Key::Insert);
+    io.KeyMap[ImGuiKey_Delete] = int(Key::Delete);
+    io.KeyMap[ImGuiKey_Backspace] = int(Key::Backspace);
+    io.KeyMap[ImGuiKey_Space] = int(Key::Space);
+    io.KeyMap[ImGuiKey_Enter] = int(Key::Enter);
+    io.KeyMap[ImGuiKey_Escape] = int(Key::Escape);
+    // The platform layer reports the keypad's Enter as Enter.
+    io.KeyMap[ImGuiKey_KeyPadEnter] = int(Key::Enter);
+    io.KeyMap[ImGuiKey_A] = int(Key::A);
+    io.KeyMap[ImGuiKey_C] = int(Key::C);
+    io.KeyMap[ImGuiKey_V] = int(Key::V);
+    io.KeyMap[ImGuiKey_X] = int(Key::X);
+    io.KeyMap[ImGuiKey_Y] = int(Key::Y);
+    io.KeyMap[ImGuiKey_Z] = int(Key::Z);
 
     applyStyle();
 
@@ -133,56 +117,54 @@ ImGuiBridge::~ImGuiBridge() {
     ImGui::DestroyContext();
 }
 
-void ImGuiBridge::processEvent(const sf::Event& event) {
+void ImGuiBridge::processEvent(const Event& event) {
     ImGuiIO& io = ImGui::GetIO();
     switch (event.type) {
-    case sf::Event::KeyPressed:
-    case sf::Event::KeyReleased:
-        if (validKey(event.key.code)) {
-            io.KeysDown[event.key.code] = event.type == sf::Event::KeyPressed;
+    case Event::Type::KeyPressed:
+    case Event::Type::KeyReleased:
+        if (validKey(event.key)) {
+            io.KeysDown[int(event.key)] = event.type == Event::Type::KeyPressed;
         }
-        setModifiers(io, event.key);
+        setModifiers(io, event);
         break;
-    case sf::Event::TextEntered:
+    case Event::Type::Text:
         // Control characters (backspace, tab, enter, delete) arrive as key events instead.
-        if (event.text.unicode >= 32 && event.text.unicode != 127) {
-            io.AddInputCharacter(event.text.unicode);
+        if (event.unicode >= 32 && event.unicode != 127) {
+            io.AddInputCharacter(event.unicode);
         }
         break;
-    case sf::Event::MouseMoved:
-        io.MousePos =
-            ImVec2(static_cast<float>(event.mouseMove.x), static_cast<float>(event.mouseMove.y));
+    case Event::Type::MouseMoved:
+        io.MousePos = ImVec2(static_cast<float>(event.position.x),
+                             static_cast<float>(event.position.y));
         break;
-    case sf::Event::MouseButtonPressed:
-    case sf::Event::MouseButtonReleased: {
-        io.MousePos = ImVec2(static_cast<float>(event.mouseButton.x),
-                             static_cast<float>(event.mouseButton.y));
-        const int index = buttonIndex(event.mouseButton.button);
-        if (index >= 0) {
-            const bool down = event.type == sf::Event::MouseButtonPressed;
-            m_mouseHeld[index] = down;
-            if (down) {
-                m_mousePressed[index] = true;
-            }
+    case Event::Type::MousePressed:
+    case Event::Type::MouseReleased: {
+        io.MousePos = ImVec2(static_cast<float>(event.position.x),
+                             static_cast<float>(event.position.y));
+        const int index = buttonIndex(event.button);
+        const bool down = event.type == Event::Type::MousePressed;
+        m_mouseHeld[size_t(index)] = down;
+        if (down) {
+            m_mousePressed[size_t(index)] = true;
         }
         break;
     }
-    case sf::Event::MouseWheelScrolled:
-        if (event.mouseWheelScroll.wheel == sf::Mouse::VerticalWheel) {
-            io.MouseWheel += event.mouseWheelScroll.delta;
+    case Event::Type::Wheel:
+        if (event.horizontal) {
+            io.MouseWheelH += event.wheel;
         } else {
-            io.MouseWheelH += event.mouseWheelScroll.delta;
+            io.MouseWheel += event.wheel;
         }
         break;
-    case sf::Event::MouseLeft:
+    case Event::Type::MouseLeft:
         io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
         break;
-    case sf::Event::LostFocus:
+    case Event::Type::LostFocus:
         // Releases never arrive for keys and buttons let go in another window.
         releaseAll();
         io.AddFocusEvent(false);
         break;
-    case sf::Event::GainedFocus:
+    case Event::Type::GainedFocus:
         io.AddFocusEvent(true);
         break;
     default:

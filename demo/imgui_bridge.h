@@ -1,8 +1,10 @@
-// fluid-demo — Dear ImGui 1.86 on an SFML window: input by hand (Debian's ImGui has no SFML
-// backend and predates the 1.87 event API), drawing with ImGui's OpenGL3 backend.
+// fluid-demo — Dear ImGui 1.86 on the platform layer's window (platform.h): input by hand (the
+// layer's events; Debian's ImGui predates the 1.87 event API), drawing with ImGui's OpenGL3
+// backend.
 #pragma once
 
-#include <SFML/Window/Event.hpp>
+#include "demo/platform.h"
+
 #include <glm/vec2.hpp>
 
 #include <array>
@@ -11,9 +13,9 @@ struct ImFont;
 
 namespace fluid::demo {
 
-/// Owns the Dear ImGui context and its OpenGL 3 renderer, and feeds it SFML input.
+/// Owns the Dear ImGui context and its OpenGL 3 renderer, and feeds it the window's input.
 ///
-/// Use per frame: `processEvent` for every SFML event, then `newFrame`, the `ImGui::` calls
+/// Use per frame: `processEvent` for every window event, then `newFrame`, the `ImGui::` calls
 /// (see ui.h), then `render` before `display()`. Ask `wantsKeyboard` / `wantsMouse` before
 /// giving an event to the game: they are true while a panel has focus or the mouse is over one
 /// (as of the last frame, ImGui's usual one-frame lag).
@@ -36,10 +38,10 @@ public:
     /// Not assignable either.
     ImGuiBridge& operator=(const ImGuiBridge&) = delete;
 
-    /// Feeds one SFML event: keys (with Ctrl, Shift, Alt, Super), text (characters >= 32 but
+    /// Feeds one window event: keys (with Ctrl, Shift, Alt, Super), text (characters >= 32 but
     /// not 127), mouse position, buttons and wheels. Losing focus releases every key and
     /// button; the mouse leaving the window hides its position from ImGui.
-    void processEvent(const sf::Event& event);
+    void processEvent(const Event& event);
     /// Starts an ImGui frame for a window of `windowSize` pixels (unit: px; each >= 0) after
     /// `dtSeconds` of real time (unit: s; a value <= 0 or non-finite reads as 1/60, ImGui needs
     /// a positive time step). A button pressed and released since the last frame still
@@ -58,8 +60,8 @@ public:
     /// True when ImGui uses the mouse (the cursor over a panel, or dragging a widget).
     bool wantsMouse() const;
     /// Restarts the OpenGL3 renderer (shader, buffers, font texture) after the GL context was
-    /// recreated (fullscreen toggle: `sf::Window::create`), the new context current. SFML
-    /// shares objects between its contexts, so the old names are deleted, not leaked. Throws
+    /// recreated (fullscreen toggle: `Window::open`), the new context current. The desktop's
+    /// SFML shares objects between its contexts, so the old names are deleted, not leaked. Throws
     /// `fluid::Error` if the renderer cannot start again; the bridge then draws nothing until
     /// a later call succeeds.
     void reloadDeviceObjects();

@@ -1,30 +1,14 @@
-// fluid-demo — context settings and overlay glue.
+// fluid-demo — overlay glue.
 #include <GL/glew.h> // before any other GL header
 
 #include "demo/overlay.h"
+#include "demo/platform.h"
 
 #include <fluid/error.h>
-
-#include <SFML/Graphics/Image.hpp>
 
 #include <string>
 
 namespace fluid::demo {
-
-sf::ContextSettings glContextSettings() {
-    return sf::ContextSettings(24, 8, 0, 3, 3, sf::ContextSettings::Core);
-}
-
-void checkContext(const sf::Window& window) {
-    const sf::ContextSettings got = window.getSettings();
-    const bool core = (got.attributeFlags & sf::ContextSettings::Core) != 0;
-    if (got.majorVersion * 10 + got.minorVersion < 33 || !core) {
-        throw Error("needs an OpenGL 3.3 core context, but the driver gave OpenGL " +
-                    std::to_string(got.majorVersion) + "." + std::to_string(got.minorVersion) +
-                    (core ? " core" : " compatibility") +
-                    " (software rendering: Mesa's llvmpipe provides 3.3 core, e.g. under Xvfb)");
-    }
-}
 
 void beginOverlay(const gl::Renderer& renderer) {
     glBindFramebuffer(GL_FRAMEBUFFER, renderer.framebuffer());
@@ -61,10 +45,7 @@ HudInfo hudFor(const Session& session, gl::View view) {
 bool savePng(const gl::Renderer& renderer, const std::string& path) {
     std::vector<uint8_t> rgba;
     renderer.readPixels(rgba);
-    const glm::ivec2 size = renderer.size();
-    sf::Image image;
-    image.create(unsigned(size.x), unsigned(size.y), rgba.data());
-    return image.saveToFile(path);
+    return writePng(path, renderer.size(), rgba);
 }
 
 } // namespace fluid::demo

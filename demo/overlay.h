@@ -1,5 +1,5 @@
-// fluid-demo — the OpenGL context the game asks SFML for, and the glue between a level and
-// the ImGui overlay (HUD, banner) drawn on top of the renderer's frame.
+// fluid-demo — the glue between a level and the ImGui overlay (HUD, banner) drawn on top of
+// the renderer's frame.
 #pragma once
 #include "demo/session.h"
 #include "demo/ui.h"
@@ -7,18 +7,7 @@
 #include <fluid/gl/renderer.h>
 #include <fluid/level.h>
 
-#include <SFML/Window/ContextSettings.hpp>
-#include <SFML/Window/Window.hpp>
-
 namespace fluid::demo {
-
-/// OpenGL 3.3 core, 24-bit depth, 8-bit stencil, no multisampling (the renderer anti-aliases
-/// its own edges).
-sf::ContextSettings glContextSettings();
-
-/// Throws `fluid::Error` naming what SFML created when `window`'s context is older than 3.3 or
-/// not a core profile (SFML silently falls back when the driver refuses). Main thread.
-void checkContext(const sf::Window& window);
 
 /// Binds the renderer's framebuffer and viewport, so ImGui draws into the frame (and into
 /// screenshots). Main thread, context current.

@@ -3,8 +3,6 @@
 
 #include <fluid/error.h>
 
-#include <SFML/Window/Keyboard.hpp>
-
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -13,20 +11,20 @@
 namespace fluid::demo {
 namespace {
 
-constexpr std::pair<const char*, sf::Keyboard::Key> kKeys[] = {
-    {"S", sf::Keyboard::S},           {"G", sf::Keyboard::G},
-    {"M", sf::Keyboard::M},           {"Space", sf::Keyboard::Space},
-    {"R", sf::Keyboard::R},           {"P", sf::Keyboard::P},
-    {"Period", sf::Keyboard::Period}, {"N", sf::Keyboard::N},
-    {"B", sf::Keyboard::B},           {"Tab", sf::Keyboard::Tab},
-    {"F1", sf::Keyboard::F1},         {"Escape", sf::Keyboard::Escape},
-    {"F5", sf::Keyboard::F5},         {"F9", sf::Keyboard::F9},
-    {"Q", sf::Keyboard::Q},           {"E", sf::Keyboard::E},
-    {"Num1", sf::Keyboard::Num1},     {"Num2", sf::Keyboard::Num2},
-    {"Num3", sf::Keyboard::Num3},     {"Num4", sf::Keyboard::Num4},
-    {"Num5", sf::Keyboard::Num5},     {"Num6", sf::Keyboard::Num6},
-    {"Num7", sf::Keyboard::Num7},     {"Num8", sf::Keyboard::Num8},
-    {"Num9", sf::Keyboard::Num9},
+constexpr std::pair<const char*, Key> kKeys[] = {
+    {"S", Key::S},           {"G", Key::G},
+    {"M", Key::M},           {"Space", Key::Space},
+    {"R", Key::R},           {"P", Key::P},
+    {"Period", Key::Period}, {"N", Key::N},
+    {"B", Key::B},           {"Tab", Key::Tab},
+    {"F1", Key::F1},         {"Escape", Key::Escape},
+    {"F5", Key::F5},         {"F9", Key::F9},
+    {"Q", Key::Q},           {"E", Key::E},
+    {"Num1", Key::Num1},     {"Num2", Key::Num2},
+    {"Num3", Key::Num3},     {"Num4", Key::Num4},
+    {"Num5", Key::Num5},     {"Num6", Key::Num6},
+    {"Num7", Key::Num7},     {"Num8", Key::Num8},
+    {"Num9", Key::Num9},
 };
 
 } // namespace
@@ -85,7 +83,7 @@ std::vector<ScriptAction> readScript(const std::string& path) {
             bool found = false;
             for (const auto& [keyName, code] : kKeys) {
                 if (name == keyName) {
-                    action.key = int(code);
+                    action.key = code;
                     found = true;
                 }
             }

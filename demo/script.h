@@ -2,6 +2,8 @@
 // plays as if a player made them. Tests drive the interactive game with it; players can record
 // a sequence for a bug report.
 #pragma once
+#include "demo/platform.h"
+
 #include <glm/vec2.hpp>
 
 #include <cstdint>
@@ -27,8 +29,8 @@ struct ScriptAction {
     uint32_t frame = 1;
     /// See `Kind`.
     Kind kind = Kind::Key;
-    /// SFML key code (`sf::Keyboard::Key`) for `Key`.
-    int key = 0;
+    /// The key of `Key`.
+    demo::Key key = demo::Key::Unknown;
     /// 0 left, 1 right, for `Press` and `Release`.
     int button = 0;
     /// Modifiers held during a `Press` until its `Release`.
