@@ -2,7 +2,13 @@
 # renderer into one C++ source as raw string literals, so fluid::gl reads nothing from disk at
 # run time.
 #
-#   cmake -DSHADERS="a.vert|b.frag" -DOUTPUT=<file.cpp> -P embed_shaders.cmake
+#   cmake -DSHADERS="a.vert|b.frag" -DOUTPUT=<file.cpp> [-DES=ON] [-DWRITE_DIR=<dir>]
+#         -P embed_shaders.cmake
+#
+# With ES=ON (fluid::gl for OpenGL ES 3.0 / WebGL2) each shader's first line, `#version 330
+# core`, becomes `#version 300 es` with high precision for floats, ints and samplers, and a
+# `#line 2` so that compile errors name the lines of the file. WRITE_DIR: each shader's text as
+# embedded is also written there under its name (tests/gl validates the ES ones).
 #
 # SHADERS is joined with '|' because ';' would split the -D value into a CMake list before the
 # script sees it. The table is sorted by file name (shaderSource() binary-searches it). The
@@ -54,6 +60,14 @@ foreach(_name IN LISTS _names)
     if(NOT _bad EQUAL -1)
         message(FATAL_ERROR "embed_shaders.cmake: shader '${_path}' contains the raw-string "
                             "delimiter ')${_delimiter}'")
+    endif()
+    if(ES)
+        string(LENGTH "${_first}" _first_length)
+        string(SUBSTRING "${_text}" ${_first_length} -1 _rest)
+        set(_text "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp sampler2D;\n#line 2${_rest}")
+    endif()
+    if(DEFINED WRITE_DIR)
+        file(WRITE "${WRITE_DIR}/${_name}" "${_text}")
     endif()
     string(APPEND _name_entries "    \"${_name}\",\n")
     string(APPEND _source_entries "    // ${_name}\n    R\"${_delimiter}(${_text})${_delimiter}\",\n")

@@ -1,6 +1,4 @@
 // fluid-demo — the interactive game.
-#include <GL/glew.h> // before any other GL header
-
 #include "demo/app.h"
 
 #include "demo/frame_pacer.h"

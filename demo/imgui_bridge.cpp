@@ -10,10 +10,17 @@
 #include <cfloat>
 #include <cmath>
 #include <filesystem>
+#include <string>
 
 namespace fluid::demo {
 
 namespace {
+// The GLSL version ImGui's OpenGL3 backend compiles its shaders for: fluid::gl's.
+#if defined(FLUID_GL_ES)
+constexpr const char* kGlslVersion = "#version 300 es";
+#else
+constexpr const char* kGlslVersion = "#version 330 core";
+#endif
 constexpr const char* kFontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 // Panel text and banner title sizes (unit: px).
 constexpr float kFontSize = 15.0f;
@@ -102,10 +109,10 @@ ImGuiBridge::ImGuiBridge() {
         m_bannerFont = io.Fonts->AddFontDefault();
     }
 
-    if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
+    if (!ImGui_ImplOpenGL3_Init(kGlslVersion)) {
         ImGui::DestroyContext();
-        throw Error("ImGuiBridge: ImGui_ImplOpenGL3_Init(\"#version 330 core\") failed; a GL "
-                    "3.3 core context must be current");
+        throw Error(std::string("ImGuiBridge: ImGui_ImplOpenGL3_Init(\"") + kGlslVersion +
+                    "\") failed; a GL 3.3 core (or OpenGL ES 3.0) context must be current");
     }
     m_rendererReady = true;
 }
@@ -212,10 +219,11 @@ void ImGuiBridge::reloadDeviceObjects() {
     // sizes of its old vertex and index buffers across those and then streams into the new,
     // empty ones with glBufferSubData (GL_INVALID_VALUE, nothing drawn; seen on Mesa).
     ImGui_ImplOpenGL3_Shutdown();
-    m_rendererReady = ImGui_ImplOpenGL3_Init("#version 330 core");
+    m_rendererReady = ImGui_ImplOpenGL3_Init(kGlslVersion);
     if (!m_rendererReady) {
-        throw Error("ImGuiBridge::reloadDeviceObjects: ImGui_ImplOpenGL3_Init(\"#version 330 "
-                    "core\") failed; a GL 3.3 core context must be current");
+        throw Error(std::string("ImGuiBridge::reloadDeviceObjects: ImGui_ImplOpenGL3_Init(\"") +
+                    kGlslVersion +
+                    "\") failed; a GL 3.3 core (or OpenGL ES 3.0) context must be current");
     }
     ImGui_ImplOpenGL3_CreateDeviceObjects();
 }

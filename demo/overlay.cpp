@@ -1,5 +1,9 @@
 // fluid-demo — overlay glue.
+#if defined(FLUID_GL_ES) // fluid::gl's GL: OpenGL ES 3.0 / WebGL2, or 3.3 core through GLEW
+#include <GLES3/gl3.h>
+#else
 #include <GL/glew.h> // before any other GL header
+#endif
 
 #include "demo/overlay.h"
 #include "demo/platform.h"

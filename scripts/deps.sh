@@ -10,6 +10,7 @@ PACKAGES=(
     nlohmann-json3-dev libbenchmark-dev libcli11-dev
     xvfb xauth x11-utils mesa-utils
     clang-14 libclang-rt-14-dev
+    glslang-tools
 )
 
 missing=()

@@ -28,10 +28,12 @@ std::string errorName(GLenum error) {
         return "GL_INVALID_FRAMEBUFFER_OPERATION";
     case GL_OUT_OF_MEMORY:
         return "GL_OUT_OF_MEMORY";
+#if !defined(FLUID_GL_ES) // OpenGL ES 3.0 has no matrix stacks
     case GL_STACK_UNDERFLOW:
         return "GL_STACK_UNDERFLOW";
     case GL_STACK_OVERFLOW:
         return "GL_STACK_OVERFLOW";
+#endif
     default: {
         char buffer[32];
         std::snprintf(buffer, sizeof buffer, "GL error 0x%04X", static_cast<unsigned>(error));
@@ -73,6 +75,22 @@ void loadFunctions() {
     if (g_loaded.load()) {
         return;
     }
+#if defined(FLUID_GL_ES)
+    // OpenGL ES 3.0 / WebGL2: the entry points are linked, nothing to load. The renderer's
+    // half-float field needs float colour buffers (EXT_color_buffer_float; WebGL2 names it
+    // the same), checked where the field is made.
+    if (glGetString(GL_VERSION) == nullptr) {
+        throw Error("fluid::gl: loadFunctions: no current OpenGL ES context");
+    }
+    GLint major = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    drainErrors();
+    if (major < 3) {
+        throw Error("fluid::gl: loadFunctions: OpenGL ES 3.0 or later is needed, the current "
+                    "context is " +
+                    describeContext());
+    }
+#else
     // Core profiles have no GL_EXTENSIONS string: without glewExperimental GLEW would leave
     // every entry point past 1.1 null.
     glewExperimental = GL_TRUE;
@@ -98,6 +116,7 @@ void loadFunctions() {
                     describeContext() + " (version " + std::to_string(major) + "." +
                     std::to_string(minor) + ")");
     }
+#endif
     g_loaded.store(true);
 }
 

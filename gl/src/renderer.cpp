@@ -234,6 +234,7 @@ void setTextureParameters(GLenum filter) {
 } // namespace
 
 Renderer::Impl::Impl(glm::ivec2 targetSize) {
+#if !defined(FLUID_GL_ES) // OpenGL ES links its entry points
     // GLEW's entry points past OpenGL 1.1 are null until loadFunctions() ran: calling one
     // would crash instead of throwing.
     if (glCreateShader == nullptr || glGenVertexArrays == nullptr ||
@@ -241,6 +242,7 @@ Renderer::Impl::Impl(glm::ivec2 targetSize) {
         throw Error("fluid::gl: Renderer: OpenGL entry points are not loaded; call "
                     "fluid::gl::loadFunctions() with the context current first");
     }
+#endif
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
     checkSize(targetSize, maxTextureSize, "Renderer");
     size = targetSize;
