@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <exception>
 #include <filesystem>
@@ -28,6 +29,37 @@ namespace {
 
 constexpr std::array<gl::View, 3> kViews{gl::View::Metaballs, gl::View::Pressure,
                                          gl::View::Particles};
+
+// FNV-1a (64 bit) over the raw bits of every particle's position and velocity, in the world's
+// order, then every Box2D body's position, angle and velocities, in the level's order: two
+// runs that print the same hash stepped the same bits (a desktop and a browser, say).
+uint64_t stateHash(const Level& level) {
+    uint64_t hash = 14695981039346656037ull;
+    auto add = [&](float value) {
+        uint32_t bits = 0;
+        std::memcpy(&bits, &value, sizeof bits);
+        for (int byte = 0; byte < 4; ++byte) {
+            hash = (hash ^ ((bits >> (8 * byte)) & 0xffu)) * 1099511628211ull;
+        }
+    };
+    const World& world = level.world;
+    for (const auto& channel :
+         {world.positionX(), world.positionY(), world.velocityX(), world.velocityY()}) {
+        for (const float value : channel) {
+            add(value);
+        }
+    }
+    for (const auto& entry : level.bodies) {
+        const b2Body* body = entry.second;
+        add(body->GetPosition().x);
+        add(body->GetPosition().y);
+        add(body->GetAngle());
+        add(body->GetLinearVelocity().x);
+        add(body->GetLinearVelocity().y);
+        add(body->GetAngularVelocity());
+    }
+    return hash;
+}
 
 // The body under a point (dynamic or kinematic; static ground is never grabbed).
 b2Body* bodyAt(b2World& world, glm::vec2 p) {
@@ -107,55 +139,66 @@ struct Grab {
     }
 };
 
+} // namespace
+
 class Game {
 public:
     explicit Game(const GameOptions& options) : m_options(options), m_index(options.first) {}
 
-    int run() {
+    // Opens the window and the first level; false (message on stderr) when either fails.
+    bool start() {
         try {
             createWindow(m_options.fullscreen);
         } catch (const std::exception& e) {
             std::fprintf(stderr, "fluid-demo: %s\n", e.what());
-            return 1;
+            return false;
         }
         if (!loadLevel(m_index)) {
-            return 1;
+            return false;
         }
-        auto last = std::chrono::steady_clock::now();
+        m_last = std::chrono::steady_clock::now();
+        return true;
+    }
+
+    // One frame: the script's actions due, the window's events, the simulation and the
+    // picture. False when the game is over (window closed, Quit, or the scripted frames run).
+    bool frame() {
         const bool scripted = m_options.frames > 0;
-        size_t next = 0; // next script action
-        for (uint32_t frame = 1; m_window.isOpen() && !m_quit; ++frame) {
-            if (scripted && frame > m_options.frames) {
-                break;
-            }
-            for (; next < m_options.script.size() && m_options.script[next].frame <= frame;
-                 ++next) {
-                play(m_options.script[next]);
-            }
-            Event event;
-            while (m_window.poll(event)) {
-                // A scripted run plays its script only: the display's own pointer, focus and
-                // key events (another window, a desktop) must not change the result.
-                if (!scripted || event.type == Event::Type::Closed) {
-                    handleEvent(event);
-                }
-            }
-            if (!m_window.isOpen() || m_quit) {
-                break;
-            }
-            const auto now = std::chrono::steady_clock::now();
-            double real = std::chrono::duration<double>(now - last).count();
-            last = now;
-            m_fps =
-                m_fps <= 0.0f ? 60.0f : 0.95f * m_fps + 0.05f * float(1.0 / std::max(real, 1e-4));
-            if (scripted) {
-                real = 1.0 / double(m_session->level().frameRate); // exactly one step a frame
-            }
-            simulate(real);
-            render(float(real));
+        if (!m_window.isOpen() || m_quit || (scripted && m_frame > m_options.frames)) {
+            return false;
         }
-        int status = 0;
+        for (; m_next < m_options.script.size() && m_options.script[m_next].frame <= m_frame;
+             ++m_next) {
+            play(m_options.script[m_next]);
+        }
+        Event event;
+        while (m_window.poll(event)) {
+            // A scripted run plays its script only: the display's own pointer, focus and key
+            // events (another window, a desktop) must not change the result.
+            if (!scripted || event.type == Event::Type::Closed) {
+                handleEvent(event);
+            }
+        }
+        if (!m_window.isOpen() || m_quit) {
+            return false;
+        }
+        const auto now = std::chrono::steady_clock::now();
+        double real = std::chrono::duration<double>(now - m_last).count();
+        m_last = now;
+        m_fps = m_fps <= 0.0f ? 60.0f : 0.95f * m_fps + 0.05f * float(1.0 / std::max(real, 1e-4));
         if (scripted) {
+            real = 1.0 / double(m_session->level().frameRate); // exactly one step a frame
+        }
+        simulate(real);
+        render(float(real));
+        ++m_frame;
+        return true;
+    }
+
+    // After the last frame: a scripted run's summary and screenshot; the exit status.
+    int finish() {
+        int status = 0;
+        if (m_options.frames > 0) {
             status = finishScripted();
         }
         m_grab.end(nullptr);
@@ -256,6 +299,9 @@ private:
                           double(body->GetPosition().x), double(body->GetPosition().y));
             line += buffer;
         }
+        std::snprintf(buffer, sizeof buffer, " hash=%016llx",
+                      static_cast<unsigned long long>(stateHash(level)));
+        line += buffer;
         std::printf("fluid-demo: %s\n", line.c_str());
         std::fflush(stdout);
         if (!m_options.screenshot.empty()) {
@@ -622,17 +668,43 @@ private:
     int m_pendingLevel = -1;
     std::string m_toast;
     std::chrono::steady_clock::time_point m_toastUntil{};
+    uint32_t m_frame = 1;                        // the frame about to be played, from 1
+    size_t m_next = 0;                           // the next script action
+    std::chrono::steady_clock::time_point m_last{}; // when the last frame began
 };
 
-} // namespace
+GameRunner::GameRunner(const GameOptions& options) {
+    if (!options.levels.empty()) {
+        m_game = std::make_unique<Game>(options);
+    }
+}
+
+GameRunner::~GameRunner() = default;
+
+bool GameRunner::start() {
+    if (m_game == nullptr) {
+        std::fprintf(stderr, "fluid-demo: no levels to play\n");
+        return false;
+    }
+    return m_game->start();
+}
+
+bool GameRunner::frame() {
+    return m_game != nullptr && m_game->frame();
+}
+
+int GameRunner::finish() {
+    return m_game != nullptr ? m_game->finish() : 1;
+}
 
 int runGame(const GameOptions& options) {
-    if (options.levels.empty()) {
-        std::fprintf(stderr, "fluid-demo: no levels to play\n");
+    GameRunner game(options);
+    if (!game.start()) {
         return 1;
     }
-    Game game(options);
-    return game.run();
+    while (game.frame()) {
+    }
+    return game.finish();
 }
 
 } // namespace fluid::demo

@@ -6,6 +6,7 @@
 #include <glm/vec2.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,9 +40,41 @@ struct GameOptions {
     std::string screenshot;
 };
 
-/// Opens the window and plays until it is closed or Quit is chosen (or `frames` ran). Returns
-/// the exit status: 0, or 1 when the window or OpenGL cannot be set up or the screenshot
-/// cannot be written (message on stderr). Main thread.
+class Game;
+
+/// The game as a frame callback, for hosts that own the main loop (a browser page calls
+/// `frame` from its animation callback): `start`, then `frame` until it returns false, then
+/// `finish`. Main thread.
+class GameRunner {
+public:
+    /// Nothing opens until `start`.
+    explicit GameRunner(const GameOptions& options);
+    /// Closes what is still open.
+    ~GameRunner();
+    /// Not copyable: it owns the window.
+    GameRunner(const GameRunner&) = delete;
+    /// Not assignable either.
+    GameRunner& operator=(const GameRunner&) = delete;
+
+    /// Opens the window and the first level. False (message on stderr) when there are no
+    /// levels or the window, OpenGL or the level cannot be set up; call `finish` then.
+    bool start();
+    /// Plays one frame: the script's actions due, the window's events, the simulation steps the
+    /// real time asks for (exactly one with `frames`) and the picture. False when the game is
+    /// over: the window closed, Quit chosen, or `frames` played.
+    bool frame();
+    /// Ends the game: a scripted run's summary line and screenshot. Returns the exit status: 0,
+    /// or 1 when it could not start or the screenshot cannot be written.
+    int finish();
+
+private:
+    std::unique_ptr<Game> m_game;
+};
+
+/// Opens the window and plays until it is closed or Quit is chosen (or `frames` ran):
+/// `GameRunner`'s start, frames and finish. Returns the exit status: 0, or 1 when the window or
+/// OpenGL cannot be set up or the screenshot cannot be written (message on stderr). Main
+/// thread.
 int runGame(const GameOptions& options);
 
 } // namespace fluid::demo
