@@ -157,6 +157,7 @@ public:
             return false;
         }
         m_last = std::chrono::steady_clock::now();
+        m_began = m_last;
         return true;
     }
 
@@ -303,6 +304,13 @@ private:
                       static_cast<unsigned long long>(stateHash(level)));
         line += buffer;
         std::printf("fluid-demo: %s\n", line.c_str());
+        // What the frames cost here (not part of the line above, which two machines compare).
+        const double wall =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - m_began)
+                .count();
+        std::printf("fluid-demo: cost level=%s frames=%u step_ms=%.2f frame_ms=%.2f\n",
+                    m_session->file().stem.c_str(), m_options.frames,
+                    m_stepMsTotal / double(m_options.frames), wall / double(m_options.frames));
         std::fflush(stdout);
         if (!m_options.screenshot.empty()) {
             if (!savePng(*m_renderer, m_options.screenshot)) {
@@ -583,6 +591,7 @@ private:
             }
             total += m_session->lastStepMs();
         }
+        m_stepMsTotal += total;
         m_pacer->reportStepCost(total / 1000.0 / steps);
         m_simMs =
             m_simMs <= 0.0f ? float(total / steps) : 0.9f * m_simMs + 0.1f * float(total / steps);
@@ -671,6 +680,8 @@ private:
     uint32_t m_frame = 1;                        // the frame about to be played, from 1
     size_t m_next = 0;                           // the next script action
     std::chrono::steady_clock::time_point m_last{}; // when the last frame began
+    std::chrono::steady_clock::time_point m_began{}; // when the first frame began
+    double m_stepMsTotal = 0.0;                      // the simulation's time over all frames
 };
 
 GameRunner::GameRunner(const GameOptions& options) {

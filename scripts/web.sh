@@ -11,6 +11,11 @@
 #
 #   bash scripts/web.sh              install what is missing (as root), build build/web
 #   bash scripts/web.sh --deps-only  only the packages and build/web-deps
+#   bash scripts/web.sh --test       build, then the browser checks: Debian's chromium and
+#                                    puppeteer-core (npm ci in tests/web) installed, the desktop
+#                                    demo built (build/release), the same game on both
+#                                    (tests/web/same_game.sh) and the same saves for every
+#                                    level (scripts/same_bits.sh --web)
 #
 # The programs run in Node.js (`node --no-experimental-fetch build/web/bench/fluid-run.js`, the
 # file system of the machine reachable as it is natively). Same bits as the native build:
@@ -21,11 +26,13 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 deps="$root/build/web-deps"
 prefix="$deps/prefix"
 deps_only=0
+test=0
 for arg in "$@"; do
     case $arg in
     --deps-only) deps_only=1 ;;
+    --test) test=1 ;;
     *)
-        echo "usage: $0 [--deps-only]" >&2
+        echo "usage: $0 [--deps-only | --test]" >&2
         exit 2
         ;;
     esac
@@ -35,6 +42,13 @@ done
 # tools that unpack a source package.
 PACKAGES=(emscripten nodejs cmake ninja-build dpkg-dev libglm-dev nlohmann-json3-dev libcli11-dev
     libstb-dev fonts-dejavu-core)
+# The browser checks: Debian's Chromium (software WebGL2 through SwiftShader), npm for
+# puppeteer-core, which drives it.
+if [[ $test -eq 1 ]]; then
+    PACKAGES+=(chromium python3 xvfb xauth)
+    # Debian's npm, unless the machine's Node.js brought its own.
+    command -v npm >/dev/null || PACKAGES+=(npm)
+fi
 missing=()
 for pkg in "${PACKAGES[@]}"; do
     status=$(dpkg-query -W -f='${db:Status-Status}' "$pkg" 2>/dev/null || true)
@@ -128,3 +142,13 @@ cmake --preset web </dev/null
 cmake --build --preset web </dev/null
 echo "web.sh: built build/web: the page in build/web/demo/page/ (serve it: docs/web.md);"
 echo "        node --no-experimental-fetch build/web/bench/fluid-run.js LEVEL --frames N"
+[[ $test -eq 1 ]] || exit 0
+
+(cd "$root/tests/web" && npm ci --no-audit --no-fund </dev/null >/dev/null)
+if [[ ! -x "$root/build/release/demo/fluid-demo" || ! -x "$root/build/release/bench/fluid-run" ]]; then
+    bash "$root/scripts/deps.sh"
+    cmake --preset release </dev/null >/dev/null
+    cmake --build --preset release --target fluid-demo fluid-run </dev/null >/dev/null
+fi
+bash "$root/tests/web/same_game.sh" build/release build/web crates crates.script 600
+bash "$root/scripts/same_bits.sh" --web build/release build/web 60
