@@ -120,9 +120,11 @@ void Session::save(const std::string& path) const {
 
 void Session::restore(const std::string& path) {
     Level restored = loadLevelSave(path, m_registry, optionsFor(m_workers));
-    if (restored.file != m_level.file) {
-        throw Error("'" + path + "' is a save of '" + restored.file + "', not of '" +
-                    m_level.file + "'");
+    // The same level is the same text wherever its file lies: a save made on the desktop
+    // loads in the browser's page, whose levels sit in another folder, and back.
+    if (restored.source != m_level.source) {
+        throw Error("'" + path + "' is a save of '" + restored.file + "', whose text is not '" +
+                    m_level.file + "''s");
     }
     // The session's own materials and plugins were in the world when it was saved (plugins
     // live on the heap: the pointers outlive the level's move).

@@ -77,7 +77,8 @@ public:
     /// Saves the level as it stands (`Level::saveFile`: liquid, Box2D bodies, coupling) to
     /// `path`. Throws `fluid::Error` naming the file.
     void save(const std::string& path) const;
-    /// Goes back to a save made by `save` for this level: the liquid, the bodies and the
+    /// Goes back to a save made by `save` for this level (the same level text, wherever its
+    /// file was: a desktop's save loads in the page and back): the liquid, the bodies and the
     /// gravity switch as they were (the material Space drops stays as chosen). Throws
     /// `fluid::Error` for a bad save or one of another level (this session is unchanged then).
     void restore(const std::string& path);

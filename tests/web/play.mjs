@@ -1,15 +1,17 @@
 // Plays the demo's page in Debian's Chromium, headless with software WebGL2 (SwiftShader):
 // loads URL, prints the page's console as it comes, waits until the game reports its exit
 // (Module.fluidExit: a scripted run ends after its frames) or TIMEOUT seconds, saves a
-// screenshot of the page, and exits with the game's status (3 on a timeout, 4 when the page
-// failed).
+// screenshot of the page, copies files out of the page's file system (FROM:TO pairs: a save,
+// the game's own screenshot), and exits with the game's status (3 on a timeout, 4 when the
+// page failed).
 //
-//   node tests/web/play.mjs URL SCREENSHOT.png [TIMEOUT]
+//   node tests/web/play.mjs URL SCREENSHOT.png [TIMEOUT] [FROM:TO ...]
+import fs from 'node:fs';
 import puppeteer from 'puppeteer-core';
 
-const [url, screenshot, timeoutText] = process.argv.slice(2);
+const [url, screenshot, timeoutText, ...copies] = process.argv.slice(2);
 if (!url || !screenshot) {
-  console.error('usage: node play.mjs URL SCREENSHOT.png [TIMEOUT]');
+  console.error('usage: node play.mjs URL SCREENSHOT.png [TIMEOUT] [FROM:TO ...]');
   process.exit(2);
 }
 const timeout = Number(timeoutText ?? 600) * 1000;
@@ -34,6 +36,22 @@ try {
     status = 3;
   }
   await page.screenshot({path: screenshot});
+  for (const pair of copies) {
+    const [from, to] = pair.split(':');
+    const bytes = await page.evaluate((path) => {
+      try {
+        return Array.from(FS.readFile(path));
+      } catch (e) {
+        return null;
+      }
+    }, from);
+    if (bytes === null) {
+      console.log('play.mjs: the page has no ' + from);
+      status = status === 0 ? 4 : status;
+    } else {
+      fs.writeFileSync(to, Buffer.from(bytes));
+    }
+  }
 } finally {
   await browser.close();
 }

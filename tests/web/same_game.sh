@@ -1,14 +1,21 @@
 #!/usr/bin/env bash
-# The same game on the desktop and in a browser: plays LEVEL with tests/web/SCRIPT for FRAMES
-# frames in the desktop demo (NATIVE_BUILD/demo/fluid-demo, under Xvfb when there is no
-# display) and in the page (WEB_BUILD/demo/page, served from a temporary folder on loopback,
-# played by Debian's Chromium headless with software WebGL2 through tests/web/play.mjs), then
-# compares the two summary lines (particles, centre of mass, bodies, the state's hash). Saves
-# both pictures in OUT (default /tmp/fluid-same-game). Needs `npm ci` in tests/web once.
+# The same game on the desktop and in a browser. Plays LEVEL in the desktop demo
+# (NATIVE_BUILD/demo/fluid-demo, one worker, under Xvfb when there is no display) and in the
+# page (WEB_BUILD/demo/page, served from a temporary folder on loopback, played by Debian's
+# Chromium headless with software WebGL2 through tests/web/play.mjs), and checks:
+#   1. tests/web/SCRIPT for FRAMES frames ends with the same summary line on both (particles,
+#      centre of mass, bodies, the hash of every particle's and body's state), and the game's
+#      two pictures of the last frame differ in at most 1% of their pixels outside the HUD
+#      (two software rasterisers: Mesa's llvmpipe and SwiftShader; tests/web/compare.mjs);
+#   2. F5 after 30 frames on each side: the desktop's save, put in the page's saves, loads
+#      with F9 and plays on to the same line as on the desktop, and the page's save, copied
+#      out of the page, does the same on the desktop.
+# Pictures, logs and saves stay in OUT (default /tmp/fluid-same-game). Needs `npm ci` in
+# tests/web once (scripts/web.sh --test does all of it).
 #
 #   bash tests/web/same_game.sh NATIVE_BUILD WEB_BUILD [LEVEL] [SCRIPT] [FRAMES] [OUT]
 #   e.g. bash tests/web/same_game.sh build/release build/web crates crates.script 600
-# Exit status: 0 when the lines are the same, 1 when they differ or a side failed, 2 for bad
+# Exit status: 0 when all holds, 1 when something differs or a side failed, 2 for bad
 # arguments.
 set -euo pipefail
 
@@ -33,22 +40,10 @@ if [[ ! -d $here/node_modules/puppeteer-core ]]; then
     echo "$0: run 'npm ci' in $here first (puppeteer-core drives Debian's chromium)" >&2
     exit 2
 fi
-mkdir -p "$out"
+rm -rf "$out"
+mkdir -p "$out/page-saves"
 
-# The desktop: one worker, as the page.
-run_native=("$native" --level "$level" --script "$here/$script" --frames "$frames" --threads 1
-    --screenshot "$out/native.png")
-if [[ -z ${DISPLAY:-} ]]; then
-    run_native=(xvfb-run -a -s "-screen 0 1280x720x24" "${run_native[@]}")
-fi
-"${run_native[@]}" >"$out/native.log" 2>&1 || {
-    echo "same_game: the desktop demo failed:" >&2
-    tail -5 "$out/native.log" >&2
-    exit 1
-}
-native_line=$(grep '^fluid-demo: level=' "$out/native.log" | tail -1)
-
-# The page, with the script beside it, on a free loopback port.
+# The page's folder, with what the runs fetch beside it, on a free loopback port.
 site=$(mktemp -d)
 server=
 cleanup() {
@@ -57,7 +52,9 @@ cleanup() {
 }
 trap cleanup EXIT
 cp "$page"/* "$site/"
-cp "$here/$script" "$site/script.txt"
+cp "$here/$script" "$site/play.txt"
+printf '30 key F5\n' >"$site/save.txt"
+printf '1 key F9\n' >"$site/load.txt"
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 python3 -m http.server "$port" --bind 127.0.0.1 --directory "$site" >"$out/server.log" 2>&1 &
 server=$!
@@ -66,23 +63,83 @@ for _ in $(seq 50); do
         2>/dev/null && break
     sleep 0.1
 done
-url="http://127.0.0.1:$port/index.html?level=$level&script=script.txt&frames=$frames"
-started=$SECONDS
-status=0
-node "$here/play.mjs" "$url" "$out/web.png" 1200 >"$out/web.log" 2>&1 || status=$?
-web_seconds=$((SECONDS - started))
-web_line=$(grep '^fluid-demo: level=' "$out/web.log" | tail -1 || true)
-if [[ $status -ne 0 || -z $web_line ]]; then
-    echo "same_game: the page failed (status $status):" >&2
-    grep -v '404' "$out/web.log" | tail -5 >&2
-    exit 1
-fi
 
+failed=0
+fail() {
+    echo "same_game: $*"
+    failed=1
+}
+
+# desktop NAME SCRIPT FRAMES [ARGS...]: prints the summary line; log in OUT/NAME.log.
+desktop() {
+    local name=$1 file=$2 count=$3
+    shift 3
+    local run=("$native" --level "$level" --script "$file" --frames "$count" --threads 1 "$@")
+    [[ -z ${DISPLAY:-} ]] && run=(xvfb-run -a -s "-screen 0 1280x720x24" "${run[@]}")
+    if ! "${run[@]}" >"$out/$name.log" 2>&1; then
+        echo "same_game: the desktop demo failed ($name):" >&2
+        tail -5 "$out/$name.log" >&2
+        exit 1
+    fi
+    grep '^fluid-demo: level=' "$out/$name.log" | tail -1
+}
+
+# browser NAME SCRIPT FRAMES QUERY [FROM:TO...]: the same in the page; prints the line.
+browser() {
+    local name=$1 file=$2 count=$3 query=$4
+    shift 4
+    local url="http://127.0.0.1:$port/index.html?level=$level&script=$file&frames=$count$query"
+    local status=0
+    node "$here/play.mjs" "$url" "$out/$name-page.png" 1200 "$@" >"$out/$name.log" 2>&1 ||
+        status=$?
+    local line
+    line=$(grep '^fluid-demo: level=' "$out/$name.log" | tail -1 || true)
+    if [[ $status -ne 0 || -z $line ]]; then
+        echo "same_game: the page failed ($name, status $status):" >&2
+        grep -v '404' "$out/$name.log" | tail -5 >&2
+        exit 1
+    fi
+    echo "$line"
+}
+
+# 1. The script, and the pictures of its last frame.
+started=$SECONDS
+native_line=$(desktop native "$here/$script" "$frames" --screenshot "$out/native.png")
+web_line=$(browser web play.txt "$frames" "&screenshot=/screenshots/end.png" \
+    "/screenshots/end.png:$out/web.png")
 echo "desktop: ${native_line#fluid-demo: }"
 echo "browser: ${web_line#fluid-demo: }"
-if [[ "$native_line" != "$web_line" ]]; then
-    echo "same_game: $level differs after $frames frames (pictures in $out)"
-    exit 1
+if [[ "$native_line" == "$web_line" ]]; then
+    echo "same_game: $level after $frames frames is the same on the desktop and in the browser"
+else
+    fail "$level differs after $frames frames"
 fi
-echo "same_game: $level after $frames frames is the same on the desktop and in the browser" \
-    "($web_seconds s in the page; pictures in $out)"
+node "$here/compare.mjs" "$out/native.png" "$out/web.png" 0.01 48 || fail "the pictures differ"
+
+# 2. F5 after 30 frames on each side, each save loaded with F9 on the other and played on
+#    60 frames: the same line as the side that made it. (The saves differ only in the level
+#    file's path, which they record: the page's levels sit in /levels.)
+desktop save-desktop "$site/save.txt" 30 --save-dir "$out/desktop-saves" >/dev/null
+browser save-page save.txt 30 "" "/saves/$level.level:$out/page-saves/$level.level" >/dev/null
+cp "$out/desktop-saves/$level.level" "$site/desktop.level"
+native_own=$(desktop load-desktop "$site/load.txt" 60 --save-dir "$out/desktop-saves")
+web_from_desktop=$(browser load-desktop-save load.txt 60 "&save=desktop.level")
+if [[ "$native_own" == "$web_from_desktop" ]]; then
+    echo "same_game: the desktop's save loads in the page and plays on to the same line"
+else
+    echo "desktop: ${native_own#fluid-demo: }"
+    echo "browser: ${web_from_desktop#fluid-demo: }"
+    fail "the desktop's save played on in the page differs"
+fi
+cp "$out/page-saves/$level.level" "$site/page.level"
+web_own=$(browser load-page load.txt 60 "&save=page.level")
+native_from_page=$(desktop load-page-save "$site/load.txt" 60 --save-dir "$out/page-saves")
+if [[ "$web_own" == "$native_from_page" && "$web_own" == "$native_own" ]]; then
+    echo "same_game: the page's save loads on the desktop and plays on to the same line"
+else
+    echo "browser: ${web_own#fluid-demo: }"
+    echo "desktop: ${native_from_page#fluid-demo: }"
+    fail "the page's save played on on the desktop differs"
+fi
+echo "same_game: $((SECONDS - started)) s; pictures, logs and saves in $out"
+exit "$failed"
