@@ -1,5 +1,6 @@
 // fluid-demo — the platform layer with GLFW 3 and an OpenGL ES 3.0 context (see platform.h):
-// a browser page through emscripten's GLFW (WebGL2 on a canvas), or GLFW natively.
+// the browser page's, through emscripten's GLFW (WebGL2 on a canvas). Written against GLFW 3's
+// API only; no native build uses it yet.
 #include "demo/platform.h"
 
 #include <fluid/error.h>
