@@ -2,6 +2,7 @@
 #include <fluid/box2d/coupling.h>
 
 #include "body_boundary.h"
+#include "box2d_math.h"
 
 #include <fluid/error.h>
 #include <fluid/internal/binary.h>
@@ -144,6 +145,7 @@ float arealDensity(const World& world, MaterialId material) {
 
 Coupling::Coupling(World& world, b2World& physics, const CouplingDef& def)
     : m_physics(&physics), m_boundary(nullptr), m_def(def) {
+    detail::linkMath(); // Box2D's sinf, cosf and atan2f: box2d_math.cpp
     validate(def);
     // A loaded snapshot brings the plugin back detached, in its place among the boundaries.
     for (const auto& plugin : world.boundaries()) {
