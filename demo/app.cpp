@@ -9,6 +9,7 @@
 #include "demo/ui.h"
 
 #include <fluid/gl/renderer.h>
+#include <fluid/internal/binary.h>
 
 #include <box2d/box2d.h>
 
@@ -16,12 +17,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <ctime>
 #include <exception>
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 
 namespace fluid::demo {
@@ -30,35 +31,24 @@ namespace {
 constexpr std::array<gl::View, 3> kViews{gl::View::Metaballs, gl::View::Pressure,
                                          gl::View::Particles};
 
-// FNV-1a (64 bit) over the raw bits of every particle's position and velocity, in the world's
-// order, then every Box2D body's position, angle and velocities, in the level's order: two
-// runs that print the same hash stepped the same bits (a desktop and a browser, say).
+// FNV-1a (64 bit, the checksum of saves) over every particle's position and velocity, in the
+// world's order, then every Box2D body's position, angle and velocities, in the level's order:
+// two runs that print the same hash stepped the same bits (a desktop and a browser, say).
 uint64_t stateHash(const Level& level) {
-    uint64_t hash = 14695981039346656037ull;
-    auto add = [&](float value) {
-        uint32_t bits = 0;
-        std::memcpy(&bits, &value, sizeof bits);
-        for (int byte = 0; byte < 4; ++byte) {
-            hash = (hash ^ ((bits >> (8 * byte)) & 0xffu)) * 1099511628211ull;
-        }
-    };
+    std::vector<float> state;
     const World& world = level.world;
     for (const auto& channel :
          {world.positionX(), world.positionY(), world.velocityX(), world.velocityY()}) {
-        for (const float value : channel) {
-            add(value);
-        }
+        state.insert(state.end(), channel.begin(), channel.end());
     }
     for (const auto& entry : level.bodies) {
         const b2Body* body = entry.second;
-        add(body->GetPosition().x);
-        add(body->GetPosition().y);
-        add(body->GetAngle());
-        add(body->GetLinearVelocity().x);
-        add(body->GetLinearVelocity().y);
-        add(body->GetAngularVelocity());
+        state.insert(state.end(),
+                     {body->GetPosition().x, body->GetPosition().y, body->GetAngle(),
+                      body->GetLinearVelocity().x, body->GetLinearVelocity().y,
+                      body->GetAngularVelocity()});
     }
-    return hash;
+    return internal::fnv1a(std::as_bytes(std::span<const float>(state)));
 }
 
 // The body under a point (dynamic or kinematic; static ground is never grabbed).

@@ -2,6 +2,9 @@
 # Install the Debian 12 packages fluid needs (library, tests, bench, examples, demo, CI under Xvfb).
 # Idempotent: does nothing when every package is already installed. Needs root only to install.
 # Works without a terminal or standard input. The list follows shared docs/PLATFORM.md.
+#
+#   bash scripts/deps.sh            the list below
+#   bash scripts/deps.sh PKG...     those packages instead (scripts/web.sh's)
 set -euo pipefail
 
 PACKAGES=(
@@ -12,6 +15,9 @@ PACKAGES=(
     clang-14 libclang-rt-14-dev
     glslang-tools
 )
+if [[ $# -gt 0 ]]; then
+    PACKAGES=("$@")
+fi
 
 missing=()
 for pkg in "${PACKAGES[@]}"; do

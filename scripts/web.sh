@@ -49,21 +49,7 @@ if [[ $test -eq 1 ]]; then
     # Debian's npm, unless the machine's Node.js brought its own.
     command -v npm >/dev/null || PACKAGES+=(npm)
 fi
-missing=()
-for pkg in "${PACKAGES[@]}"; do
-    status=$(dpkg-query -W -f='${db:Status-Status}' "$pkg" 2>/dev/null || true)
-    [[ "$status" == "installed" ]] || missing+=("$pkg")
-done
-if [[ ${#missing[@]} -gt 0 ]]; then
-    if [[ $(id -u) -ne 0 ]]; then
-        echo "web.sh: missing Debian packages: ${missing[*]} (run as root to install them)" >&2
-        exit 1
-    fi
-    echo "web.sh: installing ${missing[*]}"
-    export DEBIAN_FRONTEND=noninteractive
-    apt-get update -qq </dev/null
-    apt-get install -y -qq --no-install-recommends "${missing[@]}" </dev/null >/dev/null
-fi
+bash "$root/scripts/deps.sh" "${PACKAGES[@]}"
 
 # The header-only libraries, each with Debian's CMake package files, under the prefix (their
 # package files find the headers relative to themselves).

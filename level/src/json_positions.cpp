@@ -489,8 +489,8 @@ namespace {
 // The shortest text that reads back as `value`, as std::to_chars's general format writes it:
 // the least digits that read back, fixed notation for decimal exponents -4 to 5, else
 // scientific. std::to_chars where the standard library has it for floating point; else the
-// same text from printf (emscripten's libc++ lacks the floating-point std::to_chars; the two
-// agreed on 9 million random floats and doubles).
+// same text from printf (emscripten's libc++ lacks the floating-point std::to_chars; how the two
+// were compared: docs/web.md, "Number text").
 template <class T> std::string shortest(T value) {
 #if defined(__cpp_lib_to_chars)
     char buffer[64];

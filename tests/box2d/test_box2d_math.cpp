@@ -101,9 +101,9 @@ TEST_CASE("box2d math: Box2D turns its bodies with fluid::box2d's sinf and cosf"
     b2World world(b2Vec2(0.0f, 0.0f));
     std::mt19937 random(3);
     std::uniform_real_distribution<float> angle(-7.0f, 7.0f);
-    // The first three: angles where glibc's sinf on this project's machines (its FMA variant)
-    // rounds 1 ulp away from the exact value (0x1.480196p-7 for the first, against
-    // 0x1.480194p-7): a Box2D reading the C library's would fail here.
+    // The first three: angles where glibc's sinf on this project's machines rounds 1 ulp away
+    // from the exact value (docs/box2d.md, "The same bits everywhere"): a Box2D reading the C
+    // library's would fail here.
     const float rounded[] = {0x1.4802fcp-7f, 0x1.4802fep-7f, 0x1.489ea2p-7f};
     for (int i = 0; i < 1003; ++i) {
         b2BodyDef def;
