@@ -8,13 +8,9 @@
 #define GLFW_INCLUDE_ES3
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <deque>
-#include <string>
 #include <utility>
-
-#if defined(__EMSCRIPTEN__)
-#include <emscripten/emscripten.h>
-#endif
 
 namespace fluid::demo {
 
