@@ -24,6 +24,8 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace fluid::demo {
 namespace {
@@ -155,6 +157,7 @@ public:
     // picture. False when the game is over (window closed, Quit, or the scripted frames run).
     bool frame() {
         const bool scripted = m_options.frames > 0;
+        const bool recording = !m_options.record.empty();
         if (!m_window.isOpen() || m_quit || (scripted && m_frame > m_options.frames)) {
             return false;
         }
@@ -165,8 +168,9 @@ public:
         Event event;
         while (m_window.poll(event)) {
             // A scripted run plays its script only: the display's own pointer, focus and key
-            // events (another window, a desktop) must not change the result.
-            if (!scripted || event.type == Event::Type::Closed) {
+            // events (another window, a desktop) must not change the result. A recorded one
+            // takes the player's input and writes it down.
+            if (!scripted || recording || event.type == Event::Type::Closed) {
                 handleEvent(event);
             }
         }
@@ -177,7 +181,7 @@ public:
         double real = std::chrono::duration<double>(now - m_last).count();
         m_last = now;
         m_fps = m_fps <= 0.0f ? 60.0f : 0.95f * m_fps + 0.05f * float(1.0 / std::max(real, 1e-4));
-        if (scripted) {
+        if (scripted || recording) {
             real = 1.0 / double(m_session->level().frameRate); // exactly one step a frame
         }
         simulate(real);
@@ -191,6 +195,9 @@ public:
         int status = 0;
         if (m_options.frames > 0) {
             status = finishScripted();
+        }
+        if (!m_options.record.empty() && !writeRecording()) {
+            status = 1;
         }
         m_grab.end(nullptr);
         m_session.reset();
@@ -249,6 +256,76 @@ private:
             }
             break;
         }
+    }
+
+    // Writes down an event `handleEvent` is about to play, as the script line that plays it
+    // again: keys a script can press, the pointer's moves, presses (with the modifier the
+    // game reads) and releases. Losing the focus releases the buttons, as a release does.
+    void recordEvent(const Event& event) {
+        ScriptAction action;
+        action.frame = m_frame;
+        glm::ivec2 pixel = event.position;
+        switch (event.type) {
+        case Event::Type::KeyPressed:
+            if (scriptKeyName(event.key) == nullptr) {
+                return;
+            }
+            action.kind = ScriptAction::Kind::Key;
+            action.key = event.key;
+            break;
+        case Event::Type::MouseMoved:
+            action.kind = ScriptAction::Kind::Move;
+            break;
+        case Event::Type::MousePressed:
+        case Event::Type::MouseReleased:
+            if (event.button != MouseButton::Left && event.button != MouseButton::Right) {
+                return;
+            }
+            action.kind = event.type == Event::Type::MousePressed ? ScriptAction::Kind::Press
+                                                                  : ScriptAction::Kind::Release;
+            action.button = event.button == MouseButton::Left ? 0 : 1;
+            action.ctrl = modifierHeld(Key::LControl, Key::RControl, m_ctrl);
+            action.shift = modifierHeld(Key::LShift, Key::RShift, m_shift);
+            break;
+        case Event::Type::LostFocus:
+            if (m_push == 0.0f && m_grab.body == nullptr) {
+                return;
+            }
+            action.kind = ScriptAction::Kind::Release;
+            break;
+        default:
+            return;
+        }
+        if (action.kind == ScriptAction::Kind::Move || action.kind == ScriptAction::Kind::Press) {
+            action.position = camera().pixelToWorld(glm::vec2(pixel));
+        } else {
+            pixel = {0, 0};
+        }
+        m_recorded.emplace_back(action, pixel);
+    }
+
+    // The recorded input, to `record`. False (message on stderr) when it cannot be written.
+    bool writeRecording() const {
+        std::FILE* file = std::fopen(m_options.record.c_str(), "w");
+        if (file == nullptr) {
+            std::fprintf(stderr, "fluid-demo: cannot write the recording %s\n",
+                         m_options.record.c_str());
+            return false;
+        }
+        std::fprintf(file, "# fluid-demo's input in %s, %u frames: fluid-demo --level %s "
+                           "--script THIS --frames %u plays it again\n",
+                     m_session->file().stem.c_str(), m_frame - 1, m_session->file().stem.c_str(),
+                     m_frame - 1);
+        for (const auto& [action, pixel] : m_recorded) {
+            std::fprintf(file, "%s\n", scriptLine(action, &pixel).c_str());
+        }
+        if (std::fclose(file) != 0) {
+            std::fprintf(stderr, "fluid-demo: cannot write the recording %s\n",
+                         m_options.record.c_str());
+            return false;
+        }
+        keepFiles();
+        return true;
     }
 
     // The end of a scripted run: the summary line, and the screenshot if asked.
@@ -460,6 +537,7 @@ private:
         try {
             std::filesystem::create_directories(m_options.saveDir);
             m_session->save(quickSavePath());
+            keepFiles();
             toast("Saved (F9 goes back to it)");
         } catch (const std::exception& e) {
             toast(std::string("Could not save: ") + e.what());
@@ -491,7 +569,16 @@ private:
         }
     }
 
+    // Whether a modifier is down: the game's own record of it (a script's presses) or the
+    // keyboard's.
+    bool modifierHeld(Key left, Key right, bool tracked) const {
+        return tracked || m_window.keyHeld(left) || m_window.keyHeld(right);
+    }
+
     void handleEvent(const Event& event) {
+        if (!m_options.record.empty()) {
+            recordEvent(event);
+        }
         m_imgui->processEvent(event);
         switch (event.type) {
         case Event::Type::Closed:
@@ -527,10 +614,8 @@ private:
             }
             m_mousePixel = glm::vec2(event.position);
             const glm::vec2 p = mouseWorld();
-            const bool shift =
-                m_shift || m_window.keyHeld(Key::LShift) || m_window.keyHeld(Key::RShift);
-            const bool ctrl =
-                m_ctrl || m_window.keyHeld(Key::LControl) || m_window.keyHeld(Key::RControl);
+            const bool shift = modifierHeld(Key::LShift, Key::RShift, m_shift);
+            const bool ctrl = modifierHeld(Key::LControl, Key::RControl, m_ctrl);
             b2World* physics = m_session->level().physics.get();
             if (event.button == MouseButton::Left && ctrl) {
                 if (!m_session->dropCrate(p)) {
@@ -669,6 +754,7 @@ private:
     std::chrono::steady_clock::time_point m_toastUntil{};
     uint32_t m_frame = 1;                        // the frame about to be played, from 1
     size_t m_next = 0;                           // the next script action
+    std::vector<std::pair<ScriptAction, glm::ivec2>> m_recorded; // with `record`: the input
     std::chrono::steady_clock::time_point m_last{}; // when the last frame began
     std::chrono::steady_clock::time_point m_began{}; // when the first frame began
     double m_stepMsTotal = 0.0;                      // the simulation's time over all frames

@@ -38,6 +38,12 @@ struct GameOptions {
     uint32_t frames = 0;
     /// With `frames`: save the last frame, HUD included, to this PNG.
     std::string screenshot;
+    /// Where to write the player's input when the game ends, as a script (`readScript`'s
+    /// format, each pointer position's window pixel in a comment); empty: nothing recorded.
+    /// A recorded game plays exactly one step per frame, as a scripted one, so the script
+    /// replays it bit for bit; with `frames` it takes the player's input (a scripted run
+    /// otherwise ignores it) and ends with the summary line.
+    std::string record;
 };
 
 class Game;
@@ -63,8 +69,9 @@ public:
     /// real time asks for (exactly one with `frames`) and the picture. False when the game is
     /// over: the window closed, Quit chosen, or `frames` played.
     bool frame();
-    /// Ends the game: a scripted run's summary line and screenshot. Returns the exit status: 0,
-    /// or 1 when it could not start or the screenshot cannot be written.
+    /// Ends the game: a scripted run's summary line and screenshot, the recorded input. Returns
+    /// the exit status: 0, or 1 when it could not start or the screenshot or the recording
+    /// cannot be written.
     int finish();
 
 private:

@@ -5,6 +5,10 @@
 //                                             headless: step N frames, save a PNG, exit
 //   fluid-demo --level all --view all --frames N --screenshot-dir DIR
 //                                             every level in every view (tests, docs)
+//   fluid-demo --level NAME --record FILE [--frames N]
+//                                             play, and write the input down as a script
+//   fluid-demo --level NAME --script FILE --frames N [--screenshot FILE]
+//                                             play a script for N frames, print a summary
 #include "bench/command_line.h"
 
 #include "demo/app.h"
@@ -92,6 +96,10 @@ int main(int argc, char** argv) {
     app.add_option("--script", scriptPath,
                    "Play the game with scripted input (docs/demo.md); with --frames N it runs N "
                    "frames of one step each, prints a summary and exits");
+    std::string record;
+    app.add_option("--record", record,
+                   "Play and write the input down as a script for --script (docs/demo.md): one "
+                   "step per frame; with --frames N the game ends after N frames with the summary");
     if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
         return status;
     }
@@ -105,8 +113,9 @@ int main(int argc, char** argv) {
         return 2;
     }
     const bool scripted = !scriptPath.empty();
-    const bool headless =
-        !scripted && (frames > 0 || !screenshot.empty() || !screenshotDir.empty());
+    // The game (a window) with a script or a recording; otherwise --frames means headless.
+    const bool game = scripted || !record.empty();
+    const bool headless = !game && (frames > 0 || !screenshot.empty() || !screenshotDir.empty());
     std::vector<ScriptAction> script;
     if (scripted) {
         try {
@@ -115,11 +124,11 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "fluid-demo: %s\n", e.what());
             return 2;
         }
-        if (!screenshotDir.empty() || level == "all" || view != "metaballs") {
-            std::fprintf(stderr, "fluid-demo: --script plays one level in the game: it takes "
-                                 "--level NAME, --frames and --screenshot FILE\n");
-            return 2;
-        }
+    }
+    if (game && (!screenshotDir.empty() || level == "all" || view != "metaballs")) {
+        std::fprintf(stderr, "fluid-demo: --script and --record play one level in the game: "
+                             "they take --level NAME, --frames and --screenshot FILE\n");
+        return 2;
     }
     if (headless && frames == 0) {
         frames = 120;
@@ -171,7 +180,7 @@ int main(int argc, char** argv) {
 
     const char* display = std::getenv("DISPLAY");
     const bool hasDisplay = display != nullptr && *display != '\0';
-    if (!hasDisplay && (headless || scripted)) {
+    if (!hasDisplay && (headless || game)) {
         std::fprintf(stderr,
                      "fluid-demo: no display (DISPLAY is not set); run it under Xvfb:\n"
                      "  xvfb-run -a -s \"-screen 0 1280x720x24\" %s ...\n",
@@ -254,6 +263,7 @@ int main(int argc, char** argv) {
     options.script = std::move(script);
     options.frames = frames;
     options.screenshot = screenshot;
+    options.record = record;
     if (saveDir.empty()) {
         const char* state = std::getenv("XDG_STATE_HOME");
         const char* home = std::getenv("HOME");

@@ -130,4 +130,10 @@ private:
 /// `path`; false when it cannot be written. Any thread.
 bool writePng(const std::string& path, glm::ivec2 size, const std::vector<uint8_t>& rgba);
 
+/// Keeps the files the game has just written for the player (a save, a recording) where they
+/// outlive the program: on a desktop they are on disk already; a browser page copies its
+/// saves to the browser's IndexedDB (`Module.fluidFilesWritten`, demo/web/index.html), so a
+/// reload finds them. Main thread.
+void keepFiles();
+
 } // namespace fluid::demo

@@ -8,6 +8,10 @@
 #define GLFW_INCLUDE_ES3
 #include <GLFW/glfw3.h>
 
+#ifdef __EMSCRIPTEN__
+#include <emscripten/emscripten.h>
+#endif
+
 #include <algorithm>
 #include <deque>
 #include <utility>
@@ -180,6 +184,10 @@ void Window::open(const WindowDef& def) {
         Event e;
         e.type = action == GLFW_PRESS ? Event::Type::MousePressed : Event::Type::MouseReleased;
         e.button = fromGlfwButton(button);
+        // Where the button went down, even without a move before it (a finger's first touch).
+        double x = 0.0, y = 0.0;
+        glfwGetCursorPos(win, &x, &y);
+        impl.cursor = {int(x), int(y)};
         e.position = impl.cursor;
         impl.push(e);
     });
@@ -243,5 +251,22 @@ bool Window::keyHeld(Key key) const {
     return m_impl->window != nullptr && code != GLFW_KEY_UNKNOWN &&
            glfwGetKey(m_impl->window, code) == GLFW_PRESS;
 }
+
+#ifdef __EMSCRIPTEN__
+namespace {
+// The page's hook (demo/web/index.html), when it has one.
+EM_JS(void, callFilesWritten, (), {
+    if (Module.fluidFilesWritten) {
+        Module.fluidFilesWritten();
+    }
+});
+} // namespace
+
+void keepFiles() {
+    callFilesWritten();
+}
+#else
+void keepFiles() {}
+#endif
 
 } // namespace fluid::demo

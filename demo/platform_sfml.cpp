@@ -225,4 +225,6 @@ bool writePng(const std::string& path, glm::ivec2 size, const std::vector<uint8_
     return image.saveToFile(path);
 }
 
+void keepFiles() {}
+
 } // namespace fluid::demo

@@ -4,6 +4,7 @@
 #include <fluid/error.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <utility>
@@ -120,6 +121,45 @@ std::vector<ScriptAction> readScript(const std::string& path) {
         actions.push_back(action);
     }
     return actions;
+}
+
+const char* scriptKeyName(Key key) {
+    for (const auto& [name, code] : kKeys) {
+        if (code == key) {
+            return name;
+        }
+    }
+    return nullptr;
+}
+
+std::string scriptLine(const ScriptAction& action, const glm::ivec2* pixel) {
+    const char* button = action.button == 0 ? "left" : "right";
+    char buffer[160];
+    switch (action.kind) {
+    case ScriptAction::Kind::Key: {
+        const char* name = scriptKeyName(action.key);
+        std::snprintf(buffer, sizeof buffer, "%u key %s", action.frame, name ? name : "?");
+        break;
+    }
+    case ScriptAction::Kind::Move:
+        std::snprintf(buffer, sizeof buffer, "%u move %.9g %.9g", action.frame,
+                      double(action.position.x), double(action.position.y));
+        break;
+    case ScriptAction::Kind::Press:
+        std::snprintf(buffer, sizeof buffer, "%u press %s %.9g %.9g%s", action.frame, button,
+                      double(action.position.x), double(action.position.y),
+                      action.ctrl ? " ctrl" : action.shift ? " shift" : "");
+        break;
+    case ScriptAction::Kind::Release:
+        std::snprintf(buffer, sizeof buffer, "%u release %s", action.frame, button);
+        break;
+    }
+    std::string line = buffer;
+    if (pixel != nullptr && action.kind != ScriptAction::Kind::Key &&
+        action.kind != ScriptAction::Kind::Release) {
+        line += "  # pixel " + std::to_string(pixel->x) + " " + std::to_string(pixel->y);
+    }
+    return line;
 }
 
 } // namespace fluid::demo

@@ -1,6 +1,6 @@
 // fluid-demo — scripted input: a timed list of key presses and mouse actions that the game
-// plays as if a player made them. Tests drive the interactive game with it; players can record
-// a sequence for a bug report.
+// plays as if a player made them. Tests drive the interactive game with it; the game records a
+// player's input in the same format (`fluid-demo --record`), for a bug report or a replay.
 #pragma once
 #include "demo/platform.h"
 
@@ -49,5 +49,14 @@ struct ScriptAction {
 ///
 /// Throws `fluid::Error` "FILE:LINE: MESSAGE" for anything else. Any thread.
 std::vector<ScriptAction> readScript(const std::string& path);
+
+/// The name `readScript` reads for `key`, or nullptr for the keys a script cannot press (the
+/// modifiers, which `press` carries, and keys the game does not use). Any thread.
+const char* scriptKeyName(Key key);
+
+/// One line of a script for `action`, `readScript`'s format, no newline. Positions are written
+/// with 9 significant digits, so they read back to the same floats. `pixel`, when given, is
+/// appended as a comment (`# pixel X Y`): where the pointer was on the window. Any thread.
+std::string scriptLine(const ScriptAction& action, const glm::ivec2* pixel = nullptr);
 
 } // namespace fluid::demo

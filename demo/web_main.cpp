@@ -6,6 +6,9 @@
 //   &script=FILE&frames=N  play FILE's scripted input for N frames of one step each, then
 //                          print the summary line (with the state's hash) and stop
 //   &screenshot=FILE       with frames: save the last frame as a PNG in the page's file system
+//   &record=FILE           write the player's input down as a script in the page's file system
+//                          (one step per frame; with frames, the player's input is taken and
+//                          the game ends after them with the summary line)
 // Levels are packed at /levels; F5 / F9 saves live in /saves, which the page keeps in the
 // browser's IndexedDB.
 #include "bench/command_line.h"
@@ -49,13 +52,14 @@ void frame() {
 int main(int argc, char** argv) {
     using namespace fluid::demo;
     CLI::App app{"fluid-demo in a browser page"};
-    std::string level, scriptPath, screenshot;
+    std::string level, scriptPath, screenshot, record;
     uint32_t frames = 0;
     app.add_option("--level", level, "Level to start on (a name from /levels)");
     app.add_option("--script", scriptPath, "Scripted input to play (docs/demo.md)");
     app.add_option("--frames", frames, "With --script: frames to play, then stop")
         ->check(CLI::Range(1u, 1000000u));
     app.add_option("--screenshot", screenshot, "With --frames: PNG of the last frame");
+    app.add_option("--record", record, "Write the input down as a script (docs/demo.md)");
     if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
         announceExit(status);
         return status;
@@ -81,6 +85,7 @@ int main(int argc, char** argv) {
     }
     options.frames = frames;
     options.screenshot = screenshot;
+    options.record = record;
     options.workers = 1; // a build without threads (docs/web.md)
     options.saveDir = "/saves";
     options.screenshotDir = "/screenshots";

@@ -22,9 +22,22 @@ namespace {
 // The largest mass a RigidBody may declare (kg).
 constexpr float kMaxBodyMass = 1e9f;
 // separateStacked: how far a particle found exactly on another is moved (unit: cell sizes, the
-// largest support), and the angle between successive slots' directions (rad).
+// largest support).
 constexpr float kStackedNudge = 1.0f / 64.0f;
-constexpr float kGoldenAngle = 2.39996323f;
+// The direction a particle stacked on another moves off in, picked by its slot: slots in a row
+// spread over the circle (the golden ratio's steps, 4096 of them). A unit vector from +, -, *
+// and / only (the circle's rational parametrisation), so the same bits on every platform: no
+// C library's cos and sin, which round differently.
+glm::vec2 stackedDirection(uint32_t slot) {
+    const float step = float(slot % 4096u) * 0.618033988f;
+    const float u = step - std::floor(step); // [0, 1)
+    const bool left = u >= 0.5f;
+    const float t = left ? 4.0f * u - 3.0f : 4.0f * u - 1.0f; // [-1, 1): a half circle each
+    const float w = 1.0f / (1.0f + t * t);
+    const glm::vec2 d{(1.0f - t * t) * w, 2.0f * t * w};
+    return left ? -d : d;
+}
+
 // Cells per task of separateStacked (most hold one particle or none).
 constexpr uint32_t kStackedGrain = 8192;
 
@@ -347,10 +360,10 @@ uint32_t separateStacked(WorldState& s, float cellSize, std::vector<float>* also
                         continue;
                     }
                     // j sits exactly on i: the pair terms have no direction to part them. Move
-                    // it a little, the way its slot picks (golden-angle steps), with the
-                    // channels that hold where it stands (the velocity does not change).
-                    const float angle = kGoldenAngle * float(p.slot[j] % 4096u);
-                    const float dx = reach * std::cos(angle), dy = reach * std::sin(angle);
+                    // it a little, the way its slot picks, with the channels that hold where
+                    // it stands (the velocity does not change).
+                    const glm::vec2 d = reach * stackedDirection(p.slot[j]);
+                    const float dx = d.x, dy = d.y;
                     p.px[j] += dx;
                     p.py[j] += dy;
                     if (alsoX != nullptr && alsoY != nullptr) {

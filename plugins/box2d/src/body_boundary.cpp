@@ -1,6 +1,8 @@
 // fluid::box2d — Box2D fixtures as fluid boundaries: sampling, projection, forces.
 #include "body_boundary.h"
 
+#include "box2d_math.h"
+
 #include <fluid/error.h>
 #include <fluid/plugins/chain.h>
 #include <fluid/plugins/circle.h>
@@ -297,7 +299,7 @@ void layProbes(FixtureEntry& entry, double spacing, double cell) {
         for (int k = 0; k < n; ++k) {
             const double a = 2.0 * std::numbers::pi * double(k) / double(n);
             entry.probes.push_back(entry.offset +
-                                   entry.radius * glm::dvec2(std::cos(a), std::sin(a)));
+                                   entry.radius * glm::dvec2(detail::cos(a), detail::sin(a)));
         }
     } else {
         const std::vector<glm::dvec2>& outline = entry.outline;
@@ -387,7 +389,7 @@ void BodyBoundary::prepare(const StepContext& context) {
         be.omega = omega;
         be.colliderBegin = uint32_t(m_colliders.size());
         const glm::dvec2 localCenter = toVec(body->GetLocalCenter());
-        const double c = std::cos(angle), s = std::sin(angle);
+        const double c = detail::cos(angle), s = detail::sin(angle);
         uint32_t fixtureIndex = 0;
         for (b2Fixture* fixture = body->GetFixtureList(); fixture != nullptr;
              fixture = fixture->GetNext(), ++fixtureIndex) {
@@ -601,7 +603,7 @@ bool BodyBoundary::bodyContains(uint32_t body, glm::vec2 point, float timeInStep
     const glm::dvec2 com = e.com + t * e.velocity;
     const double angle = e.angle + t * e.omega;
     const glm::dvec2 d = glm::dvec2(point) - com;
-    const glm::dvec2 local = rotate(d, std::cos(angle), -std::sin(angle));
+    const glm::dvec2 local = rotate(d, detail::cos(angle), -detail::sin(angle));
     const b2Transform& xf = e.body->GetTransform();
     const glm::dvec2 center = toVec(e.body->GetWorldCenter());
     const glm::dvec2 now = center + rotate(local, double(xf.q.c), double(xf.q.s));

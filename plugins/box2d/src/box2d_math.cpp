@@ -1,5 +1,6 @@
-// fluid::box2d — the sinf, cosf and atan2f Box2D turns its bodies with, the same bits on every
-// platform (docs/box2d.md, "The same bits everywhere").
+// fluid::box2d — the sinf, cosf and atan2f Box2D turns its bodies with, and the double sin and
+// cos the coupling turns their outlines with: the same bits on every platform (docs/box2d.md,
+// "The same bits everywhere").
 //
 // Box2D 2.4 calls the C library's sinf and cosf (GCC makes a sincosf of the pair) for every
 // awake body every step (b2Rot::Set) and atan2f for joint angles. C libraries round some arguments differently (glibc against
@@ -21,9 +22,11 @@ namespace fluid::box2d::detail {
 
 namespace {
 
-// pi/2 in three parts of 33 bits each, so k * kPio2Hi is exact for |k| < 2^20.
+// pi/2 as the sum of three parts (fdlibm's pio2_1, pio2_2 and pio2_2t): the first two of 33
+// bits, so k * kPio2Hi and k * kPio2Mid are exact for |k| < 2^20, the last the rest to double
+// precision.
 constexpr double kPio2Hi = 1.57079632673412561417e+00;
-constexpr double kPio2Mid = 6.07710050650619224932e-11;
+constexpr double kPio2Mid = 6.07710050630396597660e-11;
 constexpr double kPio2Lo = 2.02226624879595063154e-21;
 constexpr double kTwoOverPi = 6.36619772367581382433e-01;
 constexpr double kTwoPi = 6.28318530717958623200e+00;
@@ -124,6 +127,29 @@ float cos(float x) {
     const double r = reduce(double(x), q);
     const double v = (q & 1) == 0 ? cosKernel(r) : sinKernel(r);
     return static_cast<float>((q == 1 || q == 2) ? -v : v);
+}
+
+double sin(double x) {
+    if (!std::isfinite(x)) {
+        return x - x;
+    }
+    if (x == 0.0) {
+        return x;
+    }
+    int q = 0;
+    const double r = reduce(x, q);
+    const double v = (q & 1) == 0 ? sinKernel(r) : cosKernel(r);
+    return q >= 2 ? -v : v;
+}
+
+double cos(double x) {
+    if (!std::isfinite(x)) {
+        return x - x;
+    }
+    int q = 0;
+    const double r = reduce(x, q);
+    const double v = (q & 1) == 0 ? cosKernel(r) : sinKernel(r);
+    return (q == 1 || q == 2) ? -v : v;
 }
 
 float atan2(float y, float x) {

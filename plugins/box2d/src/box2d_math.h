@@ -1,4 +1,5 @@
-// fluid::box2d internals — deterministic sin, cos and atan2 for Box2D (box2d_math.cpp).
+// fluid::box2d internals — deterministic sin, cos and atan2 for Box2D and the coupling
+// (box2d_math.cpp).
 #pragma once
 
 namespace fluid::box2d::detail {
@@ -8,6 +9,12 @@ namespace fluid::box2d::detail {
 float sin(float x);
 /// cos(x), as `sin`.
 float cos(float x);
+/// sin(x) in double, within about one unit in the last place, the same bits on every platform
+/// (unit: rad; any double, NaN for NaN and the infinities): the coupling turns bodies' outlines
+/// with it, as Box2D turns their fixtures with `sin(float)`. Any thread.
+double sin(double x);
+/// cos(x) in double, as `sin(double)`.
+double cos(double x);
 /// atan2(y, x) in [-pi, pi] rounded to float, the same bits everywhere, with the C standard's
 /// zeros, infinities and NaN. Any thread.
 float atan2(float y, float x);

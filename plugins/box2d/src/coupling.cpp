@@ -505,7 +505,7 @@ void Coupling::makeReports(const World& world) {
         const BodyEntry& e = bodies[b];
         const double angle = e.angle + e.omega * frameDt;
         frames[b] = {e.com + frameDt * e.velocity + glm::dvec2(e.coarse.displacement),
-                     std::cos(angle), std::sin(angle)};
+                     detail::cos(angle), detail::sin(angle)};
     }
     std::vector<Box> boxes(colliders.size());
     for (std::size_t k = 0; k < colliders.size(); ++k) {
