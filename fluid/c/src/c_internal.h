@@ -1,0 +1,115 @@
+// fluid::c internals: the wrapped objects, the conversions and the exception guard the C API's
+// source files share. Nothing here has logic of its own beyond turning C into C++ and back.
+#pragma once
+#include <fluid/c.h>
+
+#include <fluid/error.h>
+#include <fluid/fluid.h>
+#include <fluid/level.h>
+
+#include <exception>
+#include <memory>
+#include <new>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fluid::c {
+
+/// A failure the C layer itself names (a NULL argument, an unknown preset), or a C++ error
+/// given the status that fits it.
+struct Failure {
+    fluid_status status;
+    std::string message;
+};
+
+/// Records `message` as this thread's last error and returns `status`.
+fluid_status fail(fluid_status status, std::string_view message);
+
+/// Runs `body`, turning every exception into a status and this thread's message: Failure as it
+/// says, fluid::LevelError as a bad file, other fluid::Error as `status` (or an input/output
+/// failure when the message says a file cannot be opened, read or written), std::bad_alloc as
+/// out of memory, anything else as `status` with its what().
+template <class Body> fluid_status guard(fluid_status status, Body&& body) noexcept;
+
+/// Throws Failure(FLUID_ERROR_NULL_ARGUMENT) naming `what` in `function` when `pointer` is NULL.
+inline void need(const void* pointer, const char* function, const char* what) {
+    if (pointer == nullptr) {
+        throw Failure{FLUID_ERROR_NULL_ARGUMENT,
+                      std::string(function) + ": " + what + " is NULL"};
+    }
+}
+
+} // namespace fluid::c
+
+/// The C API's world: the C++ world (its own, or a level's) and the arrays the C API hands out
+/// that the C++ world keeps in other shapes.
+struct fluid_world {
+    /// The world itself.
+    fluid::World* world = nullptr;
+    /// Set when this handle owns it (fluid_world_create, fluid_world_load).
+    std::unique_ptr<fluid::World> owned;
+    /// fluid_world_removed_events' copy, refreshed on each call.
+    mutable std::vector<fluid_removed_event> removed;
+};
+
+namespace fluid::c {
+
+/// The C++ world of a C handle, or Failure(FLUID_ERROR_NULL_ARGUMENT).
+inline World& worldOf(fluid_world* world, const char* function) {
+    need(world, function, "world");
+    return *world->world;
+}
+inline const World& worldOf(const fluid_world* world, const char* function) {
+    need(world, function, "world");
+    return *world->world;
+}
+
+/// Conversions between the C structs and the C++ ones.
+inline glm::vec2 toVec(fluid_vec2 v) { return {v.x, v.y}; }
+inline fluid_vec2 toC(glm::vec2 v) { return {v.x, v.y}; }
+MaterialId toCpp(fluid_material_id id);
+inline fluid_material_id toC(MaterialId id) { return {id.index, id.world}; }
+inline ParticleHandle toCpp(fluid_particle_id id) { return {id.slot, id.generation, id.world}; }
+inline fluid_particle_id toC(ParticleHandle h) { return {h.slot, h.generation, h.world}; }
+inline EmitterId toCpp(fluid_emitter_id id) { return {id.index, id.world}; }
+inline DrainId toCpp(fluid_drain_id id) { return {id.index, id.world}; }
+inline SensorId toCpp(fluid_sensor_id id) { return {id.index, id.world}; }
+Shape toCpp(const fluid_shape& shape, const char* function);
+
+/// The registry of the built-in plugins, made once (any thread).
+const Registry& registry();
+
+/// A plugin of `world` by C id: checks the kind, index and world tag (FLUID_ERROR_STALE_ID).
+Plugin& pluginOf(World& world, fluid_plugin_id id, const char* function);
+
+/// The world's tag, as its ids carry it.
+inline uint32_t tagOf(const World& world) { return world.adopt(MaterialId{}).world; }
+
+template <class Body> fluid_status guard(fluid_status status, Body&& body) noexcept {
+    try {
+        body();
+        return FLUID_OK;
+    } catch (const Failure& f) {
+        return fail(f.status, f.message);
+    } catch (const Error& e) {
+        const std::string_view message = e.what();
+        fluid_status s = status;
+        if (dynamic_cast<const LevelError*>(&e) != nullptr) {
+            s = FLUID_ERROR_BAD_FILE;
+        } else if (message.find("cannot open") != std::string_view::npos ||
+                   message.find("cannot read '") != std::string_view::npos ||
+                   message.find("cannot write") != std::string_view::npos) {
+            s = FLUID_ERROR_IO;
+        }
+        return fail(s, message);
+    } catch (const std::bad_alloc&) {
+        return fail(FLUID_ERROR_OUT_OF_MEMORY, "out of memory");
+    } catch (const std::exception& e) {
+        return fail(status, e.what());
+    } catch (...) {
+        return fail(status, "an unknown exception");
+    }
+}
+
+} // namespace fluid::c

@@ -1,0 +1,309 @@
+// fluid::c — plugins written in C (fluid/c.h): a ForcePlugin and a BoundaryPlugin that call a
+// table of function pointers with a user pointer, under the C++ plugins' contracts.
+#include "c_internal.h"
+
+#include <cmath>
+#include <cstddef>
+
+namespace fluid::c {
+
+namespace {
+
+// The plugin's type and parameter declarations, copied from the C def. A base class of the
+// adapters, so that it is built before fluid::Plugin, which keeps a span of the declarations.
+struct Declarations {
+    std::string type;
+    std::vector<std::string> text; // names, units and descriptions; reserved, never moved
+    std::vector<ParamDecl> decls;
+    std::vector<double> values;     // the parameters' values, as the callbacks read them
+
+    Declarations(const char* typeName, const fluid_param_decl* params, uint32_t count,
+                 const char* function) {
+        need(typeName, function, "def->type");
+        if (*typeName == '\0') {
+            throw Failure{FLUID_ERROR_INVALID_ARGUMENT, std::string(function) +
+                                                            ": def->type is empty"};
+        }
+        type = typeName;
+        if (count > 0) {
+            need(params, function, "def->params");
+        }
+        text.reserve(3 * size_t(count));
+        decls.reserve(count);
+        for (uint32_t i = 0; i < count; ++i) {
+            const fluid_param_decl& p = params[i];
+            need(p.name, function, "a parameter's name");
+            const std::string where = std::string(function) + ": " + type + " parameter '" +
+                                      Error::printable(p.name) + "'";
+            if (!std::isfinite(p.default_value) || !std::isfinite(p.min_value) ||
+                !std::isfinite(p.max_value) || p.min_value > p.max_value ||
+                p.default_value < p.min_value || p.default_value > p.max_value) {
+                throw Failure{FLUID_ERROR_INVALID_ARGUMENT,
+                              where + ": the default must lie in [min_value, max_value], all "
+                                      "finite"};
+            }
+            text.emplace_back(p.name);
+            const std::string_view name = text.back();
+            text.emplace_back(p.unit != nullptr ? p.unit : "");
+            const std::string_view unit = text.back();
+            text.emplace_back(p.description != nullptr ? p.description : "");
+            const std::string_view description = text.back();
+            decls.push_back(ParamDecl{name, unit, p.default_value, p.min_value, p.max_value,
+                                      description, ParamType::Number});
+        }
+    }
+};
+
+fluid_step_context toC(const StepContext& c, const double* params) {
+    return {c.frameDt, c.time, c.sampleSpacing, c.supportRadius, params};
+}
+
+class CForce final : private Declarations, public ForcePlugin {
+public:
+    explicit CForce(const fluid_force_plugin_def& def)
+        : Declarations(def.type, def.params, def.param_count, "fluid_world_add_force"),
+          ForcePlugin(Declarations::type, decls), m_def(def) {
+        if (def.apply == nullptr) {
+            throw Failure{FLUID_ERROR_NULL_ARGUMENT,
+                          "fluid_world_add_force: " + Declarations::type + ": def->apply is NULL"};
+        }
+        refresh();
+    }
+    ~CForce() override {
+        if (m_def.destroy != nullptr) {
+            m_def.destroy(m_def.user);
+        }
+    }
+    CForce(const CForce&) = delete;
+    CForce& operator=(const CForce&) = delete;
+
+    // The destroy callback runs when the world lets the plugin go, not when adding it failed:
+    // held back until the world has it.
+    void holdDestroy() {
+        m_destroy = m_def.destroy;
+        m_def.destroy = nullptr;
+    }
+    void releaseDestroy() { m_def.destroy = m_destroy; }
+
+    void prepare(const StepContext& context) override {
+        refresh();
+        if (m_def.prepare != nullptr) {
+            const fluid_step_context c = toC(context, values.data());
+            m_def.prepare(m_def.user, &c);
+        }
+    }
+
+    void apply(const ForceContext& context, uint32_t begin, uint32_t end) override {
+        const ParticleView& p = context.particles;
+        const fluid_force_context c{p.px.data(),       p.py.data(),       p.vx.data(),
+                                    p.vy.data(),       p.material.data(), p.count,
+                                    context.ax.data(), context.ay.data(), context.dt,
+                                    context.time,      values.data()};
+        m_def.apply(m_def.user, &c, begin, end);
+    }
+
+private:
+    void onParamChanged(std::size_t) override { refresh(); }
+    void refresh() {
+        values.resize(decls.size());
+        for (size_t i = 0; i < decls.size(); ++i) {
+            values[i] = value(i);
+        }
+    }
+
+    fluid_force_plugin_def m_def;
+    void (*m_destroy)(void*) = nullptr;
+};
+
+static_assert(sizeof(fluid_rigid_body) == sizeof(RigidBody), "fluid_rigid_body's layout");
+static_assert(sizeof(fluid_rigid_body_impulse) == sizeof(RigidBodyImpulse),
+              "fluid_rigid_body_impulse's layout");
+
+class CBoundary final : private Declarations, public BoundaryPlugin {
+public:
+    explicit CBoundary(const fluid_boundary_plugin_def& def)
+        : Declarations(def.type, def.params, def.param_count, "fluid_world_add_boundary"),
+          BoundaryPlugin(Declarations::type, decls), m_def(def) {
+        const std::string who = "fluid_world_add_boundary: " + Declarations::type;
+        if (def.prepare == nullptr || def.project == nullptr) {
+            throw Failure{FLUID_ERROR_NULL_ARGUMENT,
+                          who + ": def->prepare and def->project are required (NULL here)"};
+        }
+        if (def.role != FLUID_ROLE_SOLID && def.role != FLUID_ROLE_WALL &&
+            def.role != FLUID_ROLE_CONTAINER) {
+            throw Failure{FLUID_ERROR_INVALID_ARGUMENT,
+                          who + ": def->role " + std::to_string(def.role) +
+                              " is not FLUID_ROLE_SOLID, FLUID_ROLE_WALL or FLUID_ROLE_CONTAINER"};
+        }
+        if (!(def.friction >= 0.0f) || !std::isfinite(def.friction)) {
+            throw Failure{FLUID_ERROR_INVALID_ARGUMENT,
+                          who + ": def->friction must be finite and >= 0"};
+        }
+        refresh();
+    }
+    ~CBoundary() override {
+        if (m_def.destroy != nullptr) {
+            m_def.destroy(m_def.user);
+        }
+    }
+    CBoundary(const CBoundary&) = delete;
+    CBoundary& operator=(const CBoundary&) = delete;
+
+    // The destroy callback runs when the world lets the plugin go, not when adding it failed:
+    // held back until the world has it.
+    void holdDestroy() {
+        m_destroy = m_def.destroy;
+        m_def.destroy = nullptr;
+    }
+    void releaseDestroy() { m_def.destroy = m_destroy; }
+
+    void prepare(const StepContext& context) override {
+        refresh();
+        const fluid_step_context c = toC(context, values.data());
+        fluid_boundary_samples samples{};
+        m_def.prepare(m_def.user, &c, &samples);
+        m_samples.clear();
+        if (samples.count > 0 && (samples.px == nullptr || samples.py == nullptr)) {
+            throw Error(Declarations::type + ": prepare left " + std::to_string(samples.count) +
+                        " samples without their positions (px or py is NULL)");
+        }
+        for (uint32_t i = 0; i < samples.count; ++i) {
+            m_samples.add(samples.px[i], samples.py[i],
+                          samples.vx != nullptr ? samples.vx[i] : 0.0f,
+                          samples.vy != nullptr ? samples.vy[i] : 0.0f);
+        }
+        m_bodies.clear();
+        if (m_def.rigid_bodies != nullptr) {
+            const fluid_rigid_body* bodies = nullptr;
+            const uint32_t count = m_def.rigid_bodies(m_def.user, &bodies);
+            if (count > 0 && bodies == nullptr) {
+                throw Error(Declarations::type + ": rigid_bodies returned " +
+                            std::to_string(count) + " bodies and a NULL array");
+            }
+            for (uint32_t i = 0; i < count; ++i) {
+                m_bodies.push_back(
+                    RigidBody{bodies[i].mass, bodies[i].sample_begin, bodies[i].sample_end});
+            }
+        }
+    }
+
+    void project(const ProjectContext& context, uint32_t begin, uint32_t end) override {
+        const fluid_project_context c{context.px.data(),
+                                      context.py.data(),
+                                      context.prevX.data(),
+                                      context.prevY.data(),
+                                      context.vx.data(),
+                                      context.vy.data(),
+                                      context.material.data(),
+                                      context.dt,
+                                      context.timeInStep,
+                                      context.prevTimeInStep,
+                                      context.spacing,
+                                      values.data()};
+        m_def.project(m_def.user, &c, begin, end);
+    }
+
+    bool wantsForces() const override { return m_def.wants_forces; }
+
+    BoundaryRole role() const override {
+        return m_def.role == FLUID_ROLE_WALL        ? BoundaryRole::Wall
+               : m_def.role == FLUID_ROLE_CONTAINER ? BoundaryRole::Container
+                                                    : BoundaryRole::Solid;
+    }
+
+    void receiveForces(std::span<const float> fx, std::span<const float> fy,
+                       std::span<const float> drag) override {
+        if (m_def.receive_forces != nullptr) {
+            m_def.receive_forces(m_def.user, fx.data(), fy.data(), drag.data(),
+                                 uint32_t(fx.size()));
+        }
+    }
+
+    float friction() const override { return m_def.friction; }
+
+    std::span<const RigidBody> rigidBodies() const override { return m_bodies; }
+
+    void receiveBodyImpulses(std::span<const RigidBodyImpulse> impulses) override {
+        if (m_def.receive_body_impulses == nullptr) {
+            return;
+        }
+        m_impulses.resize(impulses.size());
+        for (size_t i = 0; i < impulses.size(); ++i) {
+            m_impulses[i] = {{impulses[i].impulse.x, impulses[i].impulse.y},
+                             {impulses[i].displacement.x, impulses[i].displacement.y}};
+        }
+        m_def.receive_body_impulses(m_def.user, m_impulses.data(), uint32_t(m_impulses.size()));
+    }
+
+    bool bodyContains(uint32_t body, glm::vec2 point, float timeInStep) const override {
+        return m_def.body_contains != nullptr &&
+               m_def.body_contains(m_def.user, body, {point.x, point.y}, timeInStep);
+    }
+
+    bool contains(glm::vec2 point) const override {
+        return m_def.contains != nullptr && m_def.contains(m_def.user, {point.x, point.y});
+    }
+
+private:
+    void onParamChanged(std::size_t) override { refresh(); }
+    void refresh() {
+        values.resize(decls.size());
+        for (size_t i = 0; i < decls.size(); ++i) {
+            values[i] = value(i);
+        }
+    }
+
+    fluid_boundary_plugin_def m_def;
+    void (*m_destroy)(void*) = nullptr;
+    std::vector<RigidBody> m_bodies;
+    std::vector<fluid_rigid_body_impulse> m_impulses;
+};
+
+} // namespace
+
+} // namespace fluid::c
+
+using namespace fluid;
+using namespace fluid::c;
+
+extern "C" {
+
+fluid_force_plugin_def fluid_default_force_plugin_def(void) { return fluid_force_plugin_def{}; }
+
+fluid_boundary_plugin_def fluid_default_boundary_plugin_def(void) {
+    fluid_boundary_plugin_def def{};
+    def.role = FLUID_ROLE_SOLID;
+    return def;
+}
+
+fluid_status fluid_world_add_force(fluid_world* world, const fluid_force_plugin_def* def,
+                                   fluid_plugin_id* id) {
+    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
+        World& w = worldOf(world, "fluid_world_add_force");
+        need(def, "fluid_world_add_force", "def");
+        need(id, "fluid_world_add_force", "id");
+        auto plugin = std::make_unique<CForce>(*def);
+        CForce* added = plugin.get();
+        added->holdDestroy();
+        w.addForce(std::move(plugin));
+        added->releaseDestroy();
+        *id = {uint32_t(w.forces().size() - 1), FLUID_PLUGIN_FORCE, tagOf(w)};
+    });
+}
+
+fluid_status fluid_world_add_boundary(fluid_world* world, const fluid_boundary_plugin_def* def,
+                                      fluid_plugin_id* id) {
+    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
+        World& w = worldOf(world, "fluid_world_add_boundary");
+        need(def, "fluid_world_add_boundary", "def");
+        need(id, "fluid_world_add_boundary", "id");
+        auto plugin = std::make_unique<CBoundary>(*def);
+        CBoundary* added = plugin.get();
+        added->holdDestroy();
+        w.addBoundary(std::move(plugin));
+        added->releaseDestroy();
+        *id = {uint32_t(w.boundaries().size() - 1), FLUID_PLUGIN_BOUNDARY, tagOf(w)};
+    });
+}
+
+} // extern "C"

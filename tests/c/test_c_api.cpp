@@ -1,0 +1,707 @@
+// The C API (fluid/c.h) against the C++ API it wraps: the same bits for the same scene, plugins
+// written in C (tests/c/c_plugins.c, compiled as C99) that act and float a body, snapshots and
+// levels through C, every error path with its status and the C++ API's own message, and a
+// short fuzz of the entry points.
+#include "c_plugins.h"
+
+#include <fluid/c.h>
+#include <fluid/fluid.h>
+#include <fluid/level.h>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+using namespace fluid;
+
+namespace {
+
+constexpr float kFrame = 1.0f / 60.0f;
+
+// Fails the test with the call's message unless it returned FLUID_OK.
+#define C_OK(call)                                                                                 \
+    do {                                                                                           \
+        const fluid_status c_ok_status = (call);                                                   \
+        INFO(#call << ": " << fluid_status_name(c_ok_status) << ": " << fluid_last_error());       \
+        REQUIRE(c_ok_status == FLUID_OK);                                                          \
+    } while (false)
+
+// The C++ API's message for `body`, which must throw fluid::Error.
+template <class Body> std::string cppMessage(Body&& body) {
+    try {
+        body();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    FAIL("the C++ call did not throw");
+    return {};
+}
+
+struct CWorld {
+    fluid_world* world = nullptr;
+    CWorld() = default;
+    explicit CWorld(const fluid_world_def& def) { C_OK(fluid_world_create(&def, &world)); }
+    ~CWorld() { fluid_world_destroy(world); }
+    CWorld(const CWorld&) = delete;
+    CWorld& operator=(const CWorld&) = delete;
+};
+
+// The dam: a 1 x 2 m tank, gravity, a block of water 0.4 x 0.6 m in its left corner.
+void cppDam(World& world) {
+    const MaterialId water = world.addMaterial(fluid::water());
+    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 1.0f, 2.0f));
+    world.addForce(std::make_unique<GravityForce>(0.0f, -9.81f));
+    BlobDef blob;
+    blob.shape = Shape::box({0.0f, 0.0f}, {0.4f, 0.6f});
+    blob.material = water;
+    world.spawnBlob(blob);
+}
+
+fluid_material_id cDam(fluid_world* world) {
+    fluid_material_def water{};
+    C_OK(fluid_material_preset("water", &water));
+    fluid_material_id id{};
+    C_OK(fluid_world_add_material(world, &water, &id));
+    const fluid_param box[] = {{"minX", 0.0}, {"minY", 0.0}, {"maxX", 1.0}, {"maxY", 2.0}};
+    fluid_plugin_id plugin{};
+    C_OK(fluid_world_add_plugin(world, "boundary.box", box, 4, &plugin));
+    const fluid_param gravity[] = {{"gx", 0.0}, {"gy", -9.81}};
+    C_OK(fluid_world_add_plugin(world, "force.gravity", gravity, 2, &plugin));
+    fluid_blob_def blob = fluid_default_blob_def();
+    blob.shape = fluid_box_shape({0.0f, 0.0f}, {0.4f, 0.6f});
+    blob.material = id;
+    uint32_t spawned = 0;
+    C_OK(fluid_world_spawn_blob(world, &blob, &spawned));
+    REQUIRE(spawned > 1000);
+    return id;
+}
+
+// Every particle's position and velocity, in slot order, as the C API hands them out.
+std::vector<float> cState(const fluid_world* world) {
+    const float *x = nullptr, *y = nullptr, *vx = nullptr, *vy = nullptr;
+    uint32_t n = 0, m = 0;
+    C_OK(fluid_world_positions(world, &x, &y, &n));
+    C_OK(fluid_world_velocities(world, &vx, &vy, &m));
+    REQUIRE(n == m);
+    std::vector<float> state;
+    for (const float* a : {x, y, vx, vy}) {
+        state.insert(state.end(), a, a + n);
+    }
+    return state;
+}
+
+std::vector<float> cppState(const World& world) {
+    std::vector<float> state;
+    for (const auto& a : {world.positionX(), world.positionY(), world.velocityX(),
+                          world.velocityY()}) {
+        state.insert(state.end(), a.begin(), a.end());
+    }
+    return state;
+}
+
+bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+} // namespace
+
+TEST_CASE("C API: the version in the header is the library's", "[c]") {
+    CHECK(fluid_version() == FLUID_C_VERSION);
+    CHECK(FLUID_C_VERSION == FLUID_C_VERSION_MAJOR * 100 + FLUID_C_VERSION_MINOR);
+    CHECK(std::string(fluid_status_name(FLUID_ERROR_STALE_ID)) == "FLUID_ERROR_STALE_ID");
+    CHECK(std::string(fluid_status_name(static_cast<fluid_status>(99))) == "unknown status");
+}
+
+TEST_CASE("C API: the dam stepped through C and through C++ gives the same bits, on 1 and 2 "
+          "workers",
+          "[c]") {
+    std::vector<float> first;
+    for (const uint32_t workers : {1u, 2u}) {
+        CAPTURE(workers);
+        WorldDef def;
+        def.positionBased = positionBasedPreset(Quality::Game);
+        def.workerCount = workers;
+        World cpp(def);
+        cppDam(cpp);
+
+        fluid_world_def cdef = fluid_default_world_def();
+        C_OK(fluid_world_def_set_quality(&cdef, "game"));
+        cdef.worker_count = workers;
+        CWorld c(cdef);
+        cDam(c.world);
+        for (int f = 0; f < 90; ++f) {
+            cpp.step(kFrame);
+            C_OK(fluid_world_step(c.world, kFrame));
+        }
+        double time = 0.0;
+        C_OK(fluid_world_time(c.world, &time));
+        CHECK(time == cpp.time());
+        const std::vector<float> state = cState(c.world);
+        CHECK(sameBits(state, cppState(cpp)));
+        if (first.empty()) {
+            first = state;
+        } else {
+            CHECK(sameBits(state, first)); // and the same on 1 and 2 workers
+        }
+    }
+}
+
+TEST_CASE("C API: a force plugin written in C acts as the built-in gravity, bit for bit, with "
+          "its parameters, prepare and destroy",
+          "[c]") {
+    c_test_counters counters{};
+    fluid_world_def def = fluid_default_world_def();
+    C_OK(fluid_world_def_set_quality(&def, "game"));
+    auto build = [&](bool ownForce) {
+        fluid_world* world = nullptr;
+        C_OK(fluid_world_create(&def, &world));
+        fluid_material_def water{};
+        C_OK(fluid_material_preset("water", &water));
+        fluid_material_id id{};
+        C_OK(fluid_world_add_material(world, &water, &id));
+        const fluid_param box[] = {{"maxX", 1.0}, {"maxY", 2.0}, {"minX", 0.0}};
+        fluid_plugin_id plugin{};
+        C_OK(fluid_world_add_plugin(world, "boundary.box", box, 3, &plugin));
+        fluid_plugin_id force{};
+        if (ownForce) {
+            const fluid_force_plugin_def acceleration = c_test_acceleration(&counters);
+            C_OK(fluid_world_add_force(world, &acceleration, &force));
+        } else {
+            const fluid_param gravity[] = {{"gy", -9.81}};
+            C_OK(fluid_world_add_plugin(world, "force.gravity", gravity, 1, &force));
+        }
+        CHECK(force.kind == FLUID_PLUGIN_FORCE);
+        fluid_blob_def blob = fluid_default_blob_def();
+        blob.shape = fluid_box_shape({0.3f, 0.5f}, {0.7f, 0.9f});
+        blob.material = id;
+        C_OK(fluid_world_spawn_blob(world, &blob, nullptr));
+        return std::make_pair(world, force);
+    };
+    auto [own, ownForce] = build(true);
+    auto [builtin, builtinForce] = build(false);
+    double gy = 0.0;
+    C_OK(fluid_plugin_get_param(own, ownForce, "gy", &gy));
+    CHECK(gy == -9.81); // the declaration's default
+    for (int f = 0; f < 60; ++f) {
+        C_OK(fluid_world_step(own, kFrame));
+        C_OK(fluid_world_step(builtin, kFrame));
+    }
+    CHECK(counters.prepared == 60);
+    const std::vector<float> fallen = cState(own);
+    CHECK(sameBits(fallen, cState(builtin)));
+    // It acts: the blob fell.
+    const size_t n = fallen.size() / 4;
+    double meanY = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        meanY += fallen[n + i] / double(n);
+    }
+    CHECK(meanY < 0.5);
+    // A parameter set through the C API reaches the callbacks: sideways now, on both.
+    C_OK(fluid_plugin_set_param(own, ownForce, "gx", 4.0));
+    C_OK(fluid_plugin_set_param(builtin, builtinForce, "gx", 4.0));
+    for (int f = 0; f < 30; ++f) {
+        C_OK(fluid_world_step(own, kFrame));
+        C_OK(fluid_world_step(builtin, kFrame));
+    }
+    CHECK(sameBits(cState(own), cState(builtin)));
+    CHECK(counters.prepared == 90);
+    CHECK(counters.destroyed == 0);
+    fluid_world_destroy(own);
+    CHECK(counters.destroyed == 1);
+    fluid_world_destroy(builtin);
+    CHECK(counters.destroyed == 1);
+
+    // A def the world refuses leaves the plugin's user data to its owner: no destroy.
+    c_test_counters refused{};
+    fluid_force_plugin_def bad = c_test_acceleration(&refused);
+    bad.apply = nullptr;
+    CWorld world(def);
+    fluid_plugin_id id{};
+    CHECK(fluid_world_add_force(world.world, &bad, &id) == FLUID_ERROR_NULL_ARGUMENT);
+    CHECK(std::string(fluid_last_error()) ==
+          "fluid_world_add_force: c_test.acceleration: def->apply is NULL");
+    CHECK(refused.destroyed == 0);
+}
+
+TEST_CASE("C API: a boundary plugin written in C carries its own rigid body, which floats at "
+          "Archimedes' draft",
+          "[c][slow]") {
+    // Water 0.2 m deep in a tank 0.64 m wide; a box 0.3 m wide and 0.2 m tall at half water's
+    // density, starting with its bottom on the surface; 7 s to settle (as the Box2D coupling's
+    // Archimedes test, precise preset, 10%).
+    fluid_world_def def = fluid_default_world_def();
+    C_OK(fluid_world_def_set_quality(&def, "precise"));
+    CWorld world(def);
+    fluid_material_def water{};
+    C_OK(fluid_material_preset("water", &water));
+    fluid_material_id id{};
+    C_OK(fluid_world_add_material(world.world, &water, &id));
+    float s = 0.0f;
+    C_OK(fluid_world_spacing(world.world, id, &s));
+    const float width = 0.64f, depth = std::round(0.2f / s) * s, g = -9.81f;
+    const fluid_param tank[] = {{"minX", 0.0}, {"minY", 0.0}, {"maxX", width}, {"maxY", 1.0}};
+    fluid_plugin_id plugin{};
+    C_OK(fluid_world_add_plugin(world.world, "boundary.box", tank, 4, &plugin));
+    const fluid_param gravity[] = {{"gy", double(g)}};
+    C_OK(fluid_world_add_plugin(world.world, "force.gravity", gravity, 1, &plugin));
+    fluid_blob_def blob = fluid_default_blob_def();
+    blob.shape = fluid_box_shape({0.0f, 0.0f}, {width, depth});
+    blob.material = id;
+    C_OK(fluid_world_spawn_blob(world.world, &blob, nullptr));
+
+    const float halfWidth = 0.15f, halfHeight = 0.1f, ratio = 0.5f;
+    const float slab = def.depth;
+    const float mass = ratio * water.rest_density * slab * (2 * halfWidth) * (2 * halfHeight);
+    const float added = water.rest_density * slab * 3.14159265f * halfWidth * halfWidth;
+    c_test_box box;
+    REQUIRE(c_test_box_init(&box, 0.5f * width, depth + halfHeight, halfWidth, halfHeight, mass,
+                            added, g));
+    const fluid_boundary_plugin_def boxDef = c_test_box_plugin(&box);
+    C_OK(fluid_world_add_boundary(world.world, &boxDef, &plugin));
+    CHECK(plugin.kind == FLUID_PLUGIN_BOUNDARY);
+
+    const int frames = 420, window = 30;
+    double submerged = 0.0, lift = 0.0, speed = 0.0;
+    for (int f = 0; f < frames; ++f) {
+        C_OK(fluid_world_step(world.world, kFrame));
+        if (f < frames - window) {
+            continue;
+        }
+        // The waterline either side of the box, out of its kernel's reach: the top particle of
+        // each column of one spacing, plus half a spacing.
+        const float *x = nullptr, *y = nullptr;
+        uint32_t n = 0;
+        C_OK(fluid_world_positions(world.world, &x, &y, &n));
+        const float reach = 2.0f * water.smoothing_distance;
+        std::vector<float> top(size_t(width / s) + 1, -1.0f);
+        for (uint32_t i = 0; i < n; ++i) {
+            const float gap = std::fabs(x[i] - box.x) - halfWidth;
+            if (gap > reach && x[i] > reach && x[i] < width - reach) {
+                float& t = top[size_t(x[i] / s)];
+                t = std::max(t, y[i]);
+            }
+        }
+        double level = 0.0;
+        int columns = 0;
+        for (const float t : top) {
+            if (t > 0.0f) {
+                level += t + 0.5 * s;
+                ++columns;
+            }
+        }
+        REQUIRE(columns >= 5);
+        level /= columns;
+        const double bottom = box.y - halfHeight;
+        submerged += std::clamp((level - bottom) / (2.0 * halfHeight), 0.0, 1.0) / window;
+        lift += box.lift / double(window);
+        speed = std::max(speed, double(std::fabs(box.vy)));
+    }
+    std::printf("[measure] C API floating box at %.2f of water's density: submerged %.4f "
+                "(%+.1f%%), lift %.3f N vs weight %.3f N, speed %.4f m/s over the last 0.5 s\n",
+                double(ratio), submerged, 100.0 * (submerged / ratio - 1.0), lift,
+                double(mass * -g), speed);
+    CHECK(std::fabs(submerged / ratio - 1.0) <= 0.10);
+    CHECK(lift == Approx(double(mass * -g)).epsilon(0.05));
+    CHECK(speed < 0.01);
+    CHECK(box.destroyed == 0);
+    fluid_world_destroy(world.world);
+    world.world = nullptr;
+    CHECK(box.destroyed == 1);
+    c_test_box_free(&box);
+}
+
+TEST_CASE("C API: a snapshot in memory loads into a world that steps on bit for bit, and a C "
+          "plugin's type cannot be made again",
+          "[c]") {
+    fluid_world_def def = fluid_default_world_def();
+    C_OK(fluid_world_def_set_quality(&def, "game"));
+    CWorld world(def);
+    cDam(world.world);
+    for (int f = 0; f < 20; ++f) {
+        C_OK(fluid_world_step(world.world, kFrame));
+    }
+    fluid_bytes bytes{};
+    C_OK(fluid_world_save(world.world, &bytes));
+    REQUIRE(bytes.size > 0);
+    CWorld loaded;
+    C_OK(fluid_world_load(bytes.data, bytes.size, 0, &loaded.world));
+    fluid_bytes_free(&bytes);
+    CHECK(bytes.data == nullptr);
+    for (int f = 0; f < 20; ++f) {
+        C_OK(fluid_world_step(world.world, kFrame));
+        C_OK(fluid_world_step(loaded.world, kFrame));
+    }
+    CHECK(sameBits(cState(world.world), cState(loaded.world)));
+
+    c_test_counters counters{};
+    const fluid_force_plugin_def acceleration = c_test_acceleration(&counters);
+    fluid_plugin_id id{};
+    C_OK(fluid_world_add_force(world.world, &acceleration, &id));
+    C_OK(fluid_world_save(world.world, &bytes));
+    fluid_world* again = nullptr;
+    CHECK(fluid_world_load(bytes.data, bytes.size, 0, &again) == FLUID_ERROR_UNKNOWN_NAME);
+    CHECK(again == nullptr);
+    CHECK(std::string(fluid_last_error()).find("c_test.acceleration") != std::string::npos);
+    std::istringstream in(std::string(reinterpret_cast<const char*>(bytes.data), bytes.size));
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    CHECK(std::string(fluid_last_error()) == cppMessage([&] { World::load(in, registry); }));
+    fluid_bytes_free(&bytes);
+}
+
+TEST_CASE("C API: a level loads, steps, saves and loads back as through C++", "[c]") {
+    const std::string path = std::string(FLUID_LEVELS_DIR) + "/dam_break.json";
+    fluid_level_options options = fluid_default_level_options();
+    options.worker_count = 1;
+    fluid_level* level = nullptr;
+    C_OK(fluid_level_load(path.c_str(), &options, &level));
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    LevelOptions cppOptions;
+    cppOptions.workerCount = 1;
+    Level cpp = loadLevel(path, registry, cppOptions);
+    float rate = 0.0f;
+    C_OK(fluid_level_frame_rate(level, &rate));
+    CHECK(rate == cpp.frameRate);
+    for (int f = 0; f < 30; ++f) {
+        C_OK(fluid_level_step(level));
+        cpp.step();
+    }
+    fluid_world* world = nullptr;
+    C_OK(fluid_level_world(level, &world));
+    CHECK(sameBits(cState(world), cppState(cpp.world)));
+    // A level's world is the level's: fluid_world_destroy leaves it alone.
+    fluid_world_destroy(world);
+    uint32_t count = 0;
+    C_OK(fluid_world_particle_count(world, &count));
+    CHECK(count == cpp.world.particleCount());
+    fluid_material_id water{};
+    C_OK(fluid_level_find_material(level, cpp.materials.front().first.c_str(), &water));
+    CHECK(fluid_level_find_material(level, "no such", &water) == FLUID_ERROR_UNKNOWN_NAME);
+    CHECK(std::string(fluid_last_error()) ==
+          "fluid_level_find_material: the level has no material named 'no such'");
+
+    fluid_bytes save{};
+    C_OK(fluid_level_save_bytes(level, &save));
+    fluid_level* restored = nullptr;
+    C_OK(fluid_level_read_save(save.data, save.size, "dam.save", &options, &restored));
+    fluid_bytes_free(&save);
+    for (int f = 0; f < 30; ++f) {
+        C_OK(fluid_level_step(level));
+        C_OK(fluid_level_step(restored));
+    }
+    fluid_world* restoredWorld = nullptr;
+    C_OK(fluid_level_world(restored, &restoredWorld));
+    CHECK(sameBits(cState(world), cState(restoredWorld)));
+    fluid_goal_state state = FLUID_GOAL_PENDING;
+    double value = -1.0;
+    C_OK(fluid_level_goal(level, &state, &value));
+    CHECK(state == (cpp.goal.present ? FLUID_GOAL_PENDING : FLUID_GOAL_NONE));
+    fluid_level_destroy(restored);
+    fluid_level_destroy(level);
+}
+
+TEST_CASE("C API: every error path returns its status and the C++ API's own message", "[c]") {
+    fluid_world_def def = fluid_default_world_def();
+    CWorld c(def);
+    World cpp(WorldDef{});
+    fluid_material_def waterDef{};
+    C_OK(fluid_material_preset("water", &waterDef));
+    fluid_material_id water{};
+    C_OK(fluid_world_add_material(c.world, &waterDef, &water));
+    const MaterialId cppWater = cpp.addMaterial(fluid::water());
+
+    SECTION("a NULL argument") {
+        CHECK(fluid_world_step(nullptr, kFrame) == FLUID_ERROR_NULL_ARGUMENT);
+        CHECK(std::string(fluid_last_error()) == "fluid_world_step: world is NULL");
+        CHECK(fluid_world_add_material(c.world, nullptr, &water) == FLUID_ERROR_NULL_ARGUMENT);
+        CHECK(std::string(fluid_last_error()) == "fluid_world_add_material: def is NULL");
+    }
+    SECTION("a stale particle handle") {
+        fluid_particle_id p{};
+        C_OK(fluid_world_add_particle(c.world, {0.1f, 0.1f}, {0.0f, 0.0f}, water, &p));
+        const ParticleHandle h = cpp.addParticle({0.1f, 0.1f}, {0.0f, 0.0f}, cppWater);
+        C_OK(fluid_world_remove_particle(c.world, p));
+        cpp.removeParticle(h);
+        bool valid = true;
+        C_OK(fluid_world_particle_valid(c.world, p, &valid));
+        CHECK_FALSE(valid);
+        fluid_vec2 at{7.0f, 7.0f};
+        CHECK(fluid_world_particle_position(c.world, p, &at) == FLUID_ERROR_STALE_ID);
+        CHECK(at.x == 7.0f); // outputs untouched
+        // The same text as the C++ API's, bar the world tag each message names.
+        const std::string cMessage = fluid_last_error();
+        const std::string cppText = cppMessage([&] { (void)cpp.position(h); });
+        CHECK(cMessage.substr(0, cMessage.find("world")) ==
+              cppText.substr(0, cppText.find("world")));
+        CHECK(fluid_world_remove_particle(c.world, p) == FLUID_ERROR_STALE_ID);
+        CHECK(fluid_world_set_particle_velocity(c.world, p, {1.0f, 0.0f}) ==
+              FLUID_ERROR_STALE_ID);
+    }
+    SECTION("NaN arguments") {
+        fluid_particle_id p{};
+        const float nan = std::numeric_limits<float>::quiet_NaN();
+        CHECK(fluid_world_add_particle(c.world, {nan, 0.0f}, {0.0f, 0.0f}, water, &p) ==
+              FLUID_ERROR_INVALID_ARGUMENT);
+        CHECK(std::string(fluid_last_error()) ==
+              cppMessage([&] { cpp.addParticle({nan, 0.0f}, {0.0f, 0.0f}, cppWater); }));
+        CHECK(fluid_world_step(c.world, nan) == FLUID_ERROR_INVALID_ARGUMENT);
+        CHECK(std::string(fluid_last_error()) == cppMessage([&] { cpp.step(nan); }));
+        fluid_material_def bad = waterDef;
+        C_OK(fluid_material_def_set(&bad, "viscosity", -1.0));
+        CHECK(fluid_world_add_material(c.world, &bad, &water) == FLUID_ERROR_INVALID_ARGUMENT);
+        Material cppBad = fluid::water();
+        cppBad.viscosity = -1.0f;
+        CHECK(std::string(fluid_last_error()) == cppMessage([&] { cpp.addMaterial(cppBad); }));
+        fluid_world_def nanDef = fluid_default_world_def();
+        CHECK(fluid_world_def_set(&nanDef, "substeps", std::nan("")) ==
+              FLUID_ERROR_INVALID_ARGUMENT);
+        CHECK(std::string(fluid_last_error()) ==
+              "fluid_world_def_set: 'substeps' = nan is not a whole number in [1, 12] (unit: "
+              "count)");
+        CHECK(fluid_world_def_set(&nanDef, "depth", std::nan("")) ==
+              FLUID_ERROR_INVALID_ARGUMENT);
+        CHECK(std::string(fluid_last_error()) ==
+              "fluid_world_def_set: 'depth' = nan is not a number in [0.0001, 1000] (unit: m)");
+        nanDef.depth = std::nanf("");
+        fluid_world* never = nullptr;
+        CHECK(fluid_world_create(&nanDef, &never) == FLUID_ERROR_INVALID_ARGUMENT);
+        CHECK(never == nullptr);
+        WorldDef cppNan;
+        cppNan.depth = std::nanf("");
+        CHECK(std::string(fluid_last_error()) == cppMessage([&] { World w(cppNan); }));
+    }
+    SECTION("unknown names") {
+        Registry registry;
+        registerBuiltinPlugins(registry);
+        fluid_plugin_id id{};
+        CHECK(fluid_world_add_plugin(c.world, "force.nope", nullptr, 0, &id) ==
+              FLUID_ERROR_UNKNOWN_NAME);
+        CHECK(std::string(fluid_last_error()) ==
+              cppMessage([&] { registry.create("force.nope"); }));
+        const fluid_param gz[] = {{"gz", 1.0}};
+        CHECK(fluid_world_add_plugin(c.world, "force.gravity", gz, 1, &id) ==
+              FLUID_ERROR_UNKNOWN_NAME);
+        const std::vector<ParamValue> cppGz{{"gz", 1.0}};
+        CHECK(std::string(fluid_last_error()) ==
+              cppMessage([&] { registry.create("force.gravity", cppGz); }));
+        const fluid_param far[] = {{"gy", 1e9}};
+        CHECK(fluid_world_add_plugin(c.world, "force.gravity", far, 1, &id) ==
+              FLUID_ERROR_INVALID_ARGUMENT);
+        C_OK(fluid_world_add_plugin(c.world, "force.gravity", nullptr, 0, &id));
+        CHECK(fluid_plugin_set_param(c.world, id, "strength", 1.0) == FLUID_ERROR_UNKNOWN_NAME);
+        GravityForce gravity;
+        CHECK(std::string(fluid_last_error()) ==
+              cppMessage([&] { gravity.setParam("strength", 1.0); }));
+        fluid_material_def m{};
+        CHECK(fluid_material_preset("honey", &m) == FLUID_ERROR_UNKNOWN_NAME);
+        CHECK(std::string(fluid_last_error()) ==
+              "fluid_material_preset: unknown preset 'honey' (expected water, yoghurt or "
+              "seed_yoghurt)");
+        CHECK(fluid_world_def_set_quality(&def, "ultra") == FLUID_ERROR_UNKNOWN_NAME);
+        CHECK(fluid_material_def_set(&m, "colour", 1.0) == FLUID_ERROR_UNKNOWN_NAME);
+        CHECK(std::string(fluid_last_error()).rfind("fluid_material_def_set: unknown field "
+                                                    "'colour' (fields: mass, restDensity",
+                                                    0) == 0);
+    }
+    SECTION("stale and foreign ids") {
+        CWorld other(def);
+        fluid_material_def w2{};
+        C_OK(fluid_material_preset("water", &w2));
+        fluid_material_id foreign{};
+        C_OK(fluid_world_add_material(other.world, &w2, &foreign));
+        fluid_particle_id p{};
+        CHECK(fluid_world_add_particle(c.world, {0.1f, 0.1f}, {0.0f, 0.0f}, foreign, &p) ==
+              FLUID_ERROR_STALE_ID);
+        const fluid_material_id past{7, water.world};
+        fluid_material_def out{};
+        CHECK(fluid_world_get_material(c.world, past, &out) == FLUID_ERROR_STALE_ID);
+        CHECK(std::string(fluid_last_error()) ==
+              cppMessage([&] { (void)cpp.material(MaterialId{7, 0}); }));
+        fluid_plugin_id plugin{3, FLUID_PLUGIN_FORCE, 0};
+        CHECK(fluid_plugin_set_param(c.world, plugin, "gy", 1.0) == FLUID_ERROR_STALE_ID);
+        CHECK(std::string(fluid_last_error()) ==
+              "fluid_plugin_set_param: no force plugin 3 in this world (it has 0)");
+        fluid_emitter_id emitter{0, 0};
+        uint32_t count = 0;
+        CHECK(fluid_world_emitted_count(c.world, emitter, &count) == FLUID_ERROR_STALE_ID);
+    }
+    SECTION("too many particles") {
+        fluid_world_def small = fluid_default_world_def();
+        C_OK(fluid_world_def_set(&small, "maxParticles", 10));
+        CWorld tiny(small);
+        fluid_material_id id{};
+        C_OK(fluid_world_add_material(tiny.world, &waterDef, &id));
+        fluid_blob_def blob = fluid_default_blob_def();
+        blob.material = id;
+        CHECK(fluid_world_spawn_blob(tiny.world, &blob, nullptr) == FLUID_ERROR_LIMIT);
+        CHECK(std::string(fluid_last_error()).find("maxParticles = 10") != std::string::npos);
+    }
+    SECTION("bad level files and snapshots") {
+        Registry registry;
+        registerBuiltinPlugins(registry);
+        const std::string text = "{\"version\": 1, \"materials\": [}";
+        fluid_level* level = nullptr;
+        CHECK(fluid_level_parse(text.data(), text.size(), "broken.json", nullptr, &level) ==
+              FLUID_ERROR_BAD_FILE);
+        CHECK(level == nullptr);
+        CHECK(std::string(fluid_last_error()) ==
+              cppMessage([&] { parseLevel(text, "broken.json", registry); }));
+        CHECK(fluid_level_load("/nonexistent/level.json", nullptr, &level) == FLUID_ERROR_IO);
+        CHECK(std::string(fluid_last_error()) ==
+              cppMessage([&] { loadLevel("/nonexistent/level.json", registry); }));
+        const char garbage[] = "not a snapshot";
+        fluid_world* world = nullptr;
+        CHECK(fluid_world_load(garbage, sizeof garbage, 0, &world) == FLUID_ERROR_BAD_FILE);
+        std::istringstream in(std::string(garbage, sizeof garbage));
+        CHECK(std::string(fluid_last_error()) ==
+              cppMessage([&] { World::load(in, registry); }));
+    }
+    SECTION("the message is per thread") {
+        CHECK(fluid_world_step(nullptr, kFrame) == FLUID_ERROR_NULL_ARGUMENT);
+        std::string other;
+        std::thread([&] {
+            other = fluid_last_error(); // nothing failed on this thread yet
+            fluid_material_def m{};
+            (void)fluid_material_preset("honey", &m);
+        }).join();
+        CHECK(other.empty());
+        CHECK(std::string(fluid_last_error()) == "fluid_world_step: world is NULL");
+    }
+}
+
+TEST_CASE("C API: fuzzed calls never crash, hang or leave NaN, and each failure has a status and a "
+          "message",
+          "[c]") {
+    // A short run (CI): random calls with random, often bad, arguments on two worlds.
+    std::mt19937 random(20261128);
+    auto pick = [&](int n) { return int(random() % uint32_t(n)); };
+    auto number = [&]() -> float {
+        switch (pick(6)) {
+        case 0: return std::numeric_limits<float>::quiet_NaN();
+        case 1: return std::numeric_limits<float>::infinity();
+        case 2: return -1e30f;
+        default: return std::uniform_real_distribution<float>(-1.0f, 2.0f)(random);
+        }
+    };
+    const char* names[] = {"force.gravity", "boundary.box", "force.vortex", "force.wind",
+                           "boundary.circle", "nope", "", "force.pointer"};
+    const char* params[] = {"gx", "gy", "minX", "maxX", "radius", "x", "y", "strength", "?"};
+    fluid_world_def def = fluid_default_world_def();
+    C_OK(fluid_world_def_set_quality(&def, "game"));
+    C_OK(fluid_world_def_set(&def, "maxParticles", 4000));
+    CWorld a(def), b(def);
+    fluid_material_def water{};
+    C_OK(fluid_material_preset("water", &water));
+    fluid_material_id materials[2]{};
+    C_OK(fluid_world_add_material(a.world, &water, &materials[0]));
+    C_OK(fluid_world_add_material(b.world, &water, &materials[1]));
+    std::vector<fluid_particle_id> particles;
+    int failures = 0;
+    for (int call = 0; call < 3000; ++call) {
+        fluid_world* w = pick(2) == 0 ? a.world : b.world;
+        const fluid_material_id m = materials[pick(2)];
+        fluid_status status = FLUID_OK;
+        switch (pick(10)) {
+        case 0: {
+            fluid_particle_id p{};
+            status = fluid_world_add_particle(w, {number(), number()}, {number(), number()}, m, &p);
+            if (status == FLUID_OK) {
+                particles.push_back(p);
+            }
+            break;
+        }
+        case 1:
+            if (!particles.empty()) {
+                status = fluid_world_remove_particle(w, particles[size_t(pick(int(particles.size())))]);
+            }
+            break;
+        case 2: {
+            fluid_blob_def blob = fluid_default_blob_def();
+            blob.shape = pick(2) == 0 ? fluid_box_shape({number(), number()}, {number(), number()})
+                                      : fluid_circle_shape({number(), number()}, number() * 0.2f);
+            blob.material = m;
+            blob.velocity = {number(), number()};
+            status = fluid_world_spawn_blob(w, &blob, nullptr);
+            break;
+        }
+        case 3: {
+            fluid_param values[2] = {{params[pick(9)], double(number())},
+                                     {params[pick(9)], double(number())}};
+            fluid_plugin_id id{};
+            status = fluid_world_add_plugin(w, names[pick(8)], values, uint32_t(pick(3)), &id);
+            break;
+        }
+        case 4: {
+            const fluid_plugin_id id{uint32_t(pick(4)), uint32_t(pick(3)), uint32_t(pick(2))};
+            status = fluid_plugin_set_param(w, id, params[pick(9)], double(number()));
+            break;
+        }
+        case 5:
+            status = fluid_world_step(w, pick(4) == 0 ? number() : kFrame);
+            break;
+        case 6: {
+            fluid_emitter_def e = fluid_default_emitter_def();
+            e.position = {number(), number()};
+            e.direction = {number(), number()};
+            e.rate = number() * 100.0f;
+            e.material = m;
+            fluid_emitter_id id{};
+            status = fluid_world_add_emitter(w, &e, &id);
+            break;
+        }
+        case 7: {
+            std::string bytes(size_t(pick(64)), '\0');
+            for (char& ch : bytes) {
+                ch = char(pick(256));
+            }
+            fluid_world* loaded = nullptr;
+            status = fluid_world_load(bytes.data(), bytes.size(), 0, &loaded);
+            fluid_world_destroy(loaded);
+            break;
+        }
+        case 8: {
+            std::string text = "{\"version\": 1, \"materials\": {\"w\": {\"preset\": \"water\"}}}";
+            text[size_t(pick(int(text.size())))] = char(32 + pick(90));
+            fluid_level* level = nullptr;
+            status = fluid_level_parse(text.data(), text.size(), "fuzz.json", nullptr, &level);
+            fluid_level_destroy(level);
+            break;
+        }
+        default: {
+            fluid_material_def d = water;
+            const char* fields[] = {"mass", "viscosity", "restDensity", "flowIndex", "?"};
+            status = fluid_material_def_set(&d, fields[pick(5)], double(number()));
+            if (status == FLUID_OK) {
+                status = fluid_world_set_material(w, m, &d);
+            }
+            break;
+        }
+        }
+        if (status != FLUID_OK) {
+            ++failures;
+            INFO("call " << call << ": " << fluid_status_name(status));
+            REQUIRE(std::string(fluid_status_name(status)) != "unknown status");
+            REQUIRE(std::strlen(fluid_last_error()) > 0);
+        }
+        for (fluid_world* world : {a.world, b.world}) {
+            const float *x = nullptr, *y = nullptr;
+            uint32_t n = 0;
+            C_OK(fluid_world_positions(world, &x, &y, &n));
+            REQUIRE(std::all_of(x, x + n, [](float v) { return std::isfinite(v); }));
+            REQUIRE(std::all_of(y, y + n, [](float v) { return std::isfinite(v); }));
+        }
+    }
+    std::printf("[measure] C API fuzz: 3000 calls, %d refused with a status and a message\n",
+                failures);
+    CHECK(failures > 300);
+}
