@@ -24,12 +24,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#if defined(_WIN32) && defined(FLUID_C_SHARED)
-#if defined(FLUID_C_BUILDING)
+#if defined(_WIN32) && defined(FLUID_C_BUILDING)
 #define FLUID_C_API __declspec(dllexport)
-#else
+#elif defined(_WIN32) && defined(FLUID_C_SHARED)
 #define FLUID_C_API __declspec(dllimport)
-#endif
 #elif defined(__GNUC__)
 #define FLUID_C_API __attribute__((visibility("default")))
 #else
