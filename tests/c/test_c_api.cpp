@@ -11,9 +11,11 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <limits>
 #include <random>
 #include <sstream>
@@ -359,7 +361,8 @@ TEST_CASE("C API: a snapshot in memory loads into a world that steps on bit for 
 }
 
 TEST_CASE("C API: a level loads, steps, saves and loads back as through C++", "[c]") {
-    const std::string path = std::string(FLUID_LEVELS_DIR) + "/dam_break.json";
+    std::string path = FLUID_LEVELS_DIR;
+    path.append("/dam_break.json");
     fluid_level_options options = fluid_default_level_options();
     options.worker_count = 1;
     fluid_level* level = nullptr;
@@ -704,4 +707,68 @@ TEST_CASE("C API: fuzzed calls never crash, hang or leave NaN, and each failure 
     std::printf("[measure] C API fuzz: 3000 calls, %d refused with a status and a message\n",
                 failures);
     CHECK(failures > 300);
+}
+
+namespace {
+
+// docs/c_api.md's row for `field`: "| `name` | `member` | unit | range | ... | description |".
+template <class Def> void checkDocRow(const std::string& doc, const Field<Def>& field) {
+    CAPTURE(field.name);
+    const std::string head = "| `" + std::string(field.name) + "` | `";
+    const size_t at = doc.find(head);
+    REQUIRE(at != std::string::npos);
+    const size_t end = doc.find('\n', at);
+    REQUIRE(end != std::string::npos);
+    const std::string row(doc.begin() + std::ptrdiff_t(at), doc.begin() + std::ptrdiff_t(end));
+    std::vector<std::string> cells;
+    size_t b = 1;
+    for (size_t e = row.find(" |", b); e != std::string::npos; e = row.find(" |", b)) {
+        size_t first = b;
+        while (first < e && row[first] == ' ') {
+            ++first;
+        }
+        cells.emplace_back(row.begin() + std::ptrdiff_t(first), row.begin() + std::ptrdiff_t(e));
+        b = e + 2;
+    }
+    REQUIRE(cells.size() >= 5);
+    // The C member: the name in snake case.
+    std::string member;
+    for (const char ch : field.name) {
+        if (std::isupper(static_cast<unsigned char>(ch))) {
+            member.push_back('_');
+            member.push_back(char(std::tolower(static_cast<unsigned char>(ch))));
+        } else {
+            member.push_back(ch);
+        }
+    }
+    CHECK(cells[1] == "`" + member + "`");
+    CHECK(cells[2] == std::string(field.unit));
+    const std::string& range = cells[3];
+    REQUIRE(range.size() > 4);
+    CHECK(range.front() == (field.openLow ? '(' : '['));
+    CHECK(range.back() == ']');
+    const size_t comma = range.find(", ");
+    REQUIRE(comma != std::string::npos);
+    CHECK(std::strtod(range.c_str() + 1, nullptr) == field.lo);
+    CHECK(std::strtod(range.c_str() + comma + 2, nullptr) == field.hi);
+    CHECK(cells.back() == std::string(field.description));
+}
+
+} // namespace
+
+TEST_CASE("C API: docs/c_api.md's field tables are the C++ field tables", "[c]") {
+    std::ifstream in(std::string(FLUID_SOURCE_DIR) + "/docs/c_api.md");
+    REQUIRE(in);
+    std::ostringstream text;
+    text << in.rdbuf();
+    const std::string doc = text.str();
+    for (const auto& f : positionBasedFields()) {
+        checkDocRow(doc, f);
+    }
+    for (const auto& f : worldFields()) {
+        checkDocRow(doc, f);
+    }
+    for (const auto& f : materialFields()) {
+        checkDocRow(doc, f);
+    }
 }
