@@ -1,7 +1,11 @@
 // fluid::c — levels (fluid/c.h): fluid::Level behind an opaque handle.
 #include "c_internal.h"
 
+#include <fluid/box2d/coupling.h>
+
 #include <box2d/box2d.h>
+
+#include <cmath>
 
 #include <cstdlib>
 #include <cstring>
@@ -13,6 +17,8 @@ struct fluid_level {
     fluid::Level level;
     /// fluid_level_world's handle (not owning).
     fluid_world world;
+    /// The bodies fluid_level_add_body added, after the file's in fluid_level_body's indices.
+    std::vector<b2Body*> added;
 };
 
 namespace fluid::c {
@@ -53,6 +59,30 @@ Id findNamed(const std::vector<std::pair<std::string, Id>>& entries, const char*
     throw Failure{FLUID_ERROR_UNKNOWN_NAME, std::string(function) + ": the level has no " +
                                                 what + " named '" + Error::printable(name) + "'"};
 }
+
+// Body `index` of fluid_level_body's list: the file's bodies, then the added ones.
+b2Body* bodyAt(const fluid_level& level, uint32_t index, const char* function,
+               const char** name = nullptr) {
+    const auto& named = level.level.bodies;
+    if (index < named.size()) {
+        if (name != nullptr) {
+            *name = named[index].first.c_str();
+        }
+        return named[index].second;
+    }
+    if (index - named.size() < level.added.size()) {
+        if (name != nullptr) {
+            *name = "";
+        }
+        return level.added[index - named.size()];
+    }
+    throw Failure{FLUID_ERROR_STALE_ID,
+                  std::string(function) + ": index " + std::to_string(index) +
+                      " is past the level's " +
+                      std::to_string(named.size() + level.added.size()) + " bodies"};
+}
+
+bool finite(fluid_vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
 } // namespace
 
@@ -240,30 +270,176 @@ fluid_status fluid_level_body_count(const fluid_level* level, uint32_t* count) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const Level& l = levelOf(level, "fluid_level_body_count");
         need(count, "fluid_level_body_count", "count");
-        *count = uint32_t(l.bodies.size());
+        *count = uint32_t(l.bodies.size() + level->added.size());
     });
 }
 
 fluid_status fluid_level_body(const fluid_level* level, uint32_t index, const char** name,
                               fluid_vec2* position, float* angle) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const Level& l = levelOf(level, "fluid_level_body");
-        if (index >= l.bodies.size()) {
-            throw Failure{FLUID_ERROR_STALE_ID, "fluid_level_body: index " +
-                                                    std::to_string(index) +
-                                                    " is past the level's " +
-                                                    std::to_string(l.bodies.size()) + " bodies"};
-        }
-        const auto& [bodyName, body] = l.bodies[index];
-        if (name != nullptr) {
-            *name = bodyName.c_str();
-        }
+        need(level, "fluid_level_body", "level");
+        const b2Body* body = bodyAt(*level, index, "fluid_level_body", name);
         if (position != nullptr) {
             *position = {body->GetPosition().x, body->GetPosition().y};
         }
         if (angle != nullptr) {
             *angle = body->GetAngle();
         }
+    });
+}
+
+fluid_body_def fluid_default_body_def(void) {
+    fluid_body_def def{};
+    def.type = FLUID_BODY_DYNAMIC;
+    def.shape = fluid_box_shape({-0.05f, -0.05f}, {0.05f, 0.05f});
+    def.friction = 0.4f;
+    return def;
+}
+
+fluid_status fluid_level_areal_density(const fluid_level* level, fluid_material_id material,
+                                       float* density) {
+    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
+        const Level& l = levelOf(level, "fluid_level_areal_density");
+        need(density, "fluid_level_areal_density", "density");
+        if (material.index >= l.world.materialCount() ||
+            (material.world != 0 && material.world != tagOf(l.world))) {
+            throw Failure{FLUID_ERROR_STALE_ID,
+                          "fluid_level_areal_density: no material " +
+                              std::to_string(material.index) + " in the level's world"};
+        }
+        *density = box2d::arealDensity(l.world, toCpp(material));
+    });
+}
+
+fluid_status fluid_level_add_body(fluid_level* level, const fluid_body_def* def,
+                                  uint32_t* index) {
+    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
+        const char* const function = "fluid_level_add_body";
+        need(level, function, "level");
+        need(def, function, "def");
+        Level& l = level->level;
+        if (l.physics == nullptr) {
+            throw Failure{FLUID_ERROR_REFUSED,
+                          std::string(function) + ": the level declares no bodies, so its world "
+                                                  "has no Box2D world to add one to"};
+        }
+        auto bad = [&](const std::string& what) {
+            throw Failure{FLUID_ERROR_INVALID_ARGUMENT, std::string(function) + ": " + what};
+        };
+        if (def->type != FLUID_BODY_STATIC && def->type != FLUID_BODY_KINEMATIC &&
+            def->type != FLUID_BODY_DYNAMIC) {
+            bad("type " + std::to_string(def->type) +
+                " is not FLUID_BODY_STATIC, FLUID_BODY_KINEMATIC or FLUID_BODY_DYNAMIC");
+        }
+        if (!std::isfinite(def->angle) || !finite(def->velocity) ||
+            !std::isfinite(def->angular_velocity) || !finite(def->position)) {
+            bad("position, angle and velocities must be finite");
+        }
+        if (!(def->friction >= 0.0f) || !std::isfinite(def->friction)) {
+            bad("friction must be finite and >= 0");
+        }
+        if (!std::isfinite(def->density) ||
+            !(def->type == FLUID_BODY_DYNAMIC ? def->density > 0.0f : def->density >= 0.0f)) {
+            bad("density must be finite and > 0 for a dynamic body (>= 0 otherwise), kg/m^2");
+        }
+        const fluid_shape& shape = def->shape;
+        b2PolygonShape polygon;
+        b2CircleShape circle;
+        b2Vec2 position{def->position.x, def->position.y};
+        const b2Shape* fixtureShape = nullptr;
+        if (shape.type == FLUID_SHAPE_BOX) {
+            if (!finite(shape.center) || !(shape.half_extents.x > 0.0f) ||
+                !(shape.half_extents.y > 0.0f) || !finite(shape.half_extents)) {
+                bad("a box needs a finite center and half extents > 0");
+            }
+            polygon.SetAsBox(shape.half_extents.x, shape.half_extents.y);
+            position = {shape.center.x, shape.center.y};
+            fixtureShape = &polygon;
+        } else if (shape.type == FLUID_SHAPE_CIRCLE) {
+            if (!finite(shape.center) || !(shape.radius > 0.0f) || !std::isfinite(shape.radius)) {
+                bad("a circle needs a finite center and a radius > 0");
+            }
+            circle.m_radius = shape.radius;
+            position = {shape.center.x, shape.center.y};
+            fixtureShape = &circle;
+        } else if (shape.type == FLUID_SHAPE_POLYGON) {
+            if (shape.vertex_count < 3 || shape.vertex_count > uint32_t(b2_maxPolygonVertices)) {
+                bad("a polygon body needs 3 to " + std::to_string(b2_maxPolygonVertices) +
+                    " vertices, not " + std::to_string(shape.vertex_count));
+            }
+            need(shape.vertices, function, "shape.vertices");
+            std::vector<b2Vec2> points;
+            for (uint32_t i = 0; i < shape.vertex_count; ++i) {
+                if (!finite(shape.vertices[i])) {
+                    bad("the polygon's vertices must be finite");
+                }
+                points.emplace_back(shape.vertices[i].x, shape.vertices[i].y);
+            }
+            // Box2D takes the convex hull and asserts on a degenerate one: only strictly
+            // convex polygons with vertices farther apart than its linear slop get there.
+            const size_t n = points.size();
+            int turn = 0;
+            for (size_t i = 0; i < n; ++i) {
+                const b2Vec2 a = points[i], b = points[(i + 1) % n], c = points[(i + 2) % n];
+                if (b2Distance(a, b) <= b2_linearSlop) {
+                    bad("the polygon's vertices " + std::to_string(i) + " and " +
+                        std::to_string((i + 1) % n) + " are closer than Box2D's linear slop (" +
+                        std::to_string(b2_linearSlop) + " m)");
+                }
+                const float cross = b2Cross(b - a, c - b);
+                const int sign = cross > 0.0f ? 1 : cross < 0.0f ? -1 : 0;
+                if (sign == 0 || (turn != 0 && sign != turn)) {
+                    bad("the polygon is not strictly convex (at vertex " +
+                        std::to_string((i + 1) % n) + ")");
+                }
+                turn = sign;
+            }
+            polygon.Set(points.data(), int32(n));
+            if (polygon.m_count != int32(n)) {
+                bad("Box2D made a polygon of " + std::to_string(polygon.m_count) +
+                    " vertices from " + std::to_string(n));
+            }
+            fixtureShape = &polygon;
+        } else {
+            bad("shape type " + std::to_string(shape.type) +
+                " is not FLUID_SHAPE_BOX, FLUID_SHAPE_CIRCLE or FLUID_SHAPE_POLYGON");
+        }
+        if (!(std::fabs(position.x) <= 1e5f && std::fabs(position.y) <= 1e5f)) {
+            bad("the body's position must lie within 1e5 m of the origin");
+        }
+        b2BodyDef bodyDef;
+        bodyDef.type = def->type == FLUID_BODY_STATIC      ? b2_staticBody
+                       : def->type == FLUID_BODY_KINEMATIC ? b2_kinematicBody
+                                                           : b2_dynamicBody;
+        bodyDef.position = position;
+        bodyDef.angle = def->angle;
+        bodyDef.linearVelocity = {def->velocity.x, def->velocity.y};
+        bodyDef.angularVelocity = def->angular_velocity;
+        b2Body* body = l.physics->CreateBody(&bodyDef);
+        b2FixtureDef fixture;
+        fixture.shape = fixtureShape;
+        fixture.density = def->density;
+        fixture.friction = def->friction;
+        body->CreateFixture(&fixture);
+        level->added.push_back(body);
+        if (index != nullptr) {
+            *index = uint32_t(l.bodies.size() + level->added.size() - 1);
+        }
+    });
+}
+
+fluid_status fluid_level_set_body_velocity(fluid_level* level, uint32_t index,
+                                           fluid_vec2 velocity, float angular_velocity) {
+    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
+        need(level, "fluid_level_set_body_velocity", "level");
+        b2Body* body = bodyAt(*level, index, "fluid_level_set_body_velocity");
+        if (!finite(velocity) || !std::isfinite(angular_velocity)) {
+            throw Failure{FLUID_ERROR_INVALID_ARGUMENT,
+                          "fluid_level_set_body_velocity: the velocities must be finite"};
+        }
+        body->SetLinearVelocity({velocity.x, velocity.y});
+        body->SetAngularVelocity(angular_velocity);
+        body->SetAwake(true);
     });
 }
 

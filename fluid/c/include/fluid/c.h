@@ -912,14 +912,69 @@ FLUID_C_API fluid_status fluid_level_find_sensor(const fluid_level* level, const
 FLUID_C_API fluid_status fluid_level_find_plugin(const fluid_level* level, const char* name,
                                                  fluid_plugin_id* id);
 
-/** Box2D bodies in the level (unit: count). */
+/** Box2D bodies of the level: the file's, then those fluid_level_add_body added (unit: count). */
 FLUID_C_API fluid_status fluid_level_body_count(const fluid_level* level, uint32_t* count);
 
-/** A body of the level by its index (in the file's order): its name (valid while the level
- *  lives), position (unit: m) and angle (unit: rad). Each output pointer may be NULL (that
- *  output is skipped). FLUID_ERROR_STALE_ID for an index past the bodies. */
+/** A body of the level by its index (the file's bodies in its order, then the added ones): its
+ *  name ("" for an added body; valid while the level lives), position (unit: m) and angle
+ *  (unit: rad). Each output pointer may be NULL (that output is skipped). FLUID_ERROR_STALE_ID
+ *  for an index past the bodies. */
 FLUID_C_API fluid_status fluid_level_body(const fluid_level* level, uint32_t index,
                                           const char** name, fluid_vec2* position, float* angle);
+
+/** What a Box2D body is. */
+typedef enum fluid_body_type {
+    /** Never moves. */
+    FLUID_BODY_STATIC = 0,
+    /** Moves at the velocity it is given (a plank the player drags). */
+    FLUID_BODY_KINEMATIC = 1,
+    /** Moves under gravity, contacts and the fluid (a crate). */
+    FLUID_BODY_DYNAMIC = 2
+} fluid_body_type;
+
+/** A Box2D body for a level with bodies (a crate dropped, a plank placed). */
+typedef struct fluid_body_def {
+    /** A fluid_body_type. */
+    int32_t type;
+    /** Its one fixture: a box or circle whose center is the body's position, or a convex
+     *  polygon of 3 to 8 vertices around the body's position (unit: m). */
+    fluid_shape shape;
+    /** For a polygon: the body's position (unit: m; a box or circle takes shape.center). */
+    fluid_vec2 position;
+    /** Angle (unit: rad; finite). */
+    float angle;
+    /** Box2D's density: mass per area of the 2D shape (unit: kg/m^2; > 0 for a dynamic body;
+     *  fluid_level_areal_density gives the liquid's, for a body that floats at a ratio of it). */
+    float density;
+    /** Box2D's contact friction (unit: 1; >= 0). */
+    float friction;
+    /** Initial velocity (unit: m/s). */
+    fluid_vec2 velocity;
+    /** Initial angular velocity (unit: rad/s). */
+    float angular_velocity;
+} fluid_body_def;
+
+/** A dynamic box 0.1 m across at the origin, density 0, friction 0.4. Any thread. */
+FLUID_C_API fluid_body_def fluid_default_body_def(void);
+
+/** The areal density of a material's liquid as Box2D weighs bodies (unit: kg/m^2): a body of
+ *  half this density floats half submerged. */
+FLUID_C_API fluid_status fluid_level_areal_density(const fluid_level* level,
+                                                   fluid_material_id material, float* density);
+
+/** Adds a Box2D body to a level whose file declares bodies (FLUID_ERROR_REFUSED for one that
+ *  declares none: its world has no Box2D world to couple); the fluid meets it from the next
+ *  step. `index` (may be NULL) receives its fluid_level_body index. A level save keeps the
+ *  body; a level loaded from the save lists only the file's bodies (the added ones are still in
+ *  its Box2D world and its fluid). */
+FLUID_C_API fluid_status fluid_level_add_body(fluid_level* level, const fluid_body_def* def,
+                                              uint32_t* index);
+
+/** Sets a body's velocity (unit: m/s) and angular velocity (unit: rad/s): how a game drags a
+ *  kinematic plank or throws a crate. Between steps. */
+FLUID_C_API fluid_status fluid_level_set_body_velocity(fluid_level* level, uint32_t index,
+                                                       fluid_vec2 velocity,
+                                                       float angular_velocity);
 
 #ifdef __cplusplus
 } /* extern "C" */
