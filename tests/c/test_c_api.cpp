@@ -416,7 +416,8 @@ TEST_CASE("C API: a level loads, steps, saves and loads back as through C++", "[
     fluid_level_destroy(level);
 }
 
-TEST_CASE("C API: a crate dropped into a level and a body thrown, through C as through C++",
+TEST_CASE("C API: a crate dropped into a level, a body thrown and gravity changed, through C as "
+          "through C++",
           "[c]") {
     // What the demo does to a level's bodies (ctrl + click drops a crate, a drag moves a body),
     // through both APIs: the same bits after a second.
@@ -460,6 +461,28 @@ TEST_CASE("C API: a crate dropped into a level and a body thrown, through C as t
         fixture.density = 0.5f * areal;
         fixture.friction = 0.4f;
         body->CreateFixture(&fixture);
+    }
+    // Weaker gravity, on the fluid and on Box2D (the demo's G key sets zero).
+    C_OK(fluid_level_set_gravity(level, {0.0f, -4.0f}));
+    for (const auto& force : cpp.world.forces()) {
+        if (force->type() == "force.gravity") {
+            force->setParam("gx", 0.0);
+            force->setParam("gy", -4.0);
+        }
+    }
+    cpp.physics->SetGravity({0.0f, -4.0f});
+    for (b2Body* b = cpp.physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
+        b->SetAwake(true);
+    }
+    fluid_world* cworld = nullptr;
+    C_OK(fluid_level_world(level, &cworld));
+    uint32_t forces = 0;
+    C_OK(fluid_world_plugin_count(cworld, FLUID_PLUGIN_FORCE, &forces));
+    REQUIRE(forces == cpp.world.forces().size());
+    for (uint32_t k = 0; k < forces; ++k) {
+        const char* type = nullptr;
+        C_OK(fluid_plugin_type(cworld, {k, FLUID_PLUGIN_FORCE, 0}, &type));
+        CHECK(std::string(type) == cpp.world.forces()[k]->type());
     }
     C_OK(fluid_level_set_body_velocity(level, 1, {0.5f, 1.0f}, 2.0f));
     b2Body* thrown = cpp.bodies[1].second;

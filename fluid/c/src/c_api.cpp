@@ -989,6 +989,15 @@ fluid_status fluid_plugin_set_points(fluid_world* world, fluid_plugin_id id, con
     });
 }
 
+fluid_status fluid_plugin_type(const fluid_world* world, fluid_plugin_id id, const char** type) {
+    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
+        need(world, "fluid_plugin_type", "world");
+        need(type, "fluid_plugin_type", "type");
+        const Plugin& plugin = pluginOf(*world->world, id, "fluid_plugin_type");
+        *type = plugin.type().data(); // a std::string's: NUL-terminated
+    });
+}
+
 fluid_status fluid_world_plugin_count(const fluid_world* world, fluid_plugin_kind kind,
                                       uint32_t* count) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {

@@ -288,6 +288,38 @@ fluid_status fluid_level_body(const fluid_level* level, uint32_t index, const ch
     });
 }
 
+fluid_status fluid_level_set_gravity(fluid_level* level, fluid_vec2 gravity) {
+    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
+        need(level, "fluid_level_set_gravity", "level");
+        if (!finite(gravity)) {
+            throw Failure{FLUID_ERROR_INVALID_ARGUMENT,
+                          "fluid_level_set_gravity: gravity must be finite"};
+        }
+        Level& l = level->level;
+        // Checked on every plugin first, so that a refusal changes nothing.
+        for (const auto& force : l.world.forces()) {
+            if (force->type() == GravityForce::kType) {
+                GravityForce probe;
+                probe.setParam("gx", gravity.x);
+                probe.setParam("gy", gravity.y);
+            }
+        }
+        for (const auto& force : l.world.forces()) {
+            if (force->type() == GravityForce::kType) {
+                force->setParam("gx", gravity.x);
+                force->setParam("gy", gravity.y);
+            }
+        }
+        if (l.physics != nullptr) {
+            l.physics->SetGravity({gravity.x, gravity.y});
+            for (b2Body* body = l.physics->GetBodyList(); body != nullptr;
+                 body = body->GetNext()) {
+                body->SetAwake(true);
+            }
+        }
+    });
+}
+
 fluid_body_def fluid_default_body_def(void) {
     fluid_body_def def{};
     def.type = FLUID_BODY_DYNAMIC;

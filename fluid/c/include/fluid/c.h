@@ -600,6 +600,11 @@ FLUID_C_API fluid_status fluid_plugin_set_points(fluid_world* world, fluid_plugi
                                                  const char* name, const fluid_vec2* points,
                                                  uint32_t count);
 
+/** A plugin's registered type name ("force.gravity"; a C plugin's def->type), valid while the
+ *  world lives. */
+FLUID_C_API fluid_status fluid_plugin_type(const fluid_world* world, fluid_plugin_id id,
+                                           const char** type);
+
 /** Plugins of one kind in the world (unit: count). */
 FLUID_C_API fluid_status fluid_world_plugin_count(const fluid_world* world, fluid_plugin_kind kind,
                                                   uint32_t* count);
@@ -921,6 +926,11 @@ FLUID_C_API fluid_status fluid_level_body_count(const fluid_level* level, uint32
  *  for an index past the bodies. */
 FLUID_C_API fluid_status fluid_level_body(const fluid_level* level, uint32_t index,
                                           const char** name, fluid_vec2* position, float* angle);
+
+/** Sets the level's gravity (unit: m/s^2; finite): every "force.gravity" plugin of its world,
+ *  and its Box2D world's, whose bodies are woken (the coupling's buoyancy reads Box2D's
+ *  gravity: the two stay the same). Zero gravity is {0, 0}. Between steps. */
+FLUID_C_API fluid_status fluid_level_set_gravity(fluid_level* level, fluid_vec2 gravity);
 
 /** What a Box2D body is. */
 typedef enum fluid_body_type {
