@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+const char* c_test_status_name(int code) { return fluid_status_name((fluid_status)code); }
+
 /* ---- The uniform acceleration --------------------------------------------------------------- */
 
 static const fluid_param_decl kAccelerationParams[] = {

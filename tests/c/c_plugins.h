@@ -8,6 +8,9 @@
 extern "C" {
 #endif
 
+/* fluid_status_name called from C with any int, as a C caller may. */
+const char* c_test_status_name(int code);
+
 /* What the acceleration plugin's callbacks counted. */
 typedef struct c_test_counters {
     int prepared;

@@ -215,3 +215,38 @@ TEST_CASE("game: F5 saves the level with its crates, F9 goes back to it", "[demo
     }
     std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("game: --record writes the input down as a script that replays to the same state",
+          "[demo]") {
+    // The input goes through the game as a player's would (a script's actions are played as
+    // window events), and the recorder writes down what the game received.
+    const std::string recording = std::string(FLUID_DEMO_WORK_DIR) + "/recorded.script";
+    std::filesystem::remove(recording);
+    const std::string input = "2 key G\n"
+                              "5 press left 0.9 0.35 ctrl\n"
+                              "6 release left\n"
+                              "10 move 0.4 0.1\n"
+                              "11 press right 0.4 0.1\n"
+                              "25 move 0.6 0.12\n"
+                              "40 release right\n"
+                              "45 key M\n"
+                              "46 key Space\n"
+                              "50 key G\n";
+    const Summary original =
+        play("record_original", "crates", 90, input, " --record '" + recording + "'");
+    std::ifstream in(recording);
+    REQUIRE(in);
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string written = text.str();
+    INFO("the recording:\n" << written);
+    CHECK(written.find("\n5 press left ") != std::string::npos); // at the pixel nearest 0.9 0.35
+    CHECK(written.find("ctrl  # pixel ") != std::string::npos);
+    CHECK(written.find("\n11 press right ") != std::string::npos);
+    CHECK(written.find("40 release right") != std::string::npos);
+    CHECK(written.find("46 key Space") != std::string::npos);
+    const Summary replayed = play("record_replay", "crates", 90, written);
+    CHECK(replayed.text("hash") == original.text("hash"));
+    CHECK(replayed.text("bodies") == original.text("bodies"));
+    CHECK(std::stoi(original.text("bodies")) == 10); // the level's nine and the dropped crate
+}

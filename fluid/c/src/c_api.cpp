@@ -328,7 +328,12 @@ uint32_t fluid_version(void) { return FLUID_C_VERSION; }
 const char* fluid_last_error(void) { return t_lastError.c_str(); }
 
 const char* fluid_status_name(fluid_status status) {
-    switch (status) {
+    // A C caller may pass any int; read it as one (in C++ an enum holding a value it does not
+    // list may not be read as the enum).
+    static_assert(sizeof(fluid_status) == sizeof(int));
+    int code = 0;
+    std::memcpy(&code, &status, sizeof code);
+    switch (code) {
     case FLUID_OK: return "FLUID_OK";
     case FLUID_ERROR_INVALID_ARGUMENT: return "FLUID_ERROR_INVALID_ARGUMENT";
     case FLUID_ERROR_NULL_ARGUMENT: return "FLUID_ERROR_NULL_ARGUMENT";
