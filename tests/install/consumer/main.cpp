@@ -1,6 +1,6 @@
 // Smallest game-like use of fluid: build a world from its definition, give it a material, a
 // blob, gravity and a tank, and step it once. Built with the optional components too, it also
-// calls into each (FLUID_CONSUMER_WITH_BOX2D, _LEVEL, _GL, set by CMakeLists.txt), so that the
+// calls into each (FLUID_CONSUMER_WITH_BOX2D, _LEVEL, _GL, _C, set by CMakeLists.txt), so that the
 // link proves their targets carry what they need.
 // Compiled by tests/install/check_install.cmake against the installed package and against
 // the source tree added with add_subdirectory().
@@ -12,6 +12,9 @@
 #endif
 #if defined(FLUID_CONSUMER_WITH_LEVEL)
 #include <fluid/level.h>
+#endif
+#if defined(FLUID_CONSUMER_WITH_C)
+#include <fluid/c.h>
 #endif
 #if defined(FLUID_CONSUMER_WITH_GL)
 #include <fluid/gl/camera.h>
@@ -100,6 +103,33 @@ bool runGl() {
 }
 #endif
 
+#if defined(FLUID_CONSUMER_WITH_C)
+// fluid::c: a world through the C API, water by preset, gravity by name, one step.
+bool runC() {
+    fluid_world_def def = fluid_default_world_def();
+    fluid_world* world = nullptr;
+    fluid_material_def water{};
+    fluid_material_id id{};
+    fluid_plugin_id plugin{};
+    fluid_blob_def blob = fluid_default_blob_def();
+    uint32_t count = 0;
+    blob.shape = fluid_box_shape({0.0f, 0.0f}, {0.1f, 0.1f});
+    const bool ok = fluid_version() / 100 == FLUID_C_VERSION_MAJOR &&
+                    fluid_world_create(&def, &world) == FLUID_OK &&
+                    fluid_material_preset("water", &water) == FLUID_OK &&
+                    fluid_world_add_material(world, &water, &id) == FLUID_OK &&
+                    fluid_world_add_plugin(world, "force.gravity", nullptr, 0, &plugin) ==
+                        FLUID_OK &&
+                    (blob.material = id, fluid_world_spawn_blob(world, &blob, &count)) ==
+                        FLUID_OK &&
+                    fluid_world_step(world, 1.0f / 60.0f) == FLUID_OK;
+    std::printf("fluid consumer: C API %u, %u particles%s%s\n", fluid_version(), count,
+                ok ? "" : ": ", ok ? "" : fluid_last_error());
+    fluid_world_destroy(world);
+    return ok && count > 0;
+}
+#endif
+
 } // namespace
 
 int main() {
@@ -112,6 +142,9 @@ int main() {
 #endif
 #if defined(FLUID_CONSUMER_WITH_GL)
     ok = runGl() && ok;
+#endif
+#if defined(FLUID_CONSUMER_WITH_C)
+    ok = runC() && ok;
 #endif
     return ok ? 0 : 1;
 }
