@@ -58,38 +58,61 @@ fluid_step_context toC(const StepContext& c, const double* params) {
     return {c.frameDt, c.time, c.sampleSpacing, c.supportRadius, params};
 }
 
-class CForce final : private Declarations, public ForcePlugin {
+// What a force and a boundary written in C share: the declarations (built before `Base`), the
+// parameter values the callbacks read, the user pointer and its destroy callback.
+template <class Base> class CPlugin : protected Declarations, public Base {
 public:
-    explicit CForce(const fluid_force_plugin_def& def)
-        : Declarations(def.type, def.params, def.param_count, "fluid_world_add_force"),
-          ForcePlugin(Declarations::type, decls), m_def(def) {
-        if (def.apply == nullptr) {
-            throw Failure{FLUID_ERROR_NULL_ARGUMENT,
-                          "fluid_world_add_force: " + Declarations::type + ": def->apply is NULL"};
-        }
-        refresh();
-    }
-    ~CForce() override {
-        if (m_def.destroy != nullptr) {
-            m_def.destroy(m_def.user);
+    ~CPlugin() override {
+        if (m_destroy != nullptr) {
+            m_destroy(m_user);
         }
     }
-    CForce(const CForce&) = delete;
-    CForce& operator=(const CForce&) = delete;
+    CPlugin(const CPlugin&) = delete;
+    CPlugin& operator=(const CPlugin&) = delete;
 
     // The destroy callback runs when the world lets the plugin go, not when adding it failed:
     // held back until the world has it.
     void holdDestroy() {
-        m_destroy = m_def.destroy;
-        m_def.destroy = nullptr;
+        m_held = m_destroy;
+        m_destroy = nullptr;
     }
-    void releaseDestroy() { m_def.destroy = m_destroy; }
+    void releaseDestroy() { m_destroy = m_held; }
+
+protected:
+    CPlugin(const char* typeName, const fluid_param_decl* params, uint32_t count,
+            const char* function, void* user, void (*destroy)(void*))
+        : Declarations(typeName, params, count, function), Base(Declarations::type, decls),
+          m_user(user), m_destroy(destroy) {
+        refresh();
+    }
+    // The values in `values`, for the callbacks (which may run on worker threads: read only).
+    void refresh() {
+        values.resize(decls.size());
+        for (size_t i = 0; i < decls.size(); ++i) {
+            values[i] = this->value(i);
+        }
+    }
+    void onParamChanged(std::size_t) override { refresh(); }
+
+    void* m_user = nullptr;
+
+private:
+    void (*m_destroy)(void*) = nullptr;
+    void (*m_held)(void*) = nullptr;
+};
+
+class CForce final : public CPlugin<ForcePlugin> {
+public:
+    explicit CForce(const fluid_force_plugin_def& def)
+        : CPlugin(checked(def).type, def.params, def.param_count, "fluid_world_add_force",
+                  def.user, def.destroy),
+          m_def(def) {}
 
     void prepare(const StepContext& context) override {
         refresh();
         if (m_def.prepare != nullptr) {
             const fluid_step_context c = toC(context, values.data());
-            m_def.prepare(m_def.user, &c);
+            m_def.prepare(m_user, &c);
         }
     }
 
@@ -99,69 +122,41 @@ public:
                                     p.vy.data(),       p.material.data(), p.count,
                                     context.ax.data(), context.ay.data(), context.dt,
                                     context.time,      values.data()};
-        m_def.apply(m_def.user, &c, begin, end);
+        m_def.apply(m_user, &c, begin, end);
     }
 
 private:
-    void onParamChanged(std::size_t) override { refresh(); }
-    void refresh() {
-        values.resize(decls.size());
-        for (size_t i = 0; i < decls.size(); ++i) {
-            values[i] = value(i);
+    // `def` once its callbacks are checked: before anything is built, so that a refused def
+    // never has its destroy called.
+    static const fluid_force_plugin_def& checked(const fluid_force_plugin_def& def) {
+        if (def.apply == nullptr) {
+            throw Failure{FLUID_ERROR_NULL_ARGUMENT,
+                          "fluid_world_add_force: " +
+                              std::string(def.type != nullptr ? def.type : "(no type)") +
+                              ": def->apply is NULL"};
         }
+        return def;
     }
 
     fluid_force_plugin_def m_def;
-    void (*m_destroy)(void*) = nullptr;
 };
 
 static_assert(sizeof(fluid_rigid_body) == sizeof(RigidBody), "fluid_rigid_body's layout");
 static_assert(sizeof(fluid_rigid_body_impulse) == sizeof(RigidBodyImpulse),
               "fluid_rigid_body_impulse's layout");
 
-class CBoundary final : private Declarations, public BoundaryPlugin {
+class CBoundary final : public CPlugin<BoundaryPlugin> {
 public:
     explicit CBoundary(const fluid_boundary_plugin_def& def)
-        : Declarations(def.type, def.params, def.param_count, "fluid_world_add_boundary"),
-          BoundaryPlugin(Declarations::type, decls), m_def(def) {
-        const std::string who = "fluid_world_add_boundary: " + Declarations::type;
-        if (def.prepare == nullptr || def.project == nullptr) {
-            throw Failure{FLUID_ERROR_NULL_ARGUMENT,
-                          who + ": def->prepare and def->project are required (NULL here)"};
-        }
-        if (def.role != FLUID_ROLE_SOLID && def.role != FLUID_ROLE_WALL &&
-            def.role != FLUID_ROLE_CONTAINER) {
-            throw Failure{FLUID_ERROR_INVALID_ARGUMENT,
-                          who + ": def->role " + std::to_string(def.role) +
-                              " is not FLUID_ROLE_SOLID, FLUID_ROLE_WALL or FLUID_ROLE_CONTAINER"};
-        }
-        if (!(def.friction >= 0.0f) || !std::isfinite(def.friction)) {
-            throw Failure{FLUID_ERROR_INVALID_ARGUMENT,
-                          who + ": def->friction must be finite and >= 0"};
-        }
-        refresh();
-    }
-    ~CBoundary() override {
-        if (m_def.destroy != nullptr) {
-            m_def.destroy(m_def.user);
-        }
-    }
-    CBoundary(const CBoundary&) = delete;
-    CBoundary& operator=(const CBoundary&) = delete;
-
-    // The destroy callback runs when the world lets the plugin go, not when adding it failed:
-    // held back until the world has it.
-    void holdDestroy() {
-        m_destroy = m_def.destroy;
-        m_def.destroy = nullptr;
-    }
-    void releaseDestroy() { m_def.destroy = m_destroy; }
+        : CPlugin(checked(def).type, def.params, def.param_count, "fluid_world_add_boundary",
+                  def.user, def.destroy),
+          m_def(def) {}
 
     void prepare(const StepContext& context) override {
         refresh();
         const fluid_step_context c = toC(context, values.data());
         fluid_boundary_samples samples{};
-        m_def.prepare(m_def.user, &c, &samples);
+        m_def.prepare(m_user, &c, &samples);
         m_samples.clear();
         if (samples.count > 0 && (samples.px == nullptr || samples.py == nullptr)) {
             throw Error(Declarations::type + ": prepare left " + std::to_string(samples.count) +
@@ -175,7 +170,7 @@ public:
         m_bodies.clear();
         if (m_def.rigid_bodies != nullptr) {
             const fluid_rigid_body* bodies = nullptr;
-            const uint32_t count = m_def.rigid_bodies(m_def.user, &bodies);
+            const uint32_t count = m_def.rigid_bodies(m_user, &bodies);
             if (count > 0 && bodies == nullptr) {
                 throw Error(Declarations::type + ": rigid_bodies returned " +
                             std::to_string(count) + " bodies and a NULL array");
@@ -200,7 +195,7 @@ public:
                                       context.prevTimeInStep,
                                       context.spacing,
                                       values.data()};
-        m_def.project(m_def.user, &c, begin, end);
+        m_def.project(m_user, &c, begin, end);
     }
 
     bool wantsForces() const override { return m_def.wants_forces; }
@@ -214,7 +209,7 @@ public:
     void receiveForces(std::span<const float> fx, std::span<const float> fy,
                        std::span<const float> drag) override {
         if (m_def.receive_forces != nullptr) {
-            m_def.receive_forces(m_def.user, fx.data(), fy.data(), drag.data(),
+            m_def.receive_forces(m_user, fx.data(), fy.data(), drag.data(),
                                  uint32_t(fx.size()));
         }
     }
@@ -232,29 +227,41 @@ public:
             m_impulses[i] = {{impulses[i].impulse.x, impulses[i].impulse.y},
                              {impulses[i].displacement.x, impulses[i].displacement.y}};
         }
-        m_def.receive_body_impulses(m_def.user, m_impulses.data(), uint32_t(m_impulses.size()));
+        m_def.receive_body_impulses(m_user, m_impulses.data(), uint32_t(m_impulses.size()));
     }
 
     bool bodyContains(uint32_t body, glm::vec2 point, float timeInStep) const override {
         return m_def.body_contains != nullptr &&
-               m_def.body_contains(m_def.user, body, {point.x, point.y}, timeInStep);
+               m_def.body_contains(m_user, body, {point.x, point.y}, timeInStep);
     }
 
     bool contains(glm::vec2 point) const override {
-        return m_def.contains != nullptr && m_def.contains(m_def.user, {point.x, point.y});
+        return m_def.contains != nullptr && m_def.contains(m_user, {point.x, point.y});
     }
 
 private:
-    void onParamChanged(std::size_t) override { refresh(); }
-    void refresh() {
-        values.resize(decls.size());
-        for (size_t i = 0; i < decls.size(); ++i) {
-            values[i] = value(i);
+    // `def` once its callbacks, role and friction are checked: before anything is built.
+    static const fluid_boundary_plugin_def& checked(const fluid_boundary_plugin_def& def) {
+        const std::string who = "fluid_world_add_boundary: " +
+                                std::string(def.type != nullptr ? def.type : "(no type)");
+        if (def.prepare == nullptr || def.project == nullptr) {
+            throw Failure{FLUID_ERROR_NULL_ARGUMENT,
+                          who + ": def->prepare and def->project are required (NULL here)"};
         }
+        if (def.role != FLUID_ROLE_SOLID && def.role != FLUID_ROLE_WALL &&
+            def.role != FLUID_ROLE_CONTAINER) {
+            throw Failure{FLUID_ERROR_INVALID_ARGUMENT,
+                          who + ": def->role " + std::to_string(def.role) +
+                              " is not FLUID_ROLE_SOLID, FLUID_ROLE_WALL or FLUID_ROLE_CONTAINER"};
+        }
+        if (!(def.friction >= 0.0f) || !std::isfinite(def.friction)) {
+            throw Failure{FLUID_ERROR_INVALID_ARGUMENT,
+                          who + ": def->friction must be finite and >= 0"};
+        }
+        return def;
     }
 
     fluid_boundary_plugin_def m_def;
-    void (*m_destroy)(void*) = nullptr;
     std::vector<RigidBody> m_bodies;
     std::vector<fluid_rigid_body_impulse> m_impulses;
 };
