@@ -53,6 +53,34 @@ fluid_force_plugin_def c_test_acceleration(c_test_counters* counters) {
     return def;
 }
 
+/* The acceleration as a registered type: each instance counts in the type's counters. */
+static bool acceleration_create(void* user, fluid_force_plugin_def* def) {
+    def->user = user;
+    def->prepare = acceleration_prepare;
+    def->apply = acceleration_apply;
+    def->destroy = acceleration_destroy;
+    return true;
+}
+
+static bool refusing_create(void* user, fluid_force_plugin_def* def) {
+    (void)user;
+    (void)def;
+    return false;
+}
+
+fluid_plugin_type_def c_test_acceleration_type(const char* name, c_test_counters* counters,
+                                               bool refuse) {
+    fluid_plugin_type_def def = fluid_default_plugin_type_def();
+    def.type = name;
+    def.description = "A uniform acceleration written in C (tests/c/c_plugins.c).";
+    def.kind = FLUID_PLUGIN_FORCE;
+    def.params = kAccelerationParams;
+    def.param_count = 2;
+    def.user = counters;
+    def.create_force = refuse ? refusing_create : acceleration_create;
+    return def;
+}
+
 /* ---- The floating box ----------------------------------------------------------------------- */
 
 /* The box's centre at `t` seconds into the step: it moves with its velocity. */

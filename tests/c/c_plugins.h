@@ -21,6 +21,11 @@ typedef struct c_test_counters {
  * destroy calls in `counters`. */
 fluid_force_plugin_def c_test_acceleration(c_test_counters* counters);
 
+/* The acceleration as a plugin type named `name`, its instances counting in `counters`; with
+ * `refuse`, a factory that refuses every instance. */
+fluid_plugin_type_def c_test_acceleration_type(const char* name, c_test_counters* counters,
+                                               bool refuse);
+
 /* A box that floats: the game's own rigid body (vertical motion only) as a boundary plugin. */
 typedef struct c_test_box {
     float x, y;                     /* centre (m) */

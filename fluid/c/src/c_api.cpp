@@ -284,15 +284,6 @@ Shape toCpp(const fluid_shape& s, const char* function) {
     }
 }
 
-const Registry& registry() {
-    static const Registry kRegistry = [] {
-        Registry r;
-        registerBuiltinPlugins(r);
-        return r;
-    }();
-    return kRegistry;
-}
-
 Plugin& pluginOf(World& world, fluid_plugin_id id, const char* function) {
     if (id.kind != FLUID_PLUGIN_FORCE && id.kind != FLUID_PLUGIN_BOUNDARY) {
         throw Failure{FLUID_ERROR_INVALID_ARGUMENT,
@@ -923,7 +914,8 @@ fluid_status fluid_world_add_plugin(fluid_world* world, const char* type,
             values.emplace_back(params[i].name, params[i].value);
         }
         // An unknown type or parameter: the registry's own message, with its own status.
-        const PluginInfo* info = registry().find(type);
+        const Registry types = registry();
+        const PluginInfo* info = types.find(type);
         bool unknownParam = false;
         if (info != nullptr) {
             for (const ParamValue& v : values) {
@@ -933,7 +925,7 @@ fluid_status fluid_world_add_plugin(fluid_world* world, const char* type,
         }
         std::unique_ptr<Plugin> plugin;
         try {
-            plugin = registry().create(type, values);
+            plugin = types.create(type, values);
         } catch (const Error& e) {
             if (info == nullptr || unknownParam) {
                 throw Failure{FLUID_ERROR_UNKNOWN_NAME, e.what()};

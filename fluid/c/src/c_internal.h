@@ -77,8 +77,9 @@ inline DrainId toCpp(fluid_drain_id id) { return {id.index, id.world}; }
 inline SensorId toCpp(fluid_sensor_id id) { return {id.index, id.world}; }
 Shape toCpp(const fluid_shape& shape, const char* function);
 
-/// The registry of the built-in plugins, made once (any thread).
-const Registry& registry();
+/// The plugin types: the built-ins and those registered in C, a copy made under the
+/// registrations' lock (any thread).
+Registry registry();
 
 /// A plugin of `world` by C id: checks the kind, index and world tag (FLUID_ERROR_STALE_ID).
 Plugin& pluginOf(World& world, fluid_plugin_id id, const char* function);

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstddef>
+#include <deque>
+#include <mutex>
 
 namespace fluid::c {
 
@@ -266,7 +268,80 @@ private:
     std::vector<fluid_rigid_body_impulse> m_impulses;
 };
 
+// A registered C type: its declarations (for the registry's PluginInfo) and the same in C (for
+// each instance's def), kept for the life of the process.
+struct CType {
+    explicit CType(const fluid_plugin_type_def& def)
+        : declarations(def.type, def.params, def.param_count, "fluid_register_plugin_type"),
+          factory(def) {
+        for (const ParamDecl& d : declarations.decls) {
+            // The strings are the declarations' own (views of std::strings: NUL-terminated).
+            params.push_back({d.name.data(), d.unit.data(), d.defaultValue, d.minValue,
+                              d.maxValue, d.description.data()});
+        }
+        factory.type = declarations.type.c_str();
+    }
+    Declarations declarations;
+    std::vector<fluid_param_decl> params;
+    fluid_plugin_type_def factory;
+};
+
+std::mutex g_typesMutex;
+
+// The registry every C call reads (under g_typesMutex): the built-ins, then the C types.
+Registry& typesLocked() {
+    static Registry types = [] {
+        Registry r;
+        registerBuiltinPlugins(r);
+        return r;
+    }();
+    return types;
+}
+
+// The C types' records; a deque, so that registering one never moves another.
+std::deque<CType>& cTypesLocked() {
+    static std::deque<CType> types;
+    return types;
+}
+
+// A new instance of C type `t` (the registry's factory): the type's factory fills the callbacks,
+// the type and parameters stay the type's. Throws fluid::Error naming the type when the factory
+// refuses or leaves a required callback NULL.
+std::unique_ptr<Plugin> makeInstance(const CType& t) {
+    const std::string& name = t.declarations.type;
+    auto refuse = [&](const std::string& why) {
+        return Error("plugin type '" + name + "' (written in C): " + why);
+    };
+    try {
+        if (t.factory.kind == FLUID_PLUGIN_FORCE) {
+            fluid_force_plugin_def d = fluid_default_force_plugin_def();
+            if (!t.factory.create_force(t.factory.user, &d)) {
+                throw refuse("create_force refused");
+            }
+            d.type = name.c_str();
+            d.params = t.params.data();
+            d.param_count = uint32_t(t.params.size());
+            return std::make_unique<CForce>(d);
+        }
+        fluid_boundary_plugin_def d = fluid_default_boundary_plugin_def();
+        if (!t.factory.create_boundary(t.factory.user, &d)) {
+            throw refuse("create_boundary refused");
+        }
+        d.type = name.c_str();
+        d.params = t.params.data();
+        d.param_count = uint32_t(t.params.size());
+        return std::make_unique<CBoundary>(d);
+    } catch (const Failure& f) {
+        throw refuse(f.message);
+    }
+}
+
 } // namespace
+
+Registry registry() {
+    std::lock_guard<std::mutex> lock(g_typesMutex);
+    return typesLocked();
+}
 
 } // namespace fluid::c
 
@@ -281,6 +356,51 @@ fluid_boundary_plugin_def fluid_default_boundary_plugin_def(void) {
     fluid_boundary_plugin_def def{};
     def.role = FLUID_ROLE_SOLID;
     return def;
+}
+
+fluid_plugin_type_def fluid_default_plugin_type_def(void) {
+    fluid_plugin_type_def def{};
+    def.kind = FLUID_PLUGIN_FORCE;
+    return def;
+}
+
+fluid_status fluid_register_plugin_type(const fluid_plugin_type_def* def) {
+    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
+        const char* const function = "fluid_register_plugin_type";
+        need(def, function, "def");
+        need(def->type, function, "def->type");
+        const std::string name = Error::printable(def->type);
+        if (def->kind != FLUID_PLUGIN_FORCE && def->kind != FLUID_PLUGIN_BOUNDARY) {
+            throw Failure{FLUID_ERROR_INVALID_ARGUMENT,
+                          std::string(function) + ": " + name + ": kind " +
+                              std::to_string(def->kind) +
+                              " is not FLUID_PLUGIN_FORCE (0) or FLUID_PLUGIN_BOUNDARY (1)"};
+        }
+        if (def->kind == FLUID_PLUGIN_FORCE ? def->create_force == nullptr
+                                            : def->create_boundary == nullptr) {
+            throw Failure{FLUID_ERROR_NULL_ARGUMENT,
+                          std::string(function) + ": " + name + ": def->" +
+                              (def->kind == FLUID_PLUGIN_FORCE ? "create_force"
+                                                               : "create_boundary") +
+                              " is NULL"};
+        }
+        std::lock_guard<std::mutex> lock(g_typesMutex);
+        std::deque<CType>& records = cTypesLocked();
+        records.emplace_back(*def);
+        const CType& record = records.back();
+        PluginInfo info;
+        info.type = record.declarations.type;
+        info.kind = def->kind == FLUID_PLUGIN_FORCE ? PluginKind::Force : PluginKind::Boundary;
+        info.description = def->description != nullptr ? def->description : "";
+        info.params = record.declarations.decls;
+        info.create = [&record] { return makeInstance(record); };
+        try {
+            typesLocked().add(std::move(info));
+        } catch (...) {
+            records.pop_back(); // never referred to: the registry refused it
+            throw;
+        }
+    });
 }
 
 fluid_status fluid_world_add_force(fluid_world* world, const fluid_force_plugin_def* def,

@@ -292,8 +292,9 @@ FLUID_C_API fluid_status fluid_world_material_indices(const fluid_world* world,
 
 /** Saves the whole world (particles, materials, plugins with their state, emitters, drains,
  *  sensors, time) into `*bytes` (free with fluid_bytes_free). A world loaded from them steps
- *  on bit for bit. A plugin written in C is saved by its type name and parameters, but
- *  fluid_world_load cannot make it again (FLUID_ERROR_UNKNOWN_NAME naming the type). */
+ *  on bit for bit. A plugin written in C is saved by its type name and parameters:
+ *  fluid_world_load makes it again when its type is registered (fluid_register_plugin_type),
+ *  and fails with FLUID_ERROR_UNKNOWN_NAME naming the type otherwise. */
 FLUID_C_API fluid_status fluid_world_save(const fluid_world* world, fluid_bytes* bytes);
 
 /** Makes a world from fluid_world_save's bytes, with `worker_count` workers (0: as saved;
@@ -826,6 +827,40 @@ FLUID_C_API fluid_boundary_plugin_def fluid_default_boundary_plugin_def(void);
 FLUID_C_API fluid_status fluid_world_add_boundary(fluid_world* world,
                                                   const fluid_boundary_plugin_def* def,
                                                   fluid_plugin_id* id);
+
+/** A plugin type written in C, registered by name for the whole process: fluid_world_add_plugin
+ *  adds it by name, level files name it in their "plugins", and fluid_world_load and level saves
+ *  make it again. Start from fluid_default_plugin_type_def(). */
+typedef struct fluid_plugin_type_def {
+    /** Its type name (required; not one already registered, the built-ins' included). */
+    const char* type;
+    /** One line for tools (may be NULL). */
+    const char* description;
+    /** A fluid_plugin_kind. */
+    int32_t kind;
+    /** Its parameters, the same for every instance (may be NULL with param_count 0). */
+    const fluid_param_decl* params;
+    /** How many (unit: count). */
+    uint32_t param_count;
+    /** Passed to create_force or create_boundary. */
+    void* user;
+    /** A force type's factory: fills a new instance's callbacks and user pointer in `*def` (its
+     *  type and parameters are the type's, the rest fluid_default_force_plugin_def's); false
+     *  refuses (the call that wanted the plugin fails naming the type). On the thread of the
+     *  call that makes the plugin. */
+    bool (*create_force)(void* user, fluid_force_plugin_def* def);
+    /** A boundary type's factory, as create_force. */
+    bool (*create_boundary)(void* user, fluid_boundary_plugin_def* def);
+} fluid_plugin_type_def;
+
+/** A def with no name, kind force, no parameters, no factories. Any thread. */
+FLUID_C_API fluid_plugin_type_def fluid_default_plugin_type_def(void);
+
+/** Registers a plugin type written in C for the rest of the process (types are never removed).
+ *  FLUID_ERROR_INVALID_ARGUMENT for a name already registered, a kind without its factory, or
+ *  bad parameter declarations (the registry's own message). Any thread: registrations are
+ *  serialised, and a world or level being made meanwhile uses the types registered before. */
+FLUID_C_API fluid_status fluid_register_plugin_type(const fluid_plugin_type_def* def);
 
 /* ------------------------------------------------------------------------------------------ */
 /* Levels (JSON level files: docs/levels.md)                                                   */
