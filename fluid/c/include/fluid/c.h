@@ -42,264 +42,264 @@ extern "C" {
 /* Version and errors                                                                          */
 /* ------------------------------------------------------------------------------------------ */
 
-/** The C API's version this header describes: major (incompatible changes), minor (additions). */
+/// The C API's version this header describes: major (incompatible changes), minor (additions).
 #define FLUID_C_VERSION_MAJOR 1
-/** See FLUID_C_VERSION_MAJOR. */
+/// See FLUID_C_VERSION_MAJOR.
 #define FLUID_C_VERSION_MINOR 0
-/** major * 100 + minor. */
+/// major * 100 + minor.
 #define FLUID_C_VERSION (FLUID_C_VERSION_MAJOR * 100 + FLUID_C_VERSION_MINOR)
 
-/** The library's FLUID_C_VERSION (unit: major * 100 + minor): a program built against another
- *  major version must not use the rest of the library. Any thread. */
+/// The library's FLUID_C_VERSION (unit: major * 100 + minor): a program built against another
+/// major version must not use the rest of the library. Any thread.
 FLUID_C_API uint32_t fluid_version(void);
 
-/** What a call did. */
+/// What a call did.
 typedef enum fluid_status {
-    /** Done. */
+    /// Done.
     FLUID_OK = 0,
-    /** An argument is out of its range, NaN or inconsistent (the message names it). */
+    /// An argument is out of its range, NaN or inconsistent (the message names it).
     FLUID_ERROR_INVALID_ARGUMENT = 1,
-    /** A required pointer argument is NULL. */
+    /// A required pointer argument is NULL.
     FLUID_ERROR_NULL_ARGUMENT = 2,
-    /** An id or particle handle that no longer exists, or belongs to another world. */
+    /// An id or particle handle that no longer exists, or belongs to another world.
     FLUID_ERROR_STALE_ID = 3,
-    /** A name the library does not know: a preset, a plugin type, a field, a parameter. */
+    /// A name the library does not know: a preset, a plugin type, a field, a parameter.
     FLUID_ERROR_UNKNOWN_NAME = 4,
-    /** A level file, save or snapshot that cannot be read (the message has file, line, key). */
+    /// A level file, save or snapshot that cannot be read (the message has file, line, key).
     FLUID_ERROR_BAD_FILE = 5,
-    /** A file that cannot be opened or written. */
+    /// A file that cannot be opened or written.
     FLUID_ERROR_IO = 6,
-    /** A limit reached: the world's maxParticles, 65535 materials. */
+    /// A limit reached: the world's maxParticles, 65535 materials.
     FLUID_ERROR_LIMIT = 7,
-    /** Memory ran out. */
+    /// Memory ran out.
     FLUID_ERROR_OUT_OF_MEMORY = 8,
-    /** The world refused a step or call in its state (a plugin that threw, a host that must step
-     *  it); the message says why. */
+    /// The world refused a step or call in its state (a plugin that threw, a host that must step
+    /// it); the message says why.
     FLUID_ERROR_REFUSED = 9
 } fluid_status;
 
-/** The message of the last call on this thread that did not return FLUID_OK, "" when none
- *  has failed. Valid until the next failing call on this thread. Any thread. */
+/// The message of the last call on this thread that did not return FLUID_OK, "" when none
+/// has failed. Valid until the next failing call on this thread. Any thread.
 FLUID_C_API const char* fluid_last_error(void);
 
-/** The status's name ("FLUID_ERROR_STALE_ID"); "unknown status" for a value not listed. Any
- *  thread. */
+/// The status's name ("FLUID_ERROR_STALE_ID"); "unknown status" for a value not listed. Any
+/// thread.
 FLUID_C_API const char* fluid_status_name(fluid_status status);
 
 /* ------------------------------------------------------------------------------------------ */
 /* Values and ids                                                                              */
 /* ------------------------------------------------------------------------------------------ */
 
-/** A point or vector (unit: m, m/s, N... as the field says). */
+/// A point or vector (unit: m, m/s, N... as the field says).
 typedef struct fluid_vec2 {
-    /** x (right). */
+    /// x (right).
     float x;
-    /** y (up). */
+    /// y (up).
     float y;
 } fluid_vec2;
 
-/** A world: particles, materials, plugins, emitters, drains and sensors. Opaque. */
+/// A world: particles, materials, plugins, emitters, drains and sensors. Opaque.
 typedef struct fluid_world fluid_world;
 
-/** A level file loaded: its world, its named objects, its Box2D bodies and goal. Opaque. */
+/// A level file loaded: its world, its named objects, its Box2D bodies and goal. Opaque.
 typedef struct fluid_level fluid_level;
 
-/** A particle, stable while it lives (slots move as the world sorts them). Generation 0 is the
- *  null handle. */
+/// A particle, stable while it lives (slots move as the world sorts them). Generation 0 is the
+/// null handle.
 typedef struct fluid_particle_id {
-    /** Slot (unit: index). */
+    /// Slot (unit: index).
     uint32_t slot;
-    /** Generation of the slot (0: null). */
+    /// Generation of the slot (0: null).
     uint32_t generation;
-    /** The world's tag. */
+    /// The world's tag.
     uint32_t world;
 } fluid_particle_id;
 
-/** A material of a world (index in the order added, from 0). */
+/// A material of a world (index in the order added, from 0).
 typedef struct fluid_material_id {
-    /** Index (unit: index < fluid_world_material_count). */
+    /// Index (unit: index < fluid_world_material_count).
     uint32_t index;
-    /** The world's tag. */
+    /// The world's tag.
     uint32_t world;
 } fluid_material_id;
 
-/** An emitter of a world. */
+/// An emitter of a world.
 typedef struct fluid_emitter_id {
-    /** Index (unit: index, in the order added). */
+    /// Index (unit: index, in the order added).
     uint32_t index;
-    /** The world's tag. */
+    /// The world's tag.
     uint32_t world;
 } fluid_emitter_id;
 
-/** A drain of a world. */
+/// A drain of a world.
 typedef struct fluid_drain_id {
-    /** Index (unit: index, in the order added). */
+    /// Index (unit: index, in the order added).
     uint32_t index;
-    /** The world's tag. */
+    /// The world's tag.
     uint32_t world;
 } fluid_drain_id;
 
-/** A sensor of a world. */
+/// A sensor of a world.
 typedef struct fluid_sensor_id {
-    /** Index (unit: index, in the order added). */
+    /// Index (unit: index, in the order added).
     uint32_t index;
-    /** The world's tag. */
+    /// The world's tag.
     uint32_t world;
 } fluid_sensor_id;
 
-/** What a plugin is. */
+/// What a plugin is.
 typedef enum fluid_plugin_kind {
-    /** Adds accelerations (gravity, wind, the pointer...). */
+    /// Adds accelerations (gravity, wind, the pointer...).
     FLUID_PLUGIN_FORCE = 0,
-    /** Keeps particles out of solids or in containers (a tank, a polygon, a body). */
+    /// Keeps particles out of solids or in containers (a tank, a polygon, a body).
     FLUID_PLUGIN_BOUNDARY = 1
 } fluid_plugin_kind;
 
-/** A plugin of a world: its kind and index among the world's plugins of that kind. */
+/// A plugin of a world: its kind and index among the world's plugins of that kind.
 typedef struct fluid_plugin_id {
-    /** Index among the world's forces or boundaries (unit: index, in the order added). */
+    /// Index among the world's forces or boundaries (unit: index, in the order added).
     uint32_t index;
-    /** A fluid_plugin_kind. */
+    /// A fluid_plugin_kind.
     uint32_t kind;
-    /** The world's tag. */
+    /// The world's tag.
     uint32_t world;
 } fluid_plugin_id;
 
-/** Bytes the library allocated (a snapshot, a save); free them with fluid_bytes_free. */
+/// Bytes the library allocated (a snapshot, a save); free them with fluid_bytes_free.
 typedef struct fluid_bytes {
-    /** The bytes (NULL when empty). */
+    /// The bytes (NULL when empty).
     uint8_t* data;
-    /** How many (unit: bytes). */
+    /// How many (unit: bytes).
     size_t size;
 } fluid_bytes;
 
-/** Frees bytes the library returned and empties `bytes`; NULL or empty is fine. Any thread. */
+/// Frees bytes the library returned and empties `bytes`; NULL or empty is fine. Any thread.
 FLUID_C_API void fluid_bytes_free(fluid_bytes* bytes);
 
 /* ------------------------------------------------------------------------------------------ */
 /* Worlds                                                                                      */
 /* ------------------------------------------------------------------------------------------ */
 
-/** The solver. */
+/// The solver.
 typedef enum fluid_solver {
-    /** Position-based fluids (the default): stable at a game's step. */
+    /// Position-based fluids (the default): stable at a game's step.
     FLUID_SOLVER_POSITION_BASED = 0,
-    /** The seed report's explicit SPH loop. */
+    /// The seed report's explicit SPH loop.
     FLUID_SOLVER_EXPLICIT = 1
 } fluid_solver;
 
-/** The explicit solver's equation of state. */
+/// The explicit solver's equation of state.
 typedef enum fluid_equation_of_state {
-    /** p = k (rho - rho0), the seed report's. */
+    /// p = k (rho - rho0), the seed report's.
     FLUID_EOS_LINEAR = 0,
-    /** Tait's (gamma 7), the default. */
+    /// Tait's (gamma 7), the default.
     FLUID_EOS_TAIT = 1
 } fluid_equation_of_state;
 
-/** How a world is made (C++ fluid::WorldDef with its PositionBasedDef). Start from
- *  fluid_default_world_def(); the ranges are fluid_world_def_set's fields'. */
+/// How a world is made (C++ fluid::WorldDef with its PositionBasedDef). Start from
+/// fluid_default_world_def(); the ranges are fluid_world_def_set's fields'.
 typedef struct fluid_world_def {
-    /** A fluid_solver. */
+    /// A fluid_solver.
     int32_t solver;
-    /** Position-based: sub-steps per 60 Hz frame (unit: count; [1, 12]). */
+    /// Position-based: sub-steps per 60 Hz frame (unit: count; [1, 12]).
     uint32_t substeps;
-    /** Position-based: constraint sweeps per sub-step (unit: count; [1, 32]). */
+    /// Position-based: constraint sweeps per sub-step (unit: count; [1, 32]).
     uint32_t iterations;
-    /** Position-based: viscosity every this many sub-steps (unit: count; [1, 64]). */
+    /// Position-based: viscosity every this many sub-steps (unit: count; [1, 64]).
     uint32_t viscosity_interval;
-    /** Position-based: the coarse-grid correction's weight (unit: 1; [0, 1], 0 off). */
+    /// Position-based: the coarse-grid correction's weight (unit: 1; [0, 1], 0 off).
     float coarse_correction;
-    /** Position-based: vorticity confinement (unit: 1; [0, 1]). */
+    /// Position-based: vorticity confinement (unit: 1; [0, 1]).
     float vorticity;
-    /** Position-based: the yield-stress materials' shear constraint (0 off, 1 on). */
+    /// Position-based: the yield-stress materials' shear constraint (0 off, 1 on).
     uint32_t shear_constraint;
-    /** Explicit: a fluid_equation_of_state. */
+    /// Explicit: a fluid_equation_of_state.
     int32_t equation_of_state;
-    /** Explicit: the speed of sound (unit: m/s; 0, the default, derives it from the scene, or
-     *  [0.1, 1e4]). */
+    /// Explicit: the speed of sound (unit: m/s; 0, the default, derives it from the scene, or
+    /// [0.1, 1e4]).
     float sound_speed;
-    /** The slab's depth that turns 2D particles into masses (unit: m; [1e-4, 1e3]). */
+    /// The slab's depth that turns 2D particles into masses (unit: m; [1e-4, 1e3]).
     float depth;
-    /** Explicit: CFL number (unit: 1; [0.01, 1]). */
+    /// Explicit: CFL number (unit: 1; [0.01, 1]).
     float courant;
-    /** Explicit: most sub-steps per step (unit: count; [1, 1000]). */
+    /// Explicit: most sub-steps per step (unit: count; [1, 1000]).
     uint32_t max_substeps;
-    /** Most particles the world holds (unit: count; [1, 67108864]). */
+    /// Most particles the world holds (unit: count; [1, 67108864]).
     uint32_t max_particles;
-    /** Threads that step the world, the caller's included (unit: count; [1, 256]; results are
-     *  the same for any count). */
+    /// Threads that step the world, the caller's included (unit: count; [1, 256]; results are
+    /// the same for any count).
     uint32_t worker_count;
 } fluid_world_def;
 
-/** The C++ WorldDef's defaults: position-based, precise preset, one worker. Any thread. */
+/// The C++ WorldDef's defaults: position-based, precise preset, one worker. Any thread.
 FLUID_C_API fluid_world_def fluid_default_world_def(void);
 
-/** Sets the position-based fields of `def` to a named preset: "game" or "precise" (as a level
- *  file's "quality"). FLUID_ERROR_UNKNOWN_NAME otherwise. Any thread. */
+/// Sets the position-based fields of `def` to a named preset: "game" or "precise" (as a level
+/// file's "quality"). FLUID_ERROR_UNKNOWN_NAME otherwise. Any thread.
 FLUID_C_API fluid_status fluid_world_def_set_quality(fluid_world_def* def, const char* quality);
 
-/** Sets one field of `def` by the name of the C++ field tables, which level files use too
- *  ("substeps", "coarseCorrection", "depth", "maxParticles"...: docs/c_api.md lists them with
- *  units and ranges; solver, equation_of_state, sound_speed and worker_count are set in the
- *  struct). NaN, and a count that is not a whole number in [0, 2^32), is refused here; the
- *  range is checked when the world is made. Any thread. */
+/// Sets one field of `def` by the name of the C++ field tables, which level files use too
+/// ("substeps", "coarseCorrection", "depth", "maxParticles"...: docs/c_api.md lists them with
+/// units and ranges; solver, equation_of_state, sound_speed and worker_count are set in the
+/// struct). NaN, and a count that is not a whole number in [0, 2^32), is refused here; the
+/// range is checked when the world is made. Any thread.
 FLUID_C_API fluid_status fluid_world_def_set(fluid_world_def* def, const char* field,
                                              double value);
 
-/** Makes a world. `*world` receives it; destroy it with fluid_world_destroy. Any thread. */
+/// Makes a world. `*world` receives it; destroy it with fluid_world_destroy. Any thread.
 FLUID_C_API fluid_status fluid_world_create(const fluid_world_def* def, fluid_world** world);
 
-/** Destroys a world made by fluid_world_create or fluid_world_load, with its plugins (a C
- *  plugin's destroy callback runs). NULL is fine. A level's world is the level's: not this. */
+/// Destroys a world made by fluid_world_create or fluid_world_load, with its plugins (a C
+/// plugin's destroy callback runs). NULL is fine. A level's world is the level's: not this.
 FLUID_C_API void fluid_world_destroy(fluid_world* world);
 
-/** Steps the world by one frame of `frame_dt` (unit: s; (0, 1]): emitters, forces, the
- *  solver's sub-steps, boundaries, drains, sensors and events. */
+/// Steps the world by one frame of `frame_dt` (unit: s; (0, 1]): emitters, forces, the
+/// solver's sub-steps, boundaries, drains, sensors and events.
 FLUID_C_API fluid_status fluid_world_step(fluid_world* world, float frame_dt);
 
-/** Changes the position-based settings between steps (`def`'s position-based fields only). */
+/// Changes the position-based settings between steps (`def`'s position-based fields only).
 FLUID_C_API fluid_status fluid_world_set_position_based(fluid_world* world,
                                                         const fluid_world_def* def);
 
-/** Simulated time (unit: s). */
+/// Simulated time (unit: s).
 FLUID_C_API fluid_status fluid_world_time(const fluid_world* world, double* time);
 
-/** Particles alive (unit: count). */
+/// Particles alive (unit: count).
 FLUID_C_API fluid_status fluid_world_particle_count(const fluid_world* world, uint32_t* count);
 
-/** The particles' positions as two arrays (unit: m), `*count` long, in the world's array order
- *  (which a step may change; fluid_world_particle_at names the particle at an index). Valid
- *  until the next call that changes the world (a step, an add, a remove). */
+/// The particles' positions as two arrays (unit: m), `*count` long, in the world's array order
+/// (which a step may change; fluid_world_particle_at names the particle at an index). Valid
+/// until the next call that changes the world (a step, an add, a remove).
 FLUID_C_API fluid_status fluid_world_positions(const fluid_world* world, const float** x,
                                                const float** y, uint32_t* count);
 
-/** The particles' velocities (unit: m/s), as fluid_world_positions. */
+/// The particles' velocities (unit: m/s), as fluid_world_positions.
 FLUID_C_API fluid_status fluid_world_velocities(const fluid_world* world, const float** x,
                                                 const float** y, uint32_t* count);
 
-/** The particles' densities after the last step (unit: kg/m^3), as fluid_world_positions. */
+/// The particles' densities after the last step (unit: kg/m^3), as fluid_world_positions.
 FLUID_C_API fluid_status fluid_world_densities(const fluid_world* world, const float** density,
                                                uint32_t* count);
 
-/** The particles' pressures after the last step (unit: Pa), as fluid_world_positions. */
+/// The particles' pressures after the last step (unit: Pa), as fluid_world_positions.
 FLUID_C_API fluid_status fluid_world_pressures(const fluid_world* world, const float** pressure,
                                                uint32_t* count);
 
-/** The particles' material indices (unit: index < fluid_world_material_count), as
- *  fluid_world_positions. */
+/// The particles' material indices (unit: index < fluid_world_material_count), as
+/// fluid_world_positions.
 FLUID_C_API fluid_status fluid_world_material_indices(const fluid_world* world,
                                                       const uint16_t** material, uint32_t* count);
 
-/** Saves the whole world (particles, materials, plugins with their state, emitters, drains,
- *  sensors, time) into `*bytes` (free with fluid_bytes_free). A world loaded from them steps
- *  on bit for bit. A plugin written in C is saved by its type name and parameters:
- *  fluid_world_load makes it again when its type is registered (fluid_register_plugin_type),
- *  and fails with FLUID_ERROR_UNKNOWN_NAME naming the type otherwise. */
+/// Saves the whole world (particles, materials, plugins with their state, emitters, drains,
+/// sensors, time) into `*bytes` (free with fluid_bytes_free). A world loaded from them steps
+/// on bit for bit. A plugin written in C is saved by its type name and parameters:
+/// fluid_world_load makes it again when its type is registered (fluid_register_plugin_type),
+/// and fails with FLUID_ERROR_UNKNOWN_NAME naming the type otherwise.
 FLUID_C_API fluid_status fluid_world_save(const fluid_world* world, fluid_bytes* bytes);
 
-/** Makes a world from fluid_world_save's bytes, with `worker_count` workers (0: as saved;
- *  else [1, 256]).
- *  FLUID_ERROR_BAD_FILE with the reason for bytes that are not a whole snapshot. */
+/// Makes a world from fluid_world_save's bytes, with `worker_count` workers (0: as saved;
+/// else [1, 256]).
+/// FLUID_ERROR_BAD_FILE with the reason for bytes that are not a whole snapshot.
 FLUID_C_API fluid_status fluid_world_load(const void* data, size_t size, uint32_t worker_count,
                                           fluid_world** world);
 
@@ -307,155 +307,155 @@ FLUID_C_API fluid_status fluid_world_load(const void* data, size_t size, uint32_
 /* Materials                                                                                   */
 /* ------------------------------------------------------------------------------------------ */
 
-/** A material (C++ fluid::Material). Start from fluid_default_material_def() or a preset. */
+/// A material (C++ fluid::Material). Start from fluid_default_material_def() or a preset.
 typedef struct fluid_material_def {
-    /** Mass of one particle (unit: kg; (0, 1e3]). */
+    /// Mass of one particle (unit: kg; (0, 1e3]).
     float mass;
-    /** Rest density (unit: kg/m^3; (0, 1e5]). */
+    /// Rest density (unit: kg/m^3; (0, 1e5]).
     float rest_density;
-    /** Viscosity (unit: Pa s; [0, 1e4]). */
+    /// Viscosity (unit: Pa s; [0, 1e4]).
     float viscosity;
-    /** Explicit solver's stiffness k (unit: J/kg; (0, 1e8]). */
+    /// Explicit solver's stiffness k (unit: J/kg; (0, 1e8]).
     float stiffness;
-    /** The seed's smoothing distance (unit: m; [3e-3, 0.4]). */
+    /// The seed's smoothing distance (unit: m; [3e-3, 0.4]).
     float smoothing_distance;
-    /** Particles in a kernel's support (unit: count; [4, 400]). */
+    /// Particles in a kernel's support (unit: count; [4, 400]).
     float kernel_particles;
-    /** Surface tension (unit: m^3/(kg s^2); [0, 0.5]). */
+    /// Surface tension (unit: m^3/(kg s^2); [0, 0.5]).
     float surface_tension;
-    /** Herschel-Bulkley yield stress (unit: Pa; [0, 1e5]). */
+    /// Herschel-Bulkley yield stress (unit: Pa; [0, 1e5]).
     float yield_stress;
-    /** Herschel-Bulkley consistency (unit: Pa s^n; [0, 1e4]). */
+    /// Herschel-Bulkley consistency (unit: Pa s^n; [0, 1e4]).
     float consistency;
-    /** Herschel-Bulkley flow index n (unit: 1; [0.1, 2]). */
+    /// Herschel-Bulkley flow index n (unit: 1; [0.1, 2]).
     float flow_index;
-    /** Shear modulus of yield-stress materials (unit: Pa; [0, 1e6]). */
+    /// Shear modulus of yield-stress materials (unit: Pa; [0, 1e6]).
     float shear_modulus;
-    /** Name (UTF-8; copied when the material is added or set). Read back from a world, it
-     *  points into the world and lives until the material is set again or the world goes. */
+    /// Name (UTF-8; copied when the material is added or set). Read back from a world, it
+    /// points into the world and lives until the material is set again or the world goes.
     const char* name;
 } fluid_material_def;
 
-/** Water (the seed report's Table 4.1). Any thread. */
+/// Water (the seed report's Table 4.1). Any thread.
 FLUID_C_API fluid_material_def fluid_default_material_def(void);
 
-/** A named preset: "water", "yoghurt" (Herschel-Bulkley) or "seed_yoghurt" (the report's
- *  Table 4.1 yoghurt). Any thread. */
+/// A named preset: "water", "yoghurt" (Herschel-Bulkley) or "seed_yoghurt" (the report's
+/// Table 4.1 yoghurt). Any thread.
 FLUID_C_API fluid_status fluid_material_preset(const char* preset, fluid_material_def* def);
 
-/** Sets one field of `def` by the name level files use ("viscosity", "restDensity",
- *  "yieldStress"...; docs/c_api.md). Checked when added to a world. Any thread. */
+/// Sets one field of `def` by the name level files use ("viscosity", "restDensity",
+/// "yieldStress"...; docs/c_api.md). Checked when added to a world. Any thread.
 FLUID_C_API fluid_status fluid_material_def_set(fluid_material_def* def, const char* field,
                                                 double value);
 
-/** Adds a material (at most 65535 per world: FLUID_ERROR_LIMIT after). */
+/// Adds a material (at most 65535 per world: FLUID_ERROR_LIMIT after).
 FLUID_C_API fluid_status fluid_world_add_material(fluid_world* world,
                                                   const fluid_material_def* def,
                                                   fluid_material_id* id);
 
-/** Changes a material between steps. */
+/// Changes a material between steps.
 FLUID_C_API fluid_status fluid_world_set_material(fluid_world* world, fluid_material_id id,
                                                   const fluid_material_def* def);
 
-/** Reads a material back. */
+/// Reads a material back.
 FLUID_C_API fluid_status fluid_world_get_material(const fluid_world* world, fluid_material_id id,
                                                   fluid_material_def* def);
 
-/** The spacing of a material's particles on their lattice (unit: m): the size of a particle,
- *  for drawing and for placing things a whole number of particles apart. */
+/// The spacing of a material's particles on their lattice (unit: m): the size of a particle,
+/// for drawing and for placing things a whole number of particles apart.
 FLUID_C_API fluid_status fluid_world_spacing(const fluid_world* world, fluid_material_id id,
                                              float* spacing);
 
-/** Materials in the world (unit: count). */
+/// Materials in the world (unit: count).
 FLUID_C_API fluid_status fluid_world_material_count(const fluid_world* world, uint32_t* count);
 
 /* ------------------------------------------------------------------------------------------ */
 /* Particles and blobs                                                                         */
 /* ------------------------------------------------------------------------------------------ */
 
-/** A region: a box, a circle or a simple polygon. */
+/// A region: a box, a circle or a simple polygon.
 typedef enum fluid_shape_type {
-    /** center +- half_extents. */
+    /// center +- half_extents.
     FLUID_SHAPE_BOX = 0,
-    /** center, radius. */
+    /// center, radius.
     FLUID_SHAPE_CIRCLE = 1,
-    /** vertices (3 or more, counter-clockwise or clockwise, not crossing). */
+    /// vertices (3 or more, counter-clockwise or clockwise, not crossing).
     FLUID_SHAPE_POLYGON = 2
 } fluid_shape_type;
 
-/** A region (C++ fluid::Shape). Make one with fluid_box_shape, fluid_circle_shape or
- *  fluid_polygon_shape. */
+/// A region (C++ fluid::Shape). Make one with fluid_box_shape, fluid_circle_shape or
+/// fluid_polygon_shape.
 typedef struct fluid_shape {
-    /** A fluid_shape_type. */
+    /// A fluid_shape_type.
     int32_t type;
-    /** Box and circle: centre (unit: m). */
+    /// Box and circle: centre (unit: m).
     fluid_vec2 center;
-    /** Box: half width and half height (unit: m; > 0). */
+    /// Box: half width and half height (unit: m; > 0).
     fluid_vec2 half_extents;
-    /** Circle: radius (unit: m; > 0). */
+    /// Circle: radius (unit: m; > 0).
     float radius;
-    /** Polygon: the vertices (unit: m), read when the shape is used (copied then). */
+    /// Polygon: the vertices (unit: m), read when the shape is used (copied then).
     const fluid_vec2* vertices;
-    /** Polygon: how many (unit: count; >= 3). */
+    /// Polygon: how many (unit: count; >= 3).
     uint32_t vertex_count;
 } fluid_shape;
 
-/** A box from its corners (unit: m). Any thread. */
+/// A box from its corners (unit: m). Any thread.
 FLUID_C_API fluid_shape fluid_box_shape(fluid_vec2 min, fluid_vec2 max);
-/** A circle (unit: m). Any thread. */
+/// A circle (unit: m). Any thread.
 FLUID_C_API fluid_shape fluid_circle_shape(fluid_vec2 center, float radius);
-/** A polygon of `count` vertices at `vertices` (unit: m; not copied until used). Any thread. */
+/// A polygon of `count` vertices at `vertices` (unit: m; not copied until used). Any thread.
 FLUID_C_API fluid_shape fluid_polygon_shape(const fluid_vec2* vertices, uint32_t count);
 
-/** A block of liquid filled on the material's lattice (C++ fluid::BlobDef). */
+/// A block of liquid filled on the material's lattice (C++ fluid::BlobDef).
 typedef struct fluid_blob_def {
-    /** Where. */
+    /// Where.
     fluid_shape shape;
-    /** Its velocity (unit: m/s). */
+    /// Its velocity (unit: m/s).
     fluid_vec2 velocity;
-    /** Its material. */
+    /// Its material.
     fluid_material_id material;
-    /** Seconds each particle lives (unit: s; 0 forever). */
+    /// Seconds each particle lives (unit: s; 0 forever).
     float lifetime;
-    /** Yield-stress materials: the paste's structure at the start (unit: 1; [0, 1]; 0 freshly
-     *  sheared, as an emitter pours it, 1 rested; unused by other materials). */
+    /// Yield-stress materials: the paste's structure at the start (unit: 1; [0, 1]; 0 freshly
+    /// sheared, as an emitter pours it, 1 rested; unused by other materials).
     float structure;
 } fluid_blob_def;
 
-/** A box blob of water-index 0, at rest, living forever. Any thread. */
+/// A box blob of water-index 0, at rest, living forever. Any thread.
 FLUID_C_API fluid_blob_def fluid_default_blob_def(void);
 
-/** Fills a blob; `spawned` (may be NULL) receives how many particles it made. Lattice points
- *  inside solids are left out. */
+/// Fills a blob; `spawned` (may be NULL) receives how many particles it made. Lattice points
+/// inside solids are left out.
 FLUID_C_API fluid_status fluid_world_spawn_blob(fluid_world* world, const fluid_blob_def* def,
                                                 uint32_t* spawned);
 
-/** Adds one particle (unit: m, m/s). */
+/// Adds one particle (unit: m, m/s).
 FLUID_C_API fluid_status fluid_world_add_particle(fluid_world* world, fluid_vec2 position,
                                                   fluid_vec2 velocity, fluid_material_id material,
                                                   fluid_particle_id* id);
 
-/** Removes a particle now. FLUID_ERROR_STALE_ID for one already gone. */
+/// Removes a particle now. FLUID_ERROR_STALE_ID for one already gone.
 FLUID_C_API fluid_status fluid_world_remove_particle(fluid_world* world, fluid_particle_id id);
 
-/** True in `*valid` while the particle lives. */
+/// True in `*valid` while the particle lives.
 FLUID_C_API fluid_status fluid_world_particle_valid(const fluid_world* world,
                                                     fluid_particle_id id, bool* valid);
 
-/** The particle's position (unit: m). */
+/// The particle's position (unit: m).
 FLUID_C_API fluid_status fluid_world_particle_position(const fluid_world* world,
                                                        fluid_particle_id id, fluid_vec2* position);
 
-/** The particle's velocity (unit: m/s). */
+/// The particle's velocity (unit: m/s).
 FLUID_C_API fluid_status fluid_world_particle_velocity(const fluid_world* world,
                                                        fluid_particle_id id, fluid_vec2* velocity);
 
-/** Sets the particle's velocity (unit: m/s; finite). */
+/// Sets the particle's velocity (unit: m/s; finite).
 FLUID_C_API fluid_status fluid_world_set_particle_velocity(fluid_world* world,
                                                            fluid_particle_id id,
                                                            fluid_vec2 velocity);
 
-/** The particle at `index` of the arrays (unit: index < the particle count). */
+/// The particle at `index` of the arrays (unit: index < the particle count).
 FLUID_C_API fluid_status fluid_world_particle_at(const fluid_world* world, uint32_t index,
                                                  fluid_particle_id* id);
 
@@ -463,106 +463,106 @@ FLUID_C_API fluid_status fluid_world_particle_at(const fluid_world* world, uint3
 /* Emitters, drains, sensors, events                                                           */
 /* ------------------------------------------------------------------------------------------ */
 
-/** A nozzle (C++ fluid::EmitterDef). */
+/// A nozzle (C++ fluid::EmitterDef).
 typedef struct fluid_emitter_def {
-    /** Centre of the nozzle (unit: m). */
+    /// Centre of the nozzle (unit: m).
     fluid_vec2 position;
-    /** Direction of the jet (unit: 1; normalised, not zero). */
+    /// Direction of the jet (unit: 1; normalised, not zero).
     fluid_vec2 direction;
-    /** Exit speed (unit: m/s; [0.01, 100]). */
+    /// Exit speed (unit: m/s; [0.01, 100]).
     float speed;
-    /** Nozzle width (unit: m; [0, 100]). */
+    /// Nozzle width (unit: m; [0, 100]).
     float width;
-    /** Particles per second (unit: 1/s; [0, 1e6]). */
+    /// Particles per second (unit: 1/s; [0, 1e6]).
     float rate;
-    /** Material of the particles. */
+    /// Material of the particles.
     fluid_material_id material;
-    /** Most particles it ever emits (unit: count; 0 no limit). */
+    /// Most particles it ever emits (unit: count; 0 no limit).
     uint32_t max_count;
-    /** Seconds each particle lives (unit: s; [0, 1e6], 0 forever). */
+    /// Seconds each particle lives (unit: s; [0, 1e6], 0 forever).
     float lifetime;
-    /** Random spread across the nozzle (unit: 1; [0, 0.5]). */
+    /// Random spread across the nozzle (unit: 1; [0, 0.5]).
     float jitter;
-    /** Seed of the jitter. */
+    /// Seed of the jitter.
     uint64_t seed;
 } fluid_emitter_def;
 
-/** The C++ EmitterDef's defaults. Any thread. */
+/// The C++ EmitterDef's defaults. Any thread.
 FLUID_C_API fluid_emitter_def fluid_default_emitter_def(void);
-/** Adds an emitter. */
+/// Adds an emitter.
 FLUID_C_API fluid_status fluid_world_add_emitter(fluid_world* world, const fluid_emitter_def* def,
                                                  fluid_emitter_id* id);
-/** Changes an emitter between steps. */
+/// Changes an emitter between steps.
 FLUID_C_API fluid_status fluid_world_set_emitter(fluid_world* world, fluid_emitter_id id,
                                                  const fluid_emitter_def* def);
-/** Particles an emitter has made so far (unit: count). */
+/// Particles an emitter has made so far (unit: count).
 FLUID_C_API fluid_status fluid_world_emitted_count(const fluid_world* world, fluid_emitter_id id,
                                                    uint32_t* count);
 
-/** A region that removes the particles entering it (C++ fluid::DrainDef). */
+/// A region that removes the particles entering it (C++ fluid::DrainDef).
 typedef struct fluid_drain_def {
-    /** Where. */
+    /// Where.
     fluid_shape shape;
-    /** True: only particles of `material`. */
+    /// True: only particles of `material`.
     bool only_material;
-    /** See only_material. */
+    /// See only_material.
     fluid_material_id material;
 } fluid_drain_def;
 
-/** Adds a drain. */
+/// Adds a drain.
 FLUID_C_API fluid_status fluid_world_add_drain(fluid_world* world, const fluid_drain_def* def,
                                                fluid_drain_id* id);
 
-/** What a sensor measured after the last step, per material. */
+/// What a sensor measured after the last step, per material.
 typedef struct fluid_sensor_reading {
-    /** Particles inside (unit: count). */
+    /// Particles inside (unit: count).
     uint32_t count;
-    /** Their mass (unit: kg). */
+    /// Their mass (unit: kg).
     float mass;
-    /** Their area (unit: m^2). */
+    /// Their area (unit: m^2).
     float area;
-    /** Their volume, area times depth (unit: m^3). */
+    /// Their volume, area times depth (unit: m^3).
     float volume;
 } fluid_sensor_reading;
 
-/** Adds a sensor over `shape`. */
+/// Adds a sensor over `shape`.
 FLUID_C_API fluid_status fluid_world_add_sensor(fluid_world* world, fluid_shape shape,
                                                 fluid_sensor_id* id);
 
-/** A sensor's readings, one per material index (`*count` = the material count), valid until
- *  the next step. */
+/// A sensor's readings, one per material index (`*count` = the material count), valid until
+/// the next step.
 FLUID_C_API fluid_status fluid_world_sensor_readings(const fluid_world* world,
                                                      fluid_sensor_id id,
                                                      const fluid_sensor_reading** readings,
                                                      uint32_t* count);
 
-/** Why a particle went. */
+/// Why a particle went.
 typedef enum fluid_removal_cause {
-    /** A drain took it. */
+    /// A drain took it.
     FLUID_REMOVED_BY_DRAIN = 0,
-    /** Its lifetime ran out. */
+    /// Its lifetime ran out.
     FLUID_REMOVED_BY_LIFETIME = 1,
-    /** It left the world's range. */
+    /// It left the world's range.
     FLUID_REMOVED_OUT_OF_RANGE = 2
 } fluid_removal_cause;
 
-/** A particle the last step removed. */
+/// A particle the last step removed.
 typedef struct fluid_removed_event {
-    /** The particle (no longer valid). */
+    /// The particle (no longer valid).
     fluid_particle_id particle;
-    /** Where it was (unit: m). */
+    /// Where it was (unit: m).
     fluid_vec2 position;
-    /** Its velocity (unit: m/s). */
+    /// Its velocity (unit: m/s).
     fluid_vec2 velocity;
-    /** Its material. */
+    /// Its material.
     fluid_material_id material;
-    /** A fluid_removal_cause. */
+    /// A fluid_removal_cause.
     int32_t cause;
-    /** The drain, when the cause is a drain. */
+    /// The drain, when the cause is a drain.
     fluid_drain_id drain;
 } fluid_removed_event;
 
-/** The particles the last step removed, in order, valid until the next step. */
+/// The particles the last step removed, in order, valid until the next step.
 FLUID_C_API fluid_status fluid_world_removed_events(const fluid_world* world,
                                                     const fluid_removed_event** events,
                                                     uint32_t* count);
@@ -571,42 +571,42 @@ FLUID_C_API fluid_status fluid_world_removed_events(const fluid_world* world,
 /* Plugins by name (the built-in catalogue: docs/plugins.md)                                   */
 /* ------------------------------------------------------------------------------------------ */
 
-/** A parameter value by name (a level file's plugin fields). */
+/// A parameter value by name (a level file's plugin fields).
 typedef struct fluid_param {
-    /** Its name ("strength", "x"...). */
+    /// Its name ("strength", "x"...).
     const char* name;
-    /** Its value, in the parameter's unit and range. */
+    /// Its value, in the parameter's unit and range.
     double value;
 } fluid_param;
 
-/** Adds a plugin of a registered type ("force.gravity", "boundary.box", "force.wind"...;
- *  docs/plugins.md)
- *  with the given parameters (the others at their defaults). FLUID_ERROR_UNKNOWN_NAME for a
- *  type or parameter the registry does not know; FLUID_ERROR_INVALID_ARGUMENT for a value out
- *  of range. */
+/// Adds a plugin of a registered type ("force.gravity", "boundary.box", "force.wind"...;
+/// docs/plugins.md)
+/// with the given parameters (the others at their defaults). FLUID_ERROR_UNKNOWN_NAME for a
+/// type or parameter the registry does not know; FLUID_ERROR_INVALID_ARGUMENT for a value out
+/// of range.
 FLUID_C_API fluid_status fluid_world_add_plugin(fluid_world* world, const char* type,
                                                 const fluid_param* params, uint32_t param_count,
                                                 fluid_plugin_id* id);
 
-/** Sets a plugin's number parameter between steps. */
+/// Sets a plugin's number parameter between steps.
 FLUID_C_API fluid_status fluid_plugin_set_param(fluid_world* world, fluid_plugin_id id,
                                                 const char* name, double value);
 
-/** Reads a plugin's number parameter. */
+/// Reads a plugin's number parameter.
 FLUID_C_API fluid_status fluid_plugin_get_param(const fluid_world* world, fluid_plugin_id id,
                                                 const char* name, double* value);
 
-/** Sets a plugin's point-list parameter (a polygon's vertices, a chain; unit: m; copied). */
+/// Sets a plugin's point-list parameter (a polygon's vertices, a chain; unit: m; copied).
 FLUID_C_API fluid_status fluid_plugin_set_points(fluid_world* world, fluid_plugin_id id,
                                                  const char* name, const fluid_vec2* points,
                                                  uint32_t count);
 
-/** A plugin's registered type name ("force.gravity"; a C plugin's def->type), valid while the
- *  world lives. */
+/// A plugin's registered type name ("force.gravity"; a C plugin's def->type), valid while the
+/// world lives.
 FLUID_C_API fluid_status fluid_plugin_type(const fluid_world* world, fluid_plugin_id id,
                                            const char** type);
 
-/** Plugins of one kind in the world (unit: count). */
+/// Plugins of one kind in the world (unit: count).
 FLUID_C_API fluid_status fluid_world_plugin_count(const fluid_world* world, fluid_plugin_kind kind,
                                                   uint32_t* count);
 
@@ -614,409 +614,409 @@ FLUID_C_API fluid_status fluid_world_plugin_count(const fluid_world* world, flui
 /* Plugins written in C                                                                        */
 /* ------------------------------------------------------------------------------------------ */
 
-/** A parameter a C plugin declares (C++ fluid::ParamDecl): fluid_plugin_set_param and
- *  fluid_plugin_get_param reach it by name, the callbacks read its value in `params`, saves keep
- *  it. The strings are copied when the plugin is added. */
+/// A parameter a C plugin declares (C++ fluid::ParamDecl): fluid_plugin_set_param and
+/// fluid_plugin_get_param reach it by name, the callbacks read its value in `params`, saves keep
+/// it. The strings are copied when the plugin is added.
 typedef struct fluid_param_decl {
-    /** Its name. */
+    /// Its name.
     const char* name;
-    /** Its unit ("m/s^2"). */
+    /// Its unit ("m/s^2").
     const char* unit;
-    /** Its default value. */
+    /// Its default value.
     double default_value;
-    /** Its range [min_value, max_value]. */
+    /// Its range [min_value, max_value].
     double min_value;
-    /** See min_value. */
+    /// See min_value.
     double max_value;
-    /** One line for tools. */
+    /// One line for tools.
     const char* description;
 } fluid_param_decl;
 
-/** What every plugin callback is told about the step. */
+/// What every plugin callback is told about the step.
 typedef struct fluid_step_context {
-    /** The frame being stepped (unit: s). */
+    /// The frame being stepped (unit: s).
     float frame_dt;
-    /** Simulated time at its start (unit: s). */
+    /// Simulated time at its start (unit: s).
     double time;
-    /** The spacing boundaries sample at (unit: m). */
+    /// The spacing boundaries sample at (unit: m).
     float sample_spacing;
-    /** The largest kernel support (unit: m). */
+    /// The largest kernel support (unit: m).
     float support_radius;
-    /** The plugin's parameter values, in its declarations' order. */
+    /// The plugin's parameter values, in its declarations' order.
     const double* params;
 } fluid_step_context;
 
-/** What a force plugin's apply reads and writes. */
+/// What a force plugin's apply reads and writes.
 typedef struct fluid_force_context {
-    /** Positions (unit: m), all particles. */
+    /// Positions (unit: m), all particles.
     const float* px;
-    /** See px. */
+    /// See px.
     const float* py;
-    /** Velocities (unit: m/s). */
+    /// Velocities (unit: m/s).
     const float* vx;
-    /** See vx. */
+    /// See vx.
     const float* vy;
-    /** Material indices. */
+    /// Material indices.
     const uint16_t* material;
-    /** Particles (unit: count). */
+    /// Particles (unit: count).
     uint32_t count;
-    /** Accelerations to add to (unit: m/s^2): write only [begin, end). */
+    /// Accelerations to add to (unit: m/s^2): write only [begin, end).
     float* ax;
-    /** See ax. */
+    /// See ax.
     float* ay;
-    /** The sub-step (unit: s). */
+    /// The sub-step (unit: s).
     float dt;
-    /** Simulated time (unit: s). */
+    /// Simulated time (unit: s).
     double time;
-    /** The plugin's parameter values, in its declarations' order. */
+    /// The plugin's parameter values, in its declarations' order.
     const double* params;
 } fluid_force_context;
 
-/** A force plugin made of functions (C++ fluid::ForcePlugin). */
+/// A force plugin made of functions (C++ fluid::ForcePlugin).
 typedef struct fluid_force_plugin_def {
-    /** Its type name (in saves and messages; required). */
+    /// Its type name (in saves and messages; required).
     const char* type;
-    /** Passed to every callback. */
+    /// Passed to every callback.
     void* user;
-    /** Its parameters (may be NULL with param_count 0). */
+    /// Its parameters (may be NULL with param_count 0).
     const fluid_param_decl* params;
-    /** How many (unit: count). */
+    /// How many (unit: count).
     uint32_t param_count;
-    /** Once per step before the sub-steps (may be NULL). Stepping thread. */
+    /// Once per step before the sub-steps (may be NULL). Stepping thread.
     void (*prepare)(void* user, const fluid_step_context* context);
-    /** Adds accelerations to particles [begin, end) (required). Worker threads, several at once
-     *  on disjoint ranges: write only your range, keep results independent of the split. */
+    /// Adds accelerations to particles [begin, end) (required). Worker threads, several at once
+    /// on disjoint ranges: write only your range, keep results independent of the split.
     void (*apply)(void* user, const fluid_force_context* context, uint32_t begin, uint32_t end);
-    /** When the world lets the plugin go (may be NULL), on the thread that destroys the world.
-     *  Not called when adding the plugin failed. */
+    /// When the world lets the plugin go (may be NULL), on the thread that destroys the world.
+    /// Not called when adding the plugin failed.
     void (*destroy)(void* user);
 } fluid_force_plugin_def;
 
-/** A def with every callback NULL and no parameters. Any thread. */
+/// A def with every callback NULL and no parameters. Any thread.
 FLUID_C_API fluid_force_plugin_def fluid_default_force_plugin_def(void);
 
-/** Adds a force plugin written in C. On failure `destroy` is not called. */
+/// Adds a force plugin written in C. On failure `destroy` is not called.
 FLUID_C_API fluid_status fluid_world_add_force(fluid_world* world,
                                                const fluid_force_plugin_def* def,
                                                fluid_plugin_id* id);
 
-/** What a boundary's project moves (C++ fluid::ProjectContext). */
+/// What a boundary's project moves (C++ fluid::ProjectContext).
 typedef struct fluid_project_context {
-    /** Positions (unit: m), all particles: move [begin, end) out of the solid. */
+    /// Positions (unit: m), all particles: move [begin, end) out of the solid.
     float* px;
-    /** See px. */
+    /// See px.
     float* py;
-    /** Positions at the start of the sub-step (unit: m). */
+    /// Positions at the start of the sub-step (unit: m).
     const float* prev_x;
-    /** See prev_x. */
+    /// See prev_x.
     const float* prev_y;
-    /** Velocities (unit: m/s): remove the part into the solid. */
+    /// Velocities (unit: m/s): remove the part into the solid.
     float* vx;
-    /** See vx. */
+    /// See vx.
     float* vy;
-    /** Material indices. */
+    /// Material indices.
     const uint16_t* material;
-    /** The sub-step (unit: s). */
+    /// The sub-step (unit: s).
     float dt;
-    /** Where in the step the positions are (unit: s from the step's start). */
+    /// Where in the step the positions are (unit: s from the step's start).
     float time_in_step;
-    /** Where prev_x / prev_y were (unit: s). */
+    /// Where prev_x / prev_y were (unit: s).
     float prev_time_in_step;
-    /** The boundary sample spacing (unit: m; fluid_step_context.sample_spacing). */
+    /// The boundary sample spacing (unit: m; fluid_step_context.sample_spacing).
     float spacing;
-    /** The plugin's parameter values. */
+    /// The plugin's parameter values.
     const double* params;
 } fluid_project_context;
 
-/** Samples of a boundary's surface, as the plugin's prepare leaves them: the fluid feels them
- *  as its neighbours. The arrays stay the plugin's; they are copied after prepare. */
+/// Samples of a boundary's surface, as the plugin's prepare leaves them: the fluid feels them
+/// as its neighbours. The arrays stay the plugin's; they are copied after prepare.
 typedef struct fluid_boundary_samples {
-    /** Positions (unit: m). */
+    /// Positions (unit: m).
     const float* px;
-    /** See px. */
+    /// See px.
     const float* py;
-    /** Velocities (unit: m/s). */
+    /// Velocities (unit: m/s).
     const float* vx;
-    /** See vx. */
+    /// See vx.
     const float* vy;
-    /** How many (unit: count). */
+    /// How many (unit: count).
     uint32_t count;
 } fluid_boundary_samples;
 
-/** A rigid body among a boundary's samples (C++ fluid::RigidBody). */
+/// A rigid body among a boundary's samples (C++ fluid::RigidBody).
 typedef struct fluid_rigid_body {
-    /** Mass (unit: kg; (0, 1e9], or 0 for one the fluid cannot move). */
+    /// Mass (unit: kg; (0, 1e9], or 0 for one the fluid cannot move).
     float mass;
-    /** First sample (unit: index). */
+    /// First sample (unit: index).
     uint32_t sample_begin;
-    /** One past the last (unit: index). */
+    /// One past the last (unit: index).
     uint32_t sample_end;
 } fluid_rigid_body;
 
-/** What the coarse pressure solve did to a body over a step (C++ fluid::RigidBodyImpulse). */
+/// What the coarse pressure solve did to a body over a step (C++ fluid::RigidBodyImpulse).
 typedef struct fluid_rigid_body_impulse {
-    /** Impulse (unit: N s). */
+    /// Impulse (unit: N s).
     fluid_vec2 impulse;
-    /** Displacement beyond its own velocity's path (unit: m). */
+    /// Displacement beyond its own velocity's path (unit: m).
     fluid_vec2 displacement;
 } fluid_rigid_body_impulse;
 
-/** What a boundary's project keeps. */
+/// What a boundary's project keeps.
 typedef enum fluid_boundary_role {
-    /** Particles out of a solid. */
+    /// Particles out of a solid.
     FLUID_ROLE_SOLID = 0,
-    /** Particles on their side of a wall. */
+    /// Particles on their side of a wall.
     FLUID_ROLE_WALL = 1,
-    /** Particles inside a container. */
+    /// Particles inside a container.
     FLUID_ROLE_CONTAINER = 2
 } fluid_boundary_role;
 
-/** A boundary plugin made of functions (C++ fluid::BoundaryPlugin): a solid, wall or container,
- *  optionally carrying rigid bodies of the game's own physics. */
+/// A boundary plugin made of functions (C++ fluid::BoundaryPlugin): a solid, wall or container,
+/// optionally carrying rigid bodies of the game's own physics.
 typedef struct fluid_boundary_plugin_def {
-    /** Its type name (required). */
+    /// Its type name (required).
     const char* type;
-    /** Passed to every callback. */
+    /// Passed to every callback.
     void* user;
-    /** Its parameters (may be NULL with param_count 0). */
+    /// Its parameters (may be NULL with param_count 0).
     const fluid_param_decl* params;
-    /** How many (unit: count). */
+    /// How many (unit: count).
     uint32_t param_count;
-    /** A fluid_boundary_role. */
+    /// A fluid_boundary_role.
     int32_t role;
-    /** Wall friction (unit: 1; >= 0, 0 free slip, 1 the fluid's viscosity). */
+    /// Wall friction (unit: 1; >= 0, 0 free slip, 1 the fluid's viscosity).
     float friction;
-    /** True to have the fluid's forces on the samples computed after each step and handed to
-     *  receive_forces (nothing happens without a receive_forces). */
+    /// True to have the fluid's forces on the samples computed after each step and handed to
+    /// receive_forces (nothing happens without a receive_forces).
     bool wants_forces;
-    /** Once per step (required): fill `samples` with the surface at the step's start. Stepping
-     *  thread. */
+    /// Once per step (required): fill `samples` with the surface at the step's start. Stepping
+    /// thread.
     void (*prepare)(void* user, const fluid_step_context* context,
                     fluid_boundary_samples* samples);
-    /** Moves particles [begin, end) that ended inside back out (required). Worker threads, on
-     *  disjoint ranges. */
+    /// Moves particles [begin, end) that ended inside back out (required). Worker threads, on
+    /// disjoint ranges.
     void (*project)(void* user, const fluid_project_context* context, uint32_t begin,
                     uint32_t end);
-    /** After the step, with wants_forces: the force on each sample (unit: N) and the drag
-     *  -dF/dv >= 0 (unit: N s/m), `count` samples (may be NULL). Stepping thread. */
+    /// After the step, with wants_forces: the force on each sample (unit: N) and the drag
+    /// -dF/dv >= 0 (unit: N s/m), `count` samples (may be NULL). Stepping thread.
     void (*receive_forces)(void* user, const float* fx, const float* fy, const float* drag,
                            uint32_t count);
-    /** The rigid bodies among the samples as the last prepare left them: `*bodies` set to an
-     *  array of the plugin's, the count returned (may be NULL: none). Stepping thread. */
+    /// The rigid bodies among the samples as the last prepare left them: `*bodies` set to an
+    /// array of the plugin's, the count returned (may be NULL: none). Stepping thread.
     uint32_t (*rigid_bodies)(void* user, const fluid_rigid_body** bodies);
-    /** After the step, before receive_forces: one impulse per rigid body (may be NULL).
-     *  Stepping thread. */
+    /// After the step, before receive_forces: one impulse per rigid body (may be NULL).
+    /// Stepping thread.
     void (*receive_body_impulses)(void* user, const fluid_rigid_body_impulse* impulses,
                                   uint32_t count);
-    /** True when `point` (unit: m) is inside body `body` at `time_in_step` seconds into the step
-     *  (may be NULL: read from the samples). Stepping thread, read only. */
+    /// True when `point` (unit: m) is inside body `body` at `time_in_step` seconds into the step
+    /// (may be NULL: read from the samples). Stepping thread, read only.
     bool (*body_contains)(void* user, uint32_t body, fluid_vec2 point, float time_in_step);
-    /** True when `point` is in what project keeps particles out of (may be NULL: never); blobs
-     *  and emitters leave such points out. The thread that calls the world (between steps for
-     *  a blob, during a step for an emitter). */
+    /// True when `point` is in what project keeps particles out of (may be NULL: never); blobs
+    /// and emitters leave such points out. The thread that calls the world (between steps for
+    /// a blob, during a step for an emitter).
     bool (*contains)(void* user, fluid_vec2 point);
-    /** When the world lets the plugin go (may be NULL), on the thread that destroys the world.
-     *  Not called when adding the plugin failed. */
+    /// When the world lets the plugin go (may be NULL), on the thread that destroys the world.
+    /// Not called when adding the plugin failed.
     void (*destroy)(void* user);
 } fluid_boundary_plugin_def;
 
-/** A def with every callback NULL, role solid, no friction. Any thread. */
+/// A def with every callback NULL, role solid, no friction. Any thread.
 FLUID_C_API fluid_boundary_plugin_def fluid_default_boundary_plugin_def(void);
 
-/** Adds a boundary plugin written in C. On failure `destroy` is not called. */
+/// Adds a boundary plugin written in C. On failure `destroy` is not called.
 FLUID_C_API fluid_status fluid_world_add_boundary(fluid_world* world,
                                                   const fluid_boundary_plugin_def* def,
                                                   fluid_plugin_id* id);
 
-/** A plugin type written in C, registered by name for the whole process: fluid_world_add_plugin
- *  adds it by name, level files name it in their "plugins", and fluid_world_load and level saves
- *  make it again. Start from fluid_default_plugin_type_def(). */
+/// A plugin type written in C, registered by name for the whole process: fluid_world_add_plugin
+/// adds it by name, level files name it in their "plugins", and fluid_world_load and level saves
+/// make it again. Start from fluid_default_plugin_type_def().
 typedef struct fluid_plugin_type_def {
-    /** Its type name (required; not one already registered, the built-ins' included). */
+    /// Its type name (required; not one already registered, the built-ins' included).
     const char* type;
-    /** One line for tools (may be NULL). */
+    /// One line for tools (may be NULL).
     const char* description;
-    /** A fluid_plugin_kind. */
+    /// A fluid_plugin_kind.
     int32_t kind;
-    /** Its parameters, the same for every instance (may be NULL with param_count 0). */
+    /// Its parameters, the same for every instance (may be NULL with param_count 0).
     const fluid_param_decl* params;
-    /** How many (unit: count). */
+    /// How many (unit: count).
     uint32_t param_count;
-    /** Passed to create_force or create_boundary. */
+    /// Passed to create_force or create_boundary.
     void* user;
-    /** A force type's factory: fills a new instance's callbacks and user pointer in `*def` (its
-     *  type and parameters are the type's, the rest fluid_default_force_plugin_def's); false
-     *  refuses (the call that wanted the plugin fails naming the type). On the thread of the
-     *  call that makes the plugin. */
+    /// A force type's factory: fills a new instance's callbacks and user pointer in `*def` (its
+    /// type and parameters are the type's, the rest fluid_default_force_plugin_def's); false
+    /// refuses (the call that wanted the plugin fails naming the type). On the thread of the
+    /// call that makes the plugin.
     bool (*create_force)(void* user, fluid_force_plugin_def* def);
-    /** A boundary type's factory, as create_force. */
+    /// A boundary type's factory, as create_force.
     bool (*create_boundary)(void* user, fluid_boundary_plugin_def* def);
 } fluid_plugin_type_def;
 
-/** A def with no name, kind force, no parameters, no factories. Any thread. */
+/// A def with no name, kind force, no parameters, no factories. Any thread.
 FLUID_C_API fluid_plugin_type_def fluid_default_plugin_type_def(void);
 
-/** Registers a plugin type written in C for the rest of the process (types are never removed).
- *  FLUID_ERROR_INVALID_ARGUMENT for a name already registered, a kind without its factory, or
- *  bad parameter declarations (the registry's own message). Any thread: registrations are
- *  serialised, and a world or level being made meanwhile uses the types registered before. */
+/// Registers a plugin type written in C for the rest of the process (types are never removed).
+/// FLUID_ERROR_INVALID_ARGUMENT for a name already registered, a kind without its factory, or
+/// bad parameter declarations (the registry's own message). Any thread: registrations are
+/// serialised, and a world or level being made meanwhile uses the types registered before.
 FLUID_C_API fluid_status fluid_register_plugin_type(const fluid_plugin_type_def* def);
 
 /* ------------------------------------------------------------------------------------------ */
 /* Levels (JSON level files: docs/levels.md)                                                   */
 /* ------------------------------------------------------------------------------------------ */
 
-/** How a level is loaded. */
+/// How a level is loaded.
 typedef struct fluid_level_options {
-    /** Workers of the level's world (unit: count; 0 the file's "workers", default 1; a save
-     *  keeps its own count). */
+    /// Workers of the level's world (unit: count; 0 the file's "workers", default 1; a save
+    /// keeps its own count).
     uint32_t worker_count;
-    /** Most particles (unit: count; 0 the level's own limit). */
+    /// Most particles (unit: count; 0 the level's own limit).
     uint32_t max_particles;
 } fluid_level_options;
 
-/** Zero: the file's worker count and particle limit. Any thread. */
+/// Zero: the file's worker count and particle limit. Any thread.
 FLUID_C_API fluid_level_options fluid_default_level_options(void);
 
-/** Loads a level file (JSON). FLUID_ERROR_BAD_FILE with "FILE:LINE:COLUMN: at /json/path:
- *  message" for a malformed one, FLUID_ERROR_IO for one that cannot be read. `options` may be
- *  NULL. Destroy the level with fluid_level_destroy. */
+/// Loads a level file (JSON). FLUID_ERROR_BAD_FILE with "FILE:LINE:COLUMN: at /json/path:
+/// message" for a malformed one, FLUID_ERROR_IO for one that cannot be read. `options` may be
+/// NULL. Destroy the level with fluid_level_destroy.
 FLUID_C_API fluid_status fluid_level_load(const char* path, const fluid_level_options* options,
                                           fluid_level** level);
 
-/** Loads a level save (fluid_level_save's, the demo's F5) from a file. */
+/// Loads a level save (fluid_level_save's, the demo's F5) from a file.
 FLUID_C_API fluid_status fluid_level_load_save(const char* path,
                                                const fluid_level_options* options,
                                                fluid_level** level);
 
-/** Loads a level save from fluid_level_save_bytes's bytes; `file` names it in messages. */
+/// Loads a level save from fluid_level_save_bytes's bytes; `file` names it in messages.
 FLUID_C_API fluid_status fluid_level_read_save(const void* data, size_t size, const char* file,
                                                const fluid_level_options* options,
                                                fluid_level** level);
 
-/** Parses a level from text in memory; `file` names it in messages. */
+/// Parses a level from text in memory; `file` names it in messages.
 FLUID_C_API fluid_status fluid_level_parse(const char* text, size_t size, const char* file,
                                            const fluid_level_options* options,
                                            fluid_level** level);
 
-/** Destroys a level with its world and bodies. NULL is fine. */
+/// Destroys a level with its world and bodies. NULL is fine.
 FLUID_C_API void fluid_level_destroy(fluid_level* level);
 
-/** Steps a level by one frame of its frame rate (the world, its Box2D bodies, its goal). */
+/// Steps a level by one frame of its frame rate (the world, its Box2D bodies, its goal).
 FLUID_C_API fluid_status fluid_level_step(fluid_level* level);
 
-/** The level's world: read it and change it with the world functions, step it with
- *  fluid_level_step. The level owns it: never fluid_world_destroy it. */
+/// The level's world: read it and change it with the world functions, step it with
+/// fluid_level_step. The level owns it: never fluid_world_destroy it.
 FLUID_C_API fluid_status fluid_level_world(fluid_level* level, fluid_world** world);
 
-/** The level's frame rate (unit: 1/s). */
+/// The level's frame rate (unit: 1/s).
 FLUID_C_API fluid_status fluid_level_frame_rate(const fluid_level* level, float* rate);
 
-/** Saves the level (its file's text, the world, the bodies) to `path`: fluid_level_load_save
- *  reads it back. */
+/// Saves the level (its file's text, the world, the bodies) to `path`: fluid_level_load_save
+/// reads it back.
 FLUID_C_API fluid_status fluid_level_save(const fluid_level* level, const char* path);
 
-/** Saves the level into `*bytes` (free with fluid_bytes_free). */
+/// Saves the level into `*bytes` (free with fluid_bytes_free).
 FLUID_C_API fluid_status fluid_level_save_bytes(const fluid_level* level, fluid_bytes* bytes);
 
-/** The goal's state. */
+/// The goal's state.
 typedef enum fluid_goal_state {
-    /** The level has no goal. */
+    /// The level has no goal.
     FLUID_GOAL_NONE = 0,
-    /** Not reached yet. */
+    /// Not reached yet.
     FLUID_GOAL_PENDING = 1,
-    /** Reached (final). */
+    /// Reached (final).
     FLUID_GOAL_WON = 2,
-    /** Time ran out (final). */
+    /// Time ran out (final).
     FLUID_GOAL_LOST = 3
 } fluid_goal_state;
 
-/** The goal's state and measured value (the goal's unit: count, fraction or m^3). */
+/// The goal's state and measured value (the goal's unit: count, fraction or m^3).
 FLUID_C_API fluid_status fluid_level_goal(const fluid_level* level, fluid_goal_state* state,
                                           double* value);
 
-/** A named object of the level file: its material, emitter, drain, sensor or plugin by the
- *  name the file gives it. FLUID_ERROR_UNKNOWN_NAME naming it otherwise. */
+/// A named object of the level file: its material, emitter, drain, sensor or plugin by the
+/// name the file gives it. FLUID_ERROR_UNKNOWN_NAME naming it otherwise.
 FLUID_C_API fluid_status fluid_level_find_material(const fluid_level* level, const char* name,
                                                    fluid_material_id* id);
-/** See fluid_level_find_material. */
+/// See fluid_level_find_material.
 FLUID_C_API fluid_status fluid_level_find_emitter(const fluid_level* level, const char* name,
                                                   fluid_emitter_id* id);
-/** See fluid_level_find_material. */
+/// See fluid_level_find_material.
 FLUID_C_API fluid_status fluid_level_find_drain(const fluid_level* level, const char* name,
                                                 fluid_drain_id* id);
-/** See fluid_level_find_material. */
+/// See fluid_level_find_material.
 FLUID_C_API fluid_status fluid_level_find_sensor(const fluid_level* level, const char* name,
                                                  fluid_sensor_id* id);
-/** See fluid_level_find_material. */
+/// See fluid_level_find_material.
 FLUID_C_API fluid_status fluid_level_find_plugin(const fluid_level* level, const char* name,
                                                  fluid_plugin_id* id);
 
-/** Box2D bodies of the level: the file's, then those fluid_level_add_body added (unit: count). */
+/// Box2D bodies of the level: the file's, then those fluid_level_add_body added (unit: count).
 FLUID_C_API fluid_status fluid_level_body_count(const fluid_level* level, uint32_t* count);
 
-/** A body of the level by its index (the file's bodies in its order, then the added ones): its
- *  name ("" for an added body; valid while the level lives), position (unit: m) and angle
- *  (unit: rad). Each output pointer may be NULL (that output is skipped). FLUID_ERROR_STALE_ID
- *  for an index past the bodies. */
+/// A body of the level by its index (the file's bodies in its order, then the added ones): its
+/// name ("" for an added body; valid while the level lives), position (unit: m) and angle
+/// (unit: rad). Each output pointer may be NULL (that output is skipped). FLUID_ERROR_STALE_ID
+/// for an index past the bodies.
 FLUID_C_API fluid_status fluid_level_body(const fluid_level* level, uint32_t index,
                                           const char** name, fluid_vec2* position, float* angle);
 
-/** Sets the level's gravity (unit: m/s^2; finite): every "force.gravity" plugin of its world,
- *  and its Box2D world's, whose bodies are woken (the coupling's buoyancy reads Box2D's
- *  gravity: the two stay the same). Zero gravity is {0, 0}. Between steps. */
+/// Sets the level's gravity (unit: m/s^2; finite): every "force.gravity" plugin of its world,
+/// and its Box2D world's, whose bodies are woken (the coupling's buoyancy reads Box2D's
+/// gravity: the two stay the same). Zero gravity is {0, 0}. Between steps.
 FLUID_C_API fluid_status fluid_level_set_gravity(fluid_level* level, fluid_vec2 gravity);
 
-/** What a Box2D body is. */
+/// What a Box2D body is.
 typedef enum fluid_body_type {
-    /** Never moves. */
+    /// Never moves.
     FLUID_BODY_STATIC = 0,
-    /** Moves at the velocity it is given (a plank the player drags). */
+    /// Moves at the velocity it is given (a plank the player drags).
     FLUID_BODY_KINEMATIC = 1,
-    /** Moves under gravity, contacts and the fluid (a crate). */
+    /// Moves under gravity, contacts and the fluid (a crate).
     FLUID_BODY_DYNAMIC = 2
 } fluid_body_type;
 
-/** A Box2D body for a level with bodies (a crate dropped, a plank placed). */
+/// A Box2D body for a level with bodies (a crate dropped, a plank placed).
 typedef struct fluid_body_def {
-    /** A fluid_body_type. */
+    /// A fluid_body_type.
     int32_t type;
-    /** Its one fixture: a box or circle whose center is the body's position, or a convex
-     *  polygon of 3 to 8 vertices around the body's position (unit: m). */
+    /// Its one fixture: a box or circle whose center is the body's position, or a convex
+    /// polygon of 3 to 8 vertices around the body's position (unit: m).
     fluid_shape shape;
-    /** For a polygon: the body's position (unit: m; a box or circle takes shape.center). */
+    /// For a polygon: the body's position (unit: m; a box or circle takes shape.center).
     fluid_vec2 position;
-    /** Angle (unit: rad; finite). */
+    /// Angle (unit: rad; finite).
     float angle;
-    /** Box2D's density: mass per area of the 2D shape (unit: kg/m^2; > 0 for a dynamic body;
-     *  fluid_level_areal_density gives the liquid's, for a body that floats at a ratio of it). */
+    /// Box2D's density: mass per area of the 2D shape (unit: kg/m^2; > 0 for a dynamic body;
+    /// fluid_level_areal_density gives the liquid's, for a body that floats at a ratio of it).
     float density;
-    /** Box2D's contact friction (unit: 1; >= 0). */
+    /// Box2D's contact friction (unit: 1; >= 0).
     float friction;
-    /** Initial velocity (unit: m/s). */
+    /// Initial velocity (unit: m/s).
     fluid_vec2 velocity;
-    /** Initial angular velocity (unit: rad/s). */
+    /// Initial angular velocity (unit: rad/s).
     float angular_velocity;
 } fluid_body_def;
 
-/** A dynamic box 0.1 m across at the origin, density 0, friction 0.4. Any thread. */
+/// A dynamic box 0.1 m across at the origin, density 0, friction 0.4. Any thread.
 FLUID_C_API fluid_body_def fluid_default_body_def(void);
 
-/** The areal density of a material's liquid as Box2D weighs bodies (unit: kg/m^2): a body of
- *  half this density floats half submerged. */
+/// The areal density of a material's liquid as Box2D weighs bodies (unit: kg/m^2): a body of
+/// half this density floats half submerged.
 FLUID_C_API fluid_status fluid_level_areal_density(const fluid_level* level,
                                                    fluid_material_id material, float* density);
 
-/** Adds a Box2D body to a level whose file declares bodies (FLUID_ERROR_REFUSED for one that
- *  declares none: its world has no Box2D world to couple); the fluid meets it from the next
- *  step. `index` (may be NULL) receives its fluid_level_body index. A level save keeps the
- *  body; a level loaded from the save lists only the file's bodies (the added ones are still in
- *  its Box2D world and its fluid). */
+/// Adds a Box2D body to a level whose file declares bodies (FLUID_ERROR_REFUSED for one that
+/// declares none: its world has no Box2D world to couple); the fluid meets it from the next
+/// step. `index` (may be NULL) receives its fluid_level_body index. A level save keeps the
+/// body; a level loaded from the save lists only the file's bodies (the added ones are still in
+/// its Box2D world and its fluid).
 FLUID_C_API fluid_status fluid_level_add_body(fluid_level* level, const fluid_body_def* def,
                                               uint32_t* index);
 
-/** Sets a body's velocity (unit: m/s) and angular velocity (unit: rad/s): how a game drags a
- *  kinematic plank or throws a crate. Between steps. */
+/// Sets a body's velocity (unit: m/s) and angular velocity (unit: rad/s): how a game drags a
+/// kinematic plank or throws a crate. Between steps.
 FLUID_C_API fluid_status fluid_level_set_body_velocity(fluid_level* level, uint32_t index,
                                                        fluid_vec2 velocity,
                                                        float angular_velocity);
