@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Install the Debian 12 packages fluid needs (library, tests, bench, examples, demo, CI under Xvfb).
+# Install the Debian 12 packages fluid needs (library, tests, bench, examples, demo, CI under Xvfb;
+# python3 drives libfluid_c.so through ctypes in a test).
 # Idempotent: does nothing when every package is already installed. Needs root only to install.
 # Works without a terminal or standard input. The list follows shared docs/PLATFORM.md.
 #
@@ -14,6 +15,7 @@ PACKAGES=(
     xvfb xauth x11-utils mesa-utils
     clang-14 libclang-rt-14-dev
     glslang-tools
+    python3
 )
 if [[ $# -gt 0 ]]; then
     PACKAGES=("$@")
