@@ -847,13 +847,6 @@ fluid_status fluid_world_add_sensor(fluid_world* world, fluid_shape shape, fluid
     });
 }
 
-static_assert(sizeof(fluid_sensor_reading) == sizeof(SensorReading) &&
-                  offsetof(fluid_sensor_reading, count) == offsetof(SensorReading, count) &&
-                  offsetof(fluid_sensor_reading, mass) == offsetof(SensorReading, mass) &&
-                  offsetof(fluid_sensor_reading, area) == offsetof(SensorReading, area) &&
-                  offsetof(fluid_sensor_reading, volume) == offsetof(SensorReading, volume),
-              "fluid_sensor_reading is fluid::SensorReading's layout");
-
 fluid_status fluid_world_sensor_readings(const fluid_world* world, fluid_sensor_id id,
                                          const fluid_sensor_reading** readings,
                                          uint32_t* count) {
@@ -864,8 +857,15 @@ fluid_status fluid_world_sensor_readings(const fluid_world* world, fluid_sensor_
         checkId(w, id.index, id.world, w.sensorCount(),
                 [&] { (void)w.sensorReading(toCpp(id)); });
         const std::span<const SensorReading> r = w.sensorReading(toCpp(id));
-        // The same layout (checked above): the world's own array, no copy.
-        *readings = reinterpret_cast<const fluid_sensor_reading*>(r.data());
+        if (world->readings.size() <= id.index) {
+            world->readings.resize(size_t(id.index) + 1);
+        }
+        std::vector<fluid_sensor_reading>& copy = world->readings[id.index];
+        copy.resize(r.size());
+        for (size_t m = 0; m < r.size(); ++m) {
+            copy[m] = {r[m].count, r[m].mass, r[m].area, r[m].volume};
+        }
+        *readings = copy.data();
         *count = uint32_t(r.size());
     });
 }

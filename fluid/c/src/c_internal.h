@@ -51,6 +51,8 @@ struct fluid_world {
     std::unique_ptr<fluid::World> owned;
     /// fluid_world_removed_events' copy, refreshed on each call.
     mutable std::vector<fluid_removed_event> removed;
+    /// fluid_world_sensor_readings' copies, one per sensor, refreshed on each call.
+    mutable std::vector<std::vector<fluid_sensor_reading>> readings;
 };
 
 namespace fluid::c {
