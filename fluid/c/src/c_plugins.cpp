@@ -279,7 +279,10 @@ struct CType {
             params.push_back({d.name.data(), d.unit.data(), d.defaultValue, d.minValue,
                               d.maxValue, d.description.data()});
         }
+        // The record's own strings and declarations; the caller's are not kept.
         factory.type = declarations.type.c_str();
+        factory.description = nullptr;
+        factory.params = params.data();
     }
     Declarations declarations;
     std::vector<fluid_param_decl> params;
