@@ -312,10 +312,13 @@ private:
                          m_options.record.c_str());
             return false;
         }
-        std::fprintf(file, "# fluid-demo's input in %s, %u frames: fluid-demo --level %s "
+        // The level the game started on (the input may have changed level since).
+        const int count = int(m_options.levels.size());
+        const std::string& first =
+            m_options.levels[size_t(((m_options.first % count) + count) % count)].stem;
+        std::fprintf(file, "# fluid-demo's input from %s on, %u frames: fluid-demo --level %s "
                            "--script THIS --frames %u plays it again\n",
-                     m_session->file().stem.c_str(), m_frame - 1, m_session->file().stem.c_str(),
-                     m_frame - 1);
+                     first.c_str(), m_frame - 1, first.c_str(), m_frame - 1);
         for (const auto& [action, pixel] : m_recorded) {
             std::fprintf(file, "%s\n", scriptLine(action, &pixel).c_str());
         }
