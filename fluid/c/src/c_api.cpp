@@ -208,18 +208,6 @@ template <class Body> void particleCap(Body&& body) {
     }
 }
 
-fluid_bytes toBytes(const std::string& text) {
-    fluid_bytes bytes{nullptr, text.size()};
-    if (!text.empty()) {
-        bytes.data = static_cast<uint8_t*>(std::malloc(text.size()));
-        if (bytes.data == nullptr) {
-            throw std::bad_alloc();
-        }
-        std::memcpy(bytes.data, text.data(), text.size());
-    }
-    return bytes;
-}
-
 // The plugin's declaration of `name`, or Failure(FLUID_ERROR_UNKNOWN_NAME) with the C++ API's
 // message for it (from `probe`).
 template <class Probe>
@@ -247,6 +235,18 @@ fluid_status fail(fluid_status status, std::string_view message) {
         t_lastError.clear();
     }
     return status;
+}
+
+fluid_bytes toBytes(const std::string& text) {
+    fluid_bytes bytes{nullptr, text.size()};
+    if (!text.empty()) {
+        bytes.data = static_cast<uint8_t*>(std::malloc(text.size()));
+        if (bytes.data == nullptr) {
+            throw std::bad_alloc();
+        }
+        std::memcpy(bytes.data, text.data(), text.size());
+    }
+    return bytes;
 }
 
 MaterialId toCpp(fluid_material_id id) {

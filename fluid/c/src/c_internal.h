@@ -79,6 +79,10 @@ inline DrainId toCpp(fluid_drain_id id) { return {id.index, id.world}; }
 inline SensorId toCpp(fluid_sensor_id id) { return {id.index, id.world}; }
 Shape toCpp(const fluid_shape& shape, const char* function);
 
+/// `text` in bytes the library allocated (malloc: fluid_bytes_free frees them); throws
+/// std::bad_alloc when memory runs out.
+fluid_bytes toBytes(const std::string& text);
+
 /// The plugin types: the built-ins and those registered in C, a copy made under the
 /// registrations' lock (any thread).
 Registry registry();

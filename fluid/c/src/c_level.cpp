@@ -7,8 +7,6 @@
 
 #include <cmath>
 
-#include <cstdlib>
-#include <cstring>
 #include <sstream>
 
 /// The C API's level: the C++ level and the world handle that lends out its world.
@@ -178,16 +176,7 @@ fluid_status fluid_level_save_bytes(const fluid_level* level, fluid_bytes* bytes
         need(bytes, "fluid_level_save_bytes", "bytes");
         std::ostringstream out(std::ios::binary);
         l.save(out);
-        const std::string text = out.str();
-        fluid_bytes made{nullptr, text.size()};
-        if (!text.empty()) {
-            made.data = static_cast<uint8_t*>(std::malloc(text.size()));
-            if (made.data == nullptr) {
-                throw std::bad_alloc();
-            }
-            std::memcpy(made.data, text.data(), text.size());
-        }
-        *bytes = made;
+        *bytes = toBytes(out.str());
     });
 }
 
