@@ -5,7 +5,7 @@
 //               [--quality game|precise] [--seconds T] [--threads K] [--drop]
 //               [--substeps S] [--iterations I] [--coarse C] [--hold MM] [--trace]
 //               [--material water|yoghurt] [--yield-stress Y] [--surface-tension G]
-//               [--shear-constraint 0|1] [--guided]
+//               [--shear-constraint 0|1] [--guided] [--no-body] [--doubled]
 //
 // The tank: W m wide (default 0.6), water D m deep (default 0.2), gravity (0, -9.81) m/s^2. The
 // body: a box N water spacings wide and 2N/3 tall, or a circle N spacings across (default 12),
@@ -16,7 +16,11 @@
 // it and from the walls, and the body's area below it exactly from its shape and pose. The
 // last line is machine-readable:
 //   shape=S ratio=R size=N depth=D quality=Q submerged=F error=E high_mm=H speed=V spin=W
-//   reported=F2 gap=G particles=P ms_per_frame=M
+//   reported=F2 gap=G particles=P ms_per_frame=M ... water_mean=VM water_max=VX
+// water_mean and water_max: the particles' mean and largest speed over the last two seconds
+// (m/s; the mean over particles and frames). --no-body leaves the body out (a resting tank);
+// --doubled couples the Box2D tank's static walls too, so the floor and walls are there twice
+// (the fluid's box and Box2D's), as a user gets who does not filter Box2D's walls out.
 // error: submerged fraction over R, minus 1 (negative: floats too high); high_mm: how far above
 // its Archimedes draft the body's centre rides (mm; its bottom when upright); speed and spin: the
 // largest over the last second (m/s, rad/s); reported: the coupling's submerged fraction (mean
@@ -72,6 +76,8 @@ struct Options {
     float surfaceTension = -1.0f; // < 0: the preset's
     uint32_t shearConstraint = fluid::PositionBasedDef{}.shearConstraint;
     bool guided = false;
+    bool noBody = false;
+    bool doubled = false;
 };
 
 // Height of the box's or circle's draft below its top... the draft d of a body of `ratio`:
@@ -136,8 +142,12 @@ int run(const Options& opt) {
                           : addBox(physics, b2_dynamicBody, centre, hw, hh, opt.ratio * rho);
     body->GetFixtureList()->SetFriction(0.0f);
     body->SetFixedRotation(opt.guided);
+    if (opt.noBody) {
+        physics.DestroyBody(body);
+        body = nullptr;
+    }
     box2d::CouplingDef cdef;
-    cdef.categoryMask = kFluidMask;
+    cdef.categoryMask = opt.doubled ? uint16_t(0xFFFF) : kFluidMask;
     box2d::Coupling coupling(world, physics, cdef);
     // After the coupling: the blob leaves out the lattice points inside the body.
     world.spawnBlob(latticeBlock(world, water, 0.0f, 0.0f, cols, rows));
@@ -145,14 +155,29 @@ int run(const Options& opt) {
     const int frames = int(std::lround(opt.seconds * 60.0f)), window = 60;
     double submerged = 0.0, level = 0.0, lowest = 0.0, speed = 0.0, spin = 0.0, reported = 0.0;
     double seconds = 0.0, support = 0.0;
-    const b2Vec2 pose = body->GetPosition();
-    if (held) {
+    const b2Vec2 pose = body != nullptr ? body->GetPosition() : b2Vec2(0.0f, 0.0f);
+    const int waterWindow = std::min(frames, 120);
+    double waterMean = 0.0, waterMax = 0.0;
+    if (held && body != nullptr) {
         body->SetGravityScale(0.0f); // still during the fluid's step: the fluid's static force
     }
     for (int f = 0; f < frames; ++f) {
         const auto t0 = std::chrono::steady_clock::now();
         coupling.step(world, kFrame);
         seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (f >= frames - waterWindow && world.particleCount() > 0) {
+            const auto vx = world.velocityX(), vy = world.velocityY();
+            double sum = 0.0;
+            for (uint32_t i = 0; i < world.particleCount(); ++i) {
+                const double v = std::hypot(double(vx[i]), double(vy[i]));
+                sum += v;
+                waterMax = std::max(waterMax, v);
+            }
+            waterMean += sum / world.particleCount() / waterWindow;
+        }
+        if (body == nullptr) {
+            continue;
+        }
         if (held) {
             if (f >= frames - window) {
                 support += double(coupling.report(body)->force.y) / (double(body->GetMass()) * kG) /
@@ -184,6 +209,13 @@ int run(const Options& opt) {
         }
         spin = std::max(spin, double(std::fabs(body->GetAngularVelocity())));
     }
+    if (body == nullptr) {
+        std::printf("depth=%.2f width=%.2f quality=%s doubled=%d particles=%u ms_per_frame=%.3f "
+                    "water_mean=%.5f water_max=%.5f\n",
+                    double(opt.depth), double(opt.width), opt.quality.c_str(), int(opt.doubled),
+                    world.particleCount(), 1000.0 * seconds / frames, waterMean, waterMax);
+        return allFinite(world) ? 0 : 1;
+    }
     if (held) {
         std::printf("held %+.1f mm: the fluid's force %.4f of the weight; waterline %.4f m, "
                     "submerged %.4f (Archimedes' force: %.4f of the weight)\n",
@@ -213,11 +245,12 @@ int run(const Options& opt) {
         !circle && prandtl > 0.0 ? (double(opt.ratio) - submerged) * 2.0 * hh / prandtl : NAN;
     std::printf("shape=%s ratio=%.2f size=%.0f depth=%.2f quality=%s submerged=%.4f error=%+.4f "
                 "high_mm=%+.2f speed=%.4f spin=%.4f reported=%.4f gap=%.2f particles=%u "
-                "ms_per_frame=%.3f material=%s yield=%.1f carried=%.3f\n",
+                "ms_per_frame=%.3f material=%s yield=%.1f carried=%.3f water_mean=%.5f "
+                "water_max=%.5f\n",
                 opt.shape.c_str(), double(opt.ratio), double(opt.size), double(opt.depth),
                 opt.quality.c_str(), submerged, error, 1000.0 * high, speed, spin, reported, gap,
                 world.particleCount(), 1000.0 * seconds / frames, opt.material.c_str(),
-                double(used.yieldStress), carried);
+                double(used.yieldStress), carried, waterMean, waterMax);
     return allFinite(world) ? 0 : 1;
 }
 
@@ -260,6 +293,9 @@ int main(int argc, char** argv) {
                    "with the stress pass")
         ->check(CLI::Range(0, 1));
     app.add_flag("--guided", opt.guided, "keep the body from turning");
+    app.add_flag("--no-body", opt.noBody, "no body: the resting tank alone");
+    app.add_flag("--doubled", opt.doubled,
+                 "couple Box2D's static tank walls too: the floor and walls twice");
     if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
         return status;
     }

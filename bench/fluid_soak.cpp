@@ -128,9 +128,9 @@ int main(int argc, char** argv) {
                    "Before this frame's step, save the world, the Box2D world and the coupling "
                    "to PREFIX.world, PREFIX.b2d and PREFIX.coupling (to replay a failure)");
     app.add_option("--dump", dumpPrefix, "PREFIX for --dump-frame");
-    std::string quality = "precise";
-    app.add_option("--quality", quality, "The position-based preset: precise (the default) or game")
-        ->check(CLI::IsMember({"precise", "game"}));
+    std::string quality = "game";
+    app.add_option("--quality", quality, "The position-based preset: game (the default) or precise")
+        ->check(CLI::IsMember({"game", "precise"}));
     if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
         return status;
     }

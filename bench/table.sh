@@ -150,7 +150,7 @@ if [[ "$set" == levels ]]; then
     levels=$(cd "$(dirname "$0")/.." && pwd)/levels
     for level in "$levels"/*.json; do
         # The level's settings as its file states them: a `quality` preset, else WorldDef's
-        # default (the precise preset).
+        # default (the game preset).
         settings=$(grep -oE '"quality"[^,}]*' "$level" | grep -oE 'game|precise' || true)
         if grep -q '"solver": *"explicit"' "$level"; then settings=explicit; fi
         ms=() ns=()
@@ -160,7 +160,7 @@ if [[ "$set" == levels ]]; then
             ns+=("$(grep -oE '[0-9]+ ns per particle per frame' "$tmp/out" | cut -d' ' -f1)")
         done
         printf '| %s | %s | %s | %s | %s | %s | %s | `fluid-run levels/%s --frames 300 --threads 1` |\n' \
-            "$(grep -oE '^fluid-run: [^:]*' "$tmp/out" | cut -d' ' -f2-)" "${settings:-precise}" \
+            "$(grep -oE '^fluid-run: [^:]*' "$tmp/out" | cut -d' ' -f2-)" "${settings:-game}" \
             "$(grep -oE '[0-9]+ bodies' "$tmp/out" | cut -d' ' -f1 || echo 0)" \
             "$(grep -oE 'mean [0-9]+ particles' "$tmp/out" | cut -d' ' -f2)" \
             "$(printf '%s\n' "${ms[@]}" | median)" "$(printf '%s\n' "${ns[@]}" | median)" \

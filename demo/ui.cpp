@@ -318,8 +318,8 @@ void solverSection(Level& level, FieldErrors& errors) {
         PositionBasedDef pb = def.positionBased;
         const ImGuiID id = ImGui::GetID("solver");
         bool changed = false;
-        // The named presets; a level with Box2D bodies stays precise (the coupling refuses the
-        // game preset's coarse correction).
+        // The named presets (levels with floating bodies name precise: docs/box2d.md, "Which
+        // preset").
         if (ImGui::Button("game")) {
             pb = positionBasedPreset(Quality::Game);
             pb.vorticity = def.positionBased.vorticity;

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Checks that two builds step every shipped level to the same bits: each level (as shipped, with
-# the explicit solver, and at the game quality) is played FRAMES frames by both builds' fluid-run
+# the explicit solver, and at the precise quality) is played FRAMES frames by both builds' fluid-run
 # on THREADS workers, and the saves they write at the end are compared byte for byte. A
 # refactoring that promises bit-identical results runs this against the build before it; with
 # --web the second build is a WebAssembly one (the `web` preset, scripts/web.sh), its fluid-run
@@ -45,8 +45,9 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# The variants: as shipped, the explicit solver, the game quality (the world's settings line
-# rewritten; levels keep their own other settings).
+# The variants: as shipped (most levels at the game quality, the default), the explicit solver,
+# the precise quality (the world's settings line rewritten; levels keep their own other
+# settings).
 variant() { # level-file variant-name -> writes the variant's level file, prints its path
     local level=$1 name=$2 out
     out="$work/levels/$(basename "$level" .json)-$name.json"
@@ -58,11 +59,11 @@ variant() { # level-file variant-name -> writes the variant's level file, prints
             s/, *"(yieldStress|consistency)": *[-+0-9.eE]+//g
             s/"preset": "yoghurt"/"preset": "yoghurt", "yieldStress": 0, "consistency": 0/g' \
             "$level" >"$out" ;;
-    game) # a level that names its quality has it replaced, others get one
+    precise) # a level that names its quality has it replaced, others get one
         if grep -q '"quality"' "$level"; then
-            sed -E 's/"quality": *"[a-z]+"/"quality": "game"/' "$level" >"$out"
+            sed -E 's/"quality": *"[a-z]+"/"quality": "precise"/' "$level" >"$out"
         else
-            sed -E 's/"world": *\{/"world": { "quality": "game",/' "$level" >"$out"
+            sed -E 's/"world": *\{/"world": { "quality": "precise",/' "$level" >"$out"
         fi ;;
     esac
     echo "$out"
@@ -71,7 +72,7 @@ variant() { # level-file variant-name -> writes the variant's level file, prints
 failed=0
 checked=0
 for level in "$root"/levels/*.json; do
-    for name in shipped explicit game; do
+    for name in shipped explicit precise; do
         file=$(variant "$level" "$name")
         tag=$(basename "$file" .json)
         for side in old new; do

@@ -7,7 +7,7 @@
 #   bash scripts/soak.sh        # 1 minute
 #   bash scripts/soak.sh 0.5    # 30 s (what CI runs)
 #   bash scripts/soak.sh 10     # 10 minutes
-#   SOAK_QUALITY=game bash scripts/soak.sh 10   # the same scene with the game preset
+#   SOAK_QUALITY=precise bash scripts/soak.sh 10   # the same scene with the precise preset
 #
 # Builds the release preset's fluid-soak first (run scripts/deps.sh once on a fresh machine).
 set -euo pipefail
@@ -20,7 +20,7 @@ if ! [[ "$minutes" =~ ^[0-9]+([.][0-9]+)?$ ]]; then
     exit 2
 fi
 threads="${SOAK_THREADS:-2}"
-quality="${SOAK_QUALITY:-precise}"
+quality="${SOAK_QUALITY:-game}"
 
 cmake --preset release > /dev/null
 cmake --build --preset release --target fluid-soak

@@ -85,8 +85,9 @@ void splat(std::vector<float>& fill, const Layout& g, float x, float y, float am
 }
 
 // Particle i's coarse move: share times minus the bilinear gradient of the node values (in its
-// cell, with its fractions, as the fill found them at index `filledAs`), at most kCoarseMaxMove of its support, into
-// the correction (cx, cy) and onto its position.
+// cell, with its fractions, as the fill found them at index `filledAs`), at most kCoarseMaxMove
+// of its support, into the correction (cx, cy) and onto its position; share times the
+// potential there into coarseP (the pressure's coarse part).
 void moveParticle(Particles& p, PositionBasedScratch& x, const CoarseGrid& cg, const Layout& g,
                   const float* value, float share, uint32_t i, uint32_t filledAs) {
     const float fx = cg.fx[filledAs], fy = cg.fy[filledAs];
@@ -104,6 +105,8 @@ void moveParticle(Particles& p, PositionBasedScratch& x, const CoarseGrid& cg, c
     }
     x.cx[i] = ux;
     x.cy[i] = uy;
+    x.coarseP[i] = share * ((1.0f - fy) * ((1.0f - fx) * v00 + fx * v10) +
+                            fy * ((1.0f - fx) * v01 + fx * v11));
     p.px[i] = x.ox[i] + ux;
     p.py[i] = x.oy[i] + uy;
 }

@@ -103,6 +103,7 @@ void resetSolve(WorldState& s) {
         x.lambda[i] = 0.0f;
         x.lambdaTotal[i] = 0.0f;
         x.lambdaPrev[i] = 0.0f;
+        x.coarseP[i] = 0.0f;
         x.cx[i] = 0.0f;
         x.cy[i] = 0.0f;
     });
@@ -194,7 +195,8 @@ void densitySweeps(WorldState& s, const PbfConstants& c, uint32_t iterations, bo
 
 // v = (x* - x) / dt, computed as v + (total correction) / dt: a particle no constraint moved
 // keeps its velocity exactly, and no position rounding enters the velocity. Also the pressure the
-// multipliers stand for.
+// multipliers stand for, plus the coarse correction's: its move -share grad psi is the
+// displacement -dt^2 grad p / rho0 of the pressure p = rho0 share psi / dt^2.
 void updateVelocity(WorldState& s, float dt) {
     Particles& p = s.particles;
     const PositionBasedScratch& x = s.pbfScratch;
@@ -202,7 +204,8 @@ void updateVelocity(WorldState& s, float dt) {
     each(s, [&](uint32_t i) {
         p.vx[i] += x.cx[i] * invDt;
         p.vy[i] += x.cy[i] * invDt;
-        p.pressure[i] = -x.lambdaTotal[i] * p.restDensity[i] * p.invMass[i] * invDt * invDt;
+        p.pressure[i] = -x.lambdaTotal[i] * p.restDensity[i] * p.invMass[i] * invDt * invDt +
+                        x.coarseP[i] * p.restDensity[i] * invDt * invDt;
     });
 }
 
@@ -277,7 +280,7 @@ public:
              {&x.extX,   &x.extY,     &x.startX,     &x.startY,     &x.ox,        &x.oy,
               &x.constraint, &x.diagonal, &x.lambda, &x.change,    &x.dx,        &x.dy,
               &x.cx,     &x.cy,       &x.prevX,      &x.prevY,      &x.lambdaTotal, &x.lambdaPrev,
-              &x.vorticity, &x.normalX, &x.normalY,  &x.nextVx,     &x.nextVy,    &p.invRho}) {
+              &x.coarseP,   &x.vorticity, &x.normalX, &x.normalY,  &x.nextVx,     &x.nextVy,    &p.invRho}) {
             channel->resize(p.size());
         }
         const PositionBasedDef& settings = s.def.positionBased;

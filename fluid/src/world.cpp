@@ -871,12 +871,12 @@ std::span<const RemovedEvent> World::removedEvents() const {
 }
 
 PositionBasedDef positionBasedPreset(Quality quality) {
-    PositionBasedDef pb; // the precise preset
-    if (quality == Quality::Game) {
+    PositionBasedDef pb; // the game preset, the default
+    if (quality == Quality::Precise) {
         pb.substeps = 4;
-        pb.iterations = 1;
-        pb.viscosityInterval = 2;
-        pb.coarseCorrection = 0.4f;
+        pb.iterations = 8;
+        pb.viscosityInterval = 1;
+        pb.coarseCorrection = 0.0f;
     }
     return pb;
 }

@@ -86,6 +86,7 @@ struct PositionBasedScratch {
     std::vector<float> prevX, prevY;   // ... and its value one sweep back (Chebyshev)
     std::vector<float> lambdaTotal;    // the multiplier the accelerated corrections stand for
     std::vector<float> lambdaPrev;     // ... and its value one sweep back
+    std::vector<float> coarseP;        // the coarse move's share x potential at the particle (m^2)
     std::vector<float> vorticity;      // the viscosity pass's vorticity, for the surface pass (1/s)
     std::vector<float> normalX, normalY; // its surface normals, for the surface pass (1)
     std::vector<float> nextVx, nextVy; // a viscosity pass's new velocity (m/s), swapped into v

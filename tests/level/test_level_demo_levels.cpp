@@ -9,6 +9,7 @@
 // fluid-tests-level is a fast executable (each case takes well under 5 s in Release).
 #include <catch2/catch.hpp>
 
+#include "compression.h"
 #include "level_support.h"
 #include "test_support.h"
 
@@ -387,13 +388,18 @@ TEST_CASE("big_tank.json: the stress level's particles stay in the tank, sanely 
     CHECK(count >= 900);
     CHECK(count <= 20000);
     const Bounds before = bounds(level.world);
-    float worst = 0.0f, reach = 0.0f;
-    double ms = 0.0;
+    float reach = 0.0f;
+    double ms = 0.0, worst = 0.0;
     const int frames = 150;
+    // Compression from the positions alone (bench/compression.h, as the preset tests read it):
+    // the solver's own reading (Profile::densityErrorMax) is taken before the game preset's
+    // coarse correction and single sweep are done with a sub-step, so it reads about twice
+    // the positions' figure at rest (docs/position_based.md, "Presets").
+    bench::CompressionMeter meter(level.world.spacing(MaterialId{0}));
     for (int f = 0; f < frames; ++f) {
         ms += play(level, 1);
         REQUIRE(countOutside(level.world, -1e-3f, -1e-3f, 2.401f, 1.201f) == 0);
-        worst = std::max(worst, level.world.profile().densityErrorMax);
+        worst = std::max(worst, meter.measure(level.world.positionX(), level.world.positionY()).max);
         reach = std::max(reach, bounds(level.world).x1);
     }
     CHECK(test::allFinite(level.world));
@@ -404,7 +410,7 @@ TEST_CASE("big_tank.json: the stress level's particles stay in the tank, sanely 
         count, frames, level.world.def().workerCount, ms / frames, 100.0 * worst, before.x0,
         before.x1, after.x0, after.x1, reach);
     CHECK(level.world.particleCount() == count);
-    CHECK(worst < 0.15f);
+    CHECK(worst < 0.15);
     // The column broke both ways: the surge reached both walls within 2.5 s.
     CHECK(after.x0 < 0.05f);
     CHECK(reach > 2.2f); // within 0.2 m of the far wall (the surge of 960 particles is low)

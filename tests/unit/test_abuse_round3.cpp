@@ -424,8 +424,8 @@ TEST_CASE("a resting tank at the edge of the position range rests as it does at 
 }
 
 TEST_CASE("one sweep per sub-step needs the coarse correction", "[abuse3][world]") {
-    WorldDef def;
-    def.positionBased.iterations = 1; // the precise preset's coarseCorrection is 0
+    WorldDef def; // the game preset: 1 iteration, with the coarse correction
+    def.positionBased.coarseCorrection = 0.0f;
     CHECK_THROWS_WITH(World(def),
                       "WorldDef: positionBased.iterations = 1 needs the coarse correction, but "
                       "coarseCorrection = 0; use 2 or more iterations, or a coarseCorrection "

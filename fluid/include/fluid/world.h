@@ -53,8 +53,8 @@ struct PositionBasedDef {
     /// this count whatever the frame length, so a 1 s frame at 4 takes 240, a 1/240 s frame
     /// one, and a shorter one carries its time to the next frame (`World::step`); the settings
     /// hold at any frame rate at the same cost per simulated second (`Profile::substeps` reports
-    /// the count taken). Default 4, the `Quality::Precise` preset's (`Quality::Game`: 4 x 1
-    /// iteration). Fewer are faster and
+    /// the count taken). Default 4, the `Quality::Game` preset's (`Quality::Precise` too, with
+    /// 8 iterations). Fewer are faster and
     /// more compressible; a particle moves at most two support radii per sub-step (faster ones
     /// are slowed and counted in `Profile::speedClamped`). Without the coarse correction, below
     /// 3 x 3, 6 x 2 or 8 x 1 a deep tank boils (docs/position_based.md, "Settings"). Above 12
@@ -63,20 +63,21 @@ struct PositionBasedDef {
     uint32_t substeps = 4;
     /// Density-constraint iterations (Jacobi sweeps) per sub-step (unit: count; range
     /// [1, 32], more costs over 50 ms per 2,000-particle frame; 1 only with `coarseCorrection`
-    /// above 0, without it a dam gains energy: docs/levels.md, Corners). Default 8
-    /// (`Quality::Precise`).
-    uint32_t iterations = 8;
+    /// above 0, without it a dam gains energy: docs/levels.md, Corners). Default 1
+    /// (`Quality::Game`, with the coarse correction; `Quality::Precise`: 8).
+    uint32_t iterations = 1;
     /// Sub-steps between runs of viscosity, vorticity confinement and surface tension (unit:
     /// count; range [1, 64]); each run covers the time since the last one, and the frame's last
-    /// sub-step always runs them. Default 1 (every sub-step, `Quality::Precise`); the game
-    /// preset's 2 saves two neighbour passes per skipped sub-step.
-    uint32_t viscosityInterval = 1;
+    /// sub-step always runs them. Default 2 (`Quality::Game`: saves two neighbour passes per
+    /// skipped sub-step); `Quality::Precise` runs them every sub-step (1).
+    uint32_t viscosityInterval = 2;
     /// Share of the coarse-grid density correction applied before the sweeps of each sub-step
     /// (unit: 1; range [0, 1]; 0 turns it off). The sweeps carry pressure about one support
     /// radius each, so a deep tank needs many of them; the coarse correction removes the
     /// large-scale compression (above 5%) in one grid solve, which lets few sweeps hold deep
-    /// water (docs/position_based.md, "Coarse correction"). Default 0 (`Quality::Precise`).
-    float coarseCorrection = 0.0f;
+    /// water (docs/position_based.md, "Coarse correction"). Default 0.4 (`Quality::Game`;
+    /// `Quality::Precise`: 0).
+    float coarseCorrection = 0.4f;
     /// Vorticity confinement strength epsilon (unit: 1; range [0, 1]): the share of a vortex's
     /// rotation speed at one support radius given back per radian turned, when the surface
     /// pass runs every 1/120 s or more often (both presets); longer runs give back
@@ -96,12 +97,14 @@ struct PositionBasedDef {
 /// Named accuracy presets of the position-based solver (`positionBasedPreset`;
 /// docs/position_based.md, "Presets", has their measured compression and cost).
 enum class Quality : uint8_t {
-    /// 4 sub-steps x 1 iteration with the coarse correction (0.4), viscosity and surface
-    /// tension every second sub-step: a tenth of LiquidFun's compression, several times faster
-    /// than `Precise` (figures: docs/position_based.md, "Presets").
+    /// The default (`PositionBasedDef{}`): 4 sub-steps x 1 iteration with the coarse correction
+    /// (0.4), viscosity and surface tension every second sub-step: a 0.5 m tank of water within
+    /// 6.9% of its rest density (1.7% mean), a tenth of LiquidFun's compression, about a
+    /// quarter of `Precise`'s cost (figures: docs/position_based.md, "Presets").
     Game,
-    /// The default (`PositionBasedDef{}`): 4 sub-steps x 8 iterations, viscosity every
-    /// sub-step: 0.7% mean, 2.3% largest compression in the same tank.
+    /// 4 sub-steps x 8 iterations, no coarse correction, viscosity every sub-step: 0.7% mean,
+    /// 2.3% largest compression in the same tank, and the calmest floating Box2D bodies
+    /// (docs/box2d.md, "Which preset").
     Precise,
 };
 
@@ -469,7 +472,8 @@ public:
     std::span<const float> velocityY() const;
     /// Density per slot from the last sub-step (unit: kg/m^3; 0 before the first step).
     std::span<const float> density() const;
-    /// Pressure per slot from the last sub-step (unit: Pa).
+    /// Pressure per slot from the last sub-step (unit: Pa; the position-based solver's: its
+    /// sweeps' and its coarse correction's together).
     std::span<const float> pressure() const;
     /// Deviatoric stress s_xx (= -s_yy) per slot (unit: Pa): the stress a yielding material
     /// (`Material::yieldStress`, `consistency`) holds, at most the yield stress at rest and

@@ -231,7 +231,7 @@ typedef struct fluid_world_def {
     uint32_t worker_count;
 } fluid_world_def;
 
-/// The C++ WorldDef's defaults: position-based, precise preset, one worker. Any thread.
+/// The C++ WorldDef's defaults: position-based, game preset, one worker. Any thread.
 FLUID_C_API fluid_world_def fluid_default_world_def(void);
 
 /// Sets the position-based fields of `def` to a named preset: "game" or "precise" (as a level
