@@ -33,8 +33,10 @@ TEST_CASE("a yield-stress block slumps into a heap that follows h^2 = 2 tau_y d 
     CAPTURE(tauY);
     Stopwatch sw("yield heap, tau_y " + std::to_string(int(tauY)));
     // The stress pass's heap (the figures above are its own); the shear constraint's, the
-    // default, is test_shear_constraint.cpp's.
-    WorldDef def = physicsDef();
+    // default, is test_shear_constraint.cpp's. The precise preset: at the game preset the
+    // stress pass's heaps creep (docs/position_based.md, "Yield stress"; here 0.68 of the law
+    // on average, 0.62 off it at worst).
+    WorldDef def = preciseDef();
     def.positionBased.shearConstraint = 0;
     World world(def);
     Material m = yoghurt();
