@@ -276,11 +276,11 @@ public:
         WorldState& s = m_s;
         Particles& p = m_p;
         PositionBasedScratch& x = s.pbfScratch;
-        for (auto* channel :
-             {&x.extX,   &x.extY,     &x.startX,     &x.startY,     &x.ox,        &x.oy,
-              &x.constraint, &x.diagonal, &x.lambda, &x.change,    &x.dx,        &x.dy,
-              &x.cx,     &x.cy,       &x.prevX,      &x.prevY,      &x.lambdaTotal, &x.lambdaPrev,
-              &x.coarseP,   &x.vorticity, &x.normalX, &x.normalY,  &x.nextVx,     &x.nextVy,    &p.invRho}) {
+        for (auto* channel : {&x.extX,    &x.extY,        &x.startX,     &x.startY,  &x.ox,
+                              &x.oy,      &x.constraint,  &x.diagonal,   &x.lambda,  &x.change,
+                              &x.dx,      &x.dy,          &x.cx,         &x.cy,      &x.prevX,
+                              &x.prevY,   &x.lambdaTotal, &x.lambdaPrev, &x.coarseP, &x.vorticity,
+                              &x.normalX, &x.normalY,     &x.nextVx,     &x.nextVy,  &p.invRho}) {
             channel->resize(p.size());
         }
         const PositionBasedDef& settings = s.def.positionBased;

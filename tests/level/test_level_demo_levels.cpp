@@ -399,7 +399,8 @@ TEST_CASE("big_tank.json: the stress level's particles stay in the tank, sanely 
     for (int f = 0; f < frames; ++f) {
         ms += play(level, 1);
         REQUIRE(countOutside(level.world, -1e-3f, -1e-3f, 2.401f, 1.201f) == 0);
-        worst = std::max(worst, meter.measure(level.world.positionX(), level.world.positionY()).max);
+        worst =
+            std::max(worst, meter.measure(level.world.positionX(), level.world.positionY()).max);
         reach = std::max(reach, bounds(level.world).x1);
     }
     CHECK(test::allFinite(level.world));
