@@ -165,15 +165,9 @@ int run(const Options& opt) {
         const auto t0 = std::chrono::steady_clock::now();
         coupling.step(world, kFrame);
         seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        if (f >= frames - waterWindow && world.particleCount() > 0) {
-            const auto vx = world.velocityX(), vy = world.velocityY();
-            double sum = 0.0;
-            for (uint32_t i = 0; i < world.particleCount(); ++i) {
-                const double v = std::hypot(double(vx[i]), double(vy[i]));
-                sum += v;
-                waterMax = std::max(waterMax, v);
-            }
-            waterMean += sum / world.particleCount() / waterWindow;
+        if (f >= frames - waterWindow) {
+            waterMean += meanSpeed(world) / waterWindow;
+            waterMax = std::max(waterMax, double(maxSpeed(world)));
         }
         if (body == nullptr) {
             continue;

@@ -125,6 +125,16 @@ inline float maxSpeed(const World& world) {
     return std::sqrt(v2);
 }
 
+/// Mean particle speed (unit: m/s; 0 without particles).
+inline double meanSpeed(const World& world) {
+    const auto vx = world.velocityX(), vy = world.velocityY();
+    double sum = 0.0;
+    for (uint32_t i = 0; i < world.particleCount(); ++i) {
+        sum += std::hypot(double(vx[i]), double(vy[i]));
+    }
+    return world.particleCount() > 0 ? sum / world.particleCount() : 0.0;
+}
+
 /// Axis-aligned bounds of the particles (optionally of one material only).
 struct Bounds {
     float x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;

@@ -44,14 +44,8 @@ Rest settle(Quality quality, bool doubled) {
         if (f < frames - window) {
             continue;
         }
-        const auto vx = world.velocityX(), vy = world.velocityY();
-        double sum = 0.0;
-        for (uint32_t i = 0; i < world.particleCount(); ++i) {
-            const double v = std::hypot(double(vx[i]), double(vy[i]));
-            sum += v;
-            r.largest = std::max(r.largest, v);
-        }
-        r.mean += sum / world.particleCount() / window;
+        r.mean += meanSpeed(world) / window;
+        r.largest = std::max(r.largest, double(maxSpeed(world)));
     }
     REQUIRE(allFinite(world));
     REQUIRE(world.particleCount() == cols * rows);
