@@ -263,8 +263,7 @@ TEST_CASE("a dynamic body lighter than kMinBodyMass or kMinBodyInertia is refuse
 
 TEST_CASE("a body created mid-run pushes fluid, a destroyed one disappears", "[box2d]") {
     // The precise preset: the game preset's coarse solve pushes only dynamic bodies, so a
-    // kinematic plate's report misses the coarse share of its buoyancy (-8.4 N against 15.2 N;
-    // docs/box2d.md, "Which preset").
+    // kinematic plate's report misses its share of the buoyancy (docs/box2d.md, "Which preset").
     Pool pool(preciseDef());
     b2Body* anchor = addBox(pool.physics, b2_staticBody, {0.05f, 0.45f}, 0.02f, 0.02f, 0.0f);
     Coupling coupling(pool.world, pool.physics);

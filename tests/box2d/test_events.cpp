@@ -129,8 +129,8 @@ TEST_CASE("the force on a static floor under a resting tank is the fluid's weigh
     // container's own floor lies 0.1 m lower, out of the fluid's reach, so the Box2D floor
     // carries the fluid alone. The side walls (the container's) can only carry weight through
     // viscous shear, which vanishes at rest. The precise preset: the game preset's coarse solve
-    // pushes only dynamic bodies, so a static floor's report reads the sweeps' share of the
-    // weight alone (26 N of 102; docs/box2d.md, "Which preset").
+    // pushes only dynamic bodies, so a static floor's report misses its share of the weight
+    // (docs/box2d.md, "Which preset").
     World world(preciseDef());
     const MaterialId water = world.addMaterial(fluid::water());
     const float s = world.spacing(water);

@@ -129,10 +129,8 @@ WallReading readWalls(const World& world, MaterialId water) {
 TEST_CASE("walls: next to a concave polygon and a circle the fluid reads the interior's density",
           "[slow][walls]") {
     Stopwatch watch("near-wall density, position-based");
-    // The precise preset: with the game preset the water presses onto the curved walls (72% of
-    // the particles within a spacing of the bowl, 21% of the post's, closer than 0.05 spacing,
-    // where 5% is allowed) and leaves a 2.2 cm gap at the post: a limit of the game preset at
-    // curved walls (docs/position_based.md, "Presets").
+    // The precise preset: the game preset presses the water onto curved walls and leaves a gap
+    // at the post (docs/position_based.md, "Presets").
     World world(preciseDef());
     const MaterialId water = world.addMaterial(fluid::water());
     const float s = world.spacing(water);

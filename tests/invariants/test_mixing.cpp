@@ -56,8 +56,8 @@ TEST_CASE("a yoghurt blob dropped into water: both materials interact",
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
     CAPTURE(solverName(solver));
     Stopwatch sw(std::string("yoghurt into water 1.2 s, ") + solverName(solver));
-    // The precise preset: with the game preset's single sweep the yoghurt's and the water's
-    // particles come within 0.18 spacing of each other at the impact (0.3 asked).
+    // The precise preset: the game preset's single sweep lets the two materials' particles come
+    // closer than asked at the impact (docs/position_based.md, "Presets").
     World world(preciseDef(solver));
     const MaterialId w = world.addMaterial(water()); // first: the walls are sampled at its spacing
     const MaterialId y = world.addMaterial(forSolver(yoghurt(), solver));

@@ -34,8 +34,7 @@ TEST_CASE("a yield-stress block slumps into a heap that follows h^2 = 2 tau_y d 
     Stopwatch sw("yield heap, tau_y " + std::to_string(int(tauY)));
     // The stress pass's heap (the figures above are its own); the shear constraint's, the
     // default, is test_shear_constraint.cpp's. The precise preset: at the game preset the
-    // stress pass's heaps creep (docs/position_based.md, "Yield stress"; here 0.68 of the law
-    // on average, 0.62 off it at worst).
+    // stress pass's heaps creep (docs/position_based.md, "Presets" and "Yield stress").
     WorldDef def = preciseDef();
     def.positionBased.shearConstraint = 0;
     World world(def);
@@ -138,8 +137,8 @@ TEST_CASE("thick yoghurt thrown at a wall sticks to it, water runs down",
           "[slow][invariants][yield]") {
     const bool yielding = GENERATE(true, false);
     CAPTURE(yielding);
-    // The precise preset: with the game preset 15 of 32 yoghurt particles stay stuck (16
-    // asked).
+    // The precise preset: the game preset holds less of the paste on the wall
+    // (docs/position_based.md, "Presets").
     World world(preciseDef());
     Material thick = yoghurt();
     thick.yieldStress = 300.0f;

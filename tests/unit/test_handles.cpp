@@ -70,9 +70,9 @@ TEST_CASE("add and remove particles, handles go stale", "[unit][handles]") {
 TEST_CASE("handles follow their particles through steps", "[unit][handles]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
     CAPTURE(solverName(solver));
-    // The precise preset: with the game preset's coarse correction and no wall in reach, the
-    // blob's coarse moves keep its momentum by taking their mean off every particle, the lone
-    // one too (its speed off by 1.7e-4 m/s after a sub-step), which is not what this tests.
+    // The precise preset: with no wall in reach the game preset's coarse correction keeps the
+    // momentum by taking its moves' mean off every particle, the lone one too
+    // (docs/position_based.md, "Presets").
     WorldDef def;
     def.positionBased = positionBasedPreset(Quality::Precise);
     def.solver = solver;

@@ -14,10 +14,9 @@ TEST_CASE("a fresh resting block of each preset reads its rest density", "[unit]
     CAPTURE(solverName(solver));
     for (const Material& preset : {water(), yoghurt()}) {
         CAPTURE(preset.name);
-        // The precise preset: the density constraint alone. The game preset's coarse grid (2.4
-        // spacings a cell) reads a fresh lattice's bilinear fill between 0.94 and 1.085 of full,
-        // and where it passes the 5% dead band its correction moves the block at 1.6 cm/s in
-        // the first sub-step.
+        // The precise preset: the density constraint alone. The game preset's coarse grid reads
+        // a lattice's bilinear fill past its dead band and moves the block
+        // (docs/position_based.md, "Presets").
         WorldDef def;
         def.positionBased = positionBasedPreset(Quality::Precise);
         def.solver = solver;

@@ -40,9 +40,8 @@ TEST_CASE("leaks: a crate dropped from 2 m, a spinning paddle and a 5 m/s pusher
           "particle out for 10 s",
           "[slow][box2d][leaks]") {
     Stopwatch sw("Box2D leaks, 600 frames");
-    // The precise preset, as the levels with dynamic bodies: with the game preset 20 particles
-    // end a frame inside a body and the pusher's impact reads 4.25 m/s (docs/box2d.md, "Which
-    // preset").
+    // The precise preset, as the levels with dynamic bodies: the game preset leaves particles
+    // inside a body (docs/box2d.md, "Which preset").
     World world(preciseDef());
     const MaterialId water = world.addMaterial(fluid::water());
     const float top = 2.4f;

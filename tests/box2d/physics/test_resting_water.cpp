@@ -58,13 +58,11 @@ TEST_CASE("resting water: a 0.2 m tank comes to rest, its floor and walls single
           "[slow][box2d][rest]") {
     const bool doubled = GENERATE(false, true);
     CAPTURE(doubled);
-    // The precise preset meets the target: under 0.5 cm/s on average and 3 cm/s at most
-    // (measured 0.38 / 1.9 cm/s single, 0.39 / 2.1 cm/s doubled).
+    // The precise preset meets the target: under 0.5 cm/s on average and 3 cm/s at most.
     const Rest precise = settle(Quality::Precise, doubled);
-    // The game preset (the default) does not yet: its single sweep keeps the water moving at
-    // 2.15 cm/s, up to 7.6 (single), and 2.35 cm/s with jets up to 38 cm/s at the doubled
-    // walls. Held here against getting worse by more than a quarter, until the fix
-    // (docs/position_based.md, "Resting water") lands and this asserts the target.
+    // The game preset (the default) does not yet: held against getting worse than its shipped
+    // figures by more than a quarter until a fix lands (docs/position_based.md, "Resting
+    // water", has both presets' figures).
     const Rest game = settle(Quality::Game, doubled);
     std::printf("[measure] resting water 0.2 m%s, seconds 8-10: precise mean %.4f largest %.4f "
                 "m/s; game mean %.4f largest %.4f m/s\n",

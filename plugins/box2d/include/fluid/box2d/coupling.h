@@ -196,12 +196,10 @@ void registerCouplingPlugin(Registry& registry);
 /// body is an unknown of the world's coarse pressure solve (`BoundaryPlugin::rigidBodies`). After
 /// each round the body takes the solve's velocity change at once (no relaxation: the solve
 /// already moved the fluid with it) and is moved by its displacement (`SetTransform`), and its
-/// report's force includes that impulse. Which preset holds floating bodies still: the precise
-/// one. The game preset (the world's default) floats them within 3.8 mm of Archimedes' draft
-/// but they bob at 0.8-2.5 cm/s and rock at up to 0.11 rad/s (precise: within 1.9 mm, 0.3-1.5
-/// cm/s), and static and kinematic bodies' reports miss the coarse solve's share of the push
-/// (a static floor under 0.2 m of water reads 26 N of 102); scenes with floating bodies name
-/// the precise preset (docs/box2d.md, "Which preset").
+/// report's force includes that impulse. The precise preset holds floating bodies stiller than
+/// the game preset (the world's default), and the game preset's static and kinematic bodies'
+/// reports miss the coarse solve's push: scenes with floating bodies name precise (figures:
+/// docs/box2d.md, "Which preset").
 ///
 /// Submerged area: each circle and polygon fixture carries points along its outline at the
 /// world's sample spacing; a point is wet when a particle centre lies within 0.75 spacing of it.
