@@ -286,6 +286,7 @@ void checkSolverState(const detail::WorldState& s) {
 } // namespace
 
 void World::save(std::ostream& out) const {
+    m_state->checkIdle("World::save");
     const detail::WorldState& s = *m_state;
     Out o;
     // Settings (the task hook is the host's, not the world's).

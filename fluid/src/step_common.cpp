@@ -90,12 +90,45 @@ void refreshConstants(WorldState& s) {
     }
 }
 
+namespace {
+
+// A boundary plugin's samples as its prepare left them: four arrays of one length, every value
+// finite. Anything else refuses the step (before any particle moved: World::step puts the
+// emitters back), naming the plugin and the first bad sample.
+void checkSamples(const BoundaryPlugin& plugin, size_t index) {
+    const BoundarySamples& b = plugin.samples();
+    const std::string who = "World::step: boundary plugin " + std::to_string(index) + " ('" +
+                            std::string(plugin.type()) + "'): ";
+    const size_t n = b.px.size();
+    if (b.py.size() != n || b.vx.size() != n || b.vy.size() != n) {
+        throw Error(who + "its samples' arrays have different lengths (px " + std::to_string(n) +
+                    ", py " + std::to_string(b.py.size()) + ", vx " +
+                    std::to_string(b.vx.size()) + ", vy " + std::to_string(b.vy.size()) +
+                    "); lay samples with BoundarySamples::add");
+    }
+    for (size_t i = 0; i < n; ++i) {
+        if (std::isfinite(b.px[i]) && std::isfinite(b.py[i]) && std::isfinite(b.vx[i]) &&
+            std::isfinite(b.vy[i])) {
+            continue;
+        }
+        std::ostringstream text;
+        text << who << "sample " << i << " at (" << b.px[i] << ", " << b.py[i]
+             << ") with velocity (" << b.vx[i] << ", " << b.vy[i]
+             << ") is not finite; a boundary plugin's prepare must lay finite samples";
+        throw Error(text.str());
+    }
+}
+
+} // namespace
+
 void gatherSamples(WorldState& s, const StepContext& context) {
     Samples& out = s.samples;
     out.pluginBegin.clear();
     size_t total = 0;
-    for (const auto& plugin : s.boundaries) {
+    for (size_t k = 0; k < s.boundaries.size(); ++k) {
+        const auto& plugin = s.boundaries[k];
         plugin->prepare(context);
+        checkSamples(*plugin, k);
         out.pluginBegin.push_back(static_cast<uint32_t>(total));
         total += plugin->samples().size();
     }
@@ -388,12 +421,51 @@ void projectBoundaries(WorldState& s, float dt, float prevTimeInStep, float time
     // Solids, then walls, then containers (BoundaryPlugin::role), each in the order added.
     for (const BoundaryRole role :
          {BoundaryRole::Solid, BoundaryRole::Wall, BoundaryRole::Container}) {
-        for (const auto& plugin : s.boundaries) {
+        for (size_t index = 0; index < s.boundaries.size(); ++index) {
+            BoundaryPlugin* const plugin = s.boundaries[index].get();
             if (plugin->role() != role) {
                 continue;
             }
-            parallelFor(s.tasks, p.size(), 1024,
-                        [&](uint32_t b, uint32_t e, uint32_t) { plugin->project(context, b, e); });
+            // A position or velocity the plugin left non-finite is undone: that particle keeps
+            // what it had before this plugin's call (docs/plugins.md, "Output that is not
+            // finite"). Each range keeps its own copy, so the check costs one pass over it.
+            std::atomic<uint32_t> undone{0};
+            parallelFor(s.tasks, p.size(), 1024, [&](uint32_t b, uint32_t e, uint32_t) {
+                thread_local std::vector<float> keep;
+                keep.resize(4 * size_t(e - b));
+                float* const k = keep.data();
+                for (uint32_t i = b; i < e; ++i) {
+                    float* const q = k + 4 * size_t(i - b);
+                    q[0] = p.px[i];
+                    q[1] = p.py[i];
+                    q[2] = p.vx[i];
+                    q[3] = p.vy[i];
+                }
+                plugin->project(context, b, e);
+                uint32_t bad = 0;
+                for (uint32_t i = b; i < e; ++i) {
+                    if (std::isfinite(p.px[i]) && std::isfinite(p.py[i]) &&
+                        std::isfinite(p.vx[i]) && std::isfinite(p.vy[i])) {
+                        continue;
+                    }
+                    const float* const q = k + 4 * size_t(i - b);
+                    p.px[i] = q[0];
+                    p.py[i] = q[1];
+                    p.vx[i] = q[2];
+                    p.vy[i] = q[3];
+                    ++bad;
+                }
+                if (bad > 0) {
+                    undone.fetch_add(bad, std::memory_order_relaxed);
+                }
+            });
+            const uint32_t count = undone.load(std::memory_order_relaxed);
+            if (count > 0) {
+                s.profile.boundaryDropped += count;
+                if (s.profile.boundaryDroppedPlugin < 0) {
+                    s.profile.boundaryDroppedPlugin = int32_t(index);
+                }
+            }
         }
     }
 }
@@ -453,9 +525,13 @@ IntegrateStats integrate(WorldState& s, const std::vector<float>& ax, const std:
                 float vy = p.vy[i] + dt * ayi;
                 const float v2 = vx * vx + vy * vy;
                 if (v2 > speedCap * speedCap) {
-                    const float scale = speedCap / std::sqrt(v2);
-                    vx *= scale;
-                    vy *= scale;
+                    // In double: a huge finite acceleration (a force plugin's 1e30 m/s^2) makes
+                    // v2 overflow a float, and a scale of cap / inf = 0 would stop the particle
+                    // dead instead of capping it along its direction.
+                    const double w2 = double(vx) * double(vx) + double(vy) * double(vy);
+                    const double scale = double(speedCap) / std::sqrt(w2);
+                    vx = float(double(vx) * scale);
+                    vy = float(double(vy) * scale);
                     ++st.clamped;
                 }
                 p.vx[i] = vx;

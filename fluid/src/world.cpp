@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <new>
 #include <sstream>
@@ -337,9 +339,48 @@ World::World(const WorldDef& def) : m_state(std::make_unique<detail::WorldState>
     }
 }
 
-World::~World() = default;
-World::World(World&&) noexcept = default;
-World& World::operator=(World&&) noexcept = default;
+namespace {
+
+// A world destroyed or overwritten from inside its own step (a plugin's hook deleting the world
+// that runs it): the step would go on in freed memory. Neither can refuse (no exception leaves
+// a destructor or a noexcept move), so the process stops with the rule, not a crash elsewhere.
+void stopIfStepping(const detail::WorldState* s, const char* function) {
+    if (s != nullptr && s->stepping) {
+        std::fprintf(stderr,
+                     "fluid: %s called during the world's own World::step (from a plugin's hook "
+                     "or a task): a world is destroyed or replaced only between its steps\n",
+                     function);
+        std::abort();
+    }
+}
+
+} // namespace
+
+World::~World() {
+    stopIfStepping(m_state.get(), "World::~World");
+}
+World::World(World&& other) noexcept : m_state(std::move(other.m_state)) {
+    stopIfStepping(m_state.get(), "World::World(World&&)");
+}
+World& World::operator=(World&& other) noexcept {
+    stopIfStepping(m_state.get(), "World::operator=(World&&)");
+    stopIfStepping(other.m_state.get(), "World::operator=(World&&)");
+    m_state = std::move(other.m_state);
+    return *this;
+}
+
+namespace detail {
+
+void WorldState::checkIdle(const char* function) const {
+    if (stepping) {
+        throw Error(std::string(function) +
+                        ": called during the world's own step (from a plugin's hook or a task); a "
+                        "world is changed, saved or stepped only between its steps",
+                    ErrorCode::WrongState);
+    }
+}
+
+} // namespace detail
 
 namespace {
 // The explicit solver steps Newtonian materials only.
@@ -395,6 +436,7 @@ std::span<const Field<EmitterDef>> emitterFields() {
 }
 
 MaterialId World::addMaterial(const Material& material) {
+    m_state->checkIdle("World::addMaterial");
     validate(material);
     checkSolverTakes(m_state->def, material, "World::addMaterial");
     checkSpacing(m_state->def, material, "World::addMaterial");
@@ -407,6 +449,7 @@ MaterialId World::addMaterial(const Material& material) {
 }
 
 void World::setMaterial(MaterialId id, const Material& material) {
+    m_state->checkIdle("World::setMaterial");
     (void)this->material(id);
     validate(material);
     checkSolverTakes(m_state->def, material, "World::setMaterial");
@@ -453,6 +496,7 @@ uint32_t World::materialCount() const {
 }
 
 ParticleHandle World::addParticle(glm::vec2 position, glm::vec2 velocity, MaterialId materialId) {
+    m_state->checkIdle("World::addParticle");
     checkVec("World::addParticle", "position", position);
     checkVec("World::addParticle", "velocity", velocity);
     (void)material(materialId);
@@ -466,6 +510,7 @@ ParticleHandle World::addParticle(glm::vec2 position, glm::vec2 velocity, Materi
 }
 
 uint32_t World::spawnBlob(const BlobDef& blob, uint32_t* insideSolids) {
+    m_state->checkIdle("World::spawnBlob");
     const Material& mat = material(blob.material);
     checkVec("spawnBlob", "velocity", blob.velocity);
     checkLifetime("spawnBlob: ", blob.lifetime);
@@ -562,6 +607,7 @@ uint32_t World::placeBlob(const BlobDef& blob, glm::vec2 lo, glm::vec2 hi, float
 }
 
 void World::removeParticle(ParticleHandle handle) {
+    m_state->checkIdle("World::removeParticle");
     m_state->removeAt(m_state->checkedIndex(handle, "World::removeParticle"));
 }
 
@@ -615,6 +661,7 @@ glm::vec2 World::velocity(ParticleHandle handle) const {
 }
 
 void World::setVelocity(ParticleHandle handle, glm::vec2 velocity) {
+    m_state->checkIdle("World::setVelocity");
     const uint32_t i = m_state->checkedIndex(handle, "World::setVelocity");
     checkVec("World::setVelocity", "velocity", velocity);
     m_state->particles.vx[i] = velocity.x;
@@ -624,6 +671,7 @@ void World::setVelocity(ParticleHandle handle, glm::vec2 velocity) {
 }
 
 ForcePlugin& World::addForce(std::unique_ptr<ForcePlugin> plugin) {
+    m_state->checkIdle("World::addForce");
     if (!plugin) {
         throw Error("World::addForce: null plugin");
     }
@@ -632,6 +680,7 @@ ForcePlugin& World::addForce(std::unique_ptr<ForcePlugin> plugin) {
 }
 
 BoundaryPlugin& World::addBoundary(std::unique_ptr<BoundaryPlugin> plugin) {
+    m_state->checkIdle("World::addBoundary");
     if (!plugin) {
         throw Error("World::addBoundary: null plugin");
     }
@@ -646,7 +695,12 @@ std::span<const std::unique_ptr<BoundaryPlugin>> World::boundaries() const {
     return m_state->boundaries;
 }
 
+bool World::stepping() const {
+    return m_state->stepping;
+}
+
 void World::step(float frameDt) {
+    m_state->checkIdle("World::step");
     checkFrameDt("World::step", frameDt);
     if (m_state->materials.empty()) {
         throw Error("World::step: the world has no material; call addMaterial first");
@@ -691,9 +745,17 @@ void World::step(float frameDt) {
     // A plugin's prepare hook may throw (a bad shape, a user plugin's own check) after the
     // emitters ran: keep what emission changes, so that the world can be put back.
     const detail::EmissionUndo undo(s);
+    struct Stepping { // s.stepping while the plugins' hooks and the tasks run
+        detail::WorldState& state;
+        explicit Stepping(detail::WorldState& w) : state(w) { state.stepping = true; }
+        ~Stepping() { state.stepping = false; }
+        Stepping(const Stepping&) = delete;
+        Stepping& operator=(const Stepping&) = delete;
+    };
     uint32_t blocked = 0, skipped = 0;
     uint32_t emitted = 0;
     try {
+        const Stepping stepping(s);
         emitted = detail::emitParticles(s, frameDt, blocked, skipped);
         switch (s.def.solver) {
         case Solver::PositionBased:
@@ -717,6 +779,7 @@ void World::step(float frameDt) {
 }
 
 void World::setLifetime(ParticleHandle handle, float seconds) {
+    m_state->checkIdle("World::setLifetime");
     const uint32_t i = m_state->checkedIndex(handle, "World::setLifetime");
     checkLifetime("World::setLifetime: ", seconds);
     m_state->particles.expiry[i] = detail::expiryTime(m_state->time, seconds);
@@ -780,6 +843,7 @@ void World::validateEmitter(const EmitterDef& def, const char* function) const {
 }
 
 EmitterId World::addEmitter(const EmitterDef& def) {
+    m_state->checkIdle("World::addEmitter");
     validateEmitter(def, "World::addEmitter");
     detail::EmitterState e;
     e.def = def;
@@ -789,6 +853,7 @@ EmitterId World::addEmitter(const EmitterDef& def) {
 }
 
 void World::setEmitter(EmitterId id, const EmitterDef& def) {
+    m_state->checkIdle("World::setEmitter");
     const uint32_t i = checkedId(id, m_state->emitters.size(), "World::setEmitter", "emitter",
                                  m_state->tag.value());
     validateEmitter(def, "World::setEmitter");
@@ -818,6 +883,7 @@ uint32_t World::emitterCount() const {
 }
 
 DrainId World::addDrain(const DrainDef& def) {
+    m_state->checkIdle("World::addDrain");
     validate(def.shape, "World::addDrain");
     if (def.onlyMaterial) {
         (void)material(def.material);
@@ -836,6 +902,7 @@ uint32_t World::drainCount() const {
 }
 
 SensorId World::addSensor(const SensorDef& def) {
+    m_state->checkIdle("World::addSensor");
     validate(def.shape, "World::addSensor");
     m_state->sensors.push_back(def);
     // The new sensor's entries are zeros until the next step measures; the others keep theirs.
@@ -937,6 +1004,7 @@ uint32_t dueSubsteps(double due, double h) {
 } // namespace detail
 
 void World::setPositionBased(const PositionBasedDef& settings) {
+    m_state->checkIdle("World::setPositionBased");
     validatePositionBased(settings, "World::setPositionBased: ");
     m_state->def.positionBased = settings;
 }

@@ -347,6 +347,13 @@ struct WorldState {
     std::vector<RemovedEvent> removed;         // the last step's removals
 
     Profile profile;
+    // True while World::step runs: calls that change the world refuse (checkIdle), so that a
+    // plugin's hook calling back into the world that runs it cannot reallocate what the step
+    // is iterating over, nest a second step, or destroy the world under itself.
+    bool stepping = false;
+    // Throws fluid::Error (ErrorCode::WrongState) "<function>: called during this world's own
+    // step ..." while `stepping`.
+    void checkIdle(const char* function) const;
     StageProbe stageProbe; // tests only: see StageProbe
     double time = 0.0;
     // Position-based: frame time passed to World::step that no sub-step has simulated yet (s, in

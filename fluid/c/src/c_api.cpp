@@ -397,10 +397,13 @@ fluid_status fluid_world_create(const fluid_world_def* def, fluid_world** world)
     });
 }
 
-void fluid_world_destroy(fluid_world* world) {
-    if (world != nullptr && world->owned != nullptr) {
-        delete world;
-    }
+fluid_status fluid_world_destroy(fluid_world* world) {
+    return guard(FLUID_ERROR_REFUSED, [&] {
+        if (world != nullptr && world->owned != nullptr) {
+            refuseWhileStepping(*world->world, "fluid_world_destroy");
+            delete world;
+        }
+    });
 }
 
 fluid_status fluid_world_step(fluid_world* world, float frame_dt) {

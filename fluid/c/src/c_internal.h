@@ -67,6 +67,17 @@ inline const World& worldOf(const fluid_world* world, const char* function) {
     return *world->world;
 }
 
+/// Throws Failure(FLUID_ERROR_REFUSED) when `world` is inside its own step (a C plugin's
+/// callback destroying the world that runs it).
+inline void refuseWhileStepping(const World& world, const char* function) {
+    if (world.stepping()) {
+        throw Failure{FLUID_ERROR_REFUSED,
+                      std::string(function) +
+                          ": called during the world's own step (from a plugin's callback); a "
+                          "world is destroyed only between its steps"};
+    }
+}
+
 /// Conversions between the C structs and the C++ ones.
 inline glm::vec2 toVec(fluid_vec2 v) { return {v.x, v.y}; }
 inline fluid_vec2 toC(glm::vec2 v) { return {v.x, v.y}; }
@@ -102,7 +113,9 @@ template <class Body> fluid_status guard(fluid_status status, Body&& body) noexc
     } catch (const Error& e) {
         const std::string_view message = e.what();
         fluid_status s = status;
-        if (dynamic_cast<const LevelError*>(&e) != nullptr) {
+        if (e.code() == ErrorCode::WrongState) {
+            s = FLUID_ERROR_REFUSED; // a call from inside the world's own step
+        } else if (dynamic_cast<const LevelError*>(&e) != nullptr) {
             s = FLUID_ERROR_BAD_FILE;
         } else if (message.find("cannot open") != std::string_view::npos ||
                    message.find("cannot read '") != std::string_view::npos ||

@@ -137,7 +137,14 @@ fluid_status fluid_level_read_save(const void* data, size_t size, const char* fi
     });
 }
 
-void fluid_level_destroy(fluid_level* level) { delete level; }
+fluid_status fluid_level_destroy(fluid_level* level) {
+    return guard(FLUID_ERROR_REFUSED, [&] {
+        if (level != nullptr) {
+            refuseWhileStepping(level->level.world, "fluid_level_destroy");
+            delete level;
+        }
+    });
+}
 
 fluid_status fluid_level_step(fluid_level* level) {
     return guard(FLUID_ERROR_REFUSED, [&] {

@@ -249,6 +249,14 @@ struct Profile {
     /// The first force plugin, by its index in `World::forces()`, whose contribution was
     /// dropped during the step (unit: index; -1 for none).
     int32_t forceDroppedPlugin = -1;
+    /// Particles to which a boundary plugin's `project` gave a non-finite position or velocity:
+    /// each kept what it had before that plugin's call, the other plugins' moves kept (unit:
+    /// count, summed over calls and plugins; should be 0). Not saved: a loaded world reads 0
+    /// until it steps.
+    uint32_t boundaryDropped = 0;
+    /// The first boundary plugin, by its index in `World::boundaries()`, whose `project` was
+    /// undone for some particle during the step (unit: index; -1 for none). Not saved.
+    int32_t boundaryDroppedPlugin = -1;
     /// Particles found at exactly the position of another (projected onto the same wall
     /// corner, or spawned there) and moved 1/64 support off it (unit: count, summed over
     /// sub-steps).
@@ -430,6 +438,10 @@ public:
     /// `fluid::Error` naming the field and leaves them unchanged). Takes effect at the next step.
     void setPositionBased(const PositionBasedDef& settings);
 
+    /// True while `step` runs, as seen from a plugin's hook or a task during it: the calls that
+    /// change, save or step the world then throw `fluid::Error` with `ErrorCode::WrongState`
+    /// (docs/plugins.md, "Calling back into the world"). Stepping thread.
+    bool stepping() const;
     /// Advances the world by one game frame (unit: s; finite, range (0, 1]; typically 1/60; it
     /// may change from frame to frame). The position-based solver steps in sub-steps of a fixed
     /// length, `substepLength()` (1/240 s at the default 4 per 1/60 s): the frame simulates the

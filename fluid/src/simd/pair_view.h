@@ -42,7 +42,8 @@ struct GridView {
 /// keeps its own copy (see the file comment), and grid.h sorts with the same one.
 static inline int64_t gridCell(float v, float invCell) {
     const double c = __builtin_floor(double(v) * double(invCell));
-    return int64_t(c < -1.0e15 ? -1.0e15 : (c > 1.0e15 ? 1.0e15 : c));
+    // Clamped so that the cast is defined; NaN (which no comparison holds for) takes the low end.
+    return int64_t(c >= -1.0e15 ? (c <= 1.0e15 ? c : 1.0e15) : -1.0e15);
 }
 
 /// Bucket of cell (cx, cy) in a hashed grid of mask + 1 buckets.

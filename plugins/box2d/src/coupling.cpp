@@ -209,6 +209,14 @@ std::span<const ContactEvent> Coupling::contacts() const {
 }
 
 void Coupling::checkWorld(const World& world, const char* function) const {
+    if (world.stepping()) {
+        // A plugin's hook (or a Box2D callback it runs) stepping the coupling again: the nested
+        // round would move the bodies and the fluid twice in one frame.
+        throw Error(std::string("fluid::box2d::Coupling::") + function +
+                        ": called during the world's own step (from a plugin's hook); the "
+                        "coupling steps only between the world's steps",
+                    ErrorCode::WrongState);
+    }
     for (const auto& plugin : world.boundaries()) {
         if (plugin.get() == m_boundary) {
             return;

@@ -250,8 +250,10 @@ FLUID_C_API fluid_status fluid_world_def_set(fluid_world_def* def, const char* f
 FLUID_C_API fluid_status fluid_world_create(const fluid_world_def* def, fluid_world** world);
 
 /// Destroys a world made by fluid_world_create or fluid_world_load, with its plugins (a C
-/// plugin's destroy callback runs). NULL is fine. A level's world is the level's: not this.
-FLUID_C_API void fluid_world_destroy(fluid_world* world);
+/// plugin's destroy callback runs). NULL is fine (FLUID_OK). A level's world is the level's:
+/// not this. Called from inside the world's own step (a plugin's callback), it destroys nothing
+/// and returns FLUID_ERROR_REFUSED: destroy the world after fluid_world_step returns.
+FLUID_C_API fluid_status fluid_world_destroy(fluid_world* world);
 
 /// Steps the world by one frame of `frame_dt` (unit: s; (0, 1]): emitters, forces, the
 /// solver's sub-steps, boundaries, drains, sensors and events.
@@ -899,8 +901,9 @@ FLUID_C_API fluid_status fluid_level_parse(const char* text, size_t size, const 
                                            const fluid_level_options* options,
                                            fluid_level** level);
 
-/// Destroys a level with its world and bodies. NULL is fine.
-FLUID_C_API void fluid_level_destroy(fluid_level* level);
+/// Destroys a level with its world and bodies. NULL is fine (FLUID_OK). Called from inside the
+/// level's own step (a plugin's callback), it destroys nothing and returns FLUID_ERROR_REFUSED.
+FLUID_C_API fluid_status fluid_level_destroy(fluid_level* level);
 
 /// Steps a level by one frame of its frame rate (the world, its Box2D bodies, its goal).
 FLUID_C_API fluid_status fluid_level_step(fluid_level* level);
