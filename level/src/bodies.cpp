@@ -8,6 +8,7 @@
 #include "names.h"
 
 #include <fluid/box2d/coupling.h>
+#include <fluid/box2d/shapes.h>
 
 #include <box2d/box2d.h>
 
@@ -67,58 +68,19 @@ std::string str(std::size_t k) {
 // (Box2D welds closer ones) and an area above zero. The file's vertices are checked as written
 // (either winding) and returned counter-clockwise; `at` points at the vertex list.
 std::vector<b2Vec2> convexPolygon(const JsonDocument& doc, const std::string& at,
-                                  const std::vector<glm::vec2>& vertices) {
+                                  const std::vector<glm::vec2>& vertices, float spacing) {
     const std::size_t n = vertices.size();
-    std::vector<glm::dvec2> v(vertices.begin(), vertices.end());
-    for (std::size_t j = 1; j < n; ++j) {
-        for (std::size_t i = 0; i < j; ++i) {
-            const double d = glm::distance(v[i], v[j]);
-            if (d < kSlop) {
-                doc.fail(childPointer(at, j),
-                         "vertex " + str(j) + " is " + formatNumber(float(d)) + " m from vertex " +
-                             str(i) +
-                             "; polygon vertices must be at least 0.005 m apart "
-                             "(Box2D's linear slop)");
-            }
-        }
+    // The checks every coupled body's polygon passes (level files, the C API, Box2D saves).
+    const box2d::ShapeProblem problem = box2d::checkPolygon(vertices, spacing);
+    if (problem) {
+        doc.fail(problem.vertex >= 0 ? childPointer(at, std::size_t(problem.vertex)) : at,
+                 problem.message);
     }
     double twiceArea = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-        twiceArea += cross(v[i], v[(i + 1) % n]);
-    }
-    const double area = 0.5 * std::abs(twiceArea);
-    if (!(area >= kSlop * kSlop)) {
-        doc.fail(at, "the polygon's area is " + formatNumber(float(area)) +
-                         " m^2; expected at least 2.5e-05 m^2 (Box2D's linear slop squared)");
+        twiceArea += cross(glm::dvec2(vertices[i]), glm::dvec2(vertices[(i + 1) % n]));
     }
     const double sign = twiceArea > 0.0 ? 1.0 : -1.0;
-    // Every corner turns the same way as the whole outline...
-    for (std::size_t i = 0; i < n; ++i) {
-        const glm::dvec2 prev = v[(i + n - 1) % n], next = v[(i + 1) % n];
-        const double turn = sign * cross(v[i] - prev, next - v[i]);
-        if (turn == 0.0) {
-            doc.fail(childPointer(at, i),
-                     "vertex " + str(i) +
-                         " lies on the line through its neighbours; a Box2D polygon is strictly "
-                         "convex (leave the vertex out)");
-        }
-        if (turn < 0.0) {
-            doc.fail(childPointer(at, i), "the polygon is not convex at vertex " + str(i) +
-                                              "; a Box2D polygon is convex (split a concave "
-                                              "shape into several fixtures)");
-        }
-    }
-    // ...and the outline goes round once: every vertex lies inside every edge (a star whose
-    // corners all turn left passes the first test).
-    for (std::size_t i = 0; i < n; ++i) {
-        const glm::dvec2 a = v[i], b = v[(i + 1) % n];
-        for (std::size_t j = 0; j < n; ++j) {
-            if (j != i && j != (i + 1) % n && !(sign * cross(b - a, v[j] - a) > 0.0)) {
-                doc.fail(at, "the polygon's edges cross (it winds round more than once); a Box2D "
-                             "polygon is convex and simple");
-            }
-        }
-    }
     std::vector<b2Vec2> out;
     for (std::size_t k = 0; k < n; ++k) {
         out.push_back(toB2(vertices[sign > 0.0 ? k : n - 1 - k]));
@@ -187,6 +149,7 @@ public:
         for (std::size_t i = 0; joints != nullptr && i < joints->size(); ++i) {
             readJoint(root, i, (*joints)[i]);
         }
+        warnUnheldBodies(root);
         located(m_doc, root.pointer("bodies"), [&] {
             m_level.coupling =
                 std::make_unique<box2d::Coupling>(m_level.world, *m_level.physics, def);
@@ -216,6 +179,43 @@ private:
             c.integer("velocityIterations", {1.0, 1000.0, "count"}, def.velocityIterations));
         def.positionIterations = int32_t(
             c.integer("positionIterations", {1.0, 1000.0, "count"}, def.positionIterations));
+    }
+
+    // The fluid's boundary plugins hold the fluid only: Box2D never sees them. A dynamic body in
+    // a level whose Box2D world holds nothing static or kinematic falls through the tank (a
+    // crate dropped into a boundary.box tank reached y = -96 m in 5 s): warn, naming the body
+    // and the plugins it passes through.
+    void warnUnheldBodies(const ObjectReader& root) {
+        std::string walls;
+        for (const Level::PluginEntry& plugin : m_level.plugins) {
+            if (plugin.kind != PluginKind::Boundary) {
+                continue;
+            }
+            const auto& boundary = m_level.world.boundaries()[plugin.index];
+            walls += (walls.empty() ? "" : ", ") + std::string(boundary->type()) + " '" +
+                     plugin.name + "'";
+        }
+        if (walls.empty()) {
+            return;
+        }
+        for (const b2Body* b = m_level.physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
+            if (b->GetType() != b2_dynamicBody && b->GetFixtureList() != nullptr) {
+                return; // something stands in Box2D: the author built the walls there
+            }
+        }
+        for (std::size_t k = 0; k < m_level.bodies.size(); ++k) {
+            if (m_level.bodies[k].second->GetType() != b2_dynamicBody) {
+                continue;
+            }
+            m_level.warnings.push_back(m_doc.locatedText(
+                childPointer(root.pointer("bodies"), k),
+                "body '" + m_level.bodies[k].first +
+                    "' is dynamic, but no static or kinematic body stands in Box2D: the "
+                    "boundary plugins (" +
+                    walls +
+                    ") hold the fluid only, and the body passes through them; add a static "
+                    "body with \"fluid\": false along the walls (docs/levels.md, \"Bodies\")"));
+        }
     }
 
     // ---- bodies ----------------------------------------------------------------------------
@@ -265,10 +265,10 @@ private:
         for (std::size_t k = 0; k < list.size(); ++k) {
             fixtures.push_back(readFixture(
                 ObjectReader(m_doc, list[k], childPointer(b.pointer("fixtures"), k), "a fixture"),
-                type));
+                type, type == b2_dynamicBody && wet));
         }
         if (type == b2_dynamicBody) {
-            checkMass(b, fixtures, def.fixedRotation);
+            checkMass(b, fixtures, def.fixedRotation, wet);
         }
 
         // Built static, typed last: Box2D recomputes a dynamic body's mass after every fixture
@@ -312,8 +312,8 @@ private:
     // m |c|^2 from the inertia about the body's origin: fixtures far from the origin cancel).
     // The same sums, in the same order (Box2D's fixture list is newest first), with a margin.
     void checkMass(const ObjectReader& b, const std::vector<FixtureSpec>& fixtures,
-                   bool fixedRotation) const {
-        float mass = 0.0f, inertia = 0.0f;
+                   bool fixedRotation, bool wet) const {
+        float mass = 0.0f, inertia = 0.0f, area = 0.0f;
         b2Vec2 center(0.0f, 0.0f);
         for (std::size_t k = fixtures.size(); k-- > 0;) {
             const b2Shape* shape = fixtures[k].massShape();
@@ -322,6 +322,9 @@ private:
             }
             b2MassData data;
             shape->ComputeMass(&data, fixtures[k].density);
+            b2MassData unit;
+            shape->ComputeMass(&unit, 1.0f);
+            area += unit.mass;
             mass += data.mass;
             center += data.mass * data.center;
             inertia += data.I;
@@ -330,15 +333,17 @@ private:
             b.failAt("fixtures", "a dynamic body needs mass: expected a box, circle or polygon "
                                  "fixture with a density above 0");
         }
-        if (mass < box2d::kMinBodyMass) {
-            b.failAt("fixtures", "the fixtures weigh " + formatNumber(mass) +
-                                     " kg, less than the " + formatNumber(box2d::kMinBodyMass) +
-                                     " kg a dynamic body needs (Box2D divides by its mass); raise "
-                                     "their density or size");
-        }
         center *= 1.0f / mass;
+        const float centred = inertia - mass * b2Dot(center, center);
+        // The floors every coupled body meets (box2d::checkDynamicMass); a dry body ("fluid":
+        // false) floats in nothing, so the fluid's density does not bound it.
+        const box2d::ShapeProblem problem = box2d::checkDynamicMass(
+            mass, area, inertia > 0.0f ? centred : box2d::kMinBodyInertia, true,
+            wet ? box2d::densestArealDensity(m_level.world) : 0.0f);
+        if (problem) {
+            b.failAt("fixtures", problem.message);
+        }
         if (!fixedRotation && inertia > 0.0f) {
-            const float centred = inertia - mass * b2Dot(center, center);
             if (!(centred > 1e-5f * inertia)) {
                 b.failAt("fixtures", "the fixtures' centre of mass lies " +
                                          formatNumber(center.Length()) +
@@ -358,7 +363,10 @@ private:
         }
     }
 
-    FixtureSpec readFixture(const ObjectReader& f, b2BodyType bodyType) const {
+    // `coupledDynamic`: a dynamic body the fluid pushes (not "fluid": false), whose polygons
+    // must hold a circle of the fluid's spacing when pointed (box2d::checkPolygon).
+    FixtureSpec readFixture(const ObjectReader& f, b2BodyType bodyType,
+                            bool coupledDynamic) const {
         const std::string shape =
             f.requiredString("shape", "a shape: box, circle, polygon, edge or chain");
         std::vector<std::string_view> allowed{"shape", "friction", "restitution"};
@@ -406,7 +414,8 @@ private:
         } else if (shape == "polygon") {
             const std::vector<b2Vec2> v = convexPolygon(
                 m_doc, f.pointer("vertices"),
-                f.requiredPoints("vertices", kLocal, 3, std::size_t(b2_maxPolygonVertices)));
+                f.requiredPoints("vertices", kLocal, 3, std::size_t(b2_maxPolygonVertices)),
+                coupledDynamic ? box2d::coarsestSpacing(m_level.world) : 0.0f);
             spec.type = b2Shape::e_polygon;
             spec.polygon.Set(v.data(), int32(v.size()));
         } else if (shape == "edge") {

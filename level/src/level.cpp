@@ -797,6 +797,29 @@ void Level::step() {
     goalState();
 }
 
+void Level::destroyBody(b2Body* body) {
+    if (world.stepping()) {
+        throw Error("Level::destroyBody: called during the world's own step (from a plugin's "
+                    "hook); a body is destroyed only between frames",
+                    ErrorCode::WrongState);
+    }
+    bool found = false;
+    if (physics != nullptr && body != nullptr) {
+        for (const b2Body* b = physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
+            found = found || b == body;
+        }
+    }
+    if (!found) {
+        throw Error("Level::destroyBody: the body is not in this level's Box2D world");
+    }
+    // Box2D destroys the joints attached to the body with it: drop their names first.
+    std::erase_if(joints, [&](const std::pair<std::string, b2Joint*>& j) {
+        return j.second->GetBodyA() == body || j.second->GetBodyB() == body;
+    });
+    std::erase_if(bodies, [&](const std::pair<std::string, b2Body*>& b) { return b.second == body; });
+    physics->DestroyBody(body);
+}
+
 Level parseLevel(std::string_view text, std::string_view file, const Registry& registry,
                  const LevelOptions& options) {
     const detail::JsonDocument doc(text, file);

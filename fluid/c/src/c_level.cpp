@@ -2,6 +2,7 @@
 #include "c_internal.h"
 
 #include <fluid/box2d/coupling.h>
+#include <fluid/box2d/shapes.h>
 
 #include <box2d/box2d.h>
 
@@ -375,18 +376,27 @@ fluid_status fluid_level_add_body(fluid_level* level, const fluid_body_def* def,
         b2CircleShape circle;
         b2Vec2 position{def->position.x, def->position.y};
         const b2Shape* fixtureShape = nullptr;
-        if (shape.type == FLUID_SHAPE_BOX) {
-            if (!finite(shape.center) || !(shape.half_extents.x > 0.0f) ||
-                !(shape.half_extents.y > 0.0f) || !finite(shape.half_extents)) {
-                bad("a box needs a finite center and half extents > 0");
+        // The checks a level file's bodies pass (fluid/box2d/shapes.h), before Box2D sees the
+        // shape: Box2D asserts on degenerate ones.
+        const bool dynamic = def->type == FLUID_BODY_DYNAMIC;
+        const auto check = [&](const box2d::ShapeProblem& problem) {
+            if (problem) {
+                bad(problem.message);
             }
+        };
+        if (shape.type == FLUID_SHAPE_BOX) {
+            if (!finite(shape.center) || !finite(shape.half_extents)) {
+                bad("a box needs a finite center and half extents");
+            }
+            check(box2d::checkBox(2.0f * shape.half_extents.x, 2.0f * shape.half_extents.y));
             polygon.SetAsBox(shape.half_extents.x, shape.half_extents.y);
             position = {shape.center.x, shape.center.y};
             fixtureShape = &polygon;
         } else if (shape.type == FLUID_SHAPE_CIRCLE) {
-            if (!finite(shape.center) || !(shape.radius > 0.0f) || !std::isfinite(shape.radius)) {
-                bad("a circle needs a finite center and a radius > 0");
+            if (!finite(shape.center)) {
+                bad("a circle needs a finite center");
             }
+            check(box2d::checkCircle(shape.radius));
             circle.m_radius = shape.radius;
             position = {shape.center.x, shape.center.y};
             fixtureShape = &circle;
@@ -396,41 +406,34 @@ fluid_status fluid_level_add_body(fluid_level* level, const fluid_body_def* def,
                     " vertices, not " + std::to_string(shape.vertex_count));
             }
             need(shape.vertices, function, "shape.vertices");
-            std::vector<b2Vec2> points;
+            std::vector<glm::vec2> points;
             for (uint32_t i = 0; i < shape.vertex_count; ++i) {
-                if (!finite(shape.vertices[i])) {
-                    bad("the polygon's vertices must be finite");
-                }
                 points.emplace_back(shape.vertices[i].x, shape.vertices[i].y);
             }
-            // Box2D takes the convex hull and asserts on a degenerate one: only strictly
-            // convex polygons with vertices farther apart than its linear slop get there.
-            const size_t n = points.size();
-            int turn = 0;
-            for (size_t i = 0; i < n; ++i) {
-                const b2Vec2 a = points[i], b = points[(i + 1) % n], c = points[(i + 2) % n];
-                if (b2Distance(a, b) <= b2_linearSlop) {
-                    bad("the polygon's vertices " + std::to_string(i) + " and " +
-                        std::to_string((i + 1) % n) + " are closer than Box2D's linear slop (" +
-                        std::to_string(b2_linearSlop) + " m)");
-                }
-                const float cross = b2Cross(b - a, c - b);
-                const int sign = cross > 0.0f ? 1 : cross < 0.0f ? -1 : 0;
-                if (sign == 0 || (turn != 0 && sign != turn)) {
-                    bad("the polygon is not strictly convex (at vertex " +
-                        std::to_string((i + 1) % n) + ")");
-                }
-                turn = sign;
+            check(box2d::checkPolygon(points, dynamic ? box2d::coarsestSpacing(l.world) : 0.0f));
+            std::vector<b2Vec2> b2points;
+            for (const glm::vec2 p : points) {
+                b2points.emplace_back(p.x, p.y);
             }
-            polygon.Set(points.data(), int32(n));
-            if (polygon.m_count != int32(n)) {
+            polygon.Set(b2points.data(), int32(b2points.size()));
+            if (polygon.m_count != int32(b2points.size())) {
                 bad("Box2D made a polygon of " + std::to_string(polygon.m_count) +
-                    " vertices from " + std::to_string(n));
+                    " vertices from " + std::to_string(b2points.size()));
             }
             fixtureShape = &polygon;
         } else {
             bad("shape type " + std::to_string(shape.type) +
                 " is not FLUID_SHAPE_BOX, FLUID_SHAPE_CIRCLE or FLUID_SHAPE_POLYGON");
+        }
+        if (dynamic) {
+            // The mass floors (shapes.h): refused here, not at every later step.
+            b2MassData data;
+            fixtureShape->ComputeMass(&data, def->density);
+            b2MassData unit;
+            fixtureShape->ComputeMass(&unit, 1.0f);
+            const float centred = data.I - data.mass * b2Dot(data.center, data.center);
+            check(box2d::checkDynamicMass(data.mass, unit.mass, centred, false,
+                                          box2d::densestArealDensity(l.world)));
         }
         if (!(std::fabs(position.x) <= 1e5f && std::fabs(position.y) <= 1e5f)) {
             bad("the body's position must lie within 1e5 m of the origin");
@@ -453,6 +456,15 @@ fluid_status fluid_level_add_body(fluid_level* level, const fluid_body_def* def,
         if (index != nullptr) {
             *index = uint32_t(l.bodies.size() + level->added.size() - 1);
         }
+    });
+}
+
+fluid_status fluid_level_remove_body(fluid_level* level, uint32_t index) {
+    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
+        need(level, "fluid_level_remove_body", "level");
+        b2Body* body = bodyAt(*level, index, "fluid_level_remove_body");
+        level->level.destroyBody(body);
+        std::erase(level->added, body);
     });
 }
 

@@ -190,6 +190,12 @@ struct Level {
     /// without, `world.step(dt)`. Throws as `World::step` and `box2d::Coupling::step`.
     void step();
 
+    /// Destroys `body`, a body of `physics` (the file's or one the game added), with the joints
+    /// attached to it, and drops them from `bodies` and `joints` (the fluid no longer meets it
+    /// from the next step). Throws `fluid::Error` for a body not in `physics`, and with
+    /// `ErrorCode::WrongState` during the world's own step. Stepping thread, between frames.
+    void destroyBody(b2Body* body);
+
     /// Writes the level as it stands between frames to `out`: the level file's text, the
     /// world's snapshot (`World::save`), and with bodies the Box2D world (`box2d::savePhysics`:
     /// every body with its pose, velocities, awake state and fixtures, bodies the game added

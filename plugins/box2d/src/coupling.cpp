@@ -1,5 +1,6 @@
 // fluid::box2d — the coupling's frame: fluid step, forces to bodies, Box2D step, reports.
 #include <fluid/box2d/coupling.h>
+#include <fluid/box2d/shapes.h>
 
 #include "body_boundary.h"
 #include "box2d_math.h"
@@ -228,7 +229,8 @@ void Coupling::checkWorld(const World& world, const char* function) const {
 
 // Box2D divides by a dynamic body's mass and by its rotational inertia about its centre of mass
 // (b2Body::m_I, which GetInertia reports about the body's origin); see kMinBodyMass.
-void Coupling::checkBodies(const char* function) const {
+void Coupling::checkBodies(const World& world, const char* function) const {
+    const float spacing = coarsestSpacing(world), density = densestArealDensity(world);
     uint32_t index = 0;
     for (const b2Body* b = m_physics->GetBodyList(); b != nullptr; b = b->GetNext(), ++index) {
         if (b->GetType() != b2_dynamicBody) {
@@ -252,12 +254,44 @@ void Coupling::checkBodies(const char* function) const {
             }
             throw Error(s.str());
         }
+        // What the fluid throws (shapes.h): pointed polygons thinner than a spacing, bodies
+        // lighter than kMinDensityRatio of the densest material, over their coupled fixtures.
+        float area = 0.0f;
+        ShapeProblem problem;
+        for (const b2Fixture* f = b->GetFixtureList(); f != nullptr; f = f->GetNext()) {
+            if ((f->GetFilterData().categoryBits & m_def.categoryMask) == 0) {
+                continue;
+            }
+            const b2Shape* shape = f->GetShape();
+            if (shape->GetType() == b2Shape::e_polygon && !problem) {
+                const auto* polygon = static_cast<const b2PolygonShape*>(shape);
+                std::vector<glm::vec2> v;
+                for (int32 k = 0; k < polygon->m_count; ++k) {
+                    v.emplace_back(polygon->m_vertices[k].x, polygon->m_vertices[k].y);
+                }
+                problem = checkPointedPolygon(v, spacing);
+            }
+            if (shape->GetType() == b2Shape::e_polygon || shape->GetType() == b2Shape::e_circle) {
+                b2MassData unit;
+                shape->ComputeMass(&unit, 1.0f);
+                area += unit.mass;
+            }
+        }
+        if (!problem && area > 0.0f) {
+            problem = checkDynamicMass(mass, area, kMinBodyInertia, true, density);
+        }
+        if (problem) {
+            std::ostringstream s;
+            s << "fluid::box2d::Coupling::" << function << ": dynamic body " << index
+              << " (in GetBodyList() order): " << problem.message;
+            throw Error(s.str());
+        }
     }
 }
 
 void Coupling::step(World& world, float dt) {
     checkWorld(world, "step");
-    checkBodies("step");
+    checkBodies(world, "step");
     if (!(dt > 0.0f && dt <= 1.0f)) {
         const HostStep host(*m_boundary);
         world.step(dt); // throws World::step's own message, before Box2D moves anything
@@ -299,7 +333,7 @@ void Coupling::step(World& world, float dt) {
 
 void Coupling::stepFluid(World& world, float dt) {
     checkWorld(world, "stepFluid");
-    checkBodies("stepFluid");
+    checkBodies(world, "stepFluid");
     m_splashes.clear();
     m_contacts.clear();
     m_removed.clear();

@@ -1018,6 +1018,12 @@ FLUID_C_API fluid_status fluid_level_areal_density(const fluid_level* level,
 FLUID_C_API fluid_status fluid_level_add_body(fluid_level* level, const fluid_body_def* def,
                                               uint32_t* index);
 
+/// Removes body `index` (fluid_level_body's index: the file's bodies, then the added ones) from
+/// the level, with the joints attached to it; the bodies after it move down one index.
+/// FLUID_ERROR_STALE_ID for an index past the last body; FLUID_ERROR_REFUSED from inside the
+/// level's step. Between steps.
+FLUID_C_API fluid_status fluid_level_remove_body(fluid_level* level, uint32_t index);
+
 /// Sets a body's velocity (unit: m/s) and angular velocity (unit: rad/s): how a game drags a
 /// kinematic plank or throws a crate. Between steps.
 FLUID_C_API fluid_status fluid_level_set_body_velocity(fluid_level* level, uint32_t index,

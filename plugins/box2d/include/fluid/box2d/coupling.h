@@ -313,7 +313,7 @@ public:
 
 private:
     void checkWorld(const World& world, const char* function) const;
-    void checkBodies(const char* function) const;
+    void checkBodies(const World& world, const char* function) const;
     // Steps the world by `given` s, which simulates `simulated` s (the position-based solver's
     // whole sub-steps), then hands the fluid's forces and corrections to the bodies.
     void fluidRound(World& world, float given, float simulated);
