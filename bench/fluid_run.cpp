@@ -1,6 +1,6 @@
 // fluid-run — plays a level file headless: progress on a terminal, per-frame statistics as CSV
-// (the fluid, sensors, goal and Box2D bodies), snapshots every K frames (level saves for levels
-// with bodies, which it also plays on from), plugin libraries loaded at run time.
+// (the fluid, sensors, goal and Box2D bodies), level saves every K frames (which it also plays
+// on from), plugin libraries loaded at run time.
 //
 //   fluid-run LEVEL.json|SAVE.level --frames N [--csv stats.csv] [--threads T]
 //             [--snapshot-every K --out DIR] [--plugin lib.so]...
@@ -180,7 +180,10 @@ int main(int argc, char** argv) {
     std::string levelPath, csvPath, outDir;
     uint32_t frames = 0, threads = 0, snapshotEvery = 0;
     std::vector<std::string> plugins;
-    app.add_option("level", levelPath, "Level file (JSON, see docs/levels.md) or a level save (.level) to play on from")->required();
+    app.add_option("level", levelPath,
+                   "Level file (JSON, see docs/levels.md) or a level save (.level, as "
+                   "--snapshot-every writes) to play on from")
+        ->required();
     app.add_option("--frames", frames, "Frames to play (at the level's frame rate)")
         ->required()
         ->check(CLI::Range(1u, 100000000u));
@@ -188,10 +191,10 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads, "Worker threads (default: the level's world.workers)")
         ->check(CLI::Range(1u, 256u));
     app.add_option("--snapshot-every", snapshotEvery,
-                   "Save a snapshot every K frames (needs --out): frame_K.snap, or frame_K.level "
-                   "(a level save) for a level with bodies")
+                   "Save the level every K frames (needs --out): frame_K.level, a level save "
+                   "that fluid-run plays on from")
         ->check(CLI::Range(1u, 100000000u));
-    app.add_option("--out", outDir, "Directory for snapshots (created if missing)");
+    app.add_option("--out", outDir, "Directory for the level saves (created if missing)");
     app.add_option("--plugin", plugins,
                    "Plugin library (.so) to load before the level; repeatable");
     if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
@@ -214,15 +217,23 @@ int main(int argc, char** argv) {
         options.workerCount = threads;
         // A level save (Level::saveFile, the .level files below) continues where it was made:
         // a file that starts like one, or is named like one (an empty or damaged save is
-        // refused as a save, not read as a level file).
-        const bool isSave = [&] {
-            if (std::filesystem::path(levelPath).extension() == ".level") {
-                return true;
-            }
+        // refused as a save, not read as a level file). A world snapshot (World::saveFile,
+        // which fluid-run wrote before its saves were level saves) is refused by its magic: it
+        // holds the world without the level (goal, names, frame rate), and the JSON reader
+        // would only say that 'F' is a syntax error.
+        char magic[8] = {};
+        {
             std::ifstream in(levelPath, std::ios::binary);
-            char magic[8] = {};
-            return in.read(magic, sizeof(magic)) && std::string_view(magic, 8) == "FLUIDLVL";
-        }();
+            in.read(magic, sizeof(magic));
+        }
+        if (std::string_view(magic, 8) == "FLUIDSNP") {
+            throw fluid::Error("fluid-run: '" + levelPath +
+                               "' is a world snapshot (World::saveFile), not a level: it holds "
+                               "no goal, names or frame rate to play on with; give a level file "
+                               "(.json) or a level save (.level, as --snapshot-every writes)");
+        }
+        const bool isSave = std::filesystem::path(levelPath).extension() == ".level" ||
+                            std::string_view(magic, 8) == "FLUIDLVL";
         fluid::Level level = isSave ? fluid::loadLevelSave(levelPath, registry, options)
                                     : fluid::loadLevel(levelPath, registry, options);
         for (const std::string& warning : level.warnings) {
@@ -254,18 +265,12 @@ int main(int argc, char** argv) {
                 writeRow(csv, frame, level);
             }
             if (snapshotEvery > 0 && frame % snapshotEvery == 0) {
-                // Without bodies the world's snapshot (World::loadFile reads it); with bodies a
-                // level save, which holds the Box2D world and the coupling too (fluid-run and
-                // loadLevelSave read it).
+                // A level save: the level file's text, the world's snapshot and, with bodies,
+                // the Box2D world and the coupling, so that fluid-run (and loadLevelSave) plays
+                // on from it with the level's goal, names and frame rate.
                 std::ostringstream name;
-                name << "frame_" << std::setw(6) << std::setfill('0') << frame
-                     << (level.coupling ? ".level" : ".snap");
-                const std::string path = (std::filesystem::path(outDir) / name.str()).string();
-                if (level.coupling) {
-                    level.saveFile(path);
-                } else {
-                    level.world.saveFile(path);
-                }
+                name << "frame_" << std::setw(6) << std::setfill('0') << frame << ".level";
+                level.saveFile((std::filesystem::path(outDir) / name.str()).string());
             }
             const Clock::time_point now = Clock::now();
             if (terminal && (now - lastShown > std::chrono::milliseconds(100) || frame == frames)) {

@@ -12,6 +12,7 @@
 #include <fluid/internal/binary.h>
 
 #include <box2d/box2d.h>
+#include <glm/common.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -163,7 +164,9 @@ public:
         }
         for (; m_next < m_options.script.size() && m_options.script[m_next].frame <= m_frame;
              ++m_next) {
-            play(m_options.script[m_next]);
+            if (!play(m_options.script[m_next])) {
+                return false; // a position off the window: finish says which line
+            }
         }
         Event event;
         while (m_window.poll(event)) {
@@ -193,7 +196,10 @@ public:
     // After the last frame: a scripted run's summary and screenshot; the exit status.
     int finish() {
         int status = 0;
-        if (m_options.frames > 0) {
+        if (!m_scriptError.empty()) {
+            std::fprintf(stderr, "fluid-demo: %s\n", m_scriptError.c_str());
+            status = 2;
+        } else if (m_options.frames > 0) {
             status = finishScripted();
         }
         if (!m_options.record.empty() && !writeRecording()) {
@@ -207,9 +213,32 @@ public:
     }
 
 private:
-    // Plays one scripted action as the events a player would cause.
-    void play(const ScriptAction& action) {
+    // Plays one scripted action as the events a player would cause. False, with
+    // m_scriptError set, for a position off the window: a player's pointer is on it (the game
+    // keeps a live one there, handleEvent), and one far off would wrap through int and drop a
+    // crate or aim the pointer's force where the world cannot step.
+    bool play(const ScriptAction& action) {
         const glm::vec2 pixel = camera().worldToPixel(action.position);
+        const bool pointer = action.kind == ScriptAction::Kind::Move ||
+                             action.kind == ScriptAction::Kind::Press;
+        const glm::ivec2 size = m_renderer->size();
+        // Rounded as below, the pixel is in [0, width) x [0, height); NaN is not.
+        const auto on = [](float p, int n) { return p >= -0.5f && p < float(n) - 0.5f; };
+        if (pointer && !(on(pixel.x, size.x) && on(pixel.y, size.y))) {
+            const gl::Camera view = camera();
+            char text[320];
+            std::snprintf(text, sizeof text,
+                          "%s:%u: '%s' at %g %g m is off the %dx%d window, which shows x in "
+                          "[%.4g, %.4g] m and y in [%.4g, %.4g] m of level %s",
+                          m_options.scriptPath.c_str(), action.line,
+                          action.kind == ScriptAction::Kind::Move ? "move" : "press",
+                          double(action.position.x), double(action.position.y), size.x, size.y,
+                          double(view.worldMin().x), double(view.worldMax().x),
+                          double(view.worldMin().y), double(view.worldMax().y),
+                          m_session->file().stem.c_str());
+            m_scriptError = text;
+            return false;
+        }
         const glm::ivec2 at{int(std::lround(pixel.x)), int(std::lround(pixel.y))};
         auto key = [&](Event::Type type, Key k) {
             Event e;
@@ -256,6 +285,7 @@ private:
             }
             break;
         }
+        return true;
     }
 
     // Writes down an event `handleEvent` is about to play, as the script line that plays it
@@ -578,7 +608,16 @@ private:
         return tracked || m_window.keyHeld(left) || m_window.keyHeld(right);
     }
 
-    void handleEvent(const Event& event) {
+    void handleEvent(const Event& input) {
+        // The pointer stays on the window: a drag that leaves it (the display keeps reporting
+        // the pointer while a button is held) holds at its edge, so a recording's positions
+        // are all ones a script may name (play).
+        Event event = input;
+        if (event.type == Event::Type::MouseMoved || event.type == Event::Type::MousePressed ||
+            event.type == Event::Type::MouseReleased) {
+            const glm::ivec2 size = m_renderer->size();
+            event.position = glm::clamp(event.position, glm::ivec2(0), size - 1);
+        }
         if (!m_options.record.empty()) {
             recordEvent(event);
         }
@@ -755,6 +794,7 @@ private:
     int m_pendingLevel = -1;
     std::string m_toast;
     std::chrono::steady_clock::time_point m_toastUntil{};
+    std::string m_scriptError; // a script action the window cannot play (FILE:LINE: ...)
     uint32_t m_frame = 1;                        // the frame about to be played, from 1
     size_t m_next = 0;                           // the next script action
     std::vector<std::pair<ScriptAction, glm::ivec2>> m_recorded; // with `record`: the input

@@ -29,8 +29,12 @@ struct GameOptions {
     /// Where F5 saves the level and F9 loads it back (one file per level, `<stem>.level`;
     /// created when needed).
     std::string saveDir = ".";
-    /// Scripted input (`readScript`), played at the frames it names.
+    /// Scripted input (`readScript`), played at the frames it names. An action whose position
+    /// is off the window (its pixel outside [0, width) x [0, height) when it is played) ends
+    /// the game: `finish` says "FILE:LINE: ..." and returns 2.
     std::vector<ScriptAction> script;
+    /// The file `script` was read from, for those messages.
+    std::string scriptPath;
     /// 0: play until the window closes. Otherwise run exactly this many frames of one step
     /// each (no real-time pacing, so a script gives the same result on any machine), print a
     /// summary line (level, time, particles per material, centre of mass, view, gravity, body
@@ -70,8 +74,9 @@ public:
     /// over: the window closed, Quit chosen, or `frames` played.
     bool frame();
     /// Ends the game: a scripted run's summary line and screenshot, the recorded input. Returns
-    /// the exit status: 0, or 1 when it could not start or the screenshot or the recording
-    /// cannot be written.
+    /// the exit status: 0, 1 when it could not start or the screenshot or the recording
+    /// cannot be written, 2 when a script action's position was off the window (message on
+    /// stderr, no summary).
     int finish();
 
 private:
@@ -79,9 +84,9 @@ private:
 };
 
 /// Opens the window and plays until it is closed or Quit is chosen (or `frames` ran):
-/// `GameRunner`'s start, frames and finish. Returns the exit status: 0, or 1 when the window or
-/// OpenGL cannot be set up or the screenshot cannot be written (message on stderr). Main
-/// thread.
+/// `GameRunner`'s start, frames and finish. Returns the exit status: 0, 1 when the window or
+/// OpenGL cannot be set up or the screenshot cannot be written, 2 for a script action off the
+/// window (message on stderr). Main thread.
 int runGame(const GameOptions& options);
 
 } // namespace fluid::demo

@@ -261,6 +261,7 @@ int main(int argc, char** argv) {
     options.workers = threads;
     options.fullscreen = fullscreen;
     options.script = std::move(script);
+    options.scriptPath = scriptPath;
     options.frames = frames;
     options.screenshot = screenshot;
     options.record = record;

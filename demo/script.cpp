@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <utility>
@@ -31,6 +32,11 @@ constexpr std::pair<const char*, Key> kKeys[] = {
 } // namespace
 
 std::vector<ScriptAction> readScript(const std::string& path) {
+    // A directory opens as a stream that reads nothing: it would play as an empty script.
+    std::error_code error;
+    if (std::filesystem::is_directory(path, error)) {
+        throw Error(path + ": is a directory, not a script");
+    }
     std::ifstream in(path);
     if (!in) {
         throw Error(path + ": cannot read the script");
@@ -45,6 +51,7 @@ std::vector<ScriptAction> readScript(const std::string& path) {
             continue;
         }
         ScriptAction action;
+        action.line = uint32_t(number);
         try {
             size_t used = 0;
             const unsigned long frame = std::stoul(frameWord, &used);
@@ -119,6 +126,9 @@ std::vector<ScriptAction> readScript(const std::string& path) {
             throw Error(where + "unexpected '" + extra + "' at the end of the line");
         }
         actions.push_back(action);
+    }
+    if (in.bad()) {
+        throw Error(path + ": cannot read the script");
     }
     return actions;
 }

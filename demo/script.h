@@ -35,8 +35,12 @@ struct ScriptAction {
     int button = 0;
     /// Modifiers held during a `Press` until its `Release`.
     bool shift = false, ctrl = false;
-    /// Mouse position in the level (unit: m) for `Move` and `Press`.
+    /// Mouse position in the level (unit: m) for `Move` and `Press`: finite here; the game
+    /// refuses one off its window when it plays the action.
     glm::vec2 position{0.0f, 0.0f};
+    /// The script's line it was read from, for messages (unit: line number, from 1; 0 when
+    /// not read from a file).
+    uint32_t line = 0;
 };
 
 /// Reads a script: one action per line, `#` starts a comment, frames in non-decreasing order.
@@ -47,7 +51,9 @@ struct ScriptAction {
 ///     FRAME press left|right X Y [shift|ctrl]
 ///     FRAME release left|right
 ///
-/// Throws `fluid::Error` "FILE:LINE: MESSAGE" for anything else. Any thread.
+/// Throws `fluid::Error` "FILE:LINE: MESSAGE" for anything else, and "FILE: MESSAGE" for a
+/// path that is a directory or cannot be read. A position is checked against the window when
+/// it is played (`GameOptions::scriptPath`). Any thread.
 std::vector<ScriptAction> readScript(const std::string& path);
 
 /// The name `readScript` reads for `key`, or nullptr for the keys a script cannot press (the

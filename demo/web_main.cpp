@@ -69,6 +69,7 @@ int main(int argc, char** argv) {
         options.levels = listLevels("/levels");
         if (!scriptPath.empty()) {
             options.script = readScript(scriptPath);
+            options.scriptPath = scriptPath;
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "fluid-demo: %s\n", e.what());

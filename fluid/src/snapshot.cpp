@@ -270,7 +270,7 @@ void checkParticles(const detail::WorldState& s) {
 void checkSolverState(const detail::WorldState& s) {
     const std::tuple<const char*, double, double> solver[] = {
         {"time", s.time, -DBL_MAX},
-        {"carried time", s.carry, 0.0},
+        {"carried time", s.carry, -DBL_MAX}, // its range: World::load
         {"sound speed", s.soundSpeed, 0.0},
         {"field gh", s.fieldGH, -DBL_MAX},
         {"last max acceleration", s.lastMaxAccel, 0.0}};
@@ -600,6 +600,14 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
     if (s.carry > 1.0) {
         std::ostringstream text;
         text << "the carried frame time is " << s.carry << " s, more than a frame (1 s)";
+        corrupt(text.str());
+    }
+    // Negative when the sub-steps ran ahead of the frames, by at most half a sub-step, and a
+    // sub-step is at most 1/60 s (World::step).
+    if (s.carry < -double(1.0f / 60.0f) / 2.0) {
+        std::ostringstream text;
+        text << "the carried frame time is " << s.carry
+             << " s, less than minus half the longest sub-step (-1/120 s)";
         corrupt(text.str());
     }
     if (!in.done()) {

@@ -717,10 +717,12 @@ void World::step(float frameDt) {
     }
     detail::WorldState& s = *m_state;
     // The position-based solver steps in sub-steps of a fixed length, 1/60 s over the setting's
-    // count, whatever the frame: the frame simulates the whole sub-steps due and carries the
-    // rest to the next frame (a frame shorter than what is left of a sub-step steps nothing).
-    // A correction turns into velocity over its sub-step, so a shorter sub-step would turn the
-    // same residual compression into a faster motion (docs/position_based.md, "Frame length").
+    // count, whatever the frame: the frame simulates the whole sub-steps nearest to the time
+    // due (what is carried plus the frame) and carries the difference, positive or negative, to
+    // the next frame, so the world's time never strays more than half a sub-step from the sum
+    // of the frames. A correction turns into velocity over its sub-step, so a shorter sub-step
+    // would turn the same residual compression into a faster motion (docs/position_based.md,
+    // "Frame length").
     float simulated = frameDt;
     double carryAfter = 0.0; // stored once the step went through: a throwing step keeps the old
     if (s.def.solver == Solver::PositionBased) {
@@ -736,7 +738,7 @@ void World::step(float frameDt) {
         }
         s.plannedSubsteps = count;
         simulated = float(double(count) * h);
-        carryAfter = std::max(0.0, due - double(count) * h);
+        carryAfter = due - double(count) * h; // in [-h / 2, h / 2)
     }
     frameDt = simulated;
     // Emitters add this frame's particles, the solver moves everything, then drains, lifetimes
@@ -955,9 +957,6 @@ namespace {
 // a frame pacer's 1/59.94 s does not add a sub-step.
 constexpr double kTunedFrame = 1.0 / 60.0;
 constexpr double kLongFrameSlack = 0.1;
-// Share of a sub-step a frame may fall short of it and still take it: a float frame's
-// rounding (1/60.f over 4 is 0.99999... of 1/240 s in some sums), never a real shortfall.
-constexpr double kSubstepRounding = 1e-4;
 
 } // namespace
 
@@ -998,7 +997,15 @@ double substepLength(uint32_t perFrame) {
 }
 
 uint32_t dueSubsteps(double due, double h) {
-    return uint32_t(std::floor(due / h + kSubstepRounding));
+    // Rounded to the nearest: a frame a little short of a sub-step (a float's rounding of
+    // 1/240, a frame timer's jitter) takes it and carries the shortfall as a negative time that
+    // the next frames pay back, instead of waiting and then stepping twice. Frames of 1/240 s
+    // with a jitter of +-1e-7 s step once each; a sub-step is skipped or doubled only when the
+    // frames' sum has drifted half a sub-step from the sub-steps' (docs/position_based.md,
+    // "Frame length"). A due under h / 2 gives 0, a negative one too (a carry from a longer
+    // sub-step, before setPositionBased shortened it).
+    const double nearest = std::floor(due / h + 0.5);
+    return nearest > 0.0 ? uint32_t(nearest) : 0u;
 }
 
 } // namespace detail

@@ -357,7 +357,8 @@ struct WorldState {
     StageProbe stageProbe; // tests only: see StageProbe
     double time = 0.0;
     // Position-based: frame time passed to World::step that no sub-step has simulated yet (s, in
-    // [0, one sub-step)), and the sub-steps the frame being stepped takes (World::step sets it).
+    // [-h / 2, h / 2) for the sub-step h: negative when the sub-steps ran ahead of the frames),
+    // and the sub-steps the frame being stepped takes (World::step sets it).
     double carry = 0.0;
     uint32_t plannedSubsteps = 0;
     float soundSpeed = 0.0f; // derived Tait sound speed, never decreasing
@@ -444,8 +445,9 @@ void stepExplicit(WorldState& state, float frameDt);
 void stepPositionBased(WorldState& state, float frameDt);
 /// The position-based solver's sub-step (s): 1/60 s over `perFrame` (World::substepLength).
 double substepLength(uint32_t perFrame);
-/// Whole sub-steps of length `h` in `due` seconds, forgiving a float frame's rounding (a
-/// 1/60.f frame is 4 sub-steps of 1/240 s, not 3.99999...).
+/// The whole sub-steps of length `h` nearest to `due` seconds (a half rounds up; 0 for `due`
+/// under h / 2): the world's clock stays within half a sub-step of the frames given, so a
+/// frame a little short of a sub-step still takes it and the next frames pay the time back.
 uint32_t dueSubsteps(double due, double h);
 
 } // namespace fluid::detail

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cinttypes>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -196,6 +197,42 @@ TEST_CASE("report is nullptr for bodies that are not coupled, another world thro
     coupling.step(moved, kFrame);
     CHECK(coupling.report(coupled) != nullptr);
     CHECK(moved.time() == Approx(2.0 * kFrame));
+}
+
+TEST_CASE("a coupled frame keeps the world's clock: one round per sub-step, the time within "
+          "half a sub-step of the frames' sum",
+          "[box2d][clock]") {
+    World world(physicsDef());
+    const MaterialId water = world.addMaterial(fluid::water());
+    fillTank(world, water, 10, 4, 0.3f);
+    b2World physics(b2Vec2(0.0f, -kG));
+    addCircle(physics, b2_dynamicBody, {0.05f, 0.2f}, 0.02f, 50.0f);
+    Coupling coupling(world, physics);
+    const double h = world.substepLength();
+    double given = 0.0;
+    uint32_t rounds = 0;
+    // Frames shorter than a sub-step (carried, a round every fourth or fifth), a little short
+    // of one (a round each, the shortfall owed), then of any length from 1/240 to 1/30 s.
+    std::vector<float> frames(30, 0.001f);
+    frames.insert(frames.end(), 100, float(1.0 / 240.0 - 1e-7));
+    uint64_t state = 7;
+    for (int k = 0; k < 60; ++k) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull; // LCG, fixed seed
+        const double u = double(state >> 11) / double(uint64_t(1) << 53);
+        frames.push_back(float(1.0 / 240.0 + u * (1.0 / 30.0 - 1.0 / 240.0)));
+    }
+    for (size_t f = 0; f < frames.size(); ++f) {
+        INFO("frame " << f << " of " << frames[f] << " s");
+        const uint32_t due = world.substepsFor(frames[f]);
+        coupling.step(world, frames[f]);
+        given += double(frames[f]);
+        rounds += coupling.profile().substeps;
+        REQUIRE(coupling.profile().substeps == due);
+        REQUIRE(std::fabs(world.time() + world.carriedTime() - given) < 1e-9);
+        REQUIRE(std::fabs(world.time() - double(rounds) * h) < 1e-9);
+        REQUIRE(std::fabs(world.carriedTime()) <= 0.5 * h);
+    }
+    CHECK(rounds == uint32_t(std::lround(given / h)));
 }
 
 TEST_CASE("stepFluid leaves the Box2D step to the game", "[box2d]") {

@@ -60,5 +60,6 @@ fi
 if [[ -n "${programs[fluid-demo]:-}" ]]; then
     expect 2 fluid-demo --frames abc
     expect 2 fluid-demo --size 10x10
+    expect 2 fluid-demo --level dam_break --frames 3 --script "$tmp" # a directory
 fi
 exit $failed

@@ -185,6 +185,68 @@ TEST_CASE("game: a bad script is refused with its file and line", "[demo]") {
                             ":3: unknown action 'jump' (expected key, move, press or release)\n");
 }
 
+TEST_CASE("game: a script position that is not a finite number, or a directory given as the "
+          "script, is refused before the game starts",
+          "[demo]") {
+    const std::string dir = std::string(FLUID_DEMO_WORK_DIR) + "/bad_positions";
+    std::filesystem::create_directories(dir);
+    const std::pair<const char*, const char*> lines[] = {
+        {"1 move nan 0.3\n", ":1: 'move' needs a position X Y in metres"},
+        {"1 key G\n2 press left inf 0.3\n", ":2: 'press' needs a position X Y in metres"},
+        {"1 move -inf -inf\n", ":1: 'move' needs a position X Y in metres"},
+        {"1 move 0.3 1e39\n", ":1: 'move' needs a position X Y in metres"}, // beyond a float
+        {"1 press left 0.3\n", ":1: 'press' needs a position X Y in metres"},
+    };
+    int k = 0;
+    for (const auto& [script, message] : lines) {
+        const std::string path = dir + "/" + std::to_string(k++) + ".script";
+        std::ofstream(path) << script;
+        INFO(script);
+        const demo_test::Run run =
+            demo_test::runDemo("--level crates --frames 3 --script '" + path + "'");
+        CHECK(run.status == 2);
+        CHECK(run.output == "fluid-demo: " + path + message + "\n");
+    }
+    // A directory reads as an empty stream: it played the level with no input, silently.
+    const demo_test::Run folder =
+        demo_test::runDemo("--level crates --frames 3 --script '" + dir + "'");
+    CHECK(folder.status == 2);
+    CHECK(folder.output == "fluid-demo: " + dir + ": is a directory, not a script\n");
+}
+
+TEST_CASE("game: a script position off the window is refused with its file and line, the game "
+          "ends without a summary",
+          "[demo]") {
+    // At 480x270 crates.json shows x in [-0.3728, 2.373] m and y in [-0.1802, 1.364] m.
+    const std::string view = " window, which shows x in [-0.3728, 2.373] m and y in "
+                             "[-0.1802, 1.364] m of level crates\n";
+    const std::pair<const char*, const char*> lines[] = {
+        // Once the pixel wrapped through int: a crate dropped near 3e6 m, every step after it
+        // failed and the run still exited 0.
+        {"2 key G\n5 press left 3e9 -3e9 ctrl\n6 release left\n",
+         ":2: 'press' at 3e+09 -3e+09 m is off the 480x270"},
+        {"2 move 0.4 0.1\n3 press left -1 0.3\n", ":2: 'press' at -1 0.3 m is off the 480x270"},
+        {"1 move 0.5 -0.5\n", ":1: 'move' at 0.5 -0.5 m is off the 480x270"},
+        {"1 move 1e30 0.5\n", ":1: 'move' at 1e+30 0.5 m is off the 480x270"},
+        {"1 move 0.5 1.4\n", ":1: 'move' at 0.5 1.4 m is off the 480x270"},
+    };
+    int k = 0;
+    for (const auto& [script, message] : lines) {
+        const std::string path =
+            std::string(FLUID_DEMO_WORK_DIR) + "/off_window_" + std::to_string(k++) + ".script";
+        std::ofstream(path) << script;
+        INFO(script);
+        const demo_test::Run run = demo_test::runDemo(
+            "--level crates --size 480x270 --threads 1 --frames 10 --script '" + path + "'");
+        CHECK(run.status == 2);
+        CHECK(run.output == "fluid-demo: " + path + message + view);
+    }
+    // Just inside the window's corners plays.
+    const Summary corners = play("on_window", "crates", 4,
+                                 "1 move -0.37 1.36\n2 press left 2.36 -0.17\n3 release left\n");
+    CHECK(corners.number("particles") > 0.0);
+}
+
 TEST_CASE("game: F5 saves the level with its crates, F9 goes back to it", "[demo]") {
     const std::string dir = std::string(FLUID_DEMO_WORK_DIR) + "/saves";
     std::filesystem::remove_all(dir);

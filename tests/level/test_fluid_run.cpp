@@ -1,4 +1,4 @@
-// fluid-run, the headless runner: CSV statistics, snapshots, threads, bad input.
+// fluid-run, the headless runner: CSV statistics, level saves, threads, bad input.
 #include "test_support.h"
 
 #include <fluid/level.h>
@@ -134,24 +134,69 @@ TEST_CASE("fluid-run: the CSV is identical for 1 and 2 threads", "[fluid-run]") 
     fs::remove_all(dir);
 }
 
-TEST_CASE("fluid-run snapshots restore to the state the run reached", "[fluid-run]") {
+TEST_CASE("fluid-run's saves restore to the state the run reached, and fluid-run plays on "
+          "from them bit-identically",
+          "[fluid-run]") {
     const fs::path dir = fs::temp_directory_path() / "fluid_run_snap";
     fs::remove_all(dir);
-    const Run run = fluidRun(
-        {kDam, "--frames", "12", "--snapshot-every", "5", "--out", (dir / "snaps").string()}, dir);
+    const Run run = fluidRun({kDam, "--frames", "12", "--snapshot-every", "5", "--csv",
+                              (dir / "full.csv").string(), "--out", (dir / "snaps").string()},
+                             dir);
     INFO(run.err);
     REQUIRE(run.status == 0);
-    CHECK(fs::exists(dir / "snaps" / "frame_000005.snap"));
-    CHECK(fs::exists(dir / "snaps" / "frame_000010.snap"));
-    CHECK(!fs::exists(dir / "snaps" / "frame_000012.snap"));
+    // Level saves, for a level without bodies too: a file fluid-run writes, fluid-run reads.
+    CHECK(fs::exists(dir / "snaps" / "frame_000005.level"));
+    CHECK(fs::exists(dir / "snaps" / "frame_000010.level"));
+    CHECK(!fs::exists(dir / "snaps" / "frame_000010.snap"));
+    CHECK(!fs::exists(dir / "snaps" / "frame_000012.level"));
     Registry registry;
     registerBuiltinPlugins(registry);
-    World restored = World::loadFile((dir / "snaps" / "frame_000010.snap").string(), registry);
+    const Level restored =
+        loadLevelSave((dir / "snaps" / "frame_000010.level").string(), registry);
     Level level = loadLevel(kDam, registry);
     for (int f = 0; f < 10; ++f) {
         level.world.step(1.0f / level.frameRate);
     }
-    CHECK(fluid::test::stateHash(restored) == fluid::test::stateHash(level.world));
+    CHECK(fluid::test::stateHash(restored.world) == fluid::test::stateHash(level.world));
+    CHECK(restored.frameRate == level.frameRate);
+    // Played on from frame 10 for 2 frames: frame 12's row of the whole run, every column.
+    const Run resumed = fluidRun({(dir / "snaps" / "frame_000010.level").string(), "--frames",
+                                  "2", "--csv", (dir / "resumed.csv").string()},
+                                 dir);
+    INFO(resumed.err);
+    REQUIRE(resumed.status == 0);
+    const auto full = readCsv(dir / "full.csv");
+    const auto part = readCsv(dir / "resumed.csv");
+    REQUIRE(full.size() == 13);
+    REQUIRE(part.size() == 3);
+    CHECK(part[0] == full[0]);
+    for (size_t k = 1; k < full[12].size(); ++k) { // all but the frame number
+        INFO(full[0][k]);
+        CHECK(part[2][k] == full[12][k]);
+    }
+    fs::remove_all(dir);
+}
+
+TEST_CASE("fluid-run: a world snapshot is refused by its magic, saying what it is and what to "
+          "give",
+          "[fluid-run]") {
+    const fs::path dir = fs::temp_directory_path() / "fluid_run_world_snap";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    Level level = loadLevel(kDam, registry);
+    level.step();
+    for (const char* name : {"world.snap", "world.json"}) {
+        const fs::path snap = dir / name;
+        level.world.saveFile(snap.string());
+        const Run run = fluidRun({snap.string(), "--frames", "1"}, dir);
+        CHECK(run.status == 1);
+        CHECK(run.err == "fluid-run: '" + snap.string() +
+                             "' is a world snapshot (World::saveFile), not a level: it holds no "
+                             "goal, names or frame rate to play on with; give a level file "
+                             "(.json) or a level save (.level, as --snapshot-every writes)\n");
+    }
     fs::remove_all(dir);
 }
 

@@ -97,7 +97,8 @@ TEST_CASE("handles follow their particles through steps", "[unit][handles]") {
     }
 
     // Short enough that viscosity barely slows the marked particle: 0.2 ms, or for the
-    // position-based solver one sub-step (1/240 s; a shorter frame is carried, not stepped).
+    // position-based solver one sub-step (1/240 s; a frame under half of one is carried, not
+    // stepped).
     const float dt = solver == Solver::PositionBased ? float(world.substepLength()) : 2e-4f;
     world.step(dt);
     REQUIRE(world.particleCount() == n);

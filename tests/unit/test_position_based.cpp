@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -108,6 +109,108 @@ TEST_CASE("the long-frame rule: substepsFor(dt) is the sub-steps step(dt) takes,
     CHECK_THROWS_MATCHES(world.substepsFor(-1.0f), Error,
                          Catch::Message("World::substepsFor: frameDt = -1" + tail));
     CHECK(allFinite(world));
+}
+
+namespace {
+
+// One water particle in a box: the cheapest world that keeps the clock.
+World oneParticle() {
+    World world;
+    const MaterialId w = world.addMaterial(water());
+    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, 1.0f, 1.0f));
+    world.spawnBlob(latticeBlock(world, w, 0.5f, 0.5f, 1, 1));
+    return world;
+}
+
+// Steps `world` with the frames `next` gives; per frame the sub-steps taken are counted in
+// `taken` (index: sub-steps), the most |time() - sum of frames| is kept, and the frames after
+// which time() + carriedTime() is not the sum of the frames given (s, summed in double).
+struct ClockRun {
+    double given = 0.0;       // sum of the frames (s)
+    double farthest = 0.0;    // most |time() - given| after a frame (s)
+    uint32_t taken[4] = {};   // frames that took 0, 1, 2, 3+ sub-steps
+    uint32_t zeroThenTwo = 0; // frames of two sub-steps right after one of none
+    uint32_t unbalanced = 0;  // frames after which time() + carriedTime() != given
+};
+template <class Next> ClockRun runClock(World& world, uint32_t frames, Next next) {
+    ClockRun run;
+    uint32_t previous = 1;
+    for (uint32_t f = 0; f < frames; ++f) {
+        const float dt = next();
+        world.step(dt);
+        run.given += double(dt);
+        const uint32_t n = world.lastSubsteps();
+        ++run.taken[std::min(n, 3u)];
+        run.zeroThenTwo += previous == 0 && n == 2 ? 1 : 0;
+        previous = n;
+        run.farthest = std::max(run.farthest, std::fabs(world.time() - run.given));
+        if (std::fabs(world.time() + world.carriedTime() - run.given) > 1e-9) {
+            if (run.unbalanced == 0) {
+                UNSCOPED_INFO("first at frame " << f << ": time " << world.time()
+                                                << " s + carried " << world.carriedTime()
+                                                << " s, frames " << run.given << " s");
+            }
+            ++run.unbalanced;
+        }
+    }
+    CHECK(run.unbalanced == 0);
+    return run;
+}
+
+} // namespace
+
+TEST_CASE("the world's clock tracks the sum of the frames: a frame a little short of a "
+          "sub-step takes it and the next ones pay it back",
+          "[unit][position-based][clock]") {
+    World world = oneParticle();
+    const double h = world.substepLength();
+    REQUIRE(float(h) == 1.0f / 240.0f);
+
+    SECTION("2,400 frames of 1/240 s - 1e-7 s: one sub-step each, the time within a sub-step "
+            "of their sum") {
+        const float shortFrame = float(1.0 / 240.0 - 1e-7);
+        const ClockRun run = runClock(world, 2400, [&] { return shortFrame; });
+        CHECK(run.taken[1] == 2400);
+        CHECK(std::fabs(world.time() - 2400.0 * double(shortFrame)) < h);
+        CHECK(run.given == Approx(9.99976).epsilon(1e-6));
+        CHECK(world.carriedTime() == Approx(-2400.0 * (h - double(shortFrame))));
+    }
+    SECTION("12,000 frames of 1/240 s - 4e-7 s: the time stays within half a sub-step of their "
+            "sum, one sub-step skipped, none doubled") {
+        // 4e-7 s is just under what a frame could fall short before and still take its whole
+        // sub-step, forgetting the shortfall: over these frames the clock ran 1.15 sub-steps
+        // ahead, and on without bound.
+        const float shortFrame = float(1.0 / 240.0 - 4e-7);
+        const ClockRun run = runClock(world, 12000, [&] { return shortFrame; });
+        CHECK(run.farthest <= 0.5 * h);
+        CHECK(run.taken[0] == 1); // the frames' sum is 11,998.85 sub-steps
+        CHECK(run.taken[2] + run.taken[3] == 0);
+        CHECK(run.taken[1] == 11999);
+    }
+    SECTION("frames of exactly 1/240 s step exactly once each and carry nothing") {
+        const ClockRun run = runClock(world, 2400, [] { return 1.0f / 240.0f; });
+        CHECK(run.taken[1] == 2400);
+        CHECK(world.carriedTime() == 0.0);
+        CHECK(world.time() == 2400.0 * h);
+    }
+    SECTION("frames of 1/240 s with a jitter of +-1e-7 s step once each, never none then two") {
+        uint64_t state = 2024;
+        const ClockRun run = runClock(world, 10000, [&] {
+            state = state * 6364136223846793005ull + 1442695040888963407ull; // LCG, fixed seed
+            const double u = double(state >> 11) / double(uint64_t(1) << 53);
+            return float(1.0 / 240.0 + (2.0 * u - 1.0) * 1e-7);
+        });
+        CHECK(run.taken[1] == 10000);
+        CHECK(run.zeroThenTwo == 0);
+        CHECK(run.farthest <= 0.5 * h);
+    }
+    SECTION("1/1000 s frames: a sub-step every fourth or fifth frame, the time within half a "
+            "sub-step of the frames'") {
+        const ClockRun run = runClock(world, 1200, [] { return 0.001f; });
+        CHECK(run.taken[1] == 288); // 1.2 s of 1/240 s
+        CHECK(run.taken[0] == 1200 - 288);
+        CHECK(run.farthest <= 0.5 * h);
+    }
 }
 
 TEST_CASE("a resting tank's pressure grows with depth as rho0 g d", "[unit][position-based]") {

@@ -31,7 +31,8 @@ TEST_CASE("a fresh resting block of each preset reads its rest density", "[unit]
         world.spawnBlob(latticeBlock(world, id, -0.12f, -0.12f, 24, 24));
         REQUIRE(world.particleCount() == 24u * 24u);
         // One short step: density is computed, nothing moves measurably (the position-based
-        // solver's shortest is one sub-step, 1/240 s; a shorter frame is carried, not stepped).
+        // solver's shortest is one sub-step, 1/240 s; a frame under half of one is carried, not
+        // stepped).
         world.step(solver == Solver::PositionBased ? float(world.substepLength()) : 1e-4f);
         const Reading r = readInterior(world, id);
         CAPTURE(r.interior, r.worst, r.mean);

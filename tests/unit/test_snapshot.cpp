@@ -202,6 +202,62 @@ TEST_CASE("snapshot: truncated, corrupt or foreign data is refused", "[snapshot]
                       "(or load its plugin library) before loading the snapshot");
 }
 
+namespace {
+
+// `bytes` with the carried frame time (the double after the time, found by both values)
+// replaced by `carry` and the checksum made right again.
+std::string withCarry(const World& world, std::string bytes, double carry) {
+    char pair[16];
+    const double time = world.time(), old = world.carriedTime();
+    std::memcpy(pair, &time, 8);
+    std::memcpy(pair + 8, &old, 8);
+    const size_t at = bytes.find(std::string(pair, 16));
+    REQUIRE(at != std::string::npos);
+    REQUIRE(bytes.find(std::string(pair, 16), at + 1) == std::string::npos);
+    std::memcpy(bytes.data() + at + 8, &carry, 8);
+    const size_t payload = 8 + 4 + 8; // magic, version, size
+    const uint64_t sum = fluid::test::fnv1a(bytes.data() + payload, bytes.size() - payload - 8,
+                                            14695981039346656037ull); // FNV-1a 64's basis
+    std::memcpy(bytes.data() + bytes.size() - 8, &sum, 8);
+    return bytes;
+}
+
+} // namespace
+
+TEST_CASE("snapshot: a negative carried frame time saves and steps on bit-identically, and one "
+          "beyond half the longest sub-step is refused",
+          "[snapshot][clock]") {
+    const Registry registry = builtins();
+    World original = scene(Solver::PositionBased, 1);
+    for (int f = 0; f < 5; ++f) {
+        original.step(kFrame);
+    }
+    original.step(float(1.0 / 240.0 - 1e-7)); // takes its sub-step, owes the rest
+    CHECK(original.lastSubsteps() == 1);
+    REQUIRE(original.carriedTime() < 0.0);
+    const std::string bytes = saved(original);
+    World copy = restored(bytes, registry);
+    CHECK(copy.carriedTime() == original.carriedTime());
+    CHECK(saved(copy) == bytes);
+    for (const float dt : {float(1.0 / 240.0 - 1e-7), 0.001f, kFrame, 1.0f / 59.94f}) {
+        original.step(dt);
+        copy.step(dt);
+        CHECK(copy.lastSubsteps() == original.lastSubsteps());
+        CHECK(copy.carriedTime() == original.carriedTime());
+    }
+    CHECK(fingerprint(copy) == fingerprint(original));
+
+    // Half the longest sub-step (1/60 s with one per frame) is the most it can owe.
+    CHECK_THROWS_WITH(restored(withCarry(original, saved(original), -0.01), registry),
+                      "snapshot: corrupt: the carried frame time is -0.01 s, less than minus half "
+                      "the longest sub-step (-1/120 s)");
+    // Up to one sub-step, as earlier releases carried, loads and steps on.
+    World earlier = restored(withCarry(original, saved(original), 0.004), registry);
+    CHECK(earlier.carriedTime() == 0.004);
+    earlier.step(1.0f / 240.0f);
+    CHECK(earlier.lastSubsteps() == 2); // 1.96 sub-steps due
+}
+
 TEST_CASE("snapshot: a huge file is refused from its header, before its body is read",
           "[snapshot]") {
     const Registry registry = builtins();

@@ -445,31 +445,37 @@ public:
     /// Advances the world by one game frame (unit: s; finite, range (0, 1]; typically 1/60; it
     /// may change from frame to frame). The position-based solver steps in sub-steps of a fixed
     /// length, `substepLength()` (1/240 s at the default 4 per 1/60 s): the frame simulates the
-    /// whole sub-steps due (`substepsFor`) and carries the rest to the next frame
-    /// (`carriedTime`), so any sequence of frame lengths steps the same sub-steps as a fixed
-    /// 60 Hz, and a frame shorter than what is left of a sub-step steps nothing (no events, an
-    /// empty `profile()`). The explicit solver steps the whole frame in as many sub-steps as its
-    /// CFL condition asks (see `Profile::substeps`). In order: emitters add the frame's
-    /// particles, the solver runs, drains and lifetimes remove particles (`removedEvents`),
-    /// sensors measure (`sensorReading`). Throws `fluid::Error` for a bad frameDt, and passes on
-    /// what a plugin's `prepare` throws, leaving the world unchanged in both cases; a hook that
-    /// throws later, during the sub-steps, leaves it mid-step.
+    /// whole sub-steps nearest to the time due, the carried time plus frameDt (`substepsFor`),
+    /// and carries the difference, positive or negative, to the next frame (`carriedTime`), so
+    /// `time()` stays within half a sub-step of the sum of the frames given, any sequence of
+    /// frame lengths steps the same sub-steps as a fixed 60 Hz, frames of 1/240 s with a timer's
+    /// jitter step one sub-step each, and a frame that leaves less than half a sub-step due
+    /// steps nothing (no events, an empty `profile()`). The explicit solver steps the whole
+    /// frame in as many sub-steps as its CFL condition asks (see `Profile::substeps`). In
+    /// order: emitters add the frame's particles, the solver runs, drains and lifetimes remove
+    /// particles (`removedEvents`), sensors measure (`sensorReading`). Throws `fluid::Error`
+    /// for a bad frameDt, and passes on what a plugin's `prepare` throws, leaving the world
+    /// unchanged in both cases; a hook that throws later, during the sub-steps, leaves it
+    /// mid-step.
     void step(float frameDt);
     /// The sub-steps the position-based solver takes for a `step(frameDt)` now: the whole
-    /// `substepLength()`s in `carriedTime() + frameDt` (unit: count; range [0, 3840]; 0 when
-    /// the frame only adds to the carried time). For the explicit solver, which picks its own
-    /// during the step from the CFL condition (`Profile::substeps`), this is the long-frame
-    /// rule's `frameSubsteps(def().positionBased.substeps, frameDt)`. `frameDt` as `step`
-    /// (unit: s; finite, range (0, 1]); throws `fluid::Error` ("World::substepsFor: frameDt =
-    /// ... is out of range ...") otherwise. Stepping thread, between steps.
+    /// number of `substepLength()`s nearest to `carriedTime() + frameDt`, a half rounded up
+    /// (unit: count; range [0, 3840]; 0 when the frame only adds to the carried time). For the
+    /// explicit solver, which picks its own during the step from the CFL condition
+    /// (`Profile::substeps`), this is the long-frame rule's
+    /// `frameSubsteps(def().positionBased.substeps, frameDt)`. `frameDt` as `step` (unit: s;
+    /// finite, range (0, 1]); throws `fluid::Error` ("World::substepsFor: frameDt = ... is out
+    /// of range ...") otherwise. Stepping thread, between steps.
     uint32_t substepsFor(float frameDt) const;
     /// The position-based solver's sub-step (unit: s): 1/60 s over
     /// `def().positionBased.substeps` (1/240 s by default, range [1/3840, 1/60]). Stepping
     /// thread, between steps.
     double substepLength() const;
-    /// Frame time given to `step` that the position-based solver has not simulated yet (unit:
-    /// s; range [0, substepLength()) for the current settings): the next step starts with it.
-    /// 0 for the explicit solver. Saved in snapshots. Stepping thread, between steps.
+    /// Frame time given to `step` that the position-based solver has not simulated yet, negative
+    /// when its sub-steps ran ahead of the frames (unit: s; range [-substepLength() / 2,
+    /// substepLength() / 2) for the settings of the last step; a world loaded from a snapshot
+    /// of an earlier release may hold up to one sub-step): the next step starts with it. 0 for
+    /// the explicit solver. Saved in snapshots. Stepping thread, between steps.
     double carriedTime() const;
 
     /// Particles in the world (unit: count).
@@ -503,7 +509,8 @@ public:
     const Profile& profile() const;
     /// Sub-steps the last step took (unit: count), same as `profile().substeps`.
     uint32_t lastSubsteps() const;
-    /// Simulated time since creation (unit: s): the frames stepped, less `carriedTime()`.
+    /// Simulated time since creation (unit: s): the frames stepped, less `carriedTime()` (so up
+    /// to half a sub-step ahead of them when that is negative). Stepping thread, between steps.
     double time() const;
     /// The definition the world was created from.
     const WorldDef& def() const;

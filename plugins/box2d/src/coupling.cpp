@@ -313,21 +313,31 @@ void Coupling::step(World& world, float dt) {
     }
     // The position-based solver: one round per sub-step the frame is due (World::substepsFor,
     // the world's carried time included), each a Box2D step and a world step of exactly one
-    // sub-step of the fixed length; what is left of the frame is carried by the world, and
-    // Box2D's time with it. The first round's world step is the sub-step less the time the
-    // world carried already.
+    // sub-step of the fixed length; what is left of the frame, positive or negative, is
+    // carried by the world, and Box2D's time with it. The first round's world step is the
+    // sub-step less the time the world carried already, the last one's the sub-step plus what
+    // the frame leaves (under half a sub-step either way: World::step rounds it to one).
     const uint32_t rounds = world.substepsFor(dt);
+    if (rounds == 0) {
+        const HostStep host(*m_boundary);
+        world.step(dt); // under half a sub-step due: only carried
+        return;
+    }
     const double h = world.substepLength();
-    const double carried = world.carriedTime();
+    const double rest = world.carriedTime() + double(dt) - double(rounds) * h;
     for (uint32_t round = 0; round < rounds; ++round) {
         m_physics->Step(float(h), m_def.velocityIterations, m_def.positionIterations);
-        const double given = round == 0 ? h - carried : h;
-        fluidRound(world, float(std::max(given, 1e-9)), float(h));
-    }
-    const double rest = carried + double(dt) - double(rounds) * h;
-    if (rest > 1e-9) {
-        const HostStep host(*m_boundary);
-        world.step(float(rest)); // less than a sub-step: only carried
+        const double given = h - world.carriedTime() + (round + 1 == rounds ? rest : 0.0);
+        // As a float, nudged by an ulp where its rounding would tip the world's rounding to
+        // none or two sub-steps (a frame's rest of exactly half a sub-step).
+        float step = float(std::max(given, 1e-9));
+        while (world.substepsFor(step) == 0) {
+            step = std::nextafter(step, 1.0f);
+        }
+        while (world.substepsFor(step) > 1) {
+            step = std::nextafter(step, 0.0f);
+        }
+        fluidRound(world, step, float(h));
     }
 }
 

@@ -139,12 +139,13 @@ void registerCouplingPlugin(Registry& registry);
 /// about it: buoyancy and drag come out of the fluid, not a formula.
 ///
 /// One frame (`step`) of dt is one round per sub-step the position-based solver takes for dt
-/// (`World::substepsFor(dt)`: the whole sub-steps of `World::substepLength()`, 1/240 s at the
-/// default 4 per 1/60 s, in the world's carried time plus dt; the rest of the frame stays
-/// carried, and Box2D's time with it), the world stepping one sub-step at a time; with the
-/// explicit solver, `frameSubsteps(4, dt)` rounds, each in its own CFL sub-steps. So frames of
-/// any length, varying or not, have the rounds of 60 Hz frames and their cost per simulated
-/// second. A round of h:
+/// (`World::substepsFor(dt)`: the whole number of `World::substepLength()`s, 1/240 s at the
+/// default 4 per 1/60 s, nearest to the world's carried time plus dt; the rest of the frame,
+/// positive or negative, stays carried, and Box2D's time with it, so the world's time is the
+/// rounds' and within half a sub-step of the frames' sum), the world stepping one sub-step at
+/// a time; with the explicit solver, `frameSubsteps(4, dt)` rounds, each in its own CFL
+/// sub-steps. So frames of any length, varying or not, have the rounds of 60 Hz frames and
+/// their cost per simulated second. A round of h:
 ///   1. the `b2World` steps by h, with the fluid's forces of the previous round applied to its
 ///      dynamic bodies (and whatever the game applied);
 ///   2. the fluid world steps by h; every body sweeps rigidly from where the fluid last saw it
