@@ -41,8 +41,9 @@ std::size_t findParam(std::string_view type, std::span<const ParamDecl> decls,
 void checkType(std::string_view type, const ParamDecl& decl, ParamType expected) {
     if (decl.type != expected) {
         throw Error("plugin " + internal::quoted(type) + ": parameter " +
-                    internal::quoted(decl.name) + " is " + (decl.type == ParamType::Points ? "a point list" : "a number") +
-                    ", not " + (expected == ParamType::Points ? "a point list" : "a number"));
+                    internal::quoted(decl.name) + " is " +
+                    (decl.type == ParamType::Points ? "a point list" : "a number") + ", not " +
+                    (expected == ParamType::Points ? "a point list" : "a number"));
     }
 }
 
@@ -98,16 +99,16 @@ void Plugin::setPoints(std::string_view name, std::span<const glm::vec2> points)
     if (!(count >= decl.minValue && count <= decl.maxValue)) {
         std::ostringstream s;
         s << "plugin " << internal::quoted(m_type) << ": parameter " << internal::quoted(decl.name)
-          << " has " << points.size()
-          << " points; expected " << decl.minValue << " to " << decl.maxValue;
+          << " has " << points.size() << " points; expected " << decl.minValue << " to "
+          << decl.maxValue;
         throw Error(s.str());
     }
     for (std::size_t k = 0; k < points.size(); ++k) {
         if (!std::isfinite(points[k].x) || !std::isfinite(points[k].y)) {
             std::ostringstream s;
             s << "plugin " << internal::quoted(m_type) << ": parameter "
-              << internal::quoted(decl.name) << " point " << k << " = ("
-              << points[k].x << ", " << points[k].y << ") is not finite";
+              << internal::quoted(decl.name) << " point " << k << " = (" << points[k].x << ", "
+              << points[k].y << ") is not finite";
             throw Error(s.str());
         }
     }
@@ -138,8 +139,7 @@ void Registry::add(PluginInfo info) {
         internal::checkName(type + " parameter", decl.name);
         for (size_t j = 0; j < i; ++j) {
             if (info.params[j].name == decl.name) {
-                throw Error(type + " declares parameter " + internal::quoted(decl.name) +
-                            " twice");
+                throw Error(type + " declares parameter " + internal::quoted(decl.name) + " twice");
             }
         }
         if (decl.type == ParamType::Points &&
@@ -187,8 +187,7 @@ namespace {
 template <class P>
 std::unique_ptr<P> downcast(std::unique_ptr<Plugin> plugin, PluginKind kind, const char* what) {
     if (plugin->kind() != kind) {
-        throw Error("plugin " + internal::quoted(plugin->type()) + " is not a " + what +
-                    " plugin");
+        throw Error("plugin " + internal::quoted(plugin->type()) + " is not a " + what + " plugin");
     }
     return std::unique_ptr<P>(static_cast<P*>(plugin.release()));
 }

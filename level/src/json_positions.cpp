@@ -617,7 +617,8 @@ JsonDocument::JsonDocument(std::string_view text, std::string_view file)
         const std::size_t slash = dup->pointer.rfind('/');
         const std::vector<std::string> tokens = splitPointer(dup->pointer.substr(slash));
         throw LevelError(m_file, pos.line, pos.column, dup->pointer,
-                         "duplicate key " + internal::quoted(tokens.empty() ? std::string() : tokens[0]) +
+                         "duplicate key " +
+                             internal::quoted(tokens.empty() ? std::string() : tokens[0]) +
                              "; each key may appear once per object");
     }
 }

@@ -155,8 +155,8 @@ private:
             if (solver == "explicit") {
                 def.solver = Solver::Explicit;
             } else if (solver != "position_based") {
-                w.failAt("solver",
-                         "unknown solver " + internal::quoted(solver) + "; known: position_based, explicit");
+                w.failAt("solver", "unknown solver " + internal::quoted(solver) +
+                                       "; known: position_based, explicit");
             }
             // A named preset first; explicit substeps, iterations and viscosityInterval
             // override its fields.
@@ -166,15 +166,16 @@ private:
             } else if (quality == "precise") {
                 def.positionBased = positionBasedPreset(Quality::Precise);
             } else if (!quality.empty()) {
-                w.failAt("quality", "unknown quality " + internal::quoted(quality) + "; known: game, precise");
+                w.failAt("quality",
+                         "unknown quality " + internal::quoted(quality) + "; known: game, precise");
             }
             readFields(w, positionBasedFields(), def.positionBased);
             const std::string eos = w.string("equationOfState", "tait");
             if (eos == "linear") {
                 def.equationOfState = EquationOfState::Linear;
             } else if (eos != "tait") {
-                w.failAt("equationOfState",
-                         "unknown equation of state " + internal::quoted(eos) + "; known: tait, linear");
+                w.failAt("equationOfState", "unknown equation of state " + internal::quoted(eos) +
+                                                "; known: tait, linear");
             }
             const double c = w.number("soundSpeed", {0, 1e4, "m/s"}, 0.0);
             if (c > 0.0 && c < 0.1) {
@@ -252,8 +253,8 @@ private:
             } else if (preset == "seed_yoghurt") {
                 material = seedYoghurt();
             } else {
-                m.failAt("preset",
-                         "unknown preset " + internal::quoted(preset) + "; known: water, yoghurt, seed_yoghurt");
+                m.failAt("preset", "unknown preset " + internal::quoted(preset) +
+                                       "; known: water, yoghurt, seed_yoghurt");
             }
             material.name = name;
             readFields(m, materialFields(), material);
@@ -278,7 +279,8 @@ private:
                 for (const PluginInfo& k : m_registry.types()) {
                     known.push_back(k.type);
                 }
-                p.failAt("type", "unknown plugin type " + internal::quoted(type) + "; known: " + joined(known));
+                p.failAt("type", "unknown plugin type " + internal::quoted(type) +
+                                     "; known: " + joined(known));
             }
             const bool named = p.has("name");
             const std::string name = named ? requiredName(p, "plugin") : type;
@@ -416,10 +418,11 @@ private:
             common.push_back("vertices");
             o.allowOnly(common);
             // The core's cap (fluid::kMaxPolygonVertices), checked before the points are read.
-            shape = Shape::polygon(
-                o.requiredPoints("vertices", kCoordinate, 3, kMaxPolygonVertices));
+            shape =
+                Shape::polygon(o.requiredPoints("vertices", kCoordinate, 3, kMaxPolygonVertices));
         } else {
-            o.failAt("shape", "unknown shape " + internal::quoted(type) + "; known: box, circle, polygon");
+            o.failAt("shape",
+                     "unknown shape " + internal::quoted(type) + "; known: box, circle, polygon");
         }
         // Crossing edges, zero area, sizes lost in the float conversion: the core's check,
         // re-located at the field that holds the geometry.

@@ -57,8 +57,8 @@ public:
         const auto [it, added] = m_index.emplace(name, m_entries.size());
         if (!added) {
             doc.fail(pointer, "duplicate " + std::string(m_what) + " name " +
-                                  internal::quoted(name) + " (first used at " + m_entries[it->second].pointer +
-                                  "); names must be unique");
+                                  internal::quoted(name) + " (first used at " +
+                                  m_entries[it->second].pointer + "); names must be unique");
         }
         m_entries.push_back({name, pointer, id});
     }
@@ -71,9 +71,8 @@ public:
         for (const Entry& e : m_entries) {
             known.push_back(e.name);
         }
-        doc.fail(pointer,
-                 "unknown " + std::string(m_what) + " " + internal::quoted(name) +
-                     "; known: " + joined(known));
+        doc.fail(pointer, "unknown " + std::string(m_what) + " " + internal::quoted(name) +
+                              "; known: " + joined(known));
     }
 
 private:

@@ -63,7 +63,7 @@ const char* const kHugeBlobLevel =
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 #define FLUID_TEST_SANITIZED 1
 #elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) ||                    \
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) ||                         \
     __has_feature(memory_sanitizer)
 #define FLUID_TEST_SANITIZED 1
 #endif
@@ -194,8 +194,8 @@ TEST_CASE("C API: fluid_level_parse reads the whole length given: a NUL byte in 
     CHECK(std::string(fluid_last_error()) ==
           "t.json:1:49: a NUL byte at byte offset 48 of the 49-byte text; a level file is JSON "
           "text and holds none");
-    const std::string inside = "{\"version\": 1,\n \"materials\": [{\"name\": \"wa" +
-                               std::string(1, '\0') + "ter\"}]}";
+    const std::string inside =
+        "{\"version\": 1,\n \"materials\": [{\"name\": \"wa" + std::string(1, '\0') + "ter\"}]}";
     CHECK(fluid_level_parse(inside.data(), inside.size(), "t.json", nullptr, &level) ==
           FLUID_ERROR_BAD_FILE);
     CHECK(std::string(fluid_last_error()) ==
@@ -297,8 +297,8 @@ TEST_CASE("C API: plugin type and parameter names follow the names' rule, and me
     CHECK(std::strlen(fluid_last_error()) < 4096);
     C_OK(fluid_world_add_plugin(w.world, "force.gravity", nullptr, 0, &id));
     CHECK(fluid_plugin_set_param(w.world, id, huge.c_str(), 1.0) == FLUID_ERROR_UNKNOWN_NAME);
-    CHECK(std::string(fluid_last_error()) == "plugin 'force.gravity': unknown parameter " +
-                                                 quotedLong(huge) + "; known: gx gy");
+    CHECK(std::string(fluid_last_error()) ==
+          "plugin 'force.gravity': unknown parameter " + quotedLong(huge) + "; known: gx gy");
     fluid_world_def def = fluid_default_world_def();
     CHECK(fluid_world_def_set(&def, huge.c_str(), 1.0) == FLUID_ERROR_UNKNOWN_NAME);
     CHECK_THAT(fluid_last_error(),

@@ -79,7 +79,8 @@ TEST_CASE("level text: names are at most kMaxNameBytes bytes, and messages quote
     CHECK_THAT(type, Catch::StartsWith("t.json:1:71: at /plugins/0/type: unknown plugin type " +
                                        quoted + "; known: force.gravity, "));
     CHECK(type.size() < 4096);
-    CHECK(errorOf(kGood.substr(0, kGood.size() - 1) + R"(, "emitters": [{"name": "e", "material": ")" +
-                  huge + R"(", "position": [0, 0]}]})") ==
+    CHECK(errorOf(kGood.substr(0, kGood.size() - 1) +
+                  R"(, "emitters": [{"name": "e", "material": ")" + huge +
+                  R"(", "position": [0, 0]}]})") ==
           "t.json:1:89: at /emitters/0/material: unknown material " + quoted + "; known: water");
 }

@@ -154,6 +154,5 @@ TEST_CASE("messages quote at most kMaxNameBytes bytes of a caller's string, cut 
         shown += "\xc3\xa4";
     }
     CHECK(errorOf([&] { gravity.setParam(utf8, 1.0); }) ==
-          "plugin 'force.gravity': unknown parameter '" + shown +
-              "...' (301 bytes); known: gx gy");
+          "plugin 'force.gravity': unknown parameter '" + shown + "...' (301 bytes); known: gx gy");
 }

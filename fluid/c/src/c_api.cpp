@@ -229,7 +229,6 @@ void checkParam(const Plugin& plugin, const char* name, Probe&& probe) {
     throw Failure{FLUID_ERROR_UNKNOWN_NAME, "unknown parameter"};
 }
 
-
 } // namespace
 
 bool ranOutOfMemory(const std::exception& e) noexcept {
@@ -397,8 +396,8 @@ fluid_status fluid_world_def_set_quality(fluid_world_def* def, const char* quali
         const std::string_view name(quality);
         if (name != "game" && name != "precise") {
             throw Failure{FLUID_ERROR_UNKNOWN_NAME,
-                          "fluid_world_def_set_quality: unknown quality " +
-                              internal::quoted(name) + " (expected game or precise)"};
+                          "fluid_world_def_set_quality: unknown quality " + internal::quoted(name) +
+                              " (expected game or precise)"};
         }
         WorldDef cpp = worldDefOf(*def);
         cpp.positionBased = positionBasedPreset(name == "game" ? Quality::Game : Quality::Precise);

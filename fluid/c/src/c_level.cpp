@@ -55,8 +55,8 @@ Id findNamed(const std::vector<std::pair<std::string, Id>>& entries, const char*
             return id;
         }
     }
-    throw Failure{FLUID_ERROR_UNKNOWN_NAME, std::string(function) + ": the level has no " +
-                                                what + " named " + internal::quoted(name)};
+    throw Failure{FLUID_ERROR_UNKNOWN_NAME, std::string(function) + ": the level has no " + what +
+                                                " named " + internal::quoted(name)};
 }
 
 // Body `index` of fluid_level_body's list: the file's bodies, then the added ones.

@@ -185,8 +185,8 @@ public:
             const uint32_t count = m_def.rigid_bodies(m_user, &bodies);
             if (count > 0 && bodies == nullptr) {
                 throw Error("plugin " + internal::quoted(Declarations::type) +
-                            ": rigid_bodies returned " +
-                            std::to_string(count) + " bodies and a NULL array");
+                            ": rigid_bodies returned " + std::to_string(count) +
+                            " bodies and a NULL array");
             }
             for (uint32_t i = 0; i < count; ++i) {
                 m_bodies.push_back(

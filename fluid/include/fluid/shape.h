@@ -15,7 +15,7 @@ namespace fluid {
 /// The most vertices a polygon `Shape` may have (unit: count): blobs, drains and sensors in C++,
 /// in C and in level files alike. `validate` refuses more ("spawnBlob: polygon has 300
 /// vertices; expected 3 to 256"): checking that no two edges cross takes time quadratic in the
-/// count (about 30 us at 256), and a drain's or sensor's test of every particle each step time
+/// count (about 0.13 ms at 256), and a drain's or sensor's test of every particle each step time
 /// linear in it. Compile-time constant; any thread.
 inline constexpr std::size_t kMaxPolygonVertices = 256;
 
@@ -70,8 +70,9 @@ struct Shape {
 
 /// Throws `fluid::Error` if `shape` is not usable (non-finite or non-positive sizes, fewer than
 /// three vertices or more than `kMaxPolygonVertices`, zero area, crossing edges); the message
-/// starts with `who` (e.g. "World::addSensor") and names the field. Time: at most quadratic in
-/// the vertex count, so at most about 30 us. Thread rule: any thread.
+/// starts with `who` (e.g. "World::addSensor") and names the field. Time: quadratic in the
+/// vertex count, so at most about 0.13 ms; a longer polygon is refused before any work.
+/// Thread rule: any thread.
 void validate(const Shape& shape, std::string_view who);
 
 /// True when `point` (unit: m) lies inside `shape` (boundary points of a rectangle or circle
