@@ -170,8 +170,7 @@ public:
         m_def.prepare(m_user, &c, &samples);
         m_samples.clear();
         if (samples.count > 0 && (samples.px == nullptr || samples.py == nullptr)) {
-            throw Error("plugin " + internal::quoted(Declarations::type) + ": prepare left " +
-                        std::to_string(samples.count) +
+            throw Error(Declarations::type + ": prepare left " + std::to_string(samples.count) +
                         " samples without their positions (px or py is NULL)");
         }
         for (uint32_t i = 0; i < samples.count; ++i) {
@@ -184,9 +183,8 @@ public:
             const fluid_rigid_body* bodies = nullptr;
             const uint32_t count = m_def.rigid_bodies(m_user, &bodies);
             if (count > 0 && bodies == nullptr) {
-                throw Error("plugin " + internal::quoted(Declarations::type) +
-                            ": rigid_bodies returned " + std::to_string(count) +
-                            " bodies and a NULL array");
+                throw Error(Declarations::type + ": rigid_bodies returned " +
+                            std::to_string(count) + " bodies and a NULL array");
             }
             for (uint32_t i = 0; i < count; ++i) {
                 m_bodies.push_back(
