@@ -79,9 +79,7 @@ std::span<const MaterialField> materialFields() {
 }
 
 void validate(const Material& m) {
-    if (const std::string problem = internal::nameProblem(m.name); !problem.empty()) {
-        throw Error("material '" + m.name + "': " + problem);
-    }
+    internal::checkName("material", m.name);
     for (const MaterialField& f : kFields) {
         // Compared in the field's own type: a bound such as 1e-4 is not a float, and the
         // float nearest to it (what a level or a tuning panel stores) must pass.

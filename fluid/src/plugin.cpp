@@ -1,5 +1,6 @@
 // fluid — plugin parameters and the registry.
 #include <fluid/error.h>
+#include <fluid/internal/checks.h>
 #include <fluid/plugin.h>
 #include <fluid/registry.h>
 
@@ -26,7 +27,8 @@ std::size_t findParam(std::string_view type, std::span<const ParamDecl> decls,
         }
     }
     std::ostringstream s;
-    s << "plugin '" << type << "': unknown parameter '" << name << "'; known:";
+    s << "plugin " << internal::quoted(type) << ": unknown parameter " << internal::quoted(name)
+      << "; known:";
     for (const ParamDecl& decl : decls) {
         s << ' ' << decl.name;
     }
@@ -38,9 +40,10 @@ std::size_t findParam(std::string_view type, std::span<const ParamDecl> decls,
 
 void checkType(std::string_view type, const ParamDecl& decl, ParamType expected) {
     if (decl.type != expected) {
-        throw Error("plugin '" + std::string(type) + "': parameter '" + std::string(decl.name) +
-                    "' is " + (decl.type == ParamType::Points ? "a point list" : "a number") +
-                    ", not " + (expected == ParamType::Points ? "a point list" : "a number"));
+        throw Error("plugin " + internal::quoted(type) + ": parameter " +
+                    internal::quoted(decl.name) + " is " +
+                    (decl.type == ParamType::Points ? "a point list" : "a number") + ", not " +
+                    (expected == ParamType::Points ? "a point list" : "a number"));
     }
 }
 
@@ -52,7 +55,8 @@ void checkValue(std::string_view type, const ParamDecl& decl, double value) {
         return;
     }
     std::ostringstream s;
-    s << "plugin '" << type << "': parameter '" << decl.name << "' = " << value << " is "
+    s << "plugin " << internal::quoted(type) << ": parameter " << internal::quoted(decl.name)
+      << " = " << value << " is "
       << (std::isfinite(value) ? "out of range" : "not finite; expected") << " [" << decl.minValue
       << ", " << decl.maxValue << "] (unit: " << decl.unit << ")";
     throw Error(s.str());
@@ -94,15 +98,17 @@ void Plugin::setPoints(std::string_view name, std::span<const glm::vec2> points)
     const auto count = double(points.size());
     if (!(count >= decl.minValue && count <= decl.maxValue)) {
         std::ostringstream s;
-        s << "plugin '" << m_type << "': parameter '" << decl.name << "' has " << points.size()
-          << " points; expected " << decl.minValue << " to " << decl.maxValue;
+        s << "plugin " << internal::quoted(m_type) << ": parameter " << internal::quoted(decl.name)
+          << " has " << points.size() << " points; expected " << decl.minValue << " to "
+          << decl.maxValue;
         throw Error(s.str());
     }
     for (std::size_t k = 0; k < points.size(); ++k) {
         if (!std::isfinite(points[k].x) || !std::isfinite(points[k].y)) {
             std::ostringstream s;
-            s << "plugin '" << m_type << "': parameter '" << decl.name << "' point " << k << " = ("
-              << points[k].x << ", " << points[k].y << ") is not finite";
+            s << "plugin " << internal::quoted(m_type) << ": parameter "
+              << internal::quoted(decl.name) << " point " << k << " = (" << points[k].x << ", "
+              << points[k].y << ") is not finite";
             throw Error(s.str());
         }
     }
@@ -120,24 +126,26 @@ void Registry::add(PluginInfo info) {
     if (info.type.empty()) {
         throw Error("Registry::add: empty plugin type");
     }
+    internal::checkName("Registry::add: plugin type", info.type);
+    const std::string type = "Registry::add: plugin type " + internal::quoted(info.type);
     if (find(info.type) != nullptr) {
-        throw Error("Registry::add: plugin type '" + info.type + "' is already registered");
+        throw Error(type + " is already registered");
     }
     if (!info.create) {
-        throw Error("Registry::add: plugin type '" + info.type + "' has no factory");
+        throw Error(type + " has no factory");
     }
     for (size_t i = 0; i < info.params.size(); ++i) {
         const ParamDecl& decl = info.params[i];
+        internal::checkName(type + " parameter", decl.name);
         for (size_t j = 0; j < i; ++j) {
             if (info.params[j].name == decl.name) {
-                throw Error("Registry::add: plugin type '" + info.type + "' declares parameter '" +
-                            std::string(decl.name) + "' twice");
+                throw Error(type + " declares parameter " + internal::quoted(decl.name) + " twice");
             }
         }
         if (decl.type == ParamType::Points &&
             !(decl.minValue >= 0.0 && decl.minValue <= decl.maxValue)) {
-            throw Error("Registry::add: plugin type '" + info.type + "' point list '" +
-                        std::string(decl.name) + "' has no valid count range [minValue, maxValue]");
+            throw Error(type + " point list " + internal::quoted(decl.name) +
+                        " has no valid count range [minValue, maxValue]");
         }
         checkValue(info.type, decl, decl.defaultValue);
     }
@@ -158,7 +166,7 @@ std::unique_ptr<Plugin> Registry::create(std::string_view type,
     const PluginInfo* info = find(type);
     if (info == nullptr) {
         std::ostringstream s;
-        s << "unknown plugin type '" << type << "'; known:";
+        s << "unknown plugin type " << internal::quoted(type) << "; known:";
         for (const PluginInfo& known : m_infos) {
             s << ' ' << known.type;
         }
@@ -179,7 +187,7 @@ namespace {
 template <class P>
 std::unique_ptr<P> downcast(std::unique_ptr<Plugin> plugin, PluginKind kind, const char* what) {
     if (plugin->kind() != kind) {
-        throw Error("plugin '" + std::string(plugin->type()) + "' is not a " + what + " plugin");
+        throw Error("plugin " + internal::quoted(plugin->type()) + " is not a " + what + " plugin");
     }
     return std::unique_ptr<P>(static_cast<P*>(plugin.release()));
 }

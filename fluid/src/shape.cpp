@@ -77,8 +77,9 @@ void validate(const Shape& shape, std::string_view who) {
         return;
     case ShapeType::Polygon: {
         const std::vector<glm::vec2>& v = shape.vertices;
-        if (v.size() < 3) {
-            fail(who, "polygon has " + std::to_string(v.size()) + " vertices; expected 3 or more");
+        if (v.size() < 3 || v.size() > kMaxPolygonVertices) {
+            fail(who, "polygon has " + std::to_string(v.size()) + " vertices; expected 3 to " +
+                          std::to_string(kMaxPolygonVertices));
         }
         for (size_t i = 0; i < v.size(); ++i) {
             checkPoint(who, "polygon vertex " + std::to_string(i), v[i]);

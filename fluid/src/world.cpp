@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <limits>
 #include <new>
 #include <sstream>
@@ -557,7 +558,7 @@ uint32_t World::spawnBlob(const BlobDef& blob, uint32_t* insideSolids) {
              << uint64_t(cols * rows) << " particles beside the world's "
              << m_state->particles.size()
              << "; make the blob smaller or lower WorldDef::maxParticles";
-        throw Error(text.str());
+        std::throw_with_nested(Error(text.str())); // the std::bad_alloc rides along, nested
     }
 }
 

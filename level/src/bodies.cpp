@@ -237,8 +237,8 @@ private:
         } else if (typeName == "kinematic") {
             type = b2_kinematicBody;
         } else if (typeName != "dynamic") {
-            b.failAt("type",
-                     "unknown body type '" + typeName + "'; known: static, kinematic, dynamic");
+            b.failAt("type", "unknown body type " + internal::quoted(typeName) +
+                                 "; known: static, kinematic, dynamic");
         }
         b2BodyDef def;
         def.position = toB2(b.point("position", kPosition, {0.0f, 0.0f}));
@@ -382,8 +382,8 @@ private:
         } else if (shape == "chain") {
             allowed.insert(allowed.end(), {"points", "loop"});
         } else {
-            f.failAt("shape",
-                     "unknown shape '" + shape + "'; known: box, circle, polygon, edge, chain");
+            f.failAt("shape", "unknown shape " + internal::quoted(shape) +
+                                  "; known: box, circle, polygon, edge, chain");
         }
         const bool hasArea = shape == "box" || shape == "circle" || shape == "polygon";
         if (!hasArea) {
@@ -492,7 +492,7 @@ private:
         const ObjectReader j(m_doc, value, at, "a joint");
         const std::string type = j.requiredString("type", "a joint type: revolute");
         if (type != "revolute") {
-            j.failAt("type", "unknown joint type '" + type + "'; known: revolute");
+            j.failAt("type", "unknown joint type " + internal::quoted(type) + "; known: revolute");
         }
         j.allowOnly({"type", "name", "bodyA", "bodyB", "anchor", "collideConnected", "enableMotor",
                      "motorSpeed", "maxMotorTorque", "enableLimit", "lowerAngle", "upperAngle"});

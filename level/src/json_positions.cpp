@@ -1,6 +1,8 @@
 // fluid::level — positions in JSON text and a strict, located reader over nlohmann values.
 #include "json_positions.h"
 
+#include <fluid/internal/checks.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -573,6 +575,15 @@ bool Range::contains(double value) const {
 
 JsonDocument::JsonDocument(std::string_view text, std::string_view file)
     : m_text(text), m_file(file) {
+    // The JSON reader takes a NUL byte for the end of the text: "{...}\0garbage" would load.
+    // The whole text is the document, and JSON text holds no NUL byte.
+    if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+        const TextPosition pos = positionOf(text, nul);
+        throw LevelError(m_file, pos.line, pos.column, "",
+                         "a NUL byte at byte offset " + std::to_string(nul) + " of the " +
+                             std::to_string(text.size()) +
+                             "-byte text; a level file is JSON text and holds none");
+    }
     LocatingDomParser sax(m_root);
     if (!Json::sax_parse(text.begin(), text.end(), &sax)) {
         std::size_t offset = sax.errorEnd > 0 ? sax.errorEnd - 1 : 0;
@@ -606,14 +617,19 @@ JsonDocument::JsonDocument(std::string_view text, std::string_view file)
         const std::size_t slash = dup->pointer.rfind('/');
         const std::vector<std::string> tokens = splitPointer(dup->pointer.substr(slash));
         throw LevelError(m_file, pos.line, pos.column, dup->pointer,
-                         "duplicate key '" + (tokens.empty() ? std::string() : tokens[0]) +
-                             "'; each key may appear once per object");
+                         "duplicate key " +
+                             internal::quoted(tokens.empty() ? std::string() : tokens[0]) +
+                             "; each key may appear once per object");
     }
 }
 
 void JsonDocument::fail(std::string_view pointer, const std::string& message) const {
+    throw errorAt(pointer, message);
+}
+
+LevelError JsonDocument::errorAt(std::string_view pointer, const std::string& message) const {
     const TextPosition pos = positionOf(m_text, locate(m_text, pointer, false));
-    throw LevelError(m_file, pos.line, pos.column, std::string(pointer), message);
+    return LevelError(m_file, pos.line, pos.column, std::string(pointer), message);
 }
 
 std::string JsonDocument::locatedText(std::string_view pointer, const std::string& message) const {
@@ -711,7 +727,8 @@ void ObjectReader::allowOnly(const std::vector<std::string_view>& allowed) const
     for (const std::string_view name : allowed) {
         list += (list.empty() ? "" : ", ") + std::string(name);
     }
-    m_doc.failAtKey(pointer(*unknown), "unknown key '" + *unknown + "'; allowed: " + list);
+    m_doc.failAtKey(pointer(*unknown),
+                    "unknown key " + internal::quoted(*unknown) + "; allowed: " + list);
 }
 
 std::optional<std::string>

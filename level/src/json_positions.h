@@ -94,8 +94,9 @@ struct Range {
 /// Thread rule: one thread.
 class JsonDocument {
 public:
-    /// Parses `text` strictly (no comments, no trailing data, no repeated member names).
-    /// Throws LevelError naming `file`, line and column for a syntax error or a repeated name.
+    /// Parses `text` strictly (no comments, no trailing data, no repeated member names, no
+    /// NUL byte anywhere in it: the whole of `text` is the document). Throws LevelError naming
+    /// `file`, line and column for a syntax error, a repeated name or a NUL byte.
     JsonDocument(std::string_view text, std::string_view file);
 
     /// The whole document.
@@ -105,6 +106,9 @@ public:
 
     /// Throws LevelError at the value at `pointer`.
     [[noreturn]] void fail(std::string_view pointer, const std::string& message) const;
+    /// The LevelError at the value at `pointer`, to throw (`std::throw_with_nested` keeps
+    /// what caused it: memory that ran out).
+    LevelError errorAt(std::string_view pointer, const std::string& message) const;
     /// The text a LevelError at the value at `pointer` would carry, for a warning.
     std::string locatedText(std::string_view pointer, const std::string& message) const;
     /// Throws LevelError at the member name that leads to `pointer`.

@@ -15,6 +15,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <map>
 #include <memory>
 #include <new>
@@ -67,9 +68,6 @@ constexpr Range kVelocity{-1e3, 1e3, "m/s"};
 constexpr Range kLifetime{0.0, 1e6, "s"};
 constexpr Range kStructure{0.0, 1.0, "1"};
 constexpr Range kFrameRate{1.0, 1000.0, "Hz"};
-// Most vertices of a blob, drain or sensor polygon: validation and containment are quadratic
-// and linear in it.
-constexpr std::size_t kMaxShapeVertices = 256;
 // A blob's particle closer than this many lattice spacings to an earlier blob's lies inside
 // that blob (warnOverlaps).
 constexpr double kOverlapReach = 0.8;
@@ -157,8 +155,8 @@ private:
             if (solver == "explicit") {
                 def.solver = Solver::Explicit;
             } else if (solver != "position_based") {
-                w.failAt("solver",
-                         "unknown solver '" + solver + "'; known: position_based, explicit");
+                w.failAt("solver", "unknown solver " + internal::quoted(solver) +
+                                       "; known: position_based, explicit");
             }
             // A named preset first; explicit substeps, iterations and viscosityInterval
             // override its fields.
@@ -168,15 +166,16 @@ private:
             } else if (quality == "precise") {
                 def.positionBased = positionBasedPreset(Quality::Precise);
             } else if (!quality.empty()) {
-                w.failAt("quality", "unknown quality '" + quality + "'; known: game, precise");
+                w.failAt("quality",
+                         "unknown quality " + internal::quoted(quality) + "; known: game, precise");
             }
             readFields(w, positionBasedFields(), def.positionBased);
             const std::string eos = w.string("equationOfState", "tait");
             if (eos == "linear") {
                 def.equationOfState = EquationOfState::Linear;
             } else if (eos != "tait") {
-                w.failAt("equationOfState",
-                         "unknown equation of state '" + eos + "'; known: tait, linear");
+                w.failAt("equationOfState", "unknown equation of state " + internal::quoted(eos) +
+                                                "; known: tait, linear");
             }
             const double c = w.number("soundSpeed", {0, 1e4, "m/s"}, 0.0);
             if (c > 0.0 && c < 0.1) {
@@ -254,8 +253,8 @@ private:
             } else if (preset == "seed_yoghurt") {
                 material = seedYoghurt();
             } else {
-                m.failAt("preset",
-                         "unknown preset '" + preset + "'; known: water, yoghurt, seed_yoghurt");
+                m.failAt("preset", "unknown preset " + internal::quoted(preset) +
+                                       "; known: water, yoghurt, seed_yoghurt");
             }
             material.name = name;
             readFields(m, materialFields(), material);
@@ -280,7 +279,8 @@ private:
                 for (const PluginInfo& k : m_registry.types()) {
                     known.push_back(k.type);
                 }
-                p.failAt("type", "unknown plugin type '" + type + "'; known: " + joined(known));
+                p.failAt("type", "unknown plugin type " + internal::quoted(type) +
+                                     "; known: " + joined(known));
             }
             const bool named = p.has("name");
             const std::string name = named ? requiredName(p, "plugin") : type;
@@ -338,8 +338,8 @@ private:
                 list += (list.empty() ? "" : ", ") + std::string(k);
             }
             m_doc.failAtKey(params.pointer(*unknown),
-                            "unknown parameter '" + *unknown + "' of plugin '" + info.type +
-                                "'; known: " + (list.empty() ? "(none)" : list));
+                            "unknown parameter " + internal::quoted(*unknown) + " of plugin '" +
+                                info.type + "'; known: " + (list.empty() ? "(none)" : list));
         }
         for (const ParamDecl& decl : info.params) {
             const Json* value = params.find(decl.name);
@@ -417,9 +417,12 @@ private:
         } else if (type == "polygon") {
             common.push_back("vertices");
             o.allowOnly(common);
-            shape = Shape::polygon(o.requiredPoints("vertices", kCoordinate, 3, kMaxShapeVertices));
+            // The core's cap (fluid::kMaxPolygonVertices), checked before the points are read.
+            shape =
+                Shape::polygon(o.requiredPoints("vertices", kCoordinate, 3, kMaxPolygonVertices));
         } else {
-            o.failAt("shape", "unknown shape '" + type + "'; known: box, circle, polygon");
+            o.failAt("shape",
+                     "unknown shape " + internal::quoted(type) + "; known: box, circle, polygon");
         }
         // Crossing edges, zero area, sizes lost in the float conversion: the core's check,
         // re-located at the field that holds the geometry.
@@ -456,7 +459,8 @@ private:
             try {
                 added = located(m_doc, at, [&] { return m_level.world.spawnBlob(blob, &inside); });
             } catch (const std::bad_alloc&) {
-                b.fail(detail::outOfMemoryText("the blob's", lattice, first));
+                std::throw_with_nested(
+                    m_doc.errorAt(at, detail::outOfMemoryText("the blob's", lattice, first)));
             }
             if (added == 0 && inside > 0) {
                 b.fail("the blob holds no particle: all of its " + std::to_string(inside) +

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <exception>
 #include <map>
 #include <string>
 #include <string_view>
@@ -55,9 +56,9 @@ public:
     void add(const JsonDocument& doc, const std::string& name, const std::string& pointer, Id id) {
         const auto [it, added] = m_index.emplace(name, m_entries.size());
         if (!added) {
-            doc.fail(pointer, "duplicate " + std::string(m_what) + " name '" + name +
-                                  "' (first used at " + m_entries[it->second].pointer +
-                                  "); names must be unique");
+            doc.fail(pointer, "duplicate " + std::string(m_what) + " name " +
+                                  internal::quoted(name) + " (first used at " +
+                                  m_entries[it->second].pointer + "); names must be unique");
         }
         m_entries.push_back({name, pointer, id});
     }
@@ -70,8 +71,8 @@ public:
         for (const Entry& e : m_entries) {
             known.push_back(e.name);
         }
-        doc.fail(pointer,
-                 "unknown " + std::string(m_what) + " '" + name + "'; known: " + joined(known));
+        doc.fail(pointer, "unknown " + std::string(m_what) + " " + internal::quoted(name) +
+                              "; known: " + joined(known));
     }
 
 private:
@@ -104,14 +105,15 @@ inline std::string outOfMemoryText(std::string_view whose, double particles, uin
            " bytes per particle); make them fewer or lower world.maxParticles";
 }
 
-// A fluid::Error from the world, re-thrown at the block of the file that caused it.
+// A fluid::Error from the world, re-thrown at the block of the file that caused it, with the
+// world's error nested in it (so that memory that ran out stays visible: the C API's status).
 template <class F> auto located(const JsonDocument& doc, const std::string& pointer, F&& f) {
     try {
         return f();
     } catch (const LevelError&) {
         throw;
     } catch (const Error& e) {
-        doc.fail(pointer, e.what());
+        std::throw_with_nested(doc.errorAt(pointer, e.what()));
     }
 }
 

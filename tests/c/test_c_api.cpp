@@ -328,7 +328,7 @@ TEST_CASE("C API: a force plugin written in C acts as the built-in gravity, bit 
     fluid_plugin_id id{};
     CHECK(fluid_world_add_force(world.world, &bad, &id) == FLUID_ERROR_NULL_ARGUMENT);
     CHECK(std::string(fluid_last_error()) ==
-          "fluid_world_add_force: c_test.acceleration: def->apply is NULL");
+          "fluid_world_add_force: plugin type 'c_test.acceleration': def->apply is NULL");
     CHECK(refused.destroyed == 0);
 }
 
@@ -475,7 +475,7 @@ TEST_CASE("C API: a plugin type written in C, registered by name, is added by na
     noFactory.create_force = nullptr;
     CHECK(fluid_register_plugin_type(&noFactory) == FLUID_ERROR_NULL_ARGUMENT);
     CHECK(std::string(fluid_last_error()) ==
-          "fluid_register_plugin_type: c_test.no_factory: def->create_force is NULL");
+          "fluid_register_plugin_type: plugin type 'c_test.no_factory': def->create_force is NULL");
     const fluid_plugin_type_def refusing =
         c_test_acceleration_type("c_test.refusing", &counters, true);
     C_OK(fluid_register_plugin_type(&refusing));

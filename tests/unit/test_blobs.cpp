@@ -159,7 +159,7 @@ TEST_CASE("blob geometry errors", "[unit][blob][bad-input]") {
         b.shape.vertices = {{0.0f, 0.0f}, {1.0f, 0.0f}};
         CHECK_THROWS_MATCHES(
             world.spawnBlob(b), Error,
-            Catch::Message("spawnBlob: polygon has 2 vertices; expected 3 or more"));
+            Catch::Message("spawnBlob: polygon has 2 vertices; expected 3 to 256"));
     }
     SECTION("self-intersecting bow tie") {
         b.shape.vertices = {{0.0f, 0.0f}, {0.1f, 0.1f}, {0.1f, 0.0f}, {0.0f, 0.2f}};

@@ -3,6 +3,8 @@
 // turns what it throws into a status and this thread's message.
 #include "c_internal.h"
 
+#include <fluid/internal/checks.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -196,12 +198,14 @@ void checkMaterial(const World& world, fluid_material_id id) {
             [&] { (void)world.material(toCpp(id)); });
 }
 
-// Rethrows a C++ error about the particle cap as FLUID_ERROR_LIMIT.
+// Rethrows a C++ error about the particle cap as FLUID_ERROR_LIMIT; memory that ran out (whose
+// message also names maxParticles, as a way out) goes on to `guard` as FLUID_ERROR_OUT_OF_MEMORY.
 template <class Body> void particleCap(Body&& body) {
     try {
         body();
     } catch (const Error& e) {
-        if (std::string_view(e.what()).find("maxParticles") != std::string_view::npos) {
+        if (!ranOutOfMemory(e) &&
+            std::string_view(e.what()).find("maxParticles") != std::string_view::npos) {
             throw Failure{FLUID_ERROR_LIMIT, e.what()};
         }
         throw;
@@ -225,6 +229,40 @@ void checkParam(const Plugin& plugin, const char* name, Probe&& probe) {
     throw Failure{FLUID_ERROR_UNKNOWN_NAME, "unknown parameter"};
 }
 
+} // namespace
+
+bool ranOutOfMemory(const std::exception& e) noexcept {
+    if (dynamic_cast<const std::bad_alloc*>(&e) != nullptr) {
+        return true;
+    }
+    const auto* nested = dynamic_cast<const std::nested_exception*>(&e);
+    if (nested == nullptr || nested->nested_ptr() == nullptr) {
+        return false;
+    }
+    try {
+        nested->rethrow_nested();
+    } catch (const std::exception& inner) {
+        return ranOutOfMemory(inner);
+    } catch (...) {
+    }
+    return false;
+}
+
+namespace {
+
+// fluid_world_get_material's name for material `index`: the world handle's own copy, which
+// stays where it is while the world lives unless the material's name changes.
+const char* stableName(const fluid_world& world, uint32_t index, const std::string& name) {
+    std::vector<std::unique_ptr<std::string>>& names = world.materialNames;
+    if (names.size() <= index) {
+        names.resize(size_t(index) + 1);
+    }
+    std::unique_ptr<std::string>& copy = names[index];
+    if (copy == nullptr || *copy != name) {
+        copy = std::make_unique<std::string>(name);
+    }
+    return copy->c_str();
+}
 
 } // namespace
 
@@ -358,8 +396,8 @@ fluid_status fluid_world_def_set_quality(fluid_world_def* def, const char* quali
         const std::string_view name(quality);
         if (name != "game" && name != "precise") {
             throw Failure{FLUID_ERROR_UNKNOWN_NAME,
-                          "fluid_world_def_set_quality: unknown quality '" +
-                              Error::printable(name) + "' (expected game or precise)"};
+                          "fluid_world_def_set_quality: unknown quality " + internal::quoted(name) +
+                              " (expected game or precise)"};
         }
         WorldDef cpp = worldDefOf(*def);
         cpp.positionBased = positionBasedPreset(name == "game" ? Quality::Game : Quality::Precise);
@@ -378,8 +416,8 @@ fluid_status fluid_world_def_set(fluid_world_def* def, const char* field, double
             setField(*p, cpp.positionBased, value, "fluid_world_def_set");
         } else {
             throw Failure{FLUID_ERROR_UNKNOWN_NAME,
-                          "fluid_world_def_set: unknown field '" + Error::printable(field) +
-                              "' (fields: " + fieldNames(worldFields(), positionBasedFields()) +
+                          "fluid_world_def_set: unknown field " + internal::quoted(field) +
+                              " (fields: " + fieldNames(worldFields(), positionBasedFields()) +
                               ")"};
         }
         *def = worldDefToC(cpp);
@@ -554,8 +592,8 @@ fluid_status fluid_material_preset(const char* preset, fluid_material_def* def) 
             *def = presetToC(seedYoghurt(), "seed_yoghurt");
         } else {
             throw Failure{FLUID_ERROR_UNKNOWN_NAME,
-                          "fluid_material_preset: unknown preset '" + Error::printable(name) +
-                              "' (expected water, yoghurt or seed_yoghurt)"};
+                          "fluid_material_preset: unknown preset " + internal::quoted(name) +
+                              " (expected water, yoghurt or seed_yoghurt)"};
         }
     });
 }
@@ -567,8 +605,8 @@ fluid_status fluid_material_def_set(fluid_material_def* def, const char* field, 
         const auto* f = findField(materialFields(), field);
         if (f == nullptr) {
             throw Failure{FLUID_ERROR_UNKNOWN_NAME,
-                          "fluid_material_def_set: unknown field '" + Error::printable(field) +
-                              "' (fields: " + fieldNames(materialFields()) + ")"};
+                          "fluid_material_def_set: unknown field " + internal::quoted(field) +
+                              " (fields: " + fieldNames(materialFields()) + ")"};
         }
         const char* name = def->name;
         Material m = materialOf(*def);
@@ -612,7 +650,9 @@ fluid_status fluid_world_get_material(const fluid_world* world, fluid_material_i
         const World& w = worldOf(world, "fluid_world_get_material");
         need(def, "fluid_world_get_material", "def");
         checkMaterial(w, id);
-        *def = materialToC(w.material(toCpp(id)));
+        const Material& m = w.material(toCpp(id));
+        *def = materialToC(m);
+        def->name = stableName(*world, id.index, m.name);
     });
 }
 

@@ -26,10 +26,16 @@ struct Failure {
 /// Records `message` as this thread's last error and returns `status`.
 fluid_status fail(fluid_status status, std::string_view message);
 
+/// True when `e` is std::bad_alloc or carries one as its nested exception, at any depth: how
+/// the C++ API says that memory ran out under an error of its own (World::spawnBlob's
+/// "memory ran out making room for ...", a level's blob).
+bool ranOutOfMemory(const std::exception& e) noexcept;
+
 /// Runs `body`, turning every exception into a status and this thread's message: Failure as it
-/// says, fluid::LevelError as a bad file, other fluid::Error as `status` (or an input/output
-/// failure when the message says a file cannot be opened, read or written), std::bad_alloc as
-/// out of memory, anything else as `status` with its what().
+/// says; memory that ran out (`ranOutOfMemory`) as out of memory, with the C++ API's message
+/// when it gave one; fluid::LevelError as a bad file; other fluid::Error as `status` (or an
+/// input/output failure when the message says a file cannot be opened, read or written);
+/// anything else as `status` with its what().
 template <class Body> fluid_status guard(fluid_status status, Body&& body) noexcept;
 
 /// Throws Failure(FLUID_ERROR_NULL_ARGUMENT) naming `what` in `function` when `pointer` is NULL.
@@ -53,6 +59,9 @@ struct fluid_world {
     mutable std::vector<fluid_removed_event> removed;
     /// fluid_world_sensor_readings' copies, one per sensor, refreshed on each call.
     mutable std::vector<std::vector<fluid_sensor_reading>> readings;
+    /// fluid_world_get_material's copies of the names, one per material, each on the heap so
+    /// that adding materials never moves one: replaced only when the material's name changed.
+    mutable std::vector<std::unique_ptr<std::string>> materialNames;
 };
 
 namespace fluid::c {
@@ -115,6 +124,8 @@ template <class Body> fluid_status guard(fluid_status status, Body&& body) noexc
         fluid_status s = status;
         if (e.code() == ErrorCode::WrongState) {
             s = FLUID_ERROR_REFUSED; // a call from inside the world's own step
+        } else if (ranOutOfMemory(e)) {
+            s = FLUID_ERROR_OUT_OF_MEMORY;
         } else if (dynamic_cast<const LevelError*>(&e) != nullptr) {
             s = FLUID_ERROR_BAD_FILE;
         } else if (message.find("cannot open") != std::string_view::npos ||

@@ -3,6 +3,7 @@
 
 #include <fluid/box2d/coupling.h>
 #include <fluid/box2d/shapes.h>
+#include <fluid/internal/checks.h>
 
 #include <box2d/box2d.h>
 
@@ -55,8 +56,8 @@ Id findNamed(const std::vector<std::pair<std::string, Id>>& entries, const char*
             return id;
         }
     }
-    throw Failure{FLUID_ERROR_UNKNOWN_NAME, std::string(function) + ": the level has no " +
-                                                what + " named '" + Error::printable(name) + "'"};
+    throw Failure{FLUID_ERROR_UNKNOWN_NAME, std::string(function) + ": the level has no " + what +
+                                                " named " + internal::quoted(name)};
 }
 
 // Body `index` of fluid_level_body's list: the file's bodies, then the added ones.
@@ -257,9 +258,9 @@ fluid_status fluid_level_find_plugin(const fluid_level* level, const char* name,
                 return;
             }
         }
-        throw Failure{FLUID_ERROR_UNKNOWN_NAME, "fluid_level_find_plugin: the level has no plugin "
-                                                "named '" +
-                                                    Error::printable(name) + "'"};
+        throw Failure{FLUID_ERROR_UNKNOWN_NAME,
+                      "fluid_level_find_plugin: the level has no plugin named " +
+                          internal::quoted(name)};
     });
 }
 

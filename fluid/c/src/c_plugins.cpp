@@ -2,6 +2,8 @@
 // table of function pointers with a user pointer, under the C++ plugins' contracts.
 #include "c_internal.h"
 
+#include <fluid/internal/checks.h>
+
 #include <cmath>
 #include <cstddef>
 #include <deque>
@@ -10,6 +12,11 @@
 namespace fluid::c {
 
 namespace {
+
+// A C plugin's type as its messages quote it: "plugin type 'force.x'", bounded; "(no type)".
+std::string typeOf(const char* type) {
+    return type != nullptr ? "plugin type " + internal::quoted(type) : "(no type)";
+}
 
 // The plugin's type and parameter declarations, copied from the C def. A base class of the
 // adapters, so that it is built before fluid::Plugin, which keeps a span of the declarations.
@@ -26,6 +33,8 @@ struct Declarations {
             throw Failure{FLUID_ERROR_INVALID_ARGUMENT, std::string(function) +
                                                             ": def->type is empty"};
         }
+        // The names' rule (printable, at most kMaxNameBytes): the type's, then each parameter's.
+        internal::checkName(std::string(function) + ": plugin type", typeName);
         type = typeName;
         if (count > 0) {
             need(params, function, "def->params");
@@ -35,8 +44,10 @@ struct Declarations {
         for (uint32_t i = 0; i < count; ++i) {
             const fluid_param_decl& p = params[i];
             need(p.name, function, "a parameter's name");
-            const std::string where = std::string(function) + ": " + type + " parameter '" +
-                                      Error::printable(p.name) + "'";
+            const std::string owner =
+                std::string(function) + ": plugin type " + internal::quoted(type) + " parameter";
+            internal::checkName(owner, p.name);
+            const std::string where = owner + " " + internal::quoted(p.name);
             if (!std::isfinite(p.default_value) || !std::isfinite(p.min_value) ||
                 !std::isfinite(p.max_value) || p.min_value > p.max_value ||
                 p.default_value < p.min_value || p.default_value > p.max_value) {
@@ -133,9 +144,7 @@ private:
     static const fluid_force_plugin_def& checked(const fluid_force_plugin_def& def) {
         if (def.apply == nullptr) {
             throw Failure{FLUID_ERROR_NULL_ARGUMENT,
-                          "fluid_world_add_force: " +
-                              std::string(def.type != nullptr ? def.type : "(no type)") +
-                              ": def->apply is NULL"};
+                          "fluid_world_add_force: " + typeOf(def.type) + ": def->apply is NULL"};
         }
         return def;
     }
@@ -244,8 +253,7 @@ public:
 private:
     // `def` once its callbacks, role and friction are checked: before anything is built.
     static const fluid_boundary_plugin_def& checked(const fluid_boundary_plugin_def& def) {
-        const std::string who = "fluid_world_add_boundary: " +
-                                std::string(def.type != nullptr ? def.type : "(no type)");
+        const std::string who = "fluid_world_add_boundary: " + typeOf(def.type);
         if (def.prepare == nullptr || def.project == nullptr) {
             throw Failure{FLUID_ERROR_NULL_ARGUMENT,
                           who + ": def->prepare and def->project are required (NULL here)"};
@@ -313,7 +321,7 @@ std::deque<CType>& cTypesLocked() {
 std::unique_ptr<Plugin> makeInstance(const CType& t) {
     const std::string& name = t.declarations.type;
     auto refuse = [&](const std::string& why) {
-        return Error("plugin type '" + name + "' (written in C): " + why);
+        return Error("plugin type " + internal::quoted(name) + " (written in C): " + why);
     };
     try {
         if (t.factory.kind == FLUID_PLUGIN_FORCE) {
@@ -372,7 +380,7 @@ fluid_status fluid_register_plugin_type(const fluid_plugin_type_def* def) {
         const char* const function = "fluid_register_plugin_type";
         need(def, function, "def");
         need(def->type, function, "def->type");
-        const std::string name = Error::printable(def->type);
+        const std::string name = typeOf(def->type);
         if (def->kind != FLUID_PLUGIN_FORCE && def->kind != FLUID_PLUGIN_BOUNDARY) {
             throw Failure{FLUID_ERROR_INVALID_ARGUMENT,
                           std::string(function) + ": " + name + ": kind " +

@@ -1,6 +1,7 @@
 // fluid — 2D SPH liquid for games.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -19,6 +20,14 @@ enum class ErrorCode : uint8_t {
     /// that runs it).
     WrongState = 1,
 };
+
+/// The longest name fluid takes (unit: bytes of UTF-8; a name is printable text of 0 to 256
+/// bytes): a material's, a plugin type's, a declared parameter's, a level file's objects'.
+/// Longer names are refused ("the name is 300 bytes long; names are at most 256 bytes"), and an
+/// error message quotes at most this many bytes of any string it was given ("plugin type
+/// 'force.xxx...' (1048576 bytes)"), so a message stays short whatever the caller passed.
+/// Compile-time constant; any thread.
+inline constexpr std::size_t kMaxNameBytes = 256;
 
 /// The one exception type fluid throws for bad input (non-finite or out-of-range values, stale
 /// handles, a full world, unknown plugin types) and for calls the world's state refuses. The

@@ -30,7 +30,8 @@ enum class ParamType : uint8_t {
 /// One parameter a plugin declares: what level files, tuning panels and error messages show.
 /// Thread rule: plain data, usually a `static constexpr` array in the plugin class.
 struct ParamDecl {
-    /// Key in level files and `Plugin::setParam` (ASCII identifier, e.g. "strength").
+    /// Key in level files and `Plugin::setParam` (ASCII identifier, e.g. "strength"; at most
+    /// `kMaxNameBytes` bytes and no control character: `Registry::add` refuses others).
     std::string_view name;
     /// SI unit shown next to the value (e.g. "m/s^2"; "1" for dimensionless).
     std::string_view unit;

@@ -16,7 +16,8 @@ namespace fluid {
 
 /// How the registry describes and makes one plugin type.
 struct PluginInfo {
-    /// Type string used in level files: "force.<name>" or "boundary.<name>".
+    /// Type string used in level files: "force.<name>" or "boundary.<name>" (a name: printable
+    /// text of 1 to `kMaxNameBytes` bytes).
     std::string type;
     /// Force or boundary.
     PluginKind kind = PluginKind::Force;
@@ -36,8 +37,11 @@ using ParamValue = std::pair<std::string, double>;
 /// Thread rule: not synchronised; fill it before sharing it read-only between threads.
 class Registry {
 public:
-    /// Adds a type; throws `fluid::Error` if the type is empty, already registered, has no
-    /// factory, or a declared default lies outside its range.
+    /// Adds a type; throws `fluid::Error` if the type is empty, not a name (a control
+    /// character, more than `kMaxNameBytes` bytes: "Registry::add: plugin type 'a\x07': the
+    /// name holds a control character (byte 0x07 at offset 1); names are printable text"),
+    /// already registered, has no factory, declares a parameter whose name is not one or a
+    /// name twice, or a declared default lies outside its range.
     void add(PluginInfo info);
     /// Convenience: registers `P` using `P::kType`, `P::kParams` and its default constructor.
     template <class P> void add(std::string description) {

@@ -12,6 +12,13 @@
 
 namespace fluid {
 
+/// The most vertices a polygon `Shape` may have (unit: count): blobs, drains and sensors in C++,
+/// in C and in level files alike. `validate` refuses more ("spawnBlob: polygon has 300
+/// vertices; expected 3 to 256"): checking that no two edges cross takes time quadratic in the
+/// count (about 0.13 ms at 256), and a drain's or sensor's test of every particle each step time
+/// linear in it. Compile-time constant; any thread.
+inline constexpr std::size_t kMaxPolygonVertices = 256;
+
 /// Kind of a `Shape`.
 enum class ShapeType : uint8_t {
     /// Axis-aligned rectangle: `center`, `halfExtents`.
@@ -33,7 +40,8 @@ struct Shape {
     glm::vec2 halfExtents{0.25f, 0.25f};
     /// Radius of a circle (unit: m; finite and > 0). Typical: 0.2.
     float radius = 0.2f;
-    /// Polygon vertices in world space (unit: m; 3 or more, finite, no two edges crossing).
+    /// Polygon vertices in world space (unit: m; 3 to `kMaxPolygonVertices`, finite, no two
+    /// edges crossing).
     std::vector<glm::vec2> vertices;
 
     /// An axis-aligned rectangle from its corners (unit: m).
@@ -61,8 +69,10 @@ struct Shape {
 };
 
 /// Throws `fluid::Error` if `shape` is not usable (non-finite or non-positive sizes, fewer than
-/// three vertices, zero area, crossing edges); the message starts with `who` (e.g.
-/// "World::addSensor") and names the field. Thread rule: any thread.
+/// three vertices or more than `kMaxPolygonVertices`, zero area, crossing edges); the message
+/// starts with `who` (e.g. "World::addSensor") and names the field. Time: quadratic in the
+/// vertex count, so at most about 0.13 ms; a longer polygon is refused before any work.
+/// Thread rule: any thread.
 void validate(const Shape& shape, std::string_view who);
 
 /// True when `point` (unit: m) lies inside `shape` (boundary points of a rectangle or circle

@@ -327,7 +327,10 @@ public:
     /// Fills the blob's shape on its material's lattice; all or nothing. Lattice points that a
     /// boundary plugin `contains` (inside a solid, outside a container) are left out, and their
     /// count is written to `insideSolids` when given. Returns the particle count added (0 if
-    /// the shape holds no free lattice point). Throws for bad geometry or a full world.
+    /// the shape holds no free lattice point). Throws for bad geometry or a full world; when
+    /// memory runs out, `fluid::Error` "spawnBlob: memory ran out making room for the blob's
+    /// about N particles ..." with the `std::bad_alloc` nested in it (`std::rethrow_if_nested`
+    /// finds it), the world left as it was.
     uint32_t spawnBlob(const BlobDef& blob, uint32_t* insideSolids = nullptr);
     /// Removes the particle; throws `fluid::Error` for a stale or null handle.
     void removeParticle(ParticleHandle handle);

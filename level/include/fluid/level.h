@@ -233,13 +233,16 @@ struct LevelOptions {
 
 /// Reads and builds the level in the file `path`; plugins are created from `registry`.
 /// Throws `LevelError` for anything the file gets wrong (errors of the world itself, such as an
-/// emitter whose rate the nozzle cannot fit, come located at the block that caused them) and
-/// `fluid::Error` naming the file if it cannot be read. Thread rule: any thread; the registry
-/// is only read.
+/// emitter whose rate the nozzle cannot fit, come located at the block that caused them, with
+/// the world's error nested: a blob too large for memory carries its `std::bad_alloc`, which
+/// `std::rethrow_if_nested` finds) and `fluid::Error` naming the file if it cannot be read. The
+/// whole file is the document: a NUL byte in it is a `LevelError` naming its byte offset. Thread
+/// rule: any thread; the registry is only read.
 Level loadLevel(const std::string& path, const Registry& registry,
                 const LevelOptions& options = {});
 
-/// As `loadLevel`, from text in memory; `file` names it in error messages.
+/// As `loadLevel`, from text in memory (all of `text`, a NUL byte in it an error as in a file);
+/// `file` names it in error messages.
 Level parseLevel(std::string_view text, std::string_view file, const Registry& registry,
                  const LevelOptions& options = {});
 

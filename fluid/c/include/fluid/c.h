@@ -71,7 +71,8 @@ typedef enum fluid_status {
     FLUID_ERROR_IO = 6,
     /// A limit reached: the world's maxParticles, 65535 materials.
     FLUID_ERROR_LIMIT = 7,
-    /// Memory ran out.
+    /// Memory ran out, in any call (a blob too large for memory, in a world or a level file:
+    /// the message says how many particles it asked for).
     FLUID_ERROR_OUT_OF_MEMORY = 8,
     /// The world refused a step or call in its state (a plugin that threw, a host that must step
     /// it); the message says why.
@@ -333,8 +334,10 @@ typedef struct fluid_material_def {
     float flow_index;
     /// Shear modulus of yield-stress materials (unit: Pa; [0, 1e6]).
     float shear_modulus;
-    /// Name (UTF-8; copied when the material is added or set). Read back from a world, it
-    /// points into the world and lives until the material is set again or the world goes.
+    /// Name (printable UTF-8: no control character, at most 256 bytes; copied when the
+    /// material is added or set). Read back from a world, it points to the world's copy and
+    /// lives while the world does, until the material is set again with another name (adding
+    /// materials does not move it).
     const char* name;
 } fluid_material_def;
 
@@ -359,7 +362,7 @@ FLUID_C_API fluid_status fluid_world_add_material(fluid_world* world,
 FLUID_C_API fluid_status fluid_world_set_material(fluid_world* world, fluid_material_id id,
                                                   const fluid_material_def* def);
 
-/// Reads a material back.
+/// Reads a material back (its name: see fluid_material_def.name).
 FLUID_C_API fluid_status fluid_world_get_material(const fluid_world* world, fluid_material_id id,
                                                   fluid_material_def* def);
 
@@ -381,7 +384,7 @@ typedef enum fluid_shape_type {
     FLUID_SHAPE_BOX = 0,
     /// center, radius.
     FLUID_SHAPE_CIRCLE = 1,
-    /// vertices (3 or more, counter-clockwise or clockwise, not crossing).
+    /// vertices (3 to 256, counter-clockwise or clockwise, not crossing).
     FLUID_SHAPE_POLYGON = 2
 } fluid_shape_type;
 
@@ -398,7 +401,7 @@ typedef struct fluid_shape {
     float radius;
     /// Polygon: the vertices (unit: m), read when the shape is used (copied then).
     const fluid_vec2* vertices;
-    /// Polygon: how many (unit: count; >= 3).
+    /// Polygon: how many (unit: count; 3 to 256, C++ fluid::kMaxPolygonVertices).
     uint32_t vertex_count;
 } fluid_shape;
 
@@ -428,7 +431,8 @@ typedef struct fluid_blob_def {
 FLUID_C_API fluid_blob_def fluid_default_blob_def(void);
 
 /// Fills a blob; `spawned` (may be NULL) receives how many particles it made. Lattice points
-/// inside solids are left out.
+/// inside solids are left out. FLUID_ERROR_LIMIT when the world would hold more than its
+/// max_particles, FLUID_ERROR_OUT_OF_MEMORY when memory runs out making room.
 FLUID_C_API fluid_status fluid_world_spawn_blob(fluid_world* world, const fluid_blob_def* def,
                                                 uint32_t* spawned);
 
@@ -620,7 +624,7 @@ FLUID_C_API fluid_status fluid_world_plugin_count(const fluid_world* world, flui
 /// fluid_plugin_get_param reach it by name, the callbacks read its value in `params`, saves keep
 /// it. The strings are copied when the plugin is added.
 typedef struct fluid_param_decl {
-    /// Its name.
+    /// Its name (printable UTF-8: no control character, at most 256 bytes).
     const char* name;
     /// Its unit ("m/s^2").
     const char* unit;
@@ -676,7 +680,8 @@ typedef struct fluid_force_context {
 
 /// A force plugin made of functions (C++ fluid::ForcePlugin).
 typedef struct fluid_force_plugin_def {
-    /// Its type name (in saves and messages; required).
+    /// Its type name (in saves and messages; required; printable UTF-8: no control character,
+    /// 1 to 256 bytes).
     const char* type;
     /// Passed to every callback.
     void* user;
@@ -776,7 +781,7 @@ typedef enum fluid_boundary_role {
 /// A boundary plugin made of functions (C++ fluid::BoundaryPlugin): a solid, wall or container,
 /// optionally carrying rigid bodies of the game's own physics.
 typedef struct fluid_boundary_plugin_def {
-    /// Its type name (required).
+    /// Its type name (required; a name as fluid_force_plugin_def.type).
     const char* type;
     /// Passed to every callback.
     void* user;
@@ -834,7 +839,8 @@ FLUID_C_API fluid_status fluid_world_add_boundary(fluid_world* world,
 /// adds it by name, level files name it in their "plugins", and fluid_world_load and level saves
 /// make it again. Start from fluid_default_plugin_type_def().
 typedef struct fluid_plugin_type_def {
-    /// Its type name (required; not one already registered, the built-ins' included).
+    /// Its type name (required; not one already registered, the built-ins' included; a name as
+    /// fluid_force_plugin_def.type).
     const char* type;
     /// One line for tools (may be NULL).
     const char* description;
@@ -859,8 +865,9 @@ typedef struct fluid_plugin_type_def {
 FLUID_C_API fluid_plugin_type_def fluid_default_plugin_type_def(void);
 
 /// Registers a plugin type written in C for the rest of the process (types are never removed).
-/// FLUID_ERROR_INVALID_ARGUMENT for a name already registered, a kind without its factory, or
-/// bad parameter declarations (the registry's own message). Any thread: registrations are
+/// FLUID_ERROR_INVALID_ARGUMENT for a name already registered, a type or parameter name that is
+/// not printable text of at most 256 bytes, a kind without its factory, or bad parameter
+/// declarations (the registry's own message). Any thread: registrations are
 /// serialised, and a world or level being made meanwhile uses the types registered before.
 FLUID_C_API fluid_status fluid_register_plugin_type(const fluid_plugin_type_def* def);
 
@@ -896,7 +903,8 @@ FLUID_C_API fluid_status fluid_level_read_save(const void* data, size_t size, co
                                                const fluid_level_options* options,
                                                fluid_level** level);
 
-/// Parses a level from text in memory; `file` names it in messages.
+/// Parses a level from `size` bytes of text in memory, all of them the document: a NUL byte
+/// among them is FLUID_ERROR_BAD_FILE naming its offset. `file` names it in messages.
 FLUID_C_API fluid_status fluid_level_parse(const char* text, size_t size, const char* file,
                                            const fluid_level_options* options,
                                            fluid_level** level);

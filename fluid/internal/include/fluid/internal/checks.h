@@ -62,11 +62,40 @@ void checkRange(std::string_view prefix, std::string_view field, T value, T lo, 
     }
 }
 
-/// What is wrong with `name` as a name (of a material, a plugin, an emitter...): "" when it
-/// is printable text, otherwise "the name holds a control character (byte 0x00 at offset 2);
-/// names are printable text" for its first byte below 0x20 or equal to 0x7f (UTF-8 multibyte
-/// characters are allowed). Pure function; any thread.
+/// `text` as an error message quotes it: between apostrophes, control characters written as
+/// `Error::printable` writes them, and at most `kMaxNameBytes` bytes of it, cut before a UTF-8
+/// character that would not fit, with the whole length after a cut one: "'abc'",
+/// "'abcd...' (1048576 bytes)". Every message that quotes a caller's string quotes it through
+/// this function. Pure function; any thread.
+inline std::string quoted(std::string_view text) {
+    std::size_t cut = text.size();
+    if (cut > kMaxNameBytes) {
+        cut = kMaxNameBytes;
+        while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xc0) == 0x80) {
+            --cut; // text[cut] continues a multibyte character: cut before the character
+        }
+    }
+    std::string out(1, '\'');
+    out.append(Error::printable(text.substr(0, cut)));
+    if (cut == text.size()) {
+        out.push_back('\'');
+    } else {
+        out.append("...' (").append(std::to_string(text.size())).append(" bytes)");
+    }
+    return out;
+}
+
+/// What is wrong with `name` as a name (of a material, a plugin type or parameter, a level's
+/// objects): "" when it is printable text of at most `kMaxNameBytes` bytes, otherwise "the name
+/// is 300 bytes long; names are at most 256 bytes", or "the name holds a control character
+/// (byte 0x00 at offset 2); names are printable text" for its first byte below 0x20 or equal
+/// to 0x7f (UTF-8 multibyte characters are allowed). The one rule for names: every name the
+/// libraries take is checked here. Pure function; any thread.
 inline std::string nameProblem(std::string_view name) {
+    if (name.size() > kMaxNameBytes) {
+        return "the name is " + std::to_string(name.size()) + " bytes long; names are at most " +
+               std::to_string(kMaxNameBytes) + " bytes";
+    }
     for (std::size_t k = 0; k < name.size(); ++k) {
         const auto byte = static_cast<unsigned char>(name[k]);
         if (byte < 0x20 || byte == 0x7f) {
@@ -77,6 +106,16 @@ inline std::string nameProblem(std::string_view name) {
         }
     }
     return {};
+}
+
+/// Throws `fluid::Error` "<what> '<name>': <problem>" (the name `quoted`, the problem
+/// `nameProblem`'s) unless `name` is a good name, e.g. "Registry::add: plugin type 'a\x07':
+/// the name holds a control character (byte 0x07 at offset 1); names are printable text". Any
+/// thread.
+inline void checkName(std::string_view what, std::string_view name) {
+    if (const std::string problem = nameProblem(name); !problem.empty()) {
+        throw Error(std::string(what) + " " + quoted(name) + ": " + problem);
+    }
 }
 
 } // namespace fluid::internal
