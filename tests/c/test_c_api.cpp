@@ -704,7 +704,8 @@ TEST_CASE("C API: a crate dropped into a level, a body thrown and gravity change
     bad.shape = fluid_polygon_shape(star, 5);
     CHECK(fluid_level_add_body(level, &bad, nullptr) == FLUID_ERROR_INVALID_ARGUMENT);
     CHECK(std::string(fluid_last_error()) ==
-          "fluid_level_add_body: the polygon is not strictly convex (at vertex 2)");
+          "fluid_level_add_body: the polygon is not convex at vertex 2; a Box2D polygon is convex (split "
+              "a concave shape into several fixtures)");
     CHECK(fluid_level_set_body_velocity(level, 99, {0, 0}, 0) == FLUID_ERROR_STALE_ID);
     fluid_level_destroy(level);
 

@@ -142,12 +142,12 @@ TEST_CASE("level abuse: names are printable text", "[level][abuse3]") {
         "offset 1); names are printable text");
     CHECK(
         errorOf(level(
-            R"(, "bodies": [{"name": "b\u0000", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 1}]}])")) ==
+            R"(, "bodies": [{"name": "b\u0000", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 9}]}])")) ==
         "t.json:1:70: at /bodies/0/name: the name holds a control character (byte 0x00 at "
         "offset 1); names are printable text");
     CHECK(
         errorOf(level(
-            R"(, "bodies": [{"name": "a", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 1}]}, {"name": "b", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 1}]}], "joints": [{"type": "revolute", "name": "j\u001b", "bodyA": "a", "bodyB": "b", "anchor": [0, 0]}])")) ==
+            R"(, "bodies": [{"name": "a", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 9}]}, {"name": "b", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 9}]}], "joints": [{"type": "revolute", "name": "j\u001b", "bodyA": "a", "bodyB": "b", "anchor": [0, 0]}])")) ==
         "t.json:1:260: at /joints/0/name: the name holds a control character (byte 0x1b at "
         "offset 1); names are printable text");
     // UTF-8 names stay allowed.

@@ -34,7 +34,7 @@ std::string withFixture(const std::string& fixture) {
 
 // A valid dynamic ball, for levels that need a body but test something else.
 const std::string kBall =
-    R"({"name": "ball", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 1}]})";
+    R"({"name": "ball", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 9}]})";
 
 std::vector<const b2Fixture*> fixturesOf(const b2Body* body) {
     std::vector<const b2Fixture*> out;
@@ -105,7 +105,7 @@ TEST_CASE("level bodies: names are unique, unnamed bodies are body<k>", "[level]
     CHECK(
         errorOf(withBodies(
             kBall +
-            R"(, {"fixtures": [{"shape": "circle", "radius": 0.1, "density": 1}]}, {"name": "body1", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 1}]})")) ==
+            R"(, {"fixtures": [{"shape": "circle", "radius": 0.1, "density": 9}]}, {"name": "body1", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 9}]})")) ==
         "t.json:1:218: at /bodies/2/name: duplicate body name 'body1' (first used at /bodies/1); "
         "names must be unique");
 }
@@ -137,11 +137,11 @@ TEST_CASE("level bodies: fixture shapes, sizes and settings are checked", "[leve
     CHECK(errorOf(withFixture(R"("shape": "circle", "radius": 0.001, "density": 1)")) ==
           "t.json:1:105: at /bodies/0/fixtures/0/radius: 0.001 is out of range [0.005, 10000] "
           "(unit: m)");
-    CHECK(errorOf(withFixture(R"("shape": "circle", "radius": 1, "density": 1, "friction": -1)")) ==
+    CHECK(errorOf(withFixture(R"("shape": "circle", "radius": 1, "density": 9, "friction": -1)")) ==
           "t.json:1:134: at /bodies/0/fixtures/0/friction: -1 is out of range [0, 1000] (unit: 1)");
     CHECK(
         errorOf(
-            withFixture(R"("shape": "circle", "radius": 1, "density": 1, "restitution": 1.5)")) ==
+            withFixture(R"("shape": "circle", "radius": 1, "density": 9, "restitution": 1.5)")) ==
         "t.json:1:137: at /bodies/0/fixtures/0/restitution: 1.5 is out of range [0, 1] (unit: 1)");
     CHECK(errorOf(withFixture(R"("shape": "circle", "radius": 1, "density": -1)")) ==
           "t.json:1:119: at /bodies/0/fixtures/0/density: -1 is out of range [0, 1000000] (unit: "
@@ -162,7 +162,7 @@ TEST_CASE("level bodies: densities: exactly one of density and densityRatio, and
           "t.json:1:127: at /bodies/0/fixtures/0/density: expected only one of 'density', "
           "'densityRatio'; 'densityRatio' is given too");
     CHECK(errorOf(
-              withFixture(R"("shape": "circle", "radius": 1, "density": 1, "densityRatio": 1)")) ==
+              withFixture(R"("shape": "circle", "radius": 1, "density": 9, "densityRatio": 1)")) ==
           "t.json:1:122: at /bodies/0/fixtures/0/densityRatio: expected only one of 'density', "
           "'densityRatio'; 'density' is given too");
     CHECK(errorOf(withFixture(R"("shape": "edge", "from": [0, 0], "to": [1, 0], "density": 1)")) ==
@@ -185,8 +185,27 @@ TEST_CASE("level bodies: densities: exactly one of density and densityRatio, and
           "t.json:1:74: at /bodies/0/fixtures: the fixtures weigh 8.999999e-07 kg, less than the "
           "1e-06 kg a dynamic body needs (Box2D divides by its mass); raise their density or "
           "size");
+    // Heavy enough for Box2D, but so light beside the water that the fluid throws it: under
+    // kMinDensityRatio of the densest material's areal density (129 kg/m^2 here).
     CHECK(errorOf(withFixture(
-              R"("shape": "box", "width": 0.01, "height": 0.01, "density": 0.01)")) == "no error");
+              R"("shape": "box", "width": 0.01, "height": 0.01, "density": 0.01)")) ==
+          "t.json:1:74: at /bodies/0/fixtures: the fixtures weigh 1e-06 kg over 1e-04 m^2, an "
+          "areal density of 0.01 kg/m^2, 7.73e-05 of the densest material's (129 kg/m^2); a "
+          "dynamic body needs at least 0.05 of it (kMinDensityRatio), or the fluid throws it: "
+          "raise their density to 6.47 kg/m^2 or more");
+    CHECK(errorOf(withFixture(
+              R"("shape": "box", "width": 0.01, "height": 0.01, "density": 6.47)")) ==
+          "no error");
+    CHECK(errorOf(withFixture(
+              R"("shape": "box", "width": 0.01, "height": 0.01, "densityRatio": 0.05)")) ==
+          "no error");
+    CHECK_THAT(errorOf(withFixture(
+                   R"("shape": "box", "width": 0.01, "height": 0.01, "densityRatio": 0.049)")),
+               Catch::Contains("0.049 of the densest material's"));
+    // A body with "fluid": false floats in nothing: only Box2D's floor holds.
+    CHECK(errorOf(withBodies(
+              R"({"fluid": false, "fixtures": [{"shape": "box", "width": 0.01, "height": 0.01, "density": 0.01}]})")) ==
+          "no error");
     // Static and kinematic bodies need no density.
     CHECK(errorOf(withBodies(
               R"({"type": "static", "fixtures": [{"shape": "circle", "radius": 1}]})")) ==
@@ -197,21 +216,21 @@ TEST_CASE("level bodies: densities: exactly one of density and densityRatio, and
         "no error");
     // Fixtures far from the body's position: Box2D's float inertia would come out <= 0.
     CHECK(errorOf(withFixture(
-              R"("shape": "circle", "radius": 0.01, "center": [9000, 0], "density": 1)")) ==
+              R"("shape": "circle", "radius": 0.01, "center": [9000, 0], "density": 9)")) ==
           "t.json:1:74: at /bodies/0/fixtures: the fixtures' centre of mass lies 9000 m from the "
           "body's position, too far for Box2D's single-precision inertia; move the body's position "
           "to its fixtures");
     // ...unless the body does not rotate.
     CHECK(
         errorOf(withBodies(
-            R"({"fixedRotation": true, "fixtures": [{"shape": "circle", "radius": 0.01, "center": [9000, 0], "density": 1}]})")) ==
+            R"({"fixedRotation": true, "fixtures": [{"shape": "circle", "radius": 0.01, "center": [9000, 0], "density": 9}]})")) ==
         "no error");
 }
 
 TEST_CASE("level bodies: polygons are convex, 3 to 8 distinct vertices, with area",
           "[level][bodies]") {
     const auto polygon = [](const std::string& vertices) {
-        return errorOf(withFixture(R"("shape": "polygon", "density": 1, "vertices": )" + vertices));
+        return errorOf(withFixture(R"("shape": "polygon", "density": 9, "vertices": )" + vertices));
     };
     CHECK(polygon("[[0, 0], [1, 0]]") ==
           "t.json:1:122: at /bodies/0/fixtures/0/vertices: expected a list of 3 to 8 points [[x, "

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 #include <numbers>
@@ -28,6 +29,13 @@ std::string number(double value) {
     char text[32];
     const auto result = std::to_chars(text, text + sizeof(text), f);
     return std::string(text, result.ptr);
+}
+
+// A derived figure to three significant digits ("0.0001", "6.47").
+std::string brief(double value) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.3g", value);
+    return text;
 }
 
 double cross(glm::dvec2 a, glm::dvec2 b) {
@@ -121,11 +129,11 @@ ShapeProblem checkPointedPolygon(std::span<const glm::vec2> vertices, float spac
         }
         const double radius = inscribedRadius(vertices);
         if (sharpest < kAcuteCorner && radius < double(spacing)) {
-            return {"the corner at vertex " + std::to_string(at) + " is " + number(sharpest) +
-                        " degrees and the polygon holds a circle of radius " + number(radius) +
+            return {"the corner at vertex " + std::to_string(at) + " is " + brief(sharpest) +
+                        " degrees and the polygon holds a circle of radius " + brief(radius) +
                         " m at most; a dynamic body's polygon with a corner under 90 degrees "
                         "must hold one of the fluid's spacing, " +
-                        number(spacing) +
+                        brief(spacing) +
                         " m, or the fluid throws it (make it larger or blunter, a box or a "
                         "circle, or the body static or kinematic)",
                     int(at)};
@@ -242,13 +250,13 @@ ShapeProblem checkDynamicMass(float mass, float area, float centredInertia, bool
                 -1};
     }
     if (density > 0.0f && area > 0.0f && !(mass >= kMinDensityRatio * density * area)) {
-        return {"the fixtures weigh " + number(mass) + " kg over " + number(area) + " m^2, " +
-                    number(mass / (area * density)) +
-                    " of the areal density of the world's densest material (" +
-                    number(density) + " kg/m^2); a dynamic body needs at least " +
-                    number(kMinDensityRatio) +
-                    " (kMinDensityRatio), or the fluid throws it: raise their density to " +
-                    number(kMinDensityRatio * density) + " kg/m^2 or more",
+        return {"the fixtures weigh " + number(mass) + " kg over " + number(area) +
+                    " m^2, an areal density of " + brief(mass / area) + " kg/m^2, " +
+                    brief(mass / (area * density)) +
+                    " of the densest material's (" + brief(density) +
+                    " kg/m^2); a dynamic body needs at least " + number(kMinDensityRatio) +
+                    " of it (kMinDensityRatio), or the fluid throws it: raise their density to " +
+                    brief(kMinDensityRatio * density) + " kg/m^2 or more",
                 -1};
     }
     if (!fixedRotation && centredInertia < kMinBodyInertia) {
