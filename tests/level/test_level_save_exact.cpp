@@ -1,17 +1,17 @@
-// fluid tests — level saves of coupled levels continue bit-identically: every shipped level with
-// Box2D bodies, saved at several frames and played on, with 1 and 2 worker threads.
+// fluid tests — level saves of levels with Box2D bodies continue bit-identically: every shipped
+// level with bodies, saved at several frames and played on beside the uninterrupted run, with 1
+// and 2 worker threads (Box2D's contacts, broad phase, sweeps and joint impulses are saved:
+// docs/box2d.md, "Saving").
 #include <catch2/catch.hpp>
 
 #include "level_support.h"
 
 #include <fluid/level.h>
-#include <fluid/box2d/physics_save.h>
 
 #include <box2d/box2d.h>
 
 #include <algorithm>
-#include <cmath>
-#include <cstdio>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -34,89 +34,87 @@ Level restore(const std::string& bytes, uint32_t workers) {
     return readLevelSave(in, "s.sav", builtins(), options);
 }
 
-// The largest distance between the same body (Box2D's list order) or particle (slot order) of
-// two levels (unit: m); infinite when the counts differ.
-double worstDistance(const Level& a, const Level& b) {
-    double worst = 0.0;
-    const b2Body* x = a.physics->GetBodyList();
-    const b2Body* y = b.physics->GetBodyList();
-    for (; x != nullptr && y != nullptr; x = x->GetNext(), y = y->GetNext()) {
-        worst = std::max(worst, double((x->GetPosition() - y->GetPosition()).Length()));
-        worst = std::max(worst, double((x->GetWorldCenter() - y->GetWorldCenter()).Length()));
-        worst = std::max(worst, double(std::abs(x->GetAngle() - y->GetAngle())));
+// Every body's pose and velocities (Box2D's list order) and every particle's position and
+// velocity (slot order), as bits.
+std::vector<float> state(const Level& level) {
+    std::vector<float> out;
+    for (const b2Body* b = level.physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
+        const b2Vec2 p = b->GetPosition(), c = b->GetWorldCenter(), v = b->GetLinearVelocity();
+        out.insert(out.end(), {p.x, p.y, c.x, c.y, b->GetAngle(), v.x, v.y,
+                               b->GetAngularVelocity(), b->IsAwake() ? 1.0f : 0.0f});
     }
-    std::printf("bodies %.3g ", worst);
-    if (x != nullptr || y != nullptr || a.world.particleCount() != b.world.particleCount()) {
-        return INFINITY;
+    const World& w = level.world;
+    for (const auto span : {w.positionX(), w.positionY(), w.velocityX(), w.velocityY()}) {
+        out.insert(out.end(), span.begin(), span.end());
     }
-    const auto ax = a.world.positionX(), ay = a.world.positionY();
-    const auto bx = b.world.positionX(), by = b.world.positionY();
-    for (std::size_t i = 0; i < ax.size(); ++i) {
-        worst = std::max(worst, std::hypot(double(ax[i]) - bx[i], double(ay[i]) - by[i]));
+    return out;
+}
+
+// Plays `name` with `workers` threads; at each frame of `saveAt` saves it, restores the save and
+// plays the copy `after` frames beside the original: both must end in the same state, bit for
+// bit, and write the same save.
+void continuesExactly(const std::string& name, uint32_t workers, const std::vector<int>& saveAt,
+                      int after) {
+    INFO(name << " with " << workers << " worker(s)");
+    LevelOptions options;
+    options.workerCount = workers;
+    Level level = parseLevel(readLevel(name.c_str()), name, builtins(), options);
+    REQUIRE(level.physics != nullptr);
+    int frame = 0;
+    for (const int k : saveAt) {
+        for (; frame < k; ++frame) {
+            level.step();
+        }
+        INFO("saved at frame " << k);
+        Level copy = restore(saveOf(level), workers);
+        for (int f = 0; f < after; ++f, ++frame) {
+            level.step();
+            copy.step();
+        }
+        CHECK(state(copy) == state(level));
+        CHECK(saveOf(copy) == saveOf(level));
     }
-    return worst;
+}
+
+// The shipped levels that declare Box2D bodies.
+std::vector<std::string> levelsWithBodies() {
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(FLUID_LEVELS_DIR)) {
+        const std::string name = entry.path().filename().string();
+        if (entry.path().extension() == ".json" &&
+            readLevel(name.c_str()).find("\"bodies\"") != std::string::npos) {
+            names.push_back(name);
+        }
+    }
+    std::sort(names.begin(), names.end());
+    return names;
 }
 
 } // namespace
 
-TEST_CASE("measure: coupled level saves", "[.measure]") {
-    for (const char* name : {"paddle_wheel.json", "cup_and_planks.json", "sticky_plank.json",
-                             "crates.json"}) {
+TEST_CASE("every shipped level with bodies continues bit-identically from a save at frame 20",
+          "[save]") {
+    const std::vector<std::string> names = levelsWithBodies();
+    REQUIRE(names.size() >= 4); // crates, cup_and_planks, paddle_wheel, sticky_plank
+    for (const std::string& name : names) {
         for (const uint32_t workers : {1u, 2u}) {
-            LevelOptions options;
-            options.workerCount = workers;
-            Level level = parseLevel(readLevel(name), name, builtins(), options);
-            const std::vector<int> at{30, 120, 300};
-            const int after = 60;
-            std::vector<Level> restored;
-            int frame = 0;
-            std::vector<double> worst;
-            for (const int k : at) {
-                for (; frame < k; ++frame) {
-                    level.step();
-                    for (Level& r : restored) {
-                        r.step();
-                    }
-                }
-                restored.push_back(restore(saveOf(level), workers));
-            }
-            for (; frame < at.back() + after; ++frame) {
-                level.step();
-                for (Level& r : restored) {
-                    r.step();
-                }
-            }
-            for (std::size_t s = 0; s < at.size(); ++s) {
-                std::printf("[measure] %s workers %u saved at %d, frame %d: %.3g m\n", name,
-                            workers, at[s], frame, worstDistance(level, restored[s]));
-            }
+            continuesExactly(name, workers, {20}, 20);
         }
     }
 }
 
-TEST_CASE("debug: round trip", "[.debug]") {
-    Level level = parseLevel(readLevel("paddle_wheel.json"), "paddle_wheel.json", builtins());
-    for (int f = 0; f < 30; ++f) level.step();
-    const std::string a = saveOf(level);
-    Level r = restore(a, 1);
-    const std::string b = saveOf(r);
-    std::printf("sizes %zu %zu\n", a.size(), b.size());
-    for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
-        if (a[k] != b[k]) { std::printf("first diff at %zu\n", k); break; }
-    }
-    {
-        std::ostringstream pa, pb;
-        box2d::savePhysics(*level.physics, pa);
-        box2d::savePhysics(*r.physics, pb);
-        const std::string sa = pa.str(), sb = pb.str();
-        std::printf("physics sizes %zu %zu\n", sa.size(), sb.size());
-        for (std::size_t k = 0; k < std::min(sa.size(), sb.size()); ++k) {
-            if (sa[k] != sb[k]) { std::printf("physics first diff at %zu\n", k); break; }
+TEST_CASE("paddle_wheel, sticky_plank and cup_and_planks saved at frames 120 and 300 continue "
+          "bit-identically",
+          "[save]") {
+    for (const char* name : {"paddle_wheel.json", "sticky_plank.json", "cup_and_planks.json"}) {
+        for (const uint32_t workers : {1u, 2u}) {
+            continuesExactly(name, workers, {120, 300}, 30);
         }
     }
-    level.step(); r.step();
-    const b2Body* x = level.physics->GetBodyList();
-    const b2Body* y = r.physics->GetBodyList();
-    for (; x && y; x = x->GetNext(), y = y->GetNext())
-        std::printf("%.9g %.9g | %.9g %.9g  awake %d %d\n", x->GetAngle(), y->GetAngle(), x->GetAngularVelocity(), y->GetAngularVelocity(), x->IsAwake(), y->IsAwake());
+}
+
+TEST_CASE("crates.json saved at frames 120 and 300 continues bit-identically", "[save][slow]") {
+    for (const uint32_t workers : {1u, 2u}) {
+        continuesExactly("crates.json", workers, {120, 300}, 30);
+    }
 }
