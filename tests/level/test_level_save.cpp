@@ -326,7 +326,16 @@ TEST_CASE("Box2D world saves keep order, fixtures and joints, and refuse bad one
     b2ChainShape shape;
     shape.CreateChain(chain, 3, {-1.0f, 0.0f}, {1.0f, 2.0f});
     ground->CreateFixture(&shape, 0.0f);
+    b2PolygonShape slab;
+    slab.SetAsBox(0.5f, 0.1f, b2Vec2(0.5f, -0.5f), 0.0f);
+    ground->CreateFixture(&slab, 0.0f);
     def.type = b2_dynamicBody;
+    // A crate that lands on the slab: contacts with warm-starting impulses.
+    def.position.Set(0.5f, -0.2f);
+    b2Body* crate = physics.CreateBody(&def);
+    b2PolygonShape crateBox;
+    crateBox.SetAsBox(0.05f, 0.05f, b2Vec2(0.0f, 0.0f), 0.2f);
+    crate->CreateFixture(&crateBox, 1.0f);
     def.position.Set(0.3f, 0.5f);
     def.linearVelocity.Set(1.0f, -2.0f);
     b2Body* wheel = physics.CreateBody(&def);
@@ -348,9 +357,14 @@ TEST_CASE("Box2D world saves keep order, fixtures and joints, and refuse bad one
     hinge.motorSpeed = 3.0f;
     hinge.maxMotorTorque = 4.0f;
     physics.CreateJoint(&hinge);
-    for (int k = 0; k < 10; ++k) {
+    for (int k = 0; k < 20; ++k) {
         physics.Step(1.0f / 60.0f, 8, 3);
     }
+    bool touching = false;
+    for (const b2ContactEdge* e = crate->GetContactList(); e != nullptr; e = e->next) {
+        touching = touching || e->contact->IsTouching();
+    }
+    REQUIRE(touching);
     std::ostringstream out;
     box2d::savePhysics(physics, out);
     std::istringstream in(out.str());
@@ -369,6 +383,9 @@ TEST_CASE("Box2D world saves keep order, fixtures and joints, and refuse bad one
     CHECK(w2->GetPosition() == wheel->GetPosition());
     CHECK(w2->GetAngle() == wheel->GetAngle());
     CHECK(w2->GetAngularVelocity() == wheel->GetAngularVelocity());
+    const b2Body* c2 = w2->GetNext();
+    CHECK(c2->GetPosition() == crate->GetPosition());
+    CHECK(c2->GetAngle() == crate->GetAngle());
     std::ostringstream both[2];
     box2d::savePhysics(physics, both[0]);
     box2d::savePhysics(*copy, both[1]);
