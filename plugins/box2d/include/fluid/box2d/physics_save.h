@@ -12,12 +12,16 @@ namespace fluid::box2d {
 /// settings; every body in `GetBodyList()` order with its type, pose, velocities, damping,
 /// gravity scale, flags (awake, enabled, bullet, fixed rotation, sleep allowed) and mass data;
 /// every fixture in order (circle, polygon, edge, chain; density, friction, restitution and its
-/// threshold, sensor flag, filter); every revolute joint with its anchors, limits and motor.
-/// Not saved: user data (pointers), contact listeners and filters, and Box2D's internal solver
-/// state (contacts and their warm-starting impulses, joint impulses, sleep timers), which is
-/// rebuilt by the next `Step` — a restored world continues close to, not bit-identical with,
-/// the original. Throws `fluid::Error` for a joint of another type (naming it). Thread rule:
-/// the thread that steps `physics`, between steps.
+/// threshold, sensor flag, filter); every revolute joint with its anchors, limits and motor;
+/// then the solver state Box2D 2.4.1 keeps private (format version 2): every contact in the
+/// world's list order with its fixtures, flags, friction and restitution mixing, tangent speed,
+/// TOI state and manifold (points, feature ids, normal and tangent impulses); the broad phase's
+/// dynamic tree node for node and its move buffer; each body's sweep, inertia about its centre of
+/// mass, accumulated force and torque, sleep timer and its fixtures' proxies; revolute joints'
+/// impulses; the world's last inverse time step and flags. A world `loadPhysics` restores steps
+/// on bit-identically with this one. Not saved: user data (pointers), contact listeners and
+/// filters, the destruction listener and debug draw. Throws `fluid::Error` for a joint of
+/// another type (naming it). Thread rule: the thread that steps `physics`, between steps.
 void savePhysics(const b2World& physics, std::ostream& out);
 
 /// Reads what `savePhysics` wrote and builds a new `b2World` whose bodies, fixtures and joints
