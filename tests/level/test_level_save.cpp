@@ -730,3 +730,70 @@ TEST_CASE("Box2D saves check the solver state: impulses, contacts, the broad-pha
     copy->Step(1.0f / 60.0f, 8, 3);
     CHECK(copy->GetContactCount() == 1);
 }
+
+TEST_CASE("a level save whose fixture a level file could not declare is refused on load",
+          "[save][bad-input]") {
+    // The wheel's hub (radius 0.03 m) set to 2.3e-38 m in the Box2D part, the checksum made
+    // right again. Before, the save loaded and every step failed in the coupling (the disc is
+    // below boundary.circle's 1e-4 m); a level file's circle needs Box2D's linear slop.
+    Level level = parseLevel(readLevel("paddle_wheel.json"), "paddle_wheel.json", builtins());
+    level.step();
+    const std::string bytes = saveOf(level);
+    const Part physics = partsOf(bytes)[3];
+    const float hub = 0.03f, tiny = 2.3e-38f;
+    std::vector<std::size_t> found;
+    for (std::size_t k = physics.at; k + sizeof(hub) <= physics.at + physics.size; ++k) {
+        if (std::memcmp(bytes.data() + k, &hub, sizeof(hub)) == 0) {
+            found.push_back(k);
+        }
+    }
+    REQUIRE(found.size() == 1);
+    std::string altered = bytes;
+    std::memcpy(altered.data() + found[0], &tiny, sizeof(tiny));
+    CHECK(errorOfSave(resealed(altered)) ==
+          "level save 's.sav': the Box2D world: box2d save: body 0 fixture 6 circle radius = "
+          "2.3e-38 is not finite or out of [0.005, 10000] (unit: m)");
+}
+
+TEST_CASE("Box2D saves hold fixtures to a level file's rules: sizes, local coordinates, chains",
+          "[save][bad-input]") {
+    const auto saveWith = [](const b2Shape& shape) {
+        b2World physics(b2Vec2(0.0f, -9.81f));
+        b2BodyDef def;
+        physics.CreateBody(&def)->CreateFixture(&shape, 0.0f);
+        std::ostringstream out;
+        box2d::savePhysics(physics, out);
+        return out.str();
+    };
+    b2EdgeShape stub;
+    stub.SetTwoSided(b2Vec2(0.0f, 0.0f), b2Vec2(0.0f, 0.00390625f)); // 2^-8 m
+    CHECK(physicsError(saveWith(stub)) == "box2d save: body 0 fixture 0 edge is 0.00390625 m "
+                                          "long; expected more than 0.005 m (Box2D's linear slop)");
+    // A sliver Box2D makes (its corners far apart) of 1.5e-5 m^2.
+    const b2Vec2 sliver[3] = {{0.0f, 0.0f}, {0.125f, 0.0f}, {0.0625f, 0.000244140625f}};
+    b2PolygonShape thin;
+    thin.Set(sliver, 3);
+    CHECK(physicsError(saveWith(thin)) ==
+          "box2d save: body 0 fixture 0 polygon's area is 1.52588e-05 m^2; expected at least "
+          "2.5e-05 m^2 (Box2D's linear slop squared, counter-clockwise)");
+    b2CircleShape far;
+    far.m_radius = 0.5f;
+    far.m_p.Set(2e4f, 0.0f);
+    CHECK(physicsError(saveWith(far)) ==
+          "box2d save: body 0 fixture 0 circle centre = 20000 is not finite or out of [-10000, "
+          "10000]");
+    // 4097 points: the coupling refuses more than 4096 at every step.
+    std::vector<b2Vec2> points;
+    for (int k = 0; k < 4097; ++k) {
+        points.emplace_back(0.01f * float(k), 0.0f);
+    }
+    b2ChainShape longChain;
+    longChain.CreateChain(points.data(), int32(points.size()), b2Vec2(-0.01f, 0.0f),
+                          b2Vec2(41.0f, 0.0f));
+    CHECK(physicsError(saveWith(longChain)) ==
+          "box2d save: body 0 fixture 0 chain has 4097 points; at most 4096 (the coupling's limit)");
+    points.pop_back();
+    b2ChainShape loop; // 4096 points and the repeated first
+    loop.CreateLoop(points.data(), int32(points.size()));
+    CHECK(physicsError(saveWith(loop)) == "no error");
+}

@@ -28,7 +28,8 @@ constexpr uint32_t kVersion = 2;
 // Sanity limits for a save's counts (a corrupt count must not allocate gigabytes).
 constexpr uint32_t kMaxBodies = 1u << 20;
 constexpr uint32_t kMaxFixtures = 1u << 16;
-constexpr uint32_t kMaxChain = 1u << 16;
+// A chain's vertices: 4096 points, and the repeated first one of a loop.
+constexpr uint32_t kMaxChain = 4097;
 constexpr uint32_t kMaxJoints = 1u << 20;
 // The fewest bytes one saved body, fixture, chain vertex and joint take (unit: bytes): a count
 // is checked against the bytes left before anything is sized by it.
@@ -36,8 +37,16 @@ constexpr uint32_t kBodyBytes = 62;
 constexpr uint32_t kFixtureBytes = 36;
 constexpr uint32_t kVertexBytes = 8;
 constexpr uint32_t kJointBytes = 47;
-// The largest coordinate a saved position or vertex may have (unit: m): fluid's own bound.
+// The largest coordinate a saved position may have (unit: m): fluid's own bound.
 constexpr float kMaxCoordinate = 1e5f;
+// A level file's bounds on fixtures (level/src/bodies.cpp): body-local coordinates (unit: m;
+// Box2D stores them in float, and a shape far from its body's origin loses its size to
+// rounding), the smallest size, Box2D's linear slop, and the largest (unit: m), a chain's points
+// (the coupling refuses longer chains at every step).
+constexpr float kMaxLocal = 1e4f;
+constexpr float kMinSize = b2_linearSlop;
+constexpr float kMaxSize = 1e4f;
+constexpr uint32_t kMaxChainPoints = 4096;
 // Bounds that keep every product Box2D's step forms finite (a value past them turns a body NaN
 // at its first step, silently). Box2D moves a body at most b2_maxTranslation per step whatever
 // its velocity, so the speeds are far above anything a game sets (unit: m/s and rad/s).
@@ -140,8 +149,9 @@ void putFixture(internal::StreamWriter& w, const b2Fixture& f) {
 // Reads checked values: finite, in range.
 struct In {
     internal::StreamReader r;
-    float number(const std::string& field, float lo = -3e38f, float hi = 3e38f) {
-        return r.number<float>(field, lo, hi);
+    float number(const std::string& field, float lo = -3e38f, float hi = 3e38f,
+                 const char* unit = nullptr) {
+        return r.number<float>(field, lo, hi, unit);
     }
     b2Vec2 vec(const std::string& field, float bound = 3e38f) {
         const float x = number(field, -bound, bound);
@@ -169,44 +179,85 @@ struct FixtureRead {
     b2FixtureDef def;
 };
 
-FixtureRead getFixture(In& in) {
+// The polygon's area (unit: m^2), in double as the level loader computes it.
+double polygonArea(const b2PolygonShape& p) {
+    double twice = 0.0;
+    for (int32 k = 0; k < p.m_count; ++k) {
+        const b2Vec2 a = p.m_vertices[k], b = p.m_vertices[(k + 1) % p.m_count];
+        twice += double(a.x) * double(b.y) - double(a.y) * double(b.x);
+    }
+    return 0.5 * twice;
+}
+
+// A fixture as the save holds it, through the checks a level file's fixture passes
+// (level/src/bodies.cpp, docs/levels.md "Bodies"): body-local coordinates within 1e4 m; a
+// circle's radius from Box2D's linear slop (0.005 m) to 1e4 m; a polygon's vertices at least the
+// slop apart and its area at least the slop squared; an edge longer than the slop; a chain of at
+// most 4096 points whose links are longer than the slop. Box2D asserts on some of these and
+// collides thinner shapes unreliably; the coupling refuses a disc under 1e-4 m, a chain over 4096
+// points or a repeated point at every step, so a save holding one loaded and then failed every
+// step. `of` names the fixture ("body 0 fixture 6 ").
+FixtureRead getFixture(In& in, const std::string& of) {
     FixtureRead f;
     const auto kind = in.r.get<uint8_t>("shape type");
     switch (kind) {
     case kCircle:
-        f.circle.m_radius = in.number("circle radius", 0.0f, kMaxCoordinate);
-        f.circle.m_p = in.vec("circle centre", kMaxCoordinate);
+        f.circle.m_radius = in.number(of + "circle radius", kMinSize, kMaxSize, "m");
+        f.circle.m_p = in.vec(of + "circle centre", kMaxLocal);
         break;
-    case kEdge:
-        f.edge.m_radius = in.number("edge radius", 0.0f, kMaxCoordinate);
-        f.edge.m_vertex0 = in.vec("edge vertex", kMaxCoordinate);
-        f.edge.m_vertex1 = in.vec("edge vertex", kMaxCoordinate);
-        f.edge.m_vertex2 = in.vec("edge vertex", kMaxCoordinate);
-        f.edge.m_vertex3 = in.vec("edge vertex", kMaxCoordinate);
-        f.edge.m_oneSided = in.flag("edge one-sided");
+    case kEdge: {
+        f.edge.m_radius = in.number(of + "edge radius", 0.0f, kMaxSize);
+        f.edge.m_vertex0 = in.vec(of + "edge vertex", kMaxLocal);
+        f.edge.m_vertex1 = in.vec(of + "edge vertex", kMaxLocal);
+        f.edge.m_vertex2 = in.vec(of + "edge vertex", kMaxLocal);
+        f.edge.m_vertex3 = in.vec(of + "edge vertex", kMaxLocal);
+        f.edge.m_oneSided = in.flag(of + "edge one-sided");
+        // The level loader's test, in float as Box2D computes it.
+        if (!(b2DistanceSquared(f.edge.m_vertex1, f.edge.m_vertex2) > kMinSize * kMinSize)) {
+            std::ostringstream m;
+            m << of << "edge is " << b2Distance(f.edge.m_vertex1, f.edge.m_vertex2)
+              << " m long; expected more than 0.005 m (Box2D's linear slop)";
+            in.r.fail(m.str());
+        }
         break;
+    }
     case kPolygon: {
-        f.polygon.m_radius = in.number("polygon radius", 0.0f, kMaxCoordinate);
-        f.polygon.m_centroid = in.vec("polygon centroid", kMaxCoordinate);
+        f.polygon.m_radius = in.number(of + "polygon radius", 0.0f, kMaxSize);
+        f.polygon.m_centroid = in.vec(of + "polygon centroid", kMaxLocal);
         const auto count = in.r.get<uint32_t>("polygon vertex count");
         if (count < 3 || count > uint32_t(b2_maxPolygonVertices)) {
-            in.r.fail("a polygon has " + std::to_string(count) + " vertices (3 to " +
+            in.r.fail(of + "polygon has " + std::to_string(count) + " vertices (3 to " +
                       std::to_string(b2_maxPolygonVertices) + ")");
         }
         f.polygon.m_count = int32(count);
         for (uint32_t k = 0; k < count; ++k) {
-            f.polygon.m_vertices[k] = in.vec("polygon vertex", kMaxCoordinate);
-            f.polygon.m_normals[k] = in.vec("polygon normal", 1.001f);
+            f.polygon.m_vertices[k] = in.vec(of + "polygon vertex", kMaxLocal);
+            f.polygon.m_normals[k] = in.vec(of + "polygon normal", 1.001f);
+        }
+        for (uint32_t j = 1; j < count; ++j) {
+            for (uint32_t i = 0; i < j; ++i) {
+                const double d = std::hypot(
+                    double(f.polygon.m_vertices[i].x) - double(f.polygon.m_vertices[j].x),
+                    double(f.polygon.m_vertices[i].y) - double(f.polygon.m_vertices[j].y));
+                if (!(d >= double(kMinSize))) {
+                    std::ostringstream m;
+                    m << of << "polygon vertex " << j << " is " << d << " m from vertex " << i
+                      << "; polygon vertices must be at least 0.005 m apart (Box2D's linear "
+                         "slop)";
+                    in.r.fail(m.str());
+                }
+            }
         }
         // Box2D needs a convex counter-clockwise polygon with some area whose normals face out
         // of its edges (b2PolygonShape::Set makes one); libbox2d asserts on the area, and a
         // polygon breaking the rest would give NaN contacts.
-        float twiceArea = 0.0f;
-        for (uint32_t k = 0; k < count; ++k) {
-            twiceArea += b2Cross(f.polygon.m_vertices[k], f.polygon.m_vertices[(k + 1) % count]);
-        }
-        if (!(twiceArea > 2e-6f)) {
-            in.r.fail("a polygon encloses no area");
+        const double area = polygonArea(f.polygon);
+        if (!(area >= double(kMinSize) * double(kMinSize))) {
+            std::ostringstream m;
+            m << of << "polygon's area is " << area
+              << " m^2; expected at least 2.5e-05 m^2 (Box2D's linear slop squared, "
+                 "counter-clockwise)";
+            in.r.fail(m.str());
         }
         for (uint32_t k = 0; k < count; ++k) {
             const b2Vec2 a = f.polygon.m_vertices[k];
@@ -216,7 +267,7 @@ FixtureRead getFixture(In& in) {
             const bool edge = normal.Normalize() > b2_linearSlop;
             if (!edge || b2Cross(b - a, c - b) <= 0.0f ||
                 (normal - f.polygon.m_normals[k]).Length() > 1e-3f) {
-                in.r.fail("polygon edge " + std::to_string(k) +
+                in.r.fail(of + "polygon edge " + std::to_string(k) +
                           " is degenerate, not convex counter-clockwise, or its normal does not "
                           "face out of it");
             }
@@ -226,31 +277,38 @@ FixtureRead getFixture(In& in) {
     case kChain: {
         const uint32_t count = in.r.count("chain vertex count", kMaxChain, kVertexBytes);
         if (count < 2) {
-            in.r.fail("a chain has " + std::to_string(count) + " vertices (at least 2)");
+            in.r.fail(of + "chain has " + std::to_string(count) + " vertices (at least 2)");
         }
         f.chain.resize(count);
         for (std::size_t k = 0; k < count; ++k) {
-            f.chain[k] = in.vec("chain vertex", kMaxCoordinate);
+            f.chain[k] = in.vec(of + "chain vertex", kMaxLocal);
             // Box2D's own rule for chains (b2ChainShape::CreateChain asserts it).
             if (k > 0 && b2DistanceSquared(f.chain[k - 1], f.chain[k]) <=
                              b2_linearSlop * b2_linearSlop) {
-                in.r.fail("chain vertices " + std::to_string(k - 1) + " and " +
+                in.r.fail(of + "chain vertices " + std::to_string(k - 1) + " and " +
                           std::to_string(k) + " are closer than b2_linearSlop");
             }
         }
-        f.prev = in.vec("chain previous vertex", kMaxCoordinate);
-        f.next = in.vec("chain next vertex", kMaxCoordinate);
+        // A loop (b2ChainShape::CreateLoop) repeats its first point at the end.
+        const bool loop = count >= 4 && f.chain.front() == f.chain.back();
+        const uint32_t points = loop ? count - 1 : count;
+        if (points > kMaxChainPoints) {
+            in.r.fail(of + "chain has " + std::to_string(points) + " points; at most " +
+                      std::to_string(kMaxChainPoints) + " (the coupling's limit)");
+        }
+        f.prev = in.vec(of + "chain previous vertex", kMaxLocal);
+        f.next = in.vec(of + "chain next vertex", kMaxLocal);
         break;
     }
     default:
-        in.r.fail("unknown shape type " + std::to_string(kind));
+        in.r.fail(of + "unknown shape type " + std::to_string(kind));
     }
     f.kind = ShapeKind(kind);
-    f.def.density = in.number("density", 0.0f, kMaxDensity);
-    f.def.friction = in.number("friction", 0.0f, kMaxFactor);
-    f.def.restitution = in.number("restitution", 0.0f, kMaxFactor);
-    f.def.restitutionThreshold = in.number("restitution threshold", 0.0f);
-    f.def.isSensor = in.flag("sensor");
+    f.def.density = in.number(of + "density", 0.0f, kMaxDensity);
+    f.def.friction = in.number(of + "friction", 0.0f, kMaxFactor);
+    f.def.restitution = in.number(of + "restitution", 0.0f, kMaxFactor);
+    f.def.restitutionThreshold = in.number(of + "restitution threshold", 0.0f);
+    f.def.isSensor = in.flag(of + "sensor");
     f.def.filter.categoryBits = in.r.get<uint16_t>("category bits");
     f.def.filter.maskBits = in.r.get<uint16_t>("mask bits");
     f.def.filter.groupIndex = in.r.get<int16_t>("group index");
@@ -1112,8 +1170,9 @@ std::unique_ptr<b2World> loadPhysics(std::istream& stream) {
             in.r.fail(s.str());
         }
         b.fixtures.resize(in.r.count("fixture count", kMaxFixtures, kFixtureBytes));
-        for (FixtureRead& f : b.fixtures) {
-            f = getFixture(in);
+        for (std::size_t f = 0; f < b.fixtures.size(); ++f) {
+            b.fixtures[f] = getFixture(in, "body " + std::to_string(&b - bodies.data()) +
+                                               " fixture " + std::to_string(f) + " ");
         }
         checkFixtureMass(in, b);
     }
