@@ -675,9 +675,9 @@ TEST_CASE("Box2D saves check the solver state: impulses, contacts, the broad-pha
     const std::size_t firstProxy = solver + 6 + 44 + 4;
     const std::size_t contact = bytes.size() - 110;
     const std::size_t tree = contact - 4 - 4 - (16 + 3 * 33 + 13 * 8);
-    REQUIRE(read(tree) == 16);     // capacity
-    REQUIRE(read(tree + 4) == 2);  // root: the leaves are nodes 0 and 1
-    REQUIRE(read(tree + 8) == 3);  // the free list's head
+    REQUIRE(read(tree) == 16);       // capacity
+    REQUIRE(read(tree + 4) == 2);    // root: the leaves are nodes 0 and 1
+    REQUIRE(read(tree + 8) == 3);    // the free list's head
     REQUIRE(read(contact - 8) == 0); // no buffered moves
     REQUIRE(read(contact - 4) == 1); // one contact
     REQUIRE(read(firstProxy) >= 0);
@@ -790,8 +790,9 @@ TEST_CASE("Box2D saves hold fixtures to a level file's rules: sizes, local coord
     b2ChainShape longChain;
     longChain.CreateChain(points.data(), int32(points.size()), b2Vec2(-0.01f, 0.0f),
                           b2Vec2(41.0f, 0.0f));
-    CHECK(physicsError(saveWith(longChain)) ==
-          "box2d save: body 0 fixture 0 chain has 4097 points; at most 4096 (the coupling's limit)");
+    CHECK(
+        physicsError(saveWith(longChain)) ==
+        "box2d save: body 0 fixture 0 chain has 4097 points; at most 4096 (the coupling's limit)");
     points.pop_back();
     b2ChainShape loop; // 4096 points and the repeated first
     loop.CreateLoop(points.data(), int32(points.size()));

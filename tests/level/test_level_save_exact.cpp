@@ -40,8 +40,8 @@ std::vector<float> state(const Level& level) {
     std::vector<float> out;
     for (const b2Body* b = level.physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
         const b2Vec2 p = b->GetPosition(), c = b->GetWorldCenter(), v = b->GetLinearVelocity();
-        out.insert(out.end(), {p.x, p.y, c.x, c.y, b->GetAngle(), v.x, v.y,
-                               b->GetAngularVelocity(), b->IsAwake() ? 1.0f : 0.0f});
+        out.insert(out.end(), {p.x, p.y, c.x, c.y, b->GetAngle(), v.x, v.y, b->GetAngularVelocity(),
+                               b->IsAwake() ? 1.0f : 0.0f});
     }
     const World& w = level.world;
     for (const auto span : {w.positionX(), w.positionY(), w.velocityX(), w.velocityY()}) {

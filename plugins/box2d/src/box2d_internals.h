@@ -18,11 +18,11 @@ template <class Tag, typename Tag::type Member> struct Expose {
     friend constexpr typename Tag::type member(Tag) { return Member; }
 };
 
-#define FLUID_B2_MEMBER(Tag, Class, Type, Name)                                                   \
-    struct Tag {                                                                                  \
-        using type = Type Class::*;                                                               \
-        friend constexpr type member(Tag);                                                        \
-    };                                                                                            \
+#define FLUID_B2_MEMBER(Tag, Class, Type, Name)                                                    \
+    struct Tag {                                                                                   \
+        using type = Type Class::*;                                                                \
+        friend constexpr type member(Tag);                                                         \
+    };                                                                                             \
     template struct Expose<Tag, &Class::Name>;
 
 // b2World

@@ -283,8 +283,8 @@ FixtureRead getFixture(In& in, const std::string& of) {
         for (std::size_t k = 0; k < count; ++k) {
             f.chain[k] = in.vec(of + "chain vertex", kMaxLocal);
             // Box2D's own rule for chains (b2ChainShape::CreateChain asserts it).
-            if (k > 0 && b2DistanceSquared(f.chain[k - 1], f.chain[k]) <=
-                             b2_linearSlop * b2_linearSlop) {
+            if (k > 0 &&
+                b2DistanceSquared(f.chain[k - 1], f.chain[k]) <= b2_linearSlop * b2_linearSlop) {
                 in.r.fail(of + "chain vertices " + std::to_string(k - 1) + " and " +
                           std::to_string(k) + " are closer than b2_linearSlop");
             }
@@ -572,8 +572,8 @@ SolverState getSolverState(In& in, const std::vector<BodyRead>& bodies, std::siz
         if (!(st.alpha0 < 1.0f)) {
             in.r.fail(of + "sweep fraction = 1 is not below 1");
         }
-        st.inertia = in.number(of + "rotational inertia about its centre of mass", 0.0f,
-                               kMaxInertia);
+        st.inertia =
+            in.number(of + "rotational inertia about its centre of mass", 0.0f, kMaxInertia);
         // GetMassData gave the inertia about the body's origin as Box2D computes it.
         if (st.inertia + b.mass.mass * b2Dot(b.mass.center, b.mass.center) != b.mass.I) {
             std::ostringstream m;
@@ -727,9 +727,8 @@ void checkSolverState(In& in, const SolverState& s, const std::vector<b2Body*>& 
         const float off = (s.bodies[k].c - centre).Length();
         if (!(off <= 1e-4f * (1.0f + xf.p.Length() + lc.Length()))) {
             std::ostringstream m;
-            m << "body " << k << " centre of mass (" << s.bodies[k].c.x << ", "
-              << s.bodies[k].c.y << ") m is " << off
-              << " m from where its position, angle and mass centre put it";
+            m << "body " << k << " centre of mass (" << s.bodies[k].c.x << ", " << s.bodies[k].c.y
+              << ") m is " << off << " m from where its position, angle and mass centre put it";
             in.r.fail(m.str());
         }
     }
@@ -823,8 +822,7 @@ void checkSolverState(In& in, const SolverState& s, const std::vector<b2Body*>& 
                     in.r.fail(of + "names tree node " + std::to_string(p.id) + ", not a leaf");
                 }
                 if (claimed[p.id] != 0) {
-                    in.r.fail(of + "names tree node " + std::to_string(p.id) +
-                              ", another proxy's");
+                    in.r.fail(of + "names tree node " + std::to_string(p.id) + ", another proxy's");
                 }
                 claimed[p.id] = 1;
                 ++proxies;
