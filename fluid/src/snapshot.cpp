@@ -158,7 +158,13 @@ void putPlugin(Out& o, const Plugin& plugin) {
     o.array(state.bytes());
 }
 
-std::unique_ptr<Plugin> getPlugin(In& in, const Registry& registry, PluginKind kind) {
+// A plugin as the snapshot holds it: its parameters go through the plugin's own checks, each
+// value (`setParam`, `setPoints`) and then all together (`checkParams`, as `Registry::create`
+// and the level loader do), so a snapshot cannot hold a plugin the API would have refused (an
+// empty box that loads and then fails every step). `index` is its place among the world's
+// forces or boundaries, which the error names.
+std::unique_ptr<Plugin> getPlugin(In& in, const Registry& registry, PluginKind kind,
+                                  uint64_t index) {
     const std::string type = in.string("a plugin type");
     if (registry.find(type) == nullptr) {
         throw Error("snapshot: plugin type '" + type +
@@ -174,6 +180,16 @@ std::unique_ptr<Plugin> getPlugin(In& in, const Registry& registry, PluginKind k
         throw Error("snapshot: plugin '" + type + "' was saved with " + std::to_string(count) +
                     " parameters; this build declares " + std::to_string(plugin->params().size()));
     }
+    const std::string where = std::string("snapshot: ") +
+                              (kind == PluginKind::Force ? "force" : "boundary") + " plugin " +
+                              std::to_string(index) + ": ";
+    const auto checked = [&](const auto& set) {
+        try {
+            set();
+        } catch (const Error& e) {
+            throw Error(where + e.what());
+        }
+    };
     for (const ParamDecl& decl : plugin->params()) {
         const std::string name = in.string("a parameter name");
         if (name != decl.name) {
@@ -181,13 +197,15 @@ std::unique_ptr<Plugin> getPlugin(In& in, const Registry& registry, PluginKind k
                         "' does not match this build's '" + std::string(decl.name) + "'");
         }
         if (decl.type == ParamType::Number) {
-            plugin->setParam(name, in.get<double>());
+            const double value = in.get<double>();
+            checked([&] { plugin->setParam(name, value); });
         } else {
             std::vector<glm::vec2> pts;
             in.array(pts, "a point list");
-            plugin->setPoints(name, pts);
+            checked([&] { plugin->setPoints(name, pts); });
         }
     }
+    checked([&] { plugin->checkParams(); });
     std::vector<std::byte> state;
     in.array(state, "a plugin state");
     StateReader reader(state);
@@ -556,12 +574,12 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
 
     const auto forces = in.get<uint64_t>();
     for (uint64_t k = 0; k < forces; ++k) {
-        std::unique_ptr<Plugin> plugin = getPlugin(in, registry, PluginKind::Force);
+        std::unique_ptr<Plugin> plugin = getPlugin(in, registry, PluginKind::Force, k);
         world.addForce(std::unique_ptr<ForcePlugin>(static_cast<ForcePlugin*>(plugin.release())));
     }
     const auto boundaries = in.get<uint64_t>();
     for (uint64_t k = 0; k < boundaries; ++k) {
-        std::unique_ptr<Plugin> plugin = getPlugin(in, registry, PluginKind::Boundary);
+        std::unique_ptr<Plugin> plugin = getPlugin(in, registry, PluginKind::Boundary, k);
         world.addBoundary(
             std::unique_ptr<BoundaryPlugin>(static_cast<BoundaryPlugin*>(plugin.release())));
     }

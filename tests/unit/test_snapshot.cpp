@@ -256,6 +256,45 @@ TEST_CASE("snapshot: a negative carried frame time saves and steps on bit-identi
     CHECK(earlier.carriedTime() == 0.004);
     earlier.step(1.0f / 240.0f);
     CHECK(earlier.lastSubsteps() == 2); // 1.96 sub-steps due
+
+TEST_CASE("snapshot: a plugin's parameters pass the plugin's own checks, all together",
+          "[snapshot][bad-input]") {
+    const Registry registry = builtins();
+    World world = scene(Solver::PositionBased, 1);
+    world.step(kFrame);
+    const std::string bytes = saved(world);
+    // The tank's maxY (0.6), stored as a double after its name, set to -0 and the checksum
+    // made right again: each value is in range, but the box is empty. Before, the snapshot
+    // loaded and every step failed in the box's prepare.
+    const std::size_t name = bytes.find("maxY");
+    REQUIRE(name != std::string::npos);
+    REQUIRE(bytes.find("maxY", name + 1) == std::string::npos);
+    double maxY = 0.0;
+    std::memcpy(&maxY, bytes.data() + name + 4, sizeof(maxY));
+    REQUIRE(maxY == 0.6);
+    const auto forged = [&](double value) {
+        std::string out = bytes;
+        std::memcpy(out.data() + name + 4, &value, sizeof(value));
+        uint64_t size = 0;
+        std::memcpy(&size, out.data() + 12, sizeof(size));
+        uint64_t sum = 0xcbf29ce484222325ull; // FNV-1a 64 of the payload
+        for (std::size_t k = 20; k < 20 + size; ++k) {
+            sum ^= uint8_t(out[k]);
+            sum *= 0x100000001b3ull;
+        }
+        std::memcpy(out.data() + 20 + size, &sum, sizeof(sum));
+        return out;
+    };
+    REQUIRE_NOTHROW(restored(forged(0.5), registry)); // resealed right
+    CHECK_THROWS_MATCHES(restored(forged(-0.0), registry), Error,
+                         Catch::Message("snapshot: boundary plugin 0: plugin 'boundary.box': the "
+                                        "inner rectangle [0, 0.4] x [0, -0] is empty; expected "
+                                        "minX < maxX and minY < maxY"));
+    // A value out of its declared range names the plugin's place too.
+    CHECK_THROWS_MATCHES(restored(forged(1e300), registry), Error,
+                         Catch::Message("snapshot: boundary plugin 0: plugin 'boundary.box': "
+                                        "parameter 'maxY' = 1e+300 is out of range [-100000, "
+                                        "100000] (unit: m)"));
 }
 
 TEST_CASE("snapshot: a huge file is refused from its header, before its body is read",

@@ -421,7 +421,10 @@ public:
     /// when it can tell (a seekable stream), before the payload is read or allocated. Throws
     /// `fluid::Error` for a truncated, padded or corrupt snapshot (checksum), an unknown version
     /// or plugin type, or a value out of range (naming it: "particle 3 vx = inf is not
-    /// finite"). Thread rule: any thread (the new world is the caller's).
+    /// finite"); a plugin's parameters pass its own checks, each value and then all together
+    /// (`Plugin::checkParams`): "snapshot: boundary plugin 0: plugin 'boundary.box': the inner
+    /// rectangle [0, 1] x [0, -0] is empty; ...". Thread rule: any thread (the new world is the
+    /// caller's).
     static World load(std::istream& in, const Registry& registry, uint32_t workerCount = 0,
                       const TaskHook& tasks = {});
     /// `load` from the file `path`; errors name the file.

@@ -201,12 +201,11 @@ struct Level {
     /// every body with its pose, velocities, awake state and fixtures, bodies the game added
     /// included; the revolute joints), the coupling's state (`box2d::Coupling::save`), which
     /// of them the level's names refer to, and the goal's state; a checksum closes it.
-    /// `loadLevelSave` reads it back. A level without bodies continues bit-identically; with
-    /// bodies, closely but not bit-identically (Box2D 2.4 keeps its contacts' warm-starting
-    /// impulses and sleep timers internal, and the restored world rebuilds them: measured on
-    /// crates.json, saved at 10 s and run 60 more frames, bodies and each material's centre of
-    /// mass stay within 1 mm of the uninterrupted run). Throws `fluid::Error` if the stream
-    /// fails or Box2D holds a joint other than revolute. Stepping thread, between frames.
+    /// `loadLevelSave` reads it back, and the level continues bit-identically, with bodies too
+    /// (the Box2D save carries Box2D's contacts with their warm-starting impulses, broad phase,
+    /// sweeps and sleep timers: docs/box2d.md, "Saving"), with any number of workers. Throws
+    /// `fluid::Error` if the stream fails or Box2D holds a joint other than revolute. Stepping
+    /// thread, between frames.
     void save(std::ostream& out) const;
     /// `save` into the file `path` (replaced once the whole save is made); errors name the
     /// file.

@@ -4,6 +4,7 @@
 
 #include "body_boundary.h"
 #include "box2d_math.h"
+#include "solver_state.h"
 
 #include <fluid/error.h>
 #include <fluid/internal/binary.h>
@@ -834,8 +835,14 @@ void Coupling::load(std::istream& in) {
     m_contacts.clear();
     m_removed.clear();
     m_profile = Profile{};
+    // A Box2D world restored by loadPhysics from a version-2 save carries the forces Box2D has
+    // accumulated (these among them): adding them again would double them. A world without any
+    // (a version-1 save, a world rebuilt by hand) gets them here.
     for (const Previous& p : m_previous) {
         if (p.body->GetType() != b2_dynamicBody) {
+            continue;
+        }
+        if (detail::carriesForce(*p.body)) {
             continue;
         }
         if (p.applied.x != 0.0f || p.applied.y != 0.0f) {

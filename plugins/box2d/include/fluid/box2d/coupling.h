@@ -303,7 +303,9 @@ public:
     void save(std::ostream& out) const;
     /// Reads what `save` wrote into this coupling, whose Box2D world has just been restored
     /// (before any step): replaces the state above and applies the saved forces and torques to
-    /// their bodies. Throws `fluid::Error` ("coupling save: ...") for a truncated or malformed
+    /// their bodies, unless a body already holds a force or torque for the next step (a world
+    /// `loadPhysics` restored from a version-2 save carries Box2D's accumulated forces, these
+    /// among them; adding them again would double them). Throws `fluid::Error` ("coupling save: ...") for a truncated or malformed
     /// save, a body index beyond the Box2D world's bodies, or a value that is not finite or out
     /// of its range, naming the body and field ("coupling save: body 1 debt x = 5e+237 is not
     /// finite or out of [-1e+12, 1e+12] (unit: N s)"): unpaid impulse at most 1e12 N s (1e9 kg
