@@ -256,6 +256,7 @@ TEST_CASE("snapshot: a negative carried frame time saves and steps on bit-identi
     CHECK(earlier.carriedTime() == 0.004);
     earlier.step(1.0f / 240.0f);
     CHECK(earlier.lastSubsteps() == 2); // 1.96 sub-steps due
+}
 
 TEST_CASE("snapshot: a plugin's parameters pass the plugin's own checks, all together",
           "[snapshot][bad-input]") {
