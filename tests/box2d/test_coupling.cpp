@@ -3,12 +3,15 @@
 // the filter and sensors.
 #include "box2d_support.h"
 
+#include <fluid/box2d/shapes.h>
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cinttypes>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -282,12 +285,23 @@ TEST_CASE("a dynamic body lighter than kMinBodyMass or kMinBodyInertia is refuse
     CHECK(stateHash(pool.world) == before);
     CHECK(bodiesHash(pool.physics) == bodiesBefore);
     CHECK(pool.world.time() == time);
-    // A body that does not turn needs no inertia; the milligram itself is allowed, and the water
-    // it floats in throws it up without turning it or anything else NaN.
+    // A milligram 3 cm ball is heavy enough for Box2D but 3e-3 of the water's areal density:
+    // the fluid would throw it (kMinDensityRatio). (SetFixedRotation recomputes the mass from
+    // the fixtures, so it comes first.)
+    ball->SetFixedRotation(true);
     data = kept;
     data.mass = box2d::kMinBodyMass;
     ball->SetMassData(&data);
-    ball->SetFixedRotation(true);
+    CHECK_THROWS_WITH(coupling.step(pool.world, kFrame),
+                      Catch::StartsWith("fluid::box2d::Coupling::step: dynamic body 0 (in "
+                                        "GetBodyList() order): the fixtures weigh 1e-06 kg over ") &&
+                          Catch::Contains("a dynamic body needs at least 0.05 of it"));
+    CHECK(stateHash(pool.world) == before);
+    // At the floor it steps; a body that does not turn needs no inertia.
+    const float floor = box2d::kMinDensityRatio * box2d::densestArealDensity(pool.world) *
+                        float(std::numbers::pi) * 0.03f * 0.03f;
+    data.mass = floor * 1.001f;
+    ball->SetMassData(&data);
     for (int frame = 0; frame < 30; ++frame) {
         coupling.step(pool.world, kFrame);
     }
@@ -296,6 +310,30 @@ TEST_CASE("a dynamic body lighter than kMinBodyMass or kMinBodyInertia is refuse
     CHECK(std::isfinite(ball->GetLinearVelocity().y));
     CHECK(allFinite(pool.world));
     CHECK(pool.world.time() == Approx(time + 30.0 * kFrame));
+}
+
+TEST_CASE("a pointed body made in Box2D directly is refused by the coupling's step",
+          "[box2d][bad-input]") {
+    // The level loader and the C API refuse it as they read it; a game that builds its bodies
+    // with Box2D's own calls meets the same rule at the step, before anything moves.
+    Pool pool;
+    b2BodyDef def;
+    def.type = b2_dynamicBody;
+    def.position = {0.3f, 0.4f};
+    b2Body* wedge = pool.physics.CreateBody(&def);
+    b2PolygonShape shape;
+    const b2Vec2 v[] = {{-0.05f, 0.0f}, {0.05f, 0.0f}, {0.0f, 0.005f}};
+    shape.Set(v, 3);
+    wedge->CreateFixture(&shape, 0.5f * box2d::arealDensity(pool.world, pool.water));
+    Coupling coupling(pool.world, pool.physics);
+    const uint64_t before = stateHash(pool.world);
+    CHECK_THROWS_WITH(coupling.step(pool.world, kFrame),
+                      Catch::StartsWith("fluid::box2d::Coupling::step: dynamic body 0 (in "
+                                        "GetBodyList() order): the corner at vertex ") &&
+                          Catch::Contains("must hold one of the fluid's spacing"));
+    CHECK(stateHash(pool.world) == before);
+    wedge->SetType(b2_staticBody); // a static wedge is fine
+    CHECK_NOTHROW(coupling.step(pool.world, kFrame));
 }
 
 TEST_CASE("a body created mid-run pushes fluid, a destroyed one disappears", "[box2d]") {

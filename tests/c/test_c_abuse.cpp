@@ -225,3 +225,79 @@ TEST_CASE("C: a C boundary's non-finite output follows the C++ plugins' rule",
     }
     CHECK(fluid_world_destroy(world) == FLUID_OK);
 }
+
+TEST_CASE("C: fluid_level_add_body runs a level file's checks before Box2D sees the body",
+          "[c][bad-input][bodies]") {
+    std::string path = FLUID_LEVELS_DIR;
+    path.append("/crates.json");
+    fluid_level* level = nullptr;
+    C_OK(fluid_level_load(path.c_str(), nullptr, &level));
+    uint32_t count = 0;
+    C_OK(fluid_level_body_count(level, &count));
+    fluid_body_def crate = fluid_default_body_def();
+    crate.shape.center = {0.9f, 0.5f};
+    crate.shape.half_extents = {0.05f, 0.05f};
+    crate.density = 50.0f;
+    const auto refused = [&](const fluid_body_def& def, const std::string& message) {
+        CHECK(fluid_level_add_body(level, &def, nullptr) == FLUID_ERROR_INVALID_ARGUMENT);
+        CHECK(std::string(fluid_last_error()) == "fluid_level_add_body: " + message);
+    };
+    // These aborted the process in Box2D's asserts.
+    fluid_body_def tiny = crate;
+    tiny.shape.half_extents = {0.0001f, 0.0001f};
+    refused(tiny, "a box's width is 2e-04 m; expected at least 0.005 m (Box2D's linear slop)");
+    const fluid_vec2 sliver[] = {{0.0f, 0.0f}, {0.1f, 0.0f}, {0.05f, 1e-6f}};
+    fluid_body_def sliverBody = crate;
+    sliverBody.position = {0.9f, 0.5f};
+    sliverBody.shape = fluid_polygon_shape(sliver, 3);
+    refused(sliverBody, "the polygon's area is 5e-08 m^2; expected at least 2.5e-05 m^2 (Box2D's "
+                        "linear slop squared)");
+    // Under the mass floors: refused at the add, not at every later step.
+    fluid_body_def dust = crate;
+    dust.shape = fluid_circle_shape({0.9f, 0.5f}, 1e-5f);
+    refused(dust, "a circle's radius is 1e-05 m; expected at least 0.005 m (Box2D's linear slop)");
+    fluid_body_def feather = crate;
+    feather.density = 1e-5f;
+    refused(feather, "the fixtures weigh 1e-07 kg, less than the 1e-06 kg a dynamic body needs "
+                     "(Box2D divides by its mass); raise their density or size");
+    feather.density = 1.0f;
+    CHECK(fluid_level_add_body(level, &feather, nullptr) == FLUID_ERROR_INVALID_ARGUMENT);
+    CHECK_THAT(std::string(fluid_last_error()),
+               Catch::Contains("a dynamic body needs at least 0.05 of it (kMinDensityRatio)"));
+    // A pointed dynamic polygon thinner than a spacing (it spun up to Box2D's limits).
+    const fluid_vec2 wedge[] = {{-0.05f, 0.0f}, {0.05f, 0.0f}, {0.0f, 0.005f}};
+    fluid_body_def wedgeBody = crate;
+    wedgeBody.position = {0.9f, 0.5f};
+    wedgeBody.shape = fluid_polygon_shape(wedge, 3);
+    CHECK(fluid_level_add_body(level, &wedgeBody, nullptr) == FLUID_ERROR_INVALID_ARGUMENT);
+    CHECK_THAT(std::string(fluid_last_error()),
+               Catch::Contains("must hold one of the fluid's spacing, 0.01 m"));
+    wedgeBody.type = FLUID_BODY_STATIC; // a static wedge moves nothing
+    wedgeBody.density = 0.0f;
+    uint32_t wedgeIndex = 0;
+    C_OK(fluid_level_add_body(level, &wedgeBody, &wedgeIndex));
+    uint32_t after = 0;
+    C_OK(fluid_level_body_count(level, &after));
+    CHECK(after == count + 1); // nothing refused was added
+    for (int frame = 0; frame < 3; ++frame) {
+        C_OK(fluid_level_step(level)); // and the level steps on
+    }
+    // A body added can be removed again; so can the file's.
+    uint32_t crateIndex = 0;
+    C_OK(fluid_level_add_body(level, &crate, &crateIndex));
+    CHECK(crateIndex == count + 1);
+    C_OK(fluid_level_remove_body(level, wedgeIndex));
+    C_OK(fluid_level_body_count(level, &after));
+    CHECK(after == count + 1);
+    fluid_vec2 position{};
+    C_OK(fluid_level_body(level, count, nullptr, &position, nullptr)); // the crate moved down
+    CHECK(position.x == Approx(0.9f));
+    C_OK(fluid_level_remove_body(level, 0)); // the file's first body
+    C_OK(fluid_level_body_count(level, &after));
+    CHECK(after == count);
+    CHECK(fluid_level_remove_body(level, after) == FLUID_ERROR_STALE_ID);
+    for (int frame = 0; frame < 3; ++frame) {
+        C_OK(fluid_level_step(level));
+    }
+    CHECK(fluid_level_destroy(level) == FLUID_OK);
+}
