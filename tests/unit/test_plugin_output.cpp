@@ -19,6 +19,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // A disc-shaped solid at the tank's centre whose output a test breaks in one way.
 enum class Fault {
+    None,           // the same samples, project moves nothing
     SampleX,        // one sample at x = NaN
     SampleVelocity, // one sample with a NaN velocity
     SampleInf,      // one sample at y = infinity
@@ -186,7 +187,7 @@ TEST_CASE("a boundary plugin's project writing NaN or infinity keeps the particl
     World world = tank(solver, workers, fault);
     const uint32_t count = world.particleCount();
     uint32_t dropped = 0;
-    for (int frame = 0; frame < 20; ++frame) {
+    for (int frame = 0; frame < 10; ++frame) {
         CAPTURE(frame);
         REQUIRE_NOTHROW(world.step(kFrame));
         REQUIRE(allFinite(world));
@@ -197,14 +198,20 @@ TEST_CASE("a boundary plugin's project writing NaN or infinity keeps the particl
     }
     if (fault == Fault::ProjectOneX || fault == Fault::ProjectOneV) {
         // One particle per call: two calls per position-based sub-step, one per explicit one.
-        CHECK(dropped >= 20);
-        CHECK(dropped <= 20 * 2 * 64);
+        CHECK(dropped >= 10);
+        CHECK(dropped <= 10 * 2 * 64);
     } else {
-        CHECK(dropped >= 20 * count);
+        CHECK(dropped >= 10 * count);
     }
-    // The water still settles in its tank (the faulty plugin's moves were all undone).
+    // Every move of a plugin that writes NaN or infinity everywhere is undone: the world is
+    // bit for bit the one whose plugin lays the same samples and moves nothing.
     if (fault == Fault::ProjectAll || fault == Fault::ProjectInf) {
-        CHECK(maxSpeed(world) < 1.0f);
+        World clean = tank(solver, workers, Fault::None);
+        for (int frame = 0; frame < 10; ++frame) {
+            clean.step(kFrame);
+        }
+        CHECK(State(world) == State(clean));
+        CHECK(clean.profile().boundaryDropped == 0);
     }
 }
 
@@ -245,8 +252,10 @@ TEST_CASE("a force plugin's huge finite acceleration moves the particle at the s
         along += (huge > 0 ? moved > 0.01f : moved < -0.01f) ? 1u : 0u;
     }
     CHECK(along == world.particleCount());
-    // A second later the liquid lies against the wall the force points to, inside the tank.
-    for (int frame = 0; frame < 60; ++frame) {
+    // Soon the liquid lies against the wall the force points to, inside the tank (the explicit
+    // solver takes its 512 sub-steps a frame at this acceleration: it is there after one).
+    const int frames = solver == Solver::Explicit ? 2 : 30;
+    for (int frame = 0; frame < frames; ++frame) {
         world.step(kFrame);
     }
     REQUIRE(allFinite(world));
