@@ -105,7 +105,7 @@ TEST_CASE("every shipped level with bodies continues bit-identically from a save
 
 TEST_CASE("paddle_wheel, sticky_plank and cup_and_planks saved at frames 120 and 300 continue "
           "bit-identically",
-          "[save]") {
+          "[save][slow]") {
     for (const char* name : {"paddle_wheel.json", "sticky_plank.json", "cup_and_planks.json"}) {
         for (const uint32_t workers : {1u, 2u}) {
             continuesExactly(name, workers, {120, 300}, 30);

@@ -179,15 +179,17 @@ TEST_CASE("a boundary plugin's non-finite sample refuses the step and names the 
 
 TEST_CASE("a boundary plugin's project writing NaN or infinity keeps the particle as it was",
           "[unit][bad-input][plugins]") {
+    // Two workers: the ranges the undo works on are split (one worker is the same code on one
+    // range).
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    const uint32_t workers = GENERATE(1u, 2u);
+    const uint32_t workers = 2;
     const Fault fault =
         GENERATE(Fault::ProjectOneX, Fault::ProjectOneV, Fault::ProjectAll, Fault::ProjectInf);
     CAPTURE(solverName(solver), workers, int(fault));
     World world = tank(solver, workers, fault);
     const uint32_t count = world.particleCount();
     uint32_t dropped = 0;
-    for (int frame = 0; frame < 10; ++frame) {
+    for (int frame = 0; frame < 5; ++frame) {
         CAPTURE(frame);
         REQUIRE_NOTHROW(world.step(kFrame));
         REQUIRE(allFinite(world));
@@ -198,16 +200,16 @@ TEST_CASE("a boundary plugin's project writing NaN or infinity keeps the particl
     }
     if (fault == Fault::ProjectOneX || fault == Fault::ProjectOneV) {
         // One particle per call: two calls per position-based sub-step, one per explicit one.
-        CHECK(dropped >= 10);
-        CHECK(dropped <= 10 * 2 * 64);
+        CHECK(dropped >= 5);
+        CHECK(dropped <= 5 * 2 * 64);
     } else {
-        CHECK(dropped >= 10 * count);
+        CHECK(dropped >= 5 * count);
     }
     // Every move of a plugin that writes NaN or infinity everywhere is undone: the world is
     // bit for bit the one whose plugin lays the same samples and moves nothing.
     if (fault == Fault::ProjectAll || fault == Fault::ProjectInf) {
         World clean = tank(solver, workers, Fault::None);
-        for (int frame = 0; frame < 10; ++frame) {
+        for (int frame = 0; frame < 5; ++frame) {
             clean.step(kFrame);
         }
         CHECK(State(world) == State(clean));
