@@ -7,6 +7,7 @@
 #include "parallel.h"
 
 #include <fluid/error.h>
+#include <fluid/internal/checks.h>
 
 #include <algorithm>
 #include <atomic>
@@ -97,8 +98,8 @@ namespace {
 // emitters back), naming the plugin and the first bad sample.
 void checkSamples(const BoundaryPlugin& plugin, size_t index) {
     const BoundarySamples& b = plugin.samples();
-    const std::string who = "World::step: boundary plugin " + std::to_string(index) + " ('" +
-                            std::string(plugin.type()) + "'): ";
+    const std::string who = "World::step: boundary plugin " + std::to_string(index) + " (" +
+                            internal::quoted(plugin.type()) + "): ";
     const size_t n = b.px.size();
     if (b.py.size() != n || b.vx.size() != n || b.vy.size() != n) {
         throw Error(who + "its samples' arrays have different lengths (px " + std::to_string(n) +

@@ -710,9 +710,9 @@ void World::step(float frameDt) {
     for (std::size_t k = 0; k < m_state->boundaries.size(); ++k) {
         const char* host = m_state->boundaries[k]->steppedBy();
         if (host != nullptr) {
-            throw Error("World::step: boundary plugin " + std::to_string(k) + " ('" +
-                        std::string(m_state->boundaries[k]->type()) +
-                        "') carries another engine's bodies: step the world with " + host +
+            throw Error("World::step: boundary plugin " + std::to_string(k) + " (" +
+                        internal::quoted(m_state->boundaries[k]->type()) +
+                        ") carries another engine's bodies: step the world with " + host +
                         ", which moves them with it; a bare World::step would leave them behind");
         }
     }
