@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cinttypes>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -584,4 +585,57 @@ TEST_CASE("a boundary plugin's rigid body with bad data is refused with the plug
     bad.body.mass = 1.0f;
     pool.world.step(kFrame);
     CHECK(allFinite(pool.world));
+}
+
+namespace {
+
+// A force plugin whose prepare runs the test's hook (a game's plugin calling back).
+class HookForce final : public ForcePlugin {
+public:
+    static constexpr std::array<ParamDecl, 0> kParams{};
+    explicit HookForce(std::function<void()> hook)
+        : ForcePlugin("force.test-hook", kParams), m_hook(std::move(hook)) {}
+    void prepare(const StepContext&) override { m_hook(); }
+    void apply(const ForceContext&, uint32_t, uint32_t) override {}
+
+private:
+    std::function<void()> m_hook;
+};
+
+} // namespace
+
+TEST_CASE("a plugin's hook cannot step the coupling that is stepping its world",
+          "[box2d][bad-input][reentry]") {
+    Pool pool;
+    b2Body* ball = addCircle(pool.physics, b2_dynamicBody, {0.3f, 0.4f}, 0.03f, 50.0f);
+    Coupling coupling(pool.world, pool.physics);
+    std::vector<std::string> messages;
+    pool.world.addForce(std::make_unique<HookForce>([&] {
+        for (int k = 0; k < 2; ++k) {
+            try {
+                if (k == 0) {
+                    coupling.step(pool.world, kFrame);
+                } else {
+                    coupling.stepFluid(pool.world, kFrame);
+                }
+                messages.emplace_back("no error");
+            } catch (const Error& e) {
+                CHECK(e.code() == ErrorCode::WrongState);
+                messages.emplace_back(e.what());
+            }
+        }
+    }));
+    const float y = ball->GetPosition().y;
+    for (int frame = 0; frame < 30; ++frame) {
+        coupling.step(pool.world, kFrame);
+    }
+    // 30 frames of 4 rounds: each round's world step ran the hook once.
+    REQUIRE(messages.size() == 2 * 30 * 4);
+    CHECK(messages[0] == "fluid::box2d::Coupling::step: called during the world's own step (from "
+                         "a plugin's hook); the coupling steps only between the world's steps");
+    CHECK(messages[1] == "fluid::box2d::Coupling::stepFluid: called during the world's own step "
+                         "(from a plugin's hook); the coupling steps only between the world's "
+                         "steps");
+    CHECK(pool.world.time() == Approx(30.0 * kFrame).margin(1e-9)); // no nested frame
+    CHECK(ball->GetPosition().y < y); // the outer steps went on: the ball fell
 }
