@@ -526,13 +526,19 @@ IntegrateStats integrate(WorldState& s, const std::vector<float>& ax, const std:
                 float vy = p.vy[i] + dt * ayi;
                 const float v2 = vx * vx + vy * vy;
                 if (v2 > speedCap * speedCap) {
-                    // In double: a huge finite acceleration (a force plugin's 1e30 m/s^2) makes
-                    // v2 overflow a float, and a scale of cap / inf = 0 would stop the particle
-                    // dead instead of capping it along its direction.
-                    const double w2 = double(vx) * double(vx) + double(vy) * double(vy);
-                    const double scale = double(speedCap) / std::sqrt(w2);
-                    vx = float(double(vx) * scale);
-                    vy = float(double(vy) * scale);
+                    if (std::isfinite(v2)) {
+                        const float scale = speedCap / std::sqrt(v2);
+                        vx *= scale;
+                        vy *= scale;
+                    } else {
+                        // A huge finite acceleration (a force plugin's 1e30 m/s^2) made v2
+                        // overflow a float: a scale of cap / inf = 0 would stop the particle
+                        // dead. In double, it is capped along its direction.
+                        const double w2 = double(vx) * double(vx) + double(vy) * double(vy);
+                        const double scale = double(speedCap) / std::sqrt(w2);
+                        vx = float(double(vx) * scale);
+                        vy = float(double(vy) * scale);
+                    }
                     ++st.clamped;
                 }
                 p.vx[i] = vx;
