@@ -1,5 +1,6 @@
 // fluid::box2d — saving and restoring a Box2D world (see physics_save.h).
 #include <fluid/box2d/physics_save.h>
+#include <fluid/box2d/shapes.h>
 
 #include <fluid/box2d/coupling.h>
 
@@ -179,20 +180,11 @@ struct FixtureRead {
     b2FixtureDef def;
 };
 
-// The polygon's area (unit: m^2), in double as the level loader computes it.
-double polygonArea(const b2PolygonShape& p) {
-    double twice = 0.0;
-    for (int32 k = 0; k < p.m_count; ++k) {
-        const b2Vec2 a = p.m_vertices[k], b = p.m_vertices[(k + 1) % p.m_count];
-        twice += double(a.x) * double(b.y) - double(a.y) * double(b.x);
-    }
-    return 0.5 * twice;
-}
-
 // A fixture as the save holds it, through the checks a level file's fixture passes
 // (level/src/bodies.cpp, docs/levels.md "Bodies"): body-local coordinates within 1e4 m; a
-// circle's radius from Box2D's linear slop (0.005 m) to 1e4 m; a polygon's vertices at least the
-// slop apart and its area at least the slop squared; an edge longer than the slop; a chain of at
+// circle's radius from Box2D's linear slop (0.005 m) to 1e4 m; a polygon as box2d::checkPolygon
+// takes it (shapes.h: vertices at least the slop apart, its area at least the slop squared,
+// strictly convex and simple); an edge longer than the slop; a chain of at
 // most 4096 points whose links are longer than the slop. Box2D asserts on some of these and
 // collides thinner shapes unreliably; the coupling refuses a disc under 1e-4 m, a chain over 4096
 // points or a repeated point at every step, so a save holding one loaded and then failed every
@@ -234,30 +226,15 @@ FixtureRead getFixture(In& in, const std::string& of) {
             f.polygon.m_vertices[k] = in.vec(of + "polygon vertex", kMaxLocal);
             f.polygon.m_normals[k] = in.vec(of + "polygon normal", 1.001f);
         }
-        for (uint32_t j = 1; j < count; ++j) {
-            for (uint32_t i = 0; i < j; ++i) {
-                const double d = std::hypot(
-                    double(f.polygon.m_vertices[i].x) - double(f.polygon.m_vertices[j].x),
-                    double(f.polygon.m_vertices[i].y) - double(f.polygon.m_vertices[j].y));
-                if (!(d >= double(kMinSize))) {
-                    std::ostringstream m;
-                    m << of << "polygon vertex " << j << " is " << d << " m from vertex " << i
-                      << "; polygon vertices must be at least 0.005 m apart (Box2D's linear "
-                         "slop)";
-                    in.r.fail(m.str());
-                }
-            }
+        // The checks a level file's polygon passes (shapes.h: vertices at least the slop
+        // apart, an area of at least its square, strictly convex and simple), then Box2D's own
+        // form: counter-clockwise, with its edges' outward normals.
+        std::vector<glm::vec2> outline;
+        for (uint32_t k = 0; k < count; ++k) {
+            outline.emplace_back(f.polygon.m_vertices[k].x, f.polygon.m_vertices[k].y);
         }
-        // Box2D needs a convex counter-clockwise polygon with some area whose normals face out
-        // of its edges (b2PolygonShape::Set makes one); libbox2d asserts on the area, and a
-        // polygon breaking the rest would give NaN contacts.
-        const double area = polygonArea(f.polygon);
-        if (!(area >= double(kMinSize) * double(kMinSize))) {
-            std::ostringstream m;
-            m << of << "polygon's area is " << area
-              << " m^2; expected at least 2.5e-05 m^2 (Box2D's linear slop squared, "
-                 "counter-clockwise)";
-            in.r.fail(m.str());
+        if (const ShapeProblem problem = checkPolygon(outline, 0.0f)) {
+            in.r.fail(of + "polygon: " + problem.message);
         }
         for (uint32_t k = 0; k < count; ++k) {
             const b2Vec2 a = f.polygon.m_vertices[k];
