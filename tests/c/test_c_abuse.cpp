@@ -123,9 +123,8 @@ TEST_CASE("C: a plugin's callback that calls back into its world is refused",
     C_OK(fluid_world_particle_count(world, &after));
     CHECK(after == before);
     REQUIRE(caller.statuses.size() == 120);
-    const char* const names[] = {"World::step",              "World::addForce",
-                                 "fluid_world_destroy",      "World::addMaterial",
-                                 "World::addParticle"};
+    const char* const names[] = {"World::step", "World::addForce", "fluid_world_destroy",
+                                 "World::addMaterial", "World::addParticle"};
     for (size_t k = 0; k < caller.statuses.size(); ++k) {
         if (action == 5) {
             CHECK(caller.statuses[k] == FLUID_OK);

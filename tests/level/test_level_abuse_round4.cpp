@@ -61,9 +61,8 @@ TEST_CASE("level bodies: a pointed polygon thinner than the fluid's spacing is r
         bool refused;
     };
     for (const Case c : {Case{0.1, 0.0006, true}, Case{0.1, 0.01, true}, Case{0.1, 0.0182, true},
-                         Case{0.05, 0.0144, true}, Case{0.05, 0.021, true},
-                         Case{0.03, 0.015, true}, Case{0.05, 0.025, false},
-                         Case{0.1, 0.05, false}, Case{0.3, 0.1, false}}) {
+                         Case{0.05, 0.0144, true}, Case{0.05, 0.021, true}, Case{0.03, 0.015, true},
+                         Case{0.05, 0.025, false}, Case{0.1, 0.05, false}, Case{0.3, 0.1, false}}) {
         CAPTURE(c.base, c.height);
         const std::string error = errorOf(tank(triangle(c.base, c.height, 0.5)));
         CHECK((error.find("must hold one of the fluid's spacing") != std::string::npos) ==
@@ -73,13 +72,14 @@ TEST_CASE("level bodies: a pointed polygon thinner than the fluid's spacing is r
         }
     }
     // Right angles are not pointed: a box 5 mm thin steps calmly, and so does a 5 mm circle.
-    CHECK(errorOf(tank(R"({"shape": "box", "width": 0.1, "height": 0.005, "densityRatio": 0.5})")) ==
-          "no error");
+    CHECK(
+        errorOf(tank(R"({"shape": "box", "width": 0.1, "height": 0.005, "densityRatio": 0.5})")) ==
+        "no error");
     CHECK(errorOf(tank(R"({"shape": "circle", "radius": 0.005, "densityRatio": 0.5})")) ==
           "no error");
     // Static and kinematic bodies, and dry ones, may be pointed: the fluid does not move them.
-    for (const char* kind : {R"("type": "static", )", R"("type": "kinematic", )",
-                             R"("fluid": false, )"}) {
+    for (const char* kind :
+         {R"("type": "static", )", R"("type": "kinematic", )", R"("fluid": false, )"}) {
         CAPTURE(kind);
         std::string text = tank(triangle(0.1, 0.005, 0.5));
         text.replace(text.find(R"({"name": "b", )"), 14, std::string(R"({"name": "b", )") + kind);
@@ -90,7 +90,8 @@ TEST_CASE("level bodies: a pointed polygon thinner than the fluid's spacing is r
     CHECK(box2d::inscribedRadius(wedge) == Approx(0.0024938).epsilon(1e-3));
     const std::vector<glm::vec2> square{{0.0f, 0.0f}, {0.1f, 0.0f}, {0.1f, 0.1f}, {0.0f, 0.1f}};
     CHECK(box2d::inscribedRadius(square) == Approx(0.05).epsilon(1e-6));
-    CHECK_FALSE(box2d::checkPointedPolygon(square, 0.2f)); // right angles: no inscribed circle asked
+    CHECK_FALSE(
+        box2d::checkPointedPolygon(square, 0.2f)); // right angles: no inscribed circle asked
     CHECK(box2d::checkPointedPolygon(wedge, 0.01f).vertex == 0);
 }
 
@@ -145,9 +146,9 @@ TEST_CASE("level bodies: the lightest and the most pointed bodies allowed ride t
                     energy = std::max(energy, e);
                 }
             }
-            CHECK(fastest < 1.5);      // m/s: the drop gives about 0.9
-            CHECK(spin < 25.0);        // rad/s: a rocking, not a spin-up (377 before)
-            CHECK(energy < 0.1);       // J in the last second: the water settles
+            CHECK(fastest < 1.5);                // m/s: the drop gives about 0.9
+            CHECK(spin < 25.0);                  // rad/s: a rocking, not a spin-up (377 before)
+            CHECK(energy < 0.1);                 // J in the last second: the water settles
             CHECK(body->GetPosition().y > 0.1f); // it floats (or rests) in the water
         }
     }

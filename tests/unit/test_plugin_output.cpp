@@ -32,7 +32,8 @@ enum class Fault {
 class FaultyBoundary final : public BoundaryPlugin {
 public:
     static constexpr std::array<ParamDecl, 0> kParams{};
-    explicit FaultyBoundary(Fault fault) : BoundaryPlugin("boundary.test-faulty", kParams), m_fault(fault) {}
+    explicit FaultyBoundary(Fault fault)
+        : BoundaryPlugin("boundary.test-faulty", kParams), m_fault(fault) {}
     void prepare(const StepContext& ctx) override {
         m_samples.clear();
         const float s = ctx.sampleSpacing;

@@ -53,10 +53,16 @@ TEST_CASE("a plugin's hook cannot change, save or step the world that runs it",
         {"World::step", [&] { world.step(kFrame); }},
         {"World::addMaterial", [&] { world.addMaterial(water()); }},
         {"World::setMaterial", [&] { world.setMaterial(w, water()); }},
-        {"World::addParticle", [&] { world.addParticle({0.0f, 0.3f}, {0.0f, 0.0f}, w); }},
+        {"World::addParticle",
+         [&] {
+             world.addParticle({0.0f, 0.3f}, {0.0f, 0.0f}, w);
+         }},
         {"World::spawnBlob", [&] { world.spawnBlob(latticeBlock(world, w, -0.1f, 0.3f, 2, 2)); }},
         {"World::removeParticle", [&] { world.removeParticle(first); }},
-        {"World::setVelocity", [&] { world.setVelocity(first, {1.0f, 0.0f}); }},
+        {"World::setVelocity",
+         [&] {
+             world.setVelocity(first, {1.0f, 0.0f});
+         }},
         {"World::setLifetime", [&] { world.setLifetime(first, 1.0f); }},
         {"World::addEmitter", [&] { world.addEmitter(world.emitter(emitter)); }},
         {"World::setEmitter", [&] { world.setEmitter(emitter, world.emitter(emitter)); }},
@@ -121,7 +127,8 @@ TEST_CASE("a plugin's hook cannot change, save or step the world that runs it",
     CHECK_NOTHROW(world.setVelocity(first, {1.0f, 0.0f}));
 }
 
-TEST_CASE("a step that throws from a hook leaves the world steppable", "[unit][bad-input][reentry]") {
+TEST_CASE("a step that throws from a hook leaves the world steppable",
+          "[unit][bad-input][reentry]") {
     World world;
     const MaterialId w = world.addMaterial(water());
     world.spawnBlob(latticeBlock(world, w, -0.2f, 0.0f, 10, 10));

@@ -12,8 +12,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <vector>
 #include <numbers>
+#include <vector>
 
 namespace fluid::box2d {
 
@@ -120,8 +120,8 @@ ShapeProblem checkPointedPolygon(std::span<const glm::vec2> vertices, float spac
         std::size_t at = 0;
         for (std::size_t i = 0; i < n; ++i) {
             const glm::dvec2 a = v[(i + n - 1) % n] - v[i], b = v[(i + 1) % n] - v[i];
-            const double degrees = std::atan2(std::abs(cross(a, b)), a.x * b.x + a.y * b.y) *
-                                   180.0 / std::numbers::pi;
+            const double degrees =
+                std::atan2(std::abs(cross(a, b)), a.x * b.x + a.y * b.y) * 180.0 / std::numbers::pi;
             if (degrees < sharpest) {
                 sharpest = degrees;
                 at = i;
@@ -213,10 +213,12 @@ double inscribedRadius(std::span<const glm::vec2> vertices) {
                 if (std::abs(det) < 1e-12) {
                     continue;
                 }
-                const double x = det3(a[0][3], a[0][1], a[0][2], a[1][3], a[1][1], a[1][2],
-                                      a[2][3], a[2][1], a[2][2]) / det;
-                const double y = det3(a[0][0], a[0][3], a[0][2], a[1][0], a[1][3], a[1][2],
-                                      a[2][0], a[2][3], a[2][2]) / det;
+                const double x = det3(a[0][3], a[0][1], a[0][2], a[1][3], a[1][1], a[1][2], a[2][3],
+                                      a[2][1], a[2][2]) /
+                                 det;
+                const double y = det3(a[0][0], a[0][3], a[0][2], a[1][0], a[1][3], a[1][2], a[2][0],
+                                      a[2][3], a[2][2]) /
+                                 det;
                 best = std::max(best, depth({x, y}));
             }
         }
@@ -252,17 +254,16 @@ ShapeProblem checkDynamicMass(float mass, float area, float centredInertia, bool
     if (density > 0.0f && area > 0.0f && !(mass >= kMinDensityRatio * density * area)) {
         return {"the fixtures weigh " + number(mass) + " kg over " + number(area) +
                     " m^2, an areal density of " + brief(mass / area) + " kg/m^2, " +
-                    brief(mass / (area * density)) +
-                    " of the densest material's (" + brief(density) +
-                    " kg/m^2); a dynamic body needs at least " + number(kMinDensityRatio) +
+                    brief(mass / (area * density)) + " of the densest material's (" +
+                    brief(density) + " kg/m^2); a dynamic body needs at least " +
+                    number(kMinDensityRatio) +
                     " of it (kMinDensityRatio), or the fluid throws it: raise their density to " +
                     brief(kMinDensityRatio * density) + " kg/m^2 or more",
                 -1};
     }
     if (!fixedRotation && centredInertia < kMinBodyInertia) {
         return {"the fixtures' rotational inertia about their centre of mass is " +
-                    number(centredInertia) + " kg m^2, less than the " +
-                    number(kMinBodyInertia) +
+                    number(centredInertia) + " kg m^2, less than the " + number(kMinBodyInertia) +
                     " kg m^2 a dynamic body that turns needs (Box2D divides by it); make them "
                     "wider or fix the body's rotation",
                 -1};
