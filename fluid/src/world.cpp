@@ -437,7 +437,7 @@ std::span<const Field<EmitterDef>> emitterFields() {
 }
 
 MaterialId World::addMaterial(const Material& material) {
-    m_state->checkIdle("World::addMaterial");
+    m_state->changing("World::addMaterial");
     validate(material);
     checkSolverTakes(m_state->def, material, "World::addMaterial");
     checkSpacing(m_state->def, material, "World::addMaterial");
@@ -450,7 +450,7 @@ MaterialId World::addMaterial(const Material& material) {
 }
 
 void World::setMaterial(MaterialId id, const Material& material) {
-    m_state->checkIdle("World::setMaterial");
+    m_state->changing("World::setMaterial");
     (void)this->material(id);
     validate(material);
     checkSolverTakes(m_state->def, material, "World::setMaterial");
@@ -497,7 +497,7 @@ uint32_t World::materialCount() const {
 }
 
 ParticleHandle World::addParticle(glm::vec2 position, glm::vec2 velocity, MaterialId materialId) {
-    m_state->checkIdle("World::addParticle");
+    m_state->changing("World::addParticle");
     checkVec("World::addParticle", "position", position);
     checkVec("World::addParticle", "velocity", velocity);
     (void)material(materialId);
@@ -511,7 +511,7 @@ ParticleHandle World::addParticle(glm::vec2 position, glm::vec2 velocity, Materi
 }
 
 uint32_t World::spawnBlob(const BlobDef& blob, uint32_t* insideSolids) {
-    m_state->checkIdle("World::spawnBlob");
+    m_state->changing("World::spawnBlob");
     const Material& mat = material(blob.material);
     checkVec("spawnBlob", "velocity", blob.velocity);
     checkLifetime("spawnBlob: ", blob.lifetime);
@@ -608,7 +608,7 @@ uint32_t World::placeBlob(const BlobDef& blob, glm::vec2 lo, glm::vec2 hi, float
 }
 
 void World::removeParticle(ParticleHandle handle) {
-    m_state->checkIdle("World::removeParticle");
+    m_state->changing("World::removeParticle");
     m_state->removeAt(m_state->checkedIndex(handle, "World::removeParticle"));
 }
 
@@ -662,7 +662,7 @@ glm::vec2 World::velocity(ParticleHandle handle) const {
 }
 
 void World::setVelocity(ParticleHandle handle, glm::vec2 velocity) {
-    m_state->checkIdle("World::setVelocity");
+    m_state->changing("World::setVelocity");
     const uint32_t i = m_state->checkedIndex(handle, "World::setVelocity");
     checkVec("World::setVelocity", "velocity", velocity);
     m_state->particles.vx[i] = velocity.x;
@@ -672,7 +672,7 @@ void World::setVelocity(ParticleHandle handle, glm::vec2 velocity) {
 }
 
 ForcePlugin& World::addForce(std::unique_ptr<ForcePlugin> plugin) {
-    m_state->checkIdle("World::addForce");
+    m_state->changing("World::addForce");
     if (!plugin) {
         throw Error("World::addForce: null plugin");
     }
@@ -681,7 +681,7 @@ ForcePlugin& World::addForce(std::unique_ptr<ForcePlugin> plugin) {
 }
 
 BoundaryPlugin& World::addBoundary(std::unique_ptr<BoundaryPlugin> plugin) {
-    m_state->checkIdle("World::addBoundary");
+    m_state->changing("World::addBoundary");
     if (!plugin) {
         throw Error("World::addBoundary: null plugin");
     }
@@ -701,7 +701,7 @@ bool World::stepping() const {
 }
 
 void World::step(float frameDt) {
-    m_state->checkIdle("World::step");
+    m_state->changing("World::step");
     checkFrameDt("World::step", frameDt);
     if (m_state->materials.empty()) {
         throw Error("World::step: the world has no material; call addMaterial first");
@@ -782,7 +782,7 @@ void World::step(float frameDt) {
 }
 
 void World::setLifetime(ParticleHandle handle, float seconds) {
-    m_state->checkIdle("World::setLifetime");
+    m_state->changing("World::setLifetime");
     const uint32_t i = m_state->checkedIndex(handle, "World::setLifetime");
     checkLifetime("World::setLifetime: ", seconds);
     m_state->particles.expiry[i] = detail::expiryTime(m_state->time, seconds);
@@ -846,7 +846,7 @@ void World::validateEmitter(const EmitterDef& def, const char* function) const {
 }
 
 EmitterId World::addEmitter(const EmitterDef& def) {
-    m_state->checkIdle("World::addEmitter");
+    m_state->changing("World::addEmitter");
     validateEmitter(def, "World::addEmitter");
     detail::EmitterState e;
     e.def = def;
@@ -856,7 +856,7 @@ EmitterId World::addEmitter(const EmitterDef& def) {
 }
 
 void World::setEmitter(EmitterId id, const EmitterDef& def) {
-    m_state->checkIdle("World::setEmitter");
+    m_state->changing("World::setEmitter");
     const uint32_t i = checkedId(id, m_state->emitters.size(), "World::setEmitter", "emitter",
                                  m_state->tag.value());
     validateEmitter(def, "World::setEmitter");
@@ -886,7 +886,7 @@ uint32_t World::emitterCount() const {
 }
 
 DrainId World::addDrain(const DrainDef& def) {
-    m_state->checkIdle("World::addDrain");
+    m_state->changing("World::addDrain");
     validate(def.shape, "World::addDrain");
     if (def.onlyMaterial) {
         (void)material(def.material);
@@ -905,7 +905,7 @@ uint32_t World::drainCount() const {
 }
 
 SensorId World::addSensor(const SensorDef& def) {
-    m_state->checkIdle("World::addSensor");
+    m_state->changing("World::addSensor");
     validate(def.shape, "World::addSensor");
     m_state->sensors.push_back(def);
     // The new sensor's entries are zeros until the next step measures; the others keep theirs.
@@ -1012,7 +1012,7 @@ uint32_t dueSubsteps(double due, double h) {
 } // namespace detail
 
 void World::setPositionBased(const PositionBasedDef& settings) {
-    m_state->checkIdle("World::setPositionBased");
+    m_state->changing("World::setPositionBased");
     validatePositionBased(settings, "World::setPositionBased: ");
     m_state->def.positionBased = settings;
 }

@@ -11,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -351,9 +352,27 @@ struct WorldState {
     // plugin's hook calling back into the world that runs it cannot reallocate what the step
     // is iterating over, nest a second step, or destroy the world under itself.
     bool stepping = false;
-    // Throws fluid::Error (ErrorCode::WrongState) "<function>: called during this world's own
+    // Throws fluid::Error (ErrorCode::WrongState) "<function>: called during the world's own
     // step ..." while `stepping`.
     void checkIdle(const char* function) const;
+    // checkIdle, then counts a change to the world (`changes`): every call that changes the
+    // world starts with it, so the query grid knows when it is stale.
+    void changing(const char* function) {
+        checkIdle(function);
+        ++changes;
+    }
+    uint64_t changes = 0;
+    // The region queries' grid (query.cpp): particles sorted into cells of `cell` metres, built
+    // by the first query after a change (`builtAt` != `changes`), under `mutex`, so that
+    // queries from several threads between steps share it.
+    struct QueryGrid {
+        std::mutex mutex;
+        uint64_t builtAt = ~uint64_t(0);
+        uint32_t count = 0;
+        float cell = 0.0f;
+        Grid grid;
+    };
+    std::unique_ptr<QueryGrid> queryGrid = std::make_unique<QueryGrid>();
     StageProbe stageProbe; // tests only: see StageProbe
     double time = 0.0;
     // Position-based: frame time passed to World::step that no sub-step has simulated yet (s, in

@@ -6,6 +6,7 @@
 #include <fluid/handle.h>
 #include <fluid/material.h>
 #include <fluid/plugin.h>
+#include <fluid/query.h>
 #include <fluid/registry.h>
 #include <fluid/shape.h>
 #include <fluid/task.h>
