@@ -448,6 +448,45 @@ FLUID_C_API fluid_status fluid_world_remove_particle(fluid_world* world, fluid_p
 FLUID_C_API fluid_status fluid_world_particle_valid(const fluid_world* world,
                                                     fluid_particle_id id, bool* valid);
 
+/// A particle a region query found (C++ fluid::QueryHit).
+typedef struct fluid_query_hit {
+    /// Its id.
+    fluid_particle_id id;
+    /// Its index in the arrays fluid_world_positions and the others hand out, until the world
+    /// changes (unit: index).
+    uint32_t index;
+    /// Its material.
+    fluid_material_id material;
+} fluid_query_hit;
+
+/// Called for each particle a region query finds, in increasing index: return true to go on,
+/// false to stop there.
+typedef bool (*fluid_query_visitor)(void* user, const fluid_query_hit* hit);
+
+/// Calls `visit` for each particle whose position lies in `region` (boundary points of a box or
+/// circle inside, polygons by the even-odd rule), in increasing index (the same for any number
+/// of workers, and after a save and load), until it returns false; `visited` (may be NULL)
+/// receives how many it was called for. INVALID_ARGUMENT naming the field for a bad region;
+/// REFUSED from inside the world's step. Between steps, from any number of threads at once
+/// (docs/queries.md).
+FLUID_C_API fluid_status fluid_world_query(const fluid_world* world, const fluid_shape* region,
+                                           fluid_query_visitor visit, void* user,
+                                           uint32_t* visited);
+
+/// Writes the ids of the particles in `region` to `ids`, in increasing index, at most `capacity`
+/// of them (`ids` may be NULL with capacity 0); `found` receives how many lie in the region
+/// (more than `capacity` when the buffer is too short). Errors as fluid_world_query.
+FLUID_C_API fluid_status fluid_world_query_ids(const fluid_world* world,
+                                               const fluid_shape* region, fluid_particle_id* ids,
+                                               uint32_t capacity, uint32_t* found);
+
+/// Counts the particles in `region`: `per_material[k]` (may be NULL with material_count 0)
+/// receives material k's count for k < `material_count`; `total` (may be NULL) all of them.
+/// Errors as fluid_world_query.
+FLUID_C_API fluid_status fluid_world_count_in(const fluid_world* world, const fluid_shape* region,
+                                              uint32_t* per_material, uint32_t material_count,
+                                              uint32_t* total);
+
 /// The particle's position (unit: m).
 FLUID_C_API fluid_status fluid_world_particle_position(const fluid_world* world,
                                                        fluid_particle_id id, fluid_vec2* position);
