@@ -54,6 +54,7 @@
 #include <memory>
 #include <numbers>
 #include <numeric>
+#include <random>
 #include <span>
 #include <string>
 #include <utility>
@@ -95,6 +96,9 @@ struct Options {
     std::string material = "water";
     /// Crates scene: step Box2D next to the fluid without coupling them (the reference run).
     bool noCoupling = false;
+    /// Region queries timed after the run (unit: count; 0: none): 10 cm boxes at random places
+    /// over the liquid's bounding box (fluid/query.h, docs/queries.md).
+    uint32_t queries = 0;
     /// "A:B" as given on the command line (empty: the timed frames); parsed into
     /// `windowFirst` and `windowLast`.
     std::string window;
@@ -104,6 +108,43 @@ struct Options {
     /// Last frame of the compression window, included (unit: as `windowFirst`).
     uint32_t windowLast = 0;
 };
+
+/// Times `count` region queries (countParticles over 10 cm boxes, places from a fixed seed over
+/// the particles' bounding box) on the world as the run left it: the first, which builds the
+/// query grid, and the rest; prints one line.
+void timeQueries(const fluid::World& world, uint32_t count) {
+    const auto px = world.positionX(), py = world.positionY();
+    if (px.empty()) {
+        return;
+    }
+    const float x0 = *std::min_element(px.begin(), px.end());
+    const float x1 = *std::max_element(px.begin(), px.end());
+    const float y0 = *std::min_element(py.begin(), py.end());
+    const float y1 = *std::max_element(py.begin(), py.end());
+    std::mt19937 rng(12345);
+    std::uniform_real_distribution<float> ux(x0, x1), uy(y0, y1);
+    std::vector<fluid::Shape> boxes;
+    for (uint32_t k = 0; k < count; ++k) {
+        const glm::vec2 c{ux(rng), uy(rng)};
+        boxes.push_back(fluid::Shape::box(c - glm::vec2(0.05f), c + glm::vec2(0.05f)));
+    }
+    using Clock = std::chrono::steady_clock;
+    uint64_t found = 0;
+    const auto t0 = Clock::now();
+    found += fluid::countParticles(world, boxes[0]);
+    const auto t1 = Clock::now();
+    for (uint32_t k = 1; k < count; ++k) {
+        found += fluid::countParticles(world, boxes[k]);
+    }
+    const auto t2 = Clock::now();
+    const double first = std::chrono::duration<double, std::milli>(t1 - t0).count();
+    const double rest = std::chrono::duration<double, std::milli>(t2 - t1).count();
+    std::printf("queries: %u boxes of 0.1 m over the liquid: the first (builds the query grid) "
+                "%.3f ms, the other %u %.3f ms in all (%.2f us each), %.1f particles each on "
+                "average (one thread)\n",
+                count, first, count - 1, rest, count > 1 ? 1000.0 * rest / double(count - 1) : 0.0,
+                double(found) / double(count));
+}
 
 /// What a scene builder made.
 struct Scene {
@@ -636,6 +677,9 @@ int run(const Options& opt) {
                     lastSurfaceFrames, 100.0 * lastSurfaceSum / double(lastSurfaceFrames),
                     100.0 * lastSurfaceLow, 100.0 * lastSurfaceHigh);
     }
+    if (opt.queries > 0) {
+        timeQueries(world, opt.queries);
+    }
     const auto stacked = uint32_t(stackedIndices(world.positionX(), world.positionY()).size());
     std::printf("stacked: %u particles share their exact position with another\n", stacked);
     char window[32];
@@ -714,6 +758,8 @@ int main(int argc, char** argv) {
                    "The scene's liquid: water (the default), yoghurt (fluid::yoghurt()) or "
                    "seed_yoghurt (fluid::seedYoghurt(), Table 4.1's Newtonian yoghurt)");
     app.add_option("--eos", opt.eos, "Equation of state of the explicit solver: tait or linear");
+    app.add_option("--queries", opt.queries,
+                   "Time this many region queries (10 cm boxes) after the run (0: none)");
     app.add_flag("--no-coupling", opt.noCoupling,
                  "Crates scene: step the Box2D crates without coupling them to the fluid");
     app.add_option("--window", opt.window,
