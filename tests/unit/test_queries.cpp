@@ -116,7 +116,7 @@ TEST_CASE("queries: the particles in a shape are exactly those a scan finds, in 
     const World world = mixedTank(solver, 1);
     std::mt19937 rng(7);
     uint32_t nonEmpty = 0;
-    for (int k = 0; k < 300; ++k) {
+    for (int k = 0; k < 120; ++k) {
         const Shape region = randomShape(rng);
         CAPTURE(k, int(region.type));
         const std::vector<uint32_t> expected = bruteForce(world, region);
@@ -142,7 +142,7 @@ TEST_CASE("queries: the particles in a shape are exactly those a scan finds, in 
         }
         CHECK(sum == expected.size());
     }
-    CHECK(nonEmpty > 100);
+    CHECK(nonEmpty > 40);
     // A region larger than the world holds every particle (the scan path).
     CHECK(queried(world, Shape::box({-1e4f, -1e4f}, {1e4f, 1e4f})).size() == world.particleCount());
 }
