@@ -7,8 +7,6 @@
 #include <fluid/error.h>
 #include <fluid/internal/checks.h>
 
-#include <glm/common.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -111,27 +109,6 @@ std::vector<uint32_t> candidates(detail::WorldState& s, glm::vec2 lo, glm::vec2 
     }
     std::sort(found.begin(), found.end());
     return found;
-}
-
-// The bounding box of a shape `validate` accepted.
-void bounds(const Shape& shape, glm::vec2& lo, glm::vec2& hi) {
-    switch (shape.type) {
-    case ShapeType::Rectangle:
-        lo = shape.center - shape.halfExtents;
-        hi = shape.center + shape.halfExtents;
-        return;
-    case ShapeType::Circle:
-        lo = shape.center - glm::vec2(shape.radius);
-        hi = shape.center + glm::vec2(shape.radius);
-        return;
-    case ShapeType::Polygon:
-        lo = hi = shape.vertices.front();
-        for (const glm::vec2 v : shape.vertices) {
-            lo = glm::min(lo, v);
-            hi = glm::max(hi, v);
-        }
-        return;
-    }
 }
 
 std::vector<uint32_t> inShape(detail::WorldState& s, const Shape& region, const char* function) {

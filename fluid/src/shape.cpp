@@ -1,8 +1,9 @@
-// fluid — shapes: validation, containment and area.
+// fluid — shapes: validation, containment, bounds and area.
 #include <fluid/error.h>
 #include <fluid/internal/checks.h>
 #include <fluid/shape.h>
 
+#include <glm/common.hpp>
 #include <glm/vec2.hpp>
 
 #include <cmath>
@@ -119,6 +120,26 @@ bool contains(const Shape& shape, glm::vec2 p) {
         return insidePolygon(std::span<const glm::vec2>(shape.vertices), p);
     }
     return false;
+}
+
+void bounds(const Shape& shape, glm::vec2& lo, glm::vec2& hi) {
+    switch (shape.type) {
+    case ShapeType::Rectangle:
+        lo = shape.center - shape.halfExtents;
+        hi = shape.center + shape.halfExtents;
+        return;
+    case ShapeType::Circle:
+        lo = shape.center - glm::vec2(shape.radius);
+        hi = shape.center + glm::vec2(shape.radius);
+        return;
+    case ShapeType::Polygon:
+        lo = hi = shape.vertices.front();
+        for (const glm::vec2 v : shape.vertices) {
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+        }
+        return;
+    }
 }
 
 float area(const Shape& shape) {

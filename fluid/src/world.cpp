@@ -519,23 +519,7 @@ uint32_t World::spawnBlob(const BlobDef& blob, uint32_t* insideSolids) {
     const Shape& shape = blob.shape;
     validate(shape, "spawnBlob");
     glm::vec2 lo{}, hi{};
-    switch (shape.type) {
-    case ShapeType::Rectangle:
-        lo = shape.center - shape.halfExtents;
-        hi = shape.center + shape.halfExtents;
-        break;
-    case ShapeType::Circle:
-        lo = shape.center - glm::vec2(shape.radius);
-        hi = shape.center + glm::vec2(shape.radius);
-        break;
-    case ShapeType::Polygon:
-        lo = hi = shape.vertices[0];
-        for (glm::vec2 v : shape.vertices) {
-            lo = glm::min(lo, v);
-            hi = glm::max(hi, v);
-        }
-        break;
-    }
+    bounds(shape, lo, hi);
     m_state->checkInRange("spawnBlob", "the shape's lower corner", lo);
     m_state->checkInRange("spawnBlob", "the shape's upper corner", hi);
     const float spacing = particleSpacing(mat, m_state->def.depth);

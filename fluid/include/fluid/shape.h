@@ -94,6 +94,10 @@ template <class Vec> bool insidePolygon(std::span<const glm::vec2> vertices, Vec
     return inside;
 }
 
+/// The axis-aligned box around `shape` (unit: m): its lower-left corner in `lo`, its upper-right
+/// in `hi`; for a shape `validate` accepts. Thread rule: any thread.
+void bounds(const Shape& shape, glm::vec2& lo, glm::vec2& hi);
+
 /// Area of `shape` (unit: m^2). Thread rule: any thread.
 float area(const Shape& shape);
 
