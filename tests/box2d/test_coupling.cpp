@@ -587,23 +587,6 @@ TEST_CASE("a boundary plugin's rigid body with bad data is refused with the plug
     CHECK(allFinite(pool.world));
 }
 
-namespace {
-
-// A force plugin whose prepare runs the test's hook (a game's plugin calling back).
-class HookForce final : public ForcePlugin {
-public:
-    static constexpr std::array<ParamDecl, 0> kParams{};
-    explicit HookForce(std::function<void()> hook)
-        : ForcePlugin("force.test-hook", kParams), m_hook(std::move(hook)) {}
-    void prepare(const StepContext&) override { m_hook(); }
-    void apply(const ForceContext&, uint32_t, uint32_t) override {}
-
-private:
-    std::function<void()> m_hook;
-};
-
-} // namespace
-
 TEST_CASE("a plugin's hook cannot step the coupling that is stepping its world",
           "[box2d][bad-input][reentry]") {
     Pool pool;

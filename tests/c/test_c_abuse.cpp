@@ -1,6 +1,8 @@
 // The C API under abuse from plugins written against it: callbacks that call back into the world
 // that runs them (refused with FLUID_ERROR_REFUSED, the world stepping once per frame), and a C
 // boundary whose output is not finite (the same rule as a C++ plugin's).
+#include "c_test_support.h"
+
 #include <fluid/c.h>
 
 #include <catch2/catch.hpp>
@@ -15,32 +17,14 @@ namespace {
 
 constexpr float kFrame = 1.0f / 60.0f;
 
-#define C_OK(call)                                                                                 \
-    do {                                                                                           \
-        const fluid_status c_ok_status = (call);                                                   \
-        INFO(#call << ": " << fluid_status_name(c_ok_status) << ": " << fluid_last_error());       \
-        REQUIRE(c_ok_status == FLUID_OK);                                                          \
-    } while (false)
-
 // A 0.6 m tank of water with gravity.
 fluid_world* tank() {
     fluid_world_def def = fluid_default_world_def();
     fluid_world* world = nullptr;
     C_OK(fluid_world_create(&def, &world));
-    fluid_material_def water{};
-    C_OK(fluid_material_preset("water", &water));
-    fluid_material_id id{};
-    C_OK(fluid_world_add_material(world, &water, &id));
-    const fluid_param box[] = {{"minX", -0.3}, {"minY", 0.0}, {"maxX", 0.3}, {"maxY", 0.6}};
-    fluid_plugin_id plugin{};
-    C_OK(fluid_world_add_plugin(world, "boundary.box", box, 4, &plugin));
-    const fluid_param gravity[] = {{"gx", 0.0}, {"gy", -9.81}};
-    C_OK(fluid_world_add_plugin(world, "force.gravity", gravity, 2, &plugin));
-    fluid_blob_def blob = fluid_default_blob_def();
-    blob.shape = fluid_box_shape({-0.3f, 0.0f}, {0.3f, 0.15f});
-    blob.material = id;
+    fluid::test::waterTank(world, {-0.3f, 0.0f}, {0.3f, 0.6f}, {-0.3f, 0.0f}, {0.3f, 0.15f});
     uint32_t spawned = 0;
-    C_OK(fluid_world_spawn_blob(world, &blob, &spawned));
+    C_OK(fluid_world_particle_count(world, &spawned));
     REQUIRE(spawned > 100);
     return world;
 }

@@ -3,6 +3,7 @@
 // levels through C, every error path with its status and the C++ API's own message, and a
 // short fuzz of the entry points.
 #include "c_plugins.h"
+#include "c_test_support.h"
 
 #include <fluid/c.h>
 #include <fluid/fluid.h>
@@ -27,18 +28,11 @@
 #include <vector>
 
 using namespace fluid;
+using fluid::test::CWorld;
 
 namespace {
 
 constexpr float kFrame = 1.0f / 60.0f;
-
-// Fails the test with the call's message unless it returned FLUID_OK.
-#define C_OK(call)                                                                                 \
-    do {                                                                                           \
-        const fluid_status c_ok_status = (call);                                                   \
-        INFO(#call << ": " << fluid_status_name(c_ok_status) << ": " << fluid_last_error());       \
-        REQUIRE(c_ok_status == FLUID_OK);                                                          \
-    } while (false)
 
 // The C++ API's message for `body`, which must throw fluid::Error.
 template <class Body> std::string cppMessage(Body&& body) {
@@ -50,15 +44,6 @@ template <class Body> std::string cppMessage(Body&& body) {
     FAIL("the C++ call did not throw");
     return {};
 }
-
-struct CWorld {
-    fluid_world* world = nullptr;
-    CWorld() = default;
-    explicit CWorld(const fluid_world_def& def) { C_OK(fluid_world_create(&def, &world)); }
-    ~CWorld() { fluid_world_destroy(world); }
-    CWorld(const CWorld&) = delete;
-    CWorld& operator=(const CWorld&) = delete;
-};
 
 // The dam: a 1 x 2 m tank, gravity, a block of water 0.4 x 0.6 m in its left corner.
 void cppDam(World& world) {
@@ -72,20 +57,10 @@ void cppDam(World& world) {
 }
 
 fluid_material_id cDam(fluid_world* world) {
-    fluid_material_def water{};
-    C_OK(fluid_material_preset("water", &water));
-    fluid_material_id id{};
-    C_OK(fluid_world_add_material(world, &water, &id));
-    const fluid_param box[] = {{"minX", 0.0}, {"minY", 0.0}, {"maxX", 1.0}, {"maxY", 2.0}};
-    fluid_plugin_id plugin{};
-    C_OK(fluid_world_add_plugin(world, "boundary.box", box, 4, &plugin));
-    const fluid_param gravity[] = {{"gx", 0.0}, {"gy", -9.81}};
-    C_OK(fluid_world_add_plugin(world, "force.gravity", gravity, 2, &plugin));
-    fluid_blob_def blob = fluid_default_blob_def();
-    blob.shape = fluid_box_shape({0.0f, 0.0f}, {0.4f, 0.6f});
-    blob.material = id;
+    const fluid_material_id id =
+        fluid::test::waterTank(world, {0.0f, 0.0f}, {1.0f, 2.0f}, {0.0f, 0.0f}, {0.4f, 0.6f});
     uint32_t spawned = 0;
-    C_OK(fluid_world_spawn_blob(world, &blob, &spawned));
+    C_OK(fluid_world_particle_count(world, &spawned));
     REQUIRE(spawned > 1000);
     return id;
 }

@@ -3,6 +3,7 @@
 // is its whole length (a NUL byte in it is an error), polygons past the core's vertex cap are
 // refused at once, and names follow one rule while messages quote a bounded prefix of any string.
 #include "c_plugins.h"
+#include "c_test_support.h"
 #include "test_support.h"
 
 #include <fluid/c.h>
@@ -22,22 +23,6 @@
 
 namespace {
 
-// Fails the test with the call's message unless it returned FLUID_OK.
-#define C_OK(call)                                                                                 \
-    do {                                                                                           \
-        const fluid_status c_ok_status = (call);                                                   \
-        INFO(#call << ": " << fluid_status_name(c_ok_status) << ": " << fluid_last_error());       \
-        REQUIRE(c_ok_status == FLUID_OK);                                                          \
-    } while (false)
-
-struct CWorld {
-    fluid_world* world = nullptr;
-    explicit CWorld(const fluid_world_def& def) { C_OK(fluid_world_create(&def, &world)); }
-    ~CWorld() { fluid_world_destroy(world); }
-    CWorld(const CWorld&) = delete;
-    CWorld& operator=(const CWorld&) = delete;
-};
-
 fluid_material_id addWater(fluid_world* world, const char* name) {
     fluid_material_def water{};
     C_OK(fluid_material_preset("water", &water));
@@ -54,24 +39,11 @@ std::string quotedLong(const std::string& text) {
     return out.append(std::to_string(text.size())).append(" bytes)");
 }
 
-// A level whose one blob asks for about 63.6 million particles (about 12.7 GB).
-const char* const kHugeBlobLevel =
-    R"({"version": 1, "world": {"maxParticles": 67108864}, "materials": [{"name": "water"}], "blobs": [{"shape": "box", "min": [0, 0], "max": [80, 80], "material": "water"}]})";
-
-// A sanitizer reserves terabytes of shadow memory, which a memory limit refuses (GCC says so
-// with __SANITIZE_*__, clang with __has_feature).
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define FLUID_TEST_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) ||                         \
-    __has_feature(memory_sanitizer)
-#define FLUID_TEST_SANITIZED 1
-#endif
-#endif
 
 } // namespace
 
 using namespace fluid;
+using fluid::test::CWorld;
 
 TEST_CASE("C API: a material's name read back stays where it is while 200 more materials are "
           "added",
@@ -125,7 +97,8 @@ TEST_CASE("C API child: a blob larger than memory", "[.c_memory_child]") {
     std::printf("spawn: %s: %s\n", fluid_status_name(s), fluid_last_error());
     fluid_world_destroy(world);
     fluid_level* level = nullptr;
-    s = fluid_level_parse(kHugeBlobLevel, std::strlen(kHugeBlobLevel), "t.json", nullptr, &level);
+    const char* const text = fluid::test::kHugeBlobLevel;
+    s = fluid_level_parse(text, std::strlen(text), "t.json", nullptr, &level);
     std::printf("level: %s: %s\n", fluid_status_name(s), fluid_last_error());
     fluid_level_destroy(level);
     std::fflush(stdout);

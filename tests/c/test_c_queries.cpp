@@ -1,5 +1,7 @@
 // Region queries through the C API (fluid_world_query, _query_ids, _count_in): the C++
 // queries' results, statuses for bad regions and for a query from inside the step.
+#include "c_test_support.h"
+
 #include <fluid/c.h>
 
 #include <catch2/catch.hpp>
@@ -11,29 +13,11 @@
 
 namespace {
 
-#define C_OK(call)                                                                                 \
-    do {                                                                                           \
-        const fluid_status c_ok_status = (call);                                                   \
-        INFO(#call << ": " << fluid_status_name(c_ok_status) << ": " << fluid_last_error());       \
-        REQUIRE(c_ok_status == FLUID_OK);                                                          \
-    } while (false)
-
 fluid_world* dam() {
     fluid_world_def def = fluid_default_world_def();
     fluid_world* world = nullptr;
     C_OK(fluid_world_create(&def, &world));
-    fluid_material_def water{};
-    C_OK(fluid_material_preset("water", &water));
-    fluid_material_id id{};
-    C_OK(fluid_world_add_material(world, &water, &id));
-    const fluid_param box[] = {{"minX", 0.0}, {"minY", 0.0}, {"maxX", 1.0}, {"maxY", 1.0}};
-    fluid_plugin_id plugin{};
-    C_OK(fluid_world_add_plugin(world, "boundary.box", box, 4, &plugin));
-    C_OK(fluid_world_add_plugin(world, "force.gravity", nullptr, 0, &plugin));
-    fluid_blob_def blob = fluid_default_blob_def();
-    blob.shape = fluid_box_shape({0.0f, 0.0f}, {0.3f, 0.4f});
-    blob.material = id;
-    C_OK(fluid_world_spawn_blob(world, &blob, nullptr));
+    fluid::test::waterTank(world, {0.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 0.0f}, {0.3f, 0.4f});
     for (int frame = 0; frame < 10; ++frame) {
         C_OK(fluid_world_step(world, 1.0f / 60.0f));
     }

@@ -213,23 +213,6 @@ TEST_CASE("level abuse: a seed past 2^53 is refused", "[level][abuse3]") {
     CHECK(lvl.world.emitter(lvl.emitters[0].second).seed == 9007199254740992ull);
 }
 
-namespace {
-// A level whose one blob asks for about 63.6 million particles (about 12.7 GB).
-const std::string kHugeBlob =
-    R"({"version": 1, "world": {"maxParticles": 67108864}, "materials": [{"name": "water"}], "blobs": [{"shape": "box", "min": [0, 0], "max": [80, 80], "material": "water"}]})";
-} // namespace
-
-// A sanitizer reserves terabytes of shadow memory, which a memory limit refuses: the test below
-// needs a build without one (GCC says so with __SANITIZE_*__, clang with __has_feature).
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define FLUID_TEST_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) ||                    \
-    __has_feature(memory_sanitizer)
-#define FLUID_TEST_SANITIZED 1
-#endif
-#endif
-
 // Run by the next test in a child process under a memory limit: prints what loading the huge
 // blob threw. Hidden, and it does nothing unless the parent set FLUID_TEST_MEMORY_CHILD: run
 // by hand without the limit it would fill the machine's memory.
@@ -238,7 +221,7 @@ TEST_CASE("level abuse child: load a blob larger than memory", "[.abuse3_child]"
         return;
     }
     try {
-        const Level lvl = parseLevel(kHugeBlob, "t.json", builtins());
+        const Level lvl = parseLevel(kHugeBlobLevel, "t.json", builtins());
         std::printf("loaded %u particles\n", lvl.world.particleCount());
     } catch (const LevelError& e) {
         std::printf("LevelError: %s\n", e.what());

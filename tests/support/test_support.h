@@ -6,6 +6,7 @@
 #include <glm/vec2.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -13,13 +14,31 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
+// FLUID_TEST_SANITIZED: 1 in a build with a sanitizer, which reserves terabytes of shadow
+// memory, so a test that runs under a memory limit (ulimit -v) needs a build without one (GCC
+// says so with __SANITIZE_*__, clang with __has_feature).
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define FLUID_TEST_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) ||                         \
+    __has_feature(memory_sanitizer)
+#define FLUID_TEST_SANITIZED 1
+#endif
+#endif
+
 namespace fluid::test {
+
+/// A level whose one blob asks for about 63.6 million particles (about 12.7 GB): loading it
+/// runs out of memory under a memory limit.
+inline constexpr const char* kHugeBlobLevel =
+    R"({"version": 1, "world": {"maxParticles": 67108864}, "materials": [{"name": "water"}], "blobs": [{"shape": "box", "min": [0, 0], "max": [80, 80], "material": "water"}]})";
 
 /// Standard gravity used by the scenes (unit: m/s^2).
 inline constexpr float kG = 9.81f;
@@ -114,6 +133,20 @@ inline double kineticPerMass(const World& world) {
     }
     return vx.empty() ? 0.0 : e / double(vx.size());
 }
+
+// A force plugin whose prepare runs the test's hook (a game's plugin calling back into the
+// world, or into what steps it) and adds no acceleration.
+class HookForce final : public ForcePlugin {
+public:
+    static constexpr std::array<ParamDecl, 0> kParams{};
+    explicit HookForce(std::function<void()> hook)
+        : ForcePlugin("force.test-hook", kParams), m_hook(std::move(hook)) {}
+    void prepare(const StepContext&) override { m_hook(); }
+    void apply(const ForceContext&, uint32_t, uint32_t) override {}
+
+private:
+    std::function<void()> m_hook;
+};
 
 /// Largest speed (unit: m/s).
 inline float maxSpeed(const World& world) {

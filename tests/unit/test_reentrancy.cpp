@@ -11,23 +11,6 @@
 using namespace fluid;
 using namespace fluid::test;
 
-namespace {
-
-// A force plugin whose prepare runs the test's hook.
-class HookForce final : public ForcePlugin {
-public:
-    static constexpr std::array<ParamDecl, 0> kParams{};
-    explicit HookForce(std::function<void()> hook)
-        : ForcePlugin("force.test-hook", kParams), m_hook(std::move(hook)) {}
-    void prepare(const StepContext&) override { m_hook(); }
-    void apply(const ForceContext&, uint32_t, uint32_t) override {}
-
-private:
-    std::function<void()> m_hook;
-};
-
-} // namespace
-
 TEST_CASE("a plugin's hook cannot change, save or step the world that runs it",
           "[unit][bad-input][reentry]") {
     World world;
