@@ -182,9 +182,8 @@ private:
     }
 
     // The fluid's boundary plugins hold the fluid only: Box2D never sees them. A dynamic body in
-    // a level whose Box2D world holds nothing static or kinematic falls through the tank (a
-    // crate dropped into a boundary.box tank reached y = -96 m in 5 s): warn, naming the body
-    // and the plugins it passes through.
+    // a level whose Box2D world holds nothing static or kinematic falls through the tank: warn,
+    // naming the body and the plugins it passes through (docs/box2d.md, "Shapes and masses").
     void warnUnheldBodies(const ObjectReader& root) {
         std::string walls;
         for (const Level::PluginEntry& plugin : m_level.plugins) {

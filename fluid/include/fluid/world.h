@@ -98,13 +98,11 @@ struct PositionBasedDef {
 /// docs/position_based.md, "Presets", has their measured compression and cost).
 enum class Quality : uint8_t {
     /// The default (`PositionBasedDef{}`): 4 sub-steps x 1 iteration with the coarse correction
-    /// (0.4), viscosity and surface tension every second sub-step: a 0.5 m tank of water within
-    /// 6.9% of its rest density (1.7% mean; LiquidFun beside it: bench/liquidfun.md), about a
-    /// quarter of `Precise`'s cost (figures: docs/position_based.md, "Presets").
+    /// (0.4), viscosity and surface tension every second sub-step: about a quarter of
+    /// `Precise`'s cost for a few times its compression (docs/position_based.md, "Presets").
     Game,
-    /// 4 sub-steps x 8 iterations, no coarse correction, viscosity every sub-step: 0.7% mean,
-    /// 2.3% largest compression in the same tank, and the calmest floating Box2D bodies
-    /// (docs/box2d.md, "Which preset").
+    /// 4 sub-steps x 8 iterations, no coarse correction, viscosity every sub-step: the least
+    /// compression and the calmest floating Box2D bodies (docs/box2d.md, "Which preset").
     Precise,
 };
 

@@ -18,21 +18,16 @@ namespace fluid::box2d {
 inline constexpr float kLinearSlop = 0.005f;
 
 /// A dynamic body's polygon fixture with a corner sharper than this (unit: degrees) must hold a
-/// circle of radius one fluid spacing (`coarsestSpacing`; 1 cm for the water preset). Smaller
-/// pointed polygons hold too few boundary samples near their corners to push the fluid back
-/// evenly, and the fluid throws them: a triangle 3 cm wide with 45 degree corners (inscribed
-/// radius 6 mm) spun up to Box2D's limits (480 m/s, 377 rad/s) in a second, one 5 cm wide (10
-/// mm) rests (docs/box2d.md, "Shapes and masses"). Boxes (right angles), circles and thin
-/// boxes down to 5 mm step calmly. Static and kinematic bodies may have any shape Box2D takes.
-/// Any thread.
+/// circle of radius one fluid spacing (`coarsestSpacing`; 1 cm for the water preset): smaller
+/// pointed polygons hold too few boundary samples near their corners, and the fluid throws
+/// them (figures: docs/box2d.md, "Shapes and masses"). Boxes, circles, and static and
+/// kinematic bodies of any shape are not held to it. Any thread.
 inline constexpr double kAcuteCorner = 89.0;
 
 /// The lightest a coupled dynamic body may be (unit: 1): its mass over its fixtures' area, as a
 /// share of the areal density of the densest material in the world (`arealDensity`). Lighter
-/// bodies are thrown by the fluid's pressure faster than the coupling can answer (a 2 cm box at
-/// 1e-3 of water's density left the water at 20 m/s); at this ratio and above they ride the
-/// surface (docs/box2d.md, "Shapes and masses"). A 2 cm square at the floor in water of the
-/// default depth weighs 2.6e-3 kg. Any thread.
+/// bodies are thrown by the fluid's pressure faster than the coupling can answer (figures:
+/// docs/box2d.md, "Shapes and masses"). Any thread.
 inline constexpr float kMinDensityRatio = 0.05f;
 
 /// What is wrong with a shape: `message` (empty when nothing) says what, and what the smallest
