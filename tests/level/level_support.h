@@ -52,4 +52,17 @@ inline b2Body* bodyNamed(const Level& level, std::string_view name) {
     return nullptr;
 }
 
+/// `level.save` as bytes.
+inline std::string saveOf(const Level& level) {
+    std::ostringstream out;
+    level.save(out);
+    return out.str();
+}
+
+/// The level a save's bytes hold, named "s.sav" in errors.
+inline Level restore(const std::string& bytes, const LevelOptions& options = {}) {
+    std::istringstream in(bytes);
+    return readLevelSave(in, "s.sav", builtins(), options);
+}
+
 } // namespace fluid::test

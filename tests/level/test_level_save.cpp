@@ -25,17 +25,6 @@ using namespace fluid::test;
 
 namespace {
 
-std::string saveOf(const Level& level) {
-    std::ostringstream out;
-    level.save(out);
-    return out.str();
-}
-
-Level restore(const std::string& bytes, const LevelOptions& options = {}) {
-    std::istringstream in(bytes);
-    return readLevelSave(in, "s.sav", builtins(), options);
-}
-
 std::string errorOfSave(const std::string& bytes) {
     try {
         restore(bytes);

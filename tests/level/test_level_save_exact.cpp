@@ -21,17 +21,11 @@ using namespace fluid::test;
 
 namespace {
 
-std::string saveOf(const Level& level) {
-    std::ostringstream out;
-    level.save(out);
-    return out.str();
-}
-
+// A save restored on `workers` workers.
 Level restore(const std::string& bytes, uint32_t workers) {
-    std::istringstream in(bytes);
     LevelOptions options;
     options.workerCount = workers;
-    return readLevelSave(in, "s.sav", builtins(), options);
+    return test::restore(bytes, options);
 }
 
 // Every body's pose and velocities (Box2D's list order) and every particle's position and
