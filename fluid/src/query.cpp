@@ -2,7 +2,7 @@
 // own built on the first query after a change.
 #include <fluid/query.h>
 
-#include "world_state.h"
+#include "query_grid.h"
 
 #include <fluid/error.h>
 #include <fluid/internal/checks.h>
@@ -15,11 +15,10 @@
 
 namespace fluid {
 
-namespace {
+namespace detail {
 
-// The world's state for reading: queries change nothing but the shared grid's cache.
-detail::WorldState& stateFor(const World& world, const char* function) {
-    detail::WorldState& s = detail::stateOf(const_cast<World&>(world));
+WorldState& queryState(const World& world, const char* function) {
+    WorldState& s = stateOf(const_cast<World&>(world));
     if (s.stepping) {
         throw Error(std::string(function) +
                         ": called during the world's own step (from a plugin's hook or a task); "
@@ -29,10 +28,9 @@ detail::WorldState& stateFor(const World& world, const char* function) {
     return s;
 }
 
-// The grid over the particles as they stand now, built if the world changed since the last
-// one. Cells of the largest smoothing distance: a 10 cm query box of water covers about 16.
-const detail::Grid& queryGrid(detail::WorldState& s) {
-    detail::WorldState::QueryGrid& q = *s.queryGrid;
+// Cells of the largest smoothing distance: a 10 cm query box of water covers about 16.
+const WorldState::QueryGrid& queryGrid(WorldState& s) {
+    WorldState::QueryGrid& q = *s.queryGrid;
     const std::lock_guard<std::mutex> lock(q.mutex);
     const auto count = uint32_t(s.particles.size());
     if (q.builtAt != s.changes || q.count != count) {
@@ -41,13 +39,23 @@ const detail::Grid& queryGrid(detail::WorldState& s) {
             cell = std::max(cell, m.smoothingDistance);
         }
         q.cell = cell > 0.0f ? cell : 1.0f;
-        q.grid.build(s.particles.px, s.particles.py, q.cell, TaskHook{},
-                     detail::GridLayout{1, 1, 0});
+        q.grid.build(s.particles.px, s.particles.py, q.cell, TaskHook{}, GridLayout{1, 1, 0});
+        const auto [x0, x1] = std::minmax_element(s.particles.px.begin(), s.particles.px.end());
+        const auto [y0, y1] = std::minmax_element(s.particles.py.begin(), s.particles.py.end());
+        const bool any = count > 0;
+        q.minX = any ? *x0 : 0.0f;
+        q.maxX = any ? *x1 : 0.0f;
+        q.minY = any ? *y0 : 0.0f;
+        q.maxY = any ? *y1 : 0.0f;
         q.builtAt = s.changes;
         q.count = count;
     }
-    return q.grid;
+    return q;
 }
+
+} // namespace detail
+
+namespace {
 
 // The array indices of the particles `inside` accepts among those whose cells meet the box
 // [lo, hi], in increasing order.
@@ -60,7 +68,7 @@ std::vector<uint32_t> candidates(detail::WorldState& s, glm::vec2 lo, glm::vec2 
     if (count == 0) {
         return found;
     }
-    const detail::Grid& grid = queryGrid(s);
+    const detail::Grid& grid = detail::queryGrid(s).grid;
     const detail::GridView& g = grid.view();
     const std::span<const uint32_t> order = grid.order();
     const int64_t cx0 = detail::gridCell(lo.x, g.invCellX),
@@ -135,7 +143,7 @@ uint32_t visitAll(const detail::WorldState& s, const std::vector<uint32_t>& foun
 } // namespace
 
 uint32_t queryParticles(const World& world, const Shape& region, const QueryVisitor& visit) {
-    detail::WorldState& s = stateFor(world, "queryParticles");
+    detail::WorldState& s = detail::queryState(world, "queryParticles");
     if (!visit) {
         throw Error("queryParticles: the visitor is empty");
     }
@@ -143,7 +151,7 @@ uint32_t queryParticles(const World& world, const Shape& region, const QueryVisi
 }
 
 uint32_t queryParticles(const World& world, const Shape& region, std::span<ParticleHandle> out) {
-    detail::WorldState& s = stateFor(world, "queryParticles");
+    detail::WorldState& s = detail::queryState(world, "queryParticles");
     const std::vector<uint32_t> found = inShape(s, region, "queryParticles");
     for (std::size_t k = 0; k < found.size() && k < out.size(); ++k) {
         out[k] = s.handleOf(s.particles.slot[found[k]]);
@@ -152,7 +160,7 @@ uint32_t queryParticles(const World& world, const Shape& region, std::span<Parti
 }
 
 uint32_t countParticles(const World& world, const Shape& region, std::span<uint32_t> perMaterial) {
-    detail::WorldState& s = stateFor(world, "countParticles");
+    detail::WorldState& s = detail::queryState(world, "countParticles");
     const std::vector<uint32_t> found = inShape(s, region, "countParticles");
     std::fill(perMaterial.begin(), perMaterial.end(), 0u);
     for (const uint32_t i : found) {
@@ -165,7 +173,7 @@ uint32_t countParticles(const World& world, const Shape& region, std::span<uint3
 }
 
 uint32_t queryBox(const World& world, glm::vec2 lo, glm::vec2 hi, const QueryVisitor& visit) {
-    detail::WorldState& s = stateFor(world, "queryBox");
+    detail::WorldState& s = detail::queryState(world, "queryBox");
     if (!visit) {
         throw Error("queryBox: the visitor is empty");
     }

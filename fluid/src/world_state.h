@@ -371,6 +371,8 @@ struct WorldState {
         uint32_t count = 0;
         float cell = 0.0f;
         Grid grid;
+        // The particles' bounding box when built (unit: m; ray casts clip to it).
+        float minX = 0.0f, minY = 0.0f, maxX = 0.0f, maxY = 0.0f;
     };
     std::unique_ptr<QueryGrid> queryGrid = std::make_unique<QueryGrid>();
     StageProbe stageProbe; // tests only: see StageProbe
