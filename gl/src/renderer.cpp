@@ -36,18 +36,11 @@ constexpr size_t kMaxMaterials = 16;
 // The automatic pressure scale never goes below this (unit: Pa), so a frame without positive
 // pressure does not divide by zero.
 constexpr float kMinPressureScale = 1e-3f;
-// The field of a liquid's interior sums to this; the threshold's default 0.6 is half of it,
-// which puts the surface about half a spacing outside the outer particles' centres (where the
-// lattice cells of the outer row end). See docs/rendering.md.
-constexpr float kInteriorField = 1.2f;
-// Default of RenderSettings::threshold. A lone particle's summed field peaks at only
-// kInteriorField x 4 / (pi fieldRadius^2) (0.38 at radius 2): below the threshold, so spray
-// would vanish, and sparse particles (a thin film, a chain) dip below it between them. The
-// composite therefore also takes the largest single kernel, scaled so that at the default
-// threshold every particle shows at least as a disc of radius half a spacing (the same half
-// spacing a flat surface stands out by); inside the liquid and along dense edges the sum is
-// larger and decides.
-constexpr float kDefaultThreshold = 0.6f;
+// The field and its surface are the core's (fluid::SurfaceField, fluid/surface_field.h): the
+// interior sums to SurfaceField::kInteriorSum (1.2), the default threshold 0.6 puts the surface
+// about half a spacing outside the outer particles' centres, and the largest single kernel,
+// scaled by SurfaceField::dropletLevel, shows every particle at least as a disc of half a
+// spacing. The ray casts and `sample` read the same field. See docs/rendering.md.
 // A shape triangle whose three vertices have at least this alpha is opaque: a solid.
 constexpr float kOpaqueAlpha = 0.999f;
 // Most taps on each side of a texel in a solid distance pass; a wider reach samples every
@@ -148,7 +141,7 @@ struct Renderer::Impl {
     // Targets: the composite (what the host sees) and the metaball field.
     GLuint compositeFbo = 0, compositeTexture = 0;
     // The field has two attachments: colour (rgb = sum of colour x w, a = max of w) and weight
-    // (r = sum of w). The max lets a lone droplet show (see kDefaultThreshold).
+    // (r = sum of w). The max lets a lone droplet show (see SurfaceField::dropletLevel).
     GLuint fieldFbo = 0;
     std::array<GLuint, 2> fieldTextures{};
     bool fieldHalfFloat = true;
@@ -526,10 +519,10 @@ void Renderer::Impl::drawSurface(const SurfacePass& pass) {
     uploadMaterials(fieldUniforms);
     glUniform1f(fieldRadius, pass.fieldRadius);
     // The kernel integrates to pi R^2 / 4 and a particle stands for spacing^2 of area, so
-    // this weight makes a filled lattice sum to kInteriorField whatever the radius.
-    const float kernelWeight =
-        kInteriorField * 4.0f / (std::numbers::pi_v<float> * pass.fieldRadius * pass.fieldRadius);
-    glUniform1f(fieldWeight, kernelWeight);
+    // this weight makes a filled lattice sum to SurfaceField::kInteriorSum whatever the radius.
+    SurfaceField surface;
+    surface.fieldRadius = pass.fieldRadius;
+    glUniform1f(fieldWeight, surface.kernelWeight());
     glBindVertexArray(particleVao);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(pass.particles));
 
@@ -599,8 +592,7 @@ void Renderer::Impl::drawSurface(const SurfacePass& pass) {
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glUseProgram(compositeProgram.id());
     glUniform1f(compositeThreshold, pass.threshold);
-    const float edge = 0.5f / pass.fieldRadius;
-    glUniform1f(compositeDropletLevel, kDefaultThreshold / std::pow(1.0f - edge * edge, 3.0f));
+    glUniform1f(compositeDropletLevel, surface.dropletLevel());
     glUniform1f(compositeRimWidth, pass.rimWidth);
     glUniform1i(compositeDark, pass.dark ? 1 : 0);
     glUniform1f(compositeSolidReach, solids ? pass.solidReach : 0.0f);
@@ -710,8 +702,12 @@ RenderStats Renderer::render(const Camera& camera, const ParticleSpans& particle
     }
 
     // ---- settings, clamped to their documented ranges ----
-    const float fieldRadius = std::clamp(finiteOr(settings.fieldRadius, 2.0f), 1.0f, 4.0f);
-    const float threshold = std::clamp(finiteOr(settings.threshold, 0.6f), 0.05f, 4.0f);
+    const SurfaceField surfaceDefaults;
+    const float fieldRadius =
+        std::clamp(finiteOr(settings.fieldRadius, surfaceDefaults.fieldRadius),
+                   SurfaceField::kMinRadius, SurfaceField::kMaxRadius);
+    const float threshold = std::clamp(finiteOr(settings.threshold, surfaceDefaults.threshold),
+                                       SurfaceField::kMinThreshold, SurfaceField::kMaxThreshold);
     const float resolution = std::clamp(finiteOr(settings.fieldResolution, 0.5f), 0.25f, 1.0f);
     const float speedScale = std::max(finiteOr(settings.speedScale, 2.0f), 1e-6f);
     const float fixedPressureScale = std::max(finiteOr(settings.pressureScale, 0.0f), 0.0f);

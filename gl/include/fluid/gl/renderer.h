@@ -8,6 +8,7 @@
 #include <fluid/error.h>
 #include <fluid/gl/camera.h>
 #include <fluid/gl/shapes.h>
+#include <fluid/surface_field.h>
 #include <fluid/world.h>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -99,12 +100,14 @@ glm::vec3 defaultColour(std::string_view materialName, uint32_t index);
 struct RenderSettings {
     /// Which view to draw.
     View view = View::Metaballs;
-    /// Metaball reach over the material's spacing (unit: 1; [1, 4]).
-    float fieldRadius = 2.0f;
+    /// Metaball reach over the material's spacing (unit: 1; [1, 4]): `SurfaceField::fieldRadius`
+    /// (fluid/surface_field.h), the field the ray casts and `sample` read; pass the same value
+    /// to them so that a ray stops where the liquid is drawn.
+    float fieldRadius = SurfaceField{}.fieldRadius;
     /// Field level at the liquid's surface (unit: 1; [0.05, 4]); lower makes blobs fatter. The
     /// field sums to about 1.2 inside the liquid; at 0.6 the surface stands about half a
-    /// spacing outside the outer particles' centres.
-    float threshold = 0.6f;
+    /// spacing outside the outer particles' centres. `SurfaceField::threshold`.
+    float threshold = SurfaceField{}.threshold;
     /// Pressure drawn fully opaque in the pressure view (unit: Pa; 0 = automatic: the 95th
     /// percentile of the frame's positive pressures, at least 0.001 Pa).
     float pressureScale = 0.0f;
