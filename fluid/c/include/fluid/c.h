@@ -487,6 +487,106 @@ FLUID_C_API fluid_status fluid_world_count_in(const fluid_world* world, const fl
                                               uint32_t* per_material, uint32_t material_count,
                                               uint32_t* total);
 
+/* ---- Ray casts and the liquid at a point (C++ fluid/query.h, fluid/surface_field.h) ---- */
+
+/// The field whose level set is the liquid as fluid::gl draws it (C++ fluid::SurfaceField):
+/// pass the renderer's settings so that a ray stops where the liquid is drawn.
+typedef struct fluid_surface_field {
+    /// A particle's reach over its material's spacing (unit: 1; [1, 4]; default 2).
+    float field_radius;
+    /// Field level at the surface (unit: 1; [0.05, 4]; default 0.6).
+    float threshold;
+} fluid_surface_field;
+
+/// The renderer's defaults: field_radius 2, threshold 0.6. Any thread.
+FLUID_C_API fluid_surface_field fluid_default_surface_field(void);
+
+/// Where a ray first meets the liquid (C++ fluid::RayHit).
+typedef struct fluid_ray_hit {
+    /// True when the ray meets the liquid; the other fields are set only then.
+    bool hit;
+    /// True when the ray starts in the liquid: fraction 0, point the start, normal (0, 0).
+    bool starts_inside;
+    /// Where the ray enters the liquid (unit: m).
+    fluid_vec2 point;
+    /// The surface's outward unit normal there (unit: 1).
+    fluid_vec2 normal;
+    /// point = p1 + fraction (p2 - p1) (unit: 1; [0, 1]).
+    float fraction;
+    /// The material of `particle`.
+    fluid_material_id material;
+    /// The nearest particle to `point` among those whose field reaches it.
+    fluid_particle_id particle;
+    /// Its index in the arrays fluid_world_positions hands out, until the world changes.
+    uint32_t index;
+} fluid_ray_hit;
+
+/// The first point where the segment p1 -> p2 (unit: m; finite) enters the liquid as `field`
+/// (may be NULL: the defaults) draws it, into `hit`. INVALID_ARGUMENT naming the value for a
+/// non-finite end or a bad field; REFUSED from inside the world's step. Between steps, from any
+/// number of threads at once (docs/queries.md).
+FLUID_C_API fluid_status fluid_world_ray_cast(const fluid_world* world, fluid_vec2 p1,
+                                              fluid_vec2 p2, const fluid_surface_field* field,
+                                              fluid_ray_hit* hit);
+
+/// A particle a ray passes within the radius of (C++ fluid::RayParticleHit).
+typedef struct fluid_ray_particle_hit {
+    /// Its id.
+    fluid_particle_id id;
+    /// Its index in the arrays fluid_world_positions hands out, until the world changes.
+    uint32_t index;
+    /// Its material.
+    fluid_material_id material;
+    /// Where the ray enters its circle (the start when it starts inside) (unit: m).
+    fluid_vec2 point;
+    /// From the particle to `point`, normalised (unit: 1; (0, 0) when they coincide).
+    fluid_vec2 normal;
+    /// How far along the ray (unit: 1; [0, 1]).
+    float fraction;
+} fluid_ray_particle_hit;
+
+/// Called for each particle a ray passes, in increasing fraction: return -1 to ignore it and go
+/// on, 0 to stop, a fraction in (0, 1) to clip the ray there, 1 to go on (LiquidFun's rule).
+typedef float (*fluid_ray_visitor)(void* user, const fluid_ray_particle_hit* hit);
+
+/// Calls `visit` for each particle whose circle of `radius` (unit: m; finite, > 0) the segment
+/// p1 -> p2 passes through, as the visitor steers; `visited` (may be NULL) receives how many it
+/// was called for. Errors as fluid_world_ray_cast, and INVALID_ARGUMENT for a bad radius or a
+/// NaN the visitor returned.
+FLUID_C_API fluid_status fluid_world_ray_cast_particles(const fluid_world* world, fluid_vec2 p1,
+                                                        fluid_vec2 p2, float radius,
+                                                        fluid_ray_visitor visit, void* user,
+                                                        uint32_t* visited);
+
+/// The liquid at a point (C++ fluid::LiquidSample): values interpolated from the particles
+/// around it with the solvers' kernel, Shepard-normalised; 0 where no particle reaches.
+typedef struct fluid_liquid_sample {
+    /// True where the drawn liquid is.
+    bool in_liquid;
+    /// The drawn field there (unit: 1).
+    float field;
+    /// Density over rest density (unit: 1).
+    float density_ratio;
+    /// Pressure (unit: Pa).
+    float pressure;
+    /// Velocity (unit: m/s).
+    fluid_vec2 velocity;
+    /// Depth below the free surface straight up (unit: m; 0 when not in the liquid).
+    float depth;
+    /// The material with the largest share.
+    fluid_material_id material;
+    /// Particles whose kernel reaches the point (unit: count).
+    uint32_t neighbours;
+} fluid_liquid_sample;
+
+/// The liquid at `point` (unit: m; finite) into `sample`; `material_fractions[k]` (may be NULL
+/// with material_count 0) receives material k's share for k < `material_count`. `field` may be
+/// NULL (the defaults). Errors and threads as fluid_world_ray_cast.
+FLUID_C_API fluid_status fluid_world_sample(const fluid_world* world, fluid_vec2 point,
+                                            const fluid_surface_field* field,
+                                            float* material_fractions, uint32_t material_count,
+                                            fluid_liquid_sample* sample);
+
 /// The particle's position (unit: m).
 FLUID_C_API fluid_status fluid_world_particle_position(const fluid_world* world,
                                                        fluid_particle_id id, fluid_vec2* position);
