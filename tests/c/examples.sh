@@ -18,4 +18,9 @@ if err=$("$examples/level_c" /nonexistent/level.json 2>&1); then
     exit 1
 fi
 grep -q "cannot open '/nonexistent/level.json'" <<<"$err"
-echo "examples.sh: hello_c, whirlpool_c (the C++ whirlpool's numbers) and level_c ran"
+# rays_c: the laser stops on the surface, the diver is under water at every depth.
+out=$("$examples/rays_c")
+grep -q "laser: hits the water at y = 0\.[23]" <<<"$out"
+[[ $(grep -c "in the water" <<<"$out") == 3 ]]
+grep -q "bullet: passes [1-9][0-9]* particles" <<<"$out"
+echo "examples.sh: hello_c, whirlpool_c (the C++ whirlpool's numbers), level_c and rays_c ran"
