@@ -99,6 +99,10 @@ struct Options {
     /// Region queries timed after the run (unit: count; 0: none): 10 cm boxes at random places
     /// over the liquid's bounding box (fluid/query.h, docs/queries.md).
     uint32_t queries = 0;
+    /// Ray casts and samples timed after the run (unit: count of each; 0: none): random rays
+    /// across the liquid's bounding box, rays straight down onto it, samples at random points
+    /// (fluid/query.h, docs/queries.md).
+    uint32_t rays = 0;
     /// "A:B" as given on the command line (empty: the timed frames); parsed into
     /// `windowFirst` and `windowLast`.
     std::string window;
@@ -144,6 +148,62 @@ void timeQueries(const fluid::World& world, uint32_t count) {
                 "average (one thread)\n",
                 count, first, count - 1, rest, count > 1 ? 1000.0 * rest / double(count - 1) : 0.0,
                 double(found) / double(count));
+}
+
+/// Times `count` ray casts of each kind and `count` samples (places from a fixed seed over the
+/// particles' bounding box) on the world as the run left it, after one query that builds the
+/// query grid; prints one line per kind.
+void timeRays(const fluid::World& world, uint32_t count) {
+    const auto px = world.positionX(), py = world.positionY();
+    if (px.empty() || count == 0) {
+        return;
+    }
+    const float x0 = *std::min_element(px.begin(), px.end());
+    const float x1 = *std::max_element(px.begin(), px.end());
+    const float y0 = *std::min_element(py.begin(), py.end());
+    const float y1 = *std::max_element(py.begin(), py.end());
+    std::mt19937 rng(54321);
+    std::uniform_real_distribution<float> ux(x0, x1), uy(y0, y1);
+    std::vector<glm::vec2> across, down, points;
+    for (uint32_t k = 0; k < count; ++k) {
+        across.push_back({ux(rng), uy(rng)});
+        across.push_back({ux(rng), uy(rng)});
+        const float x = ux(rng);
+        down.push_back({x, y1 + 0.1f});
+        down.push_back({x, y0});
+        points.push_back({ux(rng), uy(rng)});
+    }
+    using Clock = std::chrono::steady_clock;
+    fluid::surfaceField(world, points[0]); // builds the query grid
+    const auto time = [&](const char* what, const std::vector<glm::vec2>& ends) {
+        uint32_t hits = 0, inside = 0;
+        double length = 0.0;
+        const auto t0 = Clock::now();
+        for (uint32_t k = 0; k < count; ++k) {
+            const fluid::RayHit h = fluid::rayCast(world, ends[2 * k], ends[2 * k + 1]);
+            hits += h.hit ? 1u : 0u;
+            inside += h.startsInside ? 1u : 0u;
+        }
+        const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+        for (uint32_t k = 0; k < count; ++k) {
+            const glm::vec2 d = ends[2 * k + 1] - ends[2 * k];
+            length += std::sqrt(double(d.x) * d.x + double(d.y) * d.y);
+        }
+        std::printf("rays: %u %s (%.3f m long on average): %.3f ms in all (%.2f us each); %u hit "
+                    "the liquid, %u of them from inside (one thread)\n",
+                    count, what, length / count, ms, 1000.0 * ms / count, hits, inside);
+    };
+    time("random rays across the liquid's bounding box", across);
+    time("rays straight down onto the liquid", down);
+    uint32_t wet = 0;
+    const auto t0 = Clock::now();
+    for (const glm::vec2 p : points) {
+        wet += fluid::sample(world, p).inLiquid ? 1u : 0u;
+    }
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    std::printf("samples: %u at random points of the liquid's bounding box: %.3f ms in all (%.2f "
+                "us each, the depth cast included); %u in the liquid (one thread)\n",
+                count, ms, 1000.0 * ms / count, wet);
 }
 
 /// What a scene builder made.
@@ -680,6 +740,9 @@ int run(const Options& opt) {
     if (opt.queries > 0) {
         timeQueries(world, opt.queries);
     }
+    if (opt.rays > 0) {
+        timeRays(world, opt.rays);
+    }
     const auto stacked = uint32_t(stackedIndices(world.positionX(), world.positionY()).size());
     std::printf("stacked: %u particles share their exact position with another\n", stacked);
     char window[32];
@@ -760,6 +823,9 @@ int main(int argc, char** argv) {
     app.add_option("--eos", opt.eos, "Equation of state of the explicit solver: tait or linear");
     app.add_option("--queries", opt.queries,
                    "Time this many region queries (10 cm boxes) after the run (0: none)");
+    app.add_option("--rays", opt.rays,
+                   "Time this many ray casts (random, and straight down) and samples after the "
+                   "run (0: none)");
     app.add_flag("--no-coupling", opt.noCoupling,
                  "Crates scene: step the Box2D crates without coupling them to the fluid");
     app.add_option("--window", opt.window,

@@ -7,6 +7,7 @@
 // interval of t cost one pass over the particles (each kernel's largest and smallest value on
 // it), and the first crossing of the threshold is found by splitting the interval where the
 // bounds cannot decide: no crossing wider than the final tolerance is missed, whatever the step.
+// A crossing once bracketed within a twentieth of a spacing is refined by regula falsi.
 #include <fluid/query.h>
 #include <fluid/surface_field.h>
 
@@ -66,6 +67,8 @@ struct Setup {
     double fieldReach = 0.0;  // the largest R (m)
     double kernelReach = 0.0; // the largest h (m)
     double tolerance = 0.0;   // crossings are found to within this (m)
+    double bracket = 0.0;     // below this width a bracketed crossing is refined directly (m)
+    double piece = 0.0;       // longer intervals are split into pieces of at most this (m)
 
     Setup(const WorldState& s, const SurfaceField& field)
         : p(s.particles), g(detail::queryGrid(const_cast<WorldState&>(s)).grid.view()),
@@ -91,6 +94,8 @@ struct Setup {
             finest = std::min(finest, spacing);
         }
         tolerance = 0.01 * finest;
+        bracket = 0.05 * finest;
+        piece = finest;
     }
 
     // Cells on each side of a cell that can hold a particle within `reach` of a point in it.
@@ -224,8 +229,9 @@ void gather(const Setup& S, const Path& path, int64_t cx, int64_t cy, double ta,
             if (peak <= 0.0) {
                 continue;
             }
-            const double half = std::sqrt(peak / invR2);
-            if (tc + half <= ta || tc - half >= tb) {
+            // Its support on the path, tc +- sqrt(peak / invR2), must meet [ta, tb].
+            const double gap = std::max({ta - tc, tc - tb, 0.0});
+            if (gap * gap * invR2 >= peak) {
                 continue;
             }
             out.push_back({tc, peak, invR2, i});
@@ -269,27 +275,84 @@ double fieldBound(const Setup& S, const std::vector<Near>& near, double ta, doub
     return std::max(S.k * sum, S.d * most);
 }
 
+// How far the field is on the wanted side of the threshold at t: >= 0 there.
+double side(const Setup& S, const std::vector<Near>& near, double t, bool inside) {
+    const double a = fieldAt(S, near, t) - S.threshold;
+    return inside ? a : -a;
+}
+
+// The crossing in [lo, hi], side(lo) < 0 <= side(hi), to within the tolerance: regula falsi
+// with the Illinois rule (a few passes where bisection takes one per halving).
+double refine(const Setup& S, const std::vector<Near>& near, double lo, double flo, double hi,
+              double fhi, bool inside) {
+    int kept = 0; // which end the last two steps kept: -1 lo, +1 hi
+    for (int k = 0; k < 60 && hi - lo > S.tolerance; ++k) {
+        double t = hi - fhi * (hi - lo) / (fhi - flo);
+        if (!(t > lo && t < hi)) {
+            t = 0.5 * (lo + hi);
+        }
+        // Near the end the estimate moves little: a probe half a tolerance beyond it closes
+        // the bracket.
+        if (t - lo < 0.5 * S.tolerance) {
+            t = lo + 0.5 * S.tolerance;
+        } else if (hi - t < 0.5 * S.tolerance) {
+            t = hi - 0.5 * S.tolerance;
+        }
+        const double ft = side(S, near, t, inside);
+        if (ft >= 0.0) {
+            hi = t;
+            fhi = ft;
+            if (kept == 1) {
+                flo *= 0.5;
+            }
+            kept = 1;
+        } else {
+            lo = t;
+            flo = ft;
+            if (kept == -1) {
+                fhi *= 0.5;
+            }
+            kept = -1;
+        }
+    }
+    return hi;
+}
+
 // The first t in [ta, tb] where the field is at least the threshold (`inside`) or below it (not
-// `inside`), knowing it is not so at ta; -1 when there is none. Exact but for crossings
-// narrower than the tolerance.
+// `inside`), knowing it is not so at ta; -1 when there is none, and then it is not so at tb
+// either. Exact but for crossings narrower than the tolerance, and within a bracket (`S.bracket`)
+// the first of several crossings that close to each other.
 double firstChange(const Setup& S, const std::vector<Near>& near, double ta, double tb,
                    bool inside) {
+    const double width = tb - ta;
+    if (width > S.piece) {
+        // Pieces of a spacing first: the bounds of a whole cell's segment rarely decide.
+        const int n = int(std::ceil(width / S.piece));
+        for (int k = 0; k < n; ++k) {
+            const double a = ta + width * k / n, b = k + 1 == n ? tb : ta + width * (k + 1) / n;
+            const double t = firstChange(S, near, a, b, inside);
+            if (t >= 0.0) {
+                return t;
+            }
+        }
+        return -1.0;
+    }
     const double bound = fieldBound(S, near, ta, tb, inside);
     if (inside ? bound < S.threshold : bound >= S.threshold) {
         return -1.0;
     }
-    if (tb - ta <= S.tolerance) {
-        return (fieldAt(S, near, tb) >= S.threshold) == inside ? tb : -1.0;
+    if (width <= S.tolerance) {
+        return side(S, near, tb, inside) >= 0.0 ? tb : -1.0;
+    }
+    if (width <= S.bracket) {
+        const double fb = side(S, near, tb, inside);
+        if (fb >= 0.0) {
+            return refine(S, near, ta, side(S, near, ta, inside), tb, fb, inside);
+        }
     }
     const double mid = 0.5 * (ta + tb);
     const double left = firstChange(S, near, ta, mid, inside);
-    if (left >= 0.0) {
-        return left;
-    }
-    if ((fieldAt(S, near, mid) >= S.threshold) == inside) {
-        return mid;
-    }
-    return firstChange(S, near, mid, tb, inside);
+    return left >= 0.0 ? left : firstChange(S, near, mid, tb, inside);
 }
 
 // The first t along the path where the liquid starts (`inside`) or ends (not `inside`); -1 when

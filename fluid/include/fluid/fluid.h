@@ -9,6 +9,7 @@
 #include <fluid/query.h>
 #include <fluid/registry.h>
 #include <fluid/shape.h>
+#include <fluid/surface_field.h>
 #include <fluid/task.h>
 #include <fluid/world.h>
 
