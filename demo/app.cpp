@@ -5,6 +5,7 @@
 #include "demo/imgui_bridge.h"
 #include "demo/overlay.h"
 #include "demo/platform.h"
+#include "demo/probe.h"
 #include "demo/session.h"
 #include "demo/ui.h"
 
@@ -400,6 +401,7 @@ private:
                           double(body->GetPosition().x), double(body->GetPosition().y));
             line += buffer;
         }
+        line += m_probe.summary();
         std::snprintf(buffer, sizeof buffer, " hash=%016llx",
                       static_cast<unsigned long long>(stateHash(level)));
         line += buffer;
@@ -543,6 +545,9 @@ private:
             break;
         case K::Escape:
             m_showMenu = !m_showMenu;
+            break;
+        case K::L:
+            m_probe.toggleLaser();
             break;
         case K::Q:
             m_grab.spin = 2.0f;
@@ -717,6 +722,10 @@ private:
     void render(float realSeconds) {
         const gl::Camera cam = camera();
         m_session->drawShapes(cam, true, m_under, m_over);
+        // The liquid under the cursor and the laser (L), over the liquid: 2 px wide, the normal
+        // 30 px long.
+        m_probe.update(m_session->level().world, mouseWorld());
+        m_probe.draw(2.0f / cam.pixelsPerMetre, 30.0f / cam.pixelsPerMetre, m_over);
         gl::RenderSettings settings;
         settings.view = kViews[m_view];
         m_renderer->render(cam, gl::particles(m_session->level().world), m_under, m_over, settings);
@@ -736,6 +745,8 @@ private:
         hud.behind = m_pacer->behind();
         hud.speed = m_pacer->speed();
         hud.droppedSteps = m_pacer->droppedSteps();
+        hud.cursor = m_probe.cursorText();
+        hud.laser = m_probe.laserText();
         drawHud(hud);
         BannerInfo banner = bannerFor(level);
         banner.panelOpen = m_showTuning;
@@ -783,6 +794,7 @@ private:
     std::unique_ptr<FramePacer> m_pacer;
     gl::ShapeBatch m_under, m_over;
     Grab m_grab;
+    LiquidProbe m_probe;
     glm::vec2 m_mousePixel{0.0f, 0.0f};
     float m_push = 0.0f;
     bool m_shift = false, m_ctrl = false;

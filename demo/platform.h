@@ -16,7 +16,7 @@ namespace fluid::demo {
 /// `Key::Count`), so a table can be indexed by them.
 enum class Key : uint16_t {
     Unknown,
-    A, B, C, E, G, M, N, P, Q, R, S, V, X, Y, Z,
+    A, B, C, E, G, L, M, N, P, Q, R, S, V, X, Y, Z,
     Num1, Num2, Num3, Num4, Num5, Num6, Num7, Num8, Num9,
     Space, Period, Tab, Escape, Enter, Backspace, Delete, Insert,
     Home, End, PageUp, PageDown, Left, Right, Up, Down,

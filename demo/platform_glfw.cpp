@@ -28,6 +28,7 @@ constexpr std::pair<Key, int> kKeys[] = {
     {Key::N, GLFW_KEY_N},           {Key::P, GLFW_KEY_P},
     {Key::Q, GLFW_KEY_Q},           {Key::R, GLFW_KEY_R},
     {Key::S, GLFW_KEY_S},           {Key::V, GLFW_KEY_V},
+    {Key::L, GLFW_KEY_L},
     {Key::X, GLFW_KEY_X},           {Key::Y, GLFW_KEY_Y},
     {Key::Z, GLFW_KEY_Z},           {Key::Num1, GLFW_KEY_1},
     {Key::Num2, GLFW_KEY_2},        {Key::Num3, GLFW_KEY_3},

@@ -22,6 +22,7 @@ constexpr std::pair<Key, sf::Keyboard::Key> kKeys[] = {
     {Key::N, sf::Keyboard::N},           {Key::P, sf::Keyboard::P},
     {Key::Q, sf::Keyboard::Q},           {Key::R, sf::Keyboard::R},
     {Key::S, sf::Keyboard::S},           {Key::V, sf::Keyboard::V},
+    {Key::L, sf::Keyboard::L},
     {Key::X, sf::Keyboard::X},           {Key::Y, sf::Keyboard::Y},
     {Key::Z, sf::Keyboard::Z},           {Key::Num1, sf::Keyboard::Num1},
     {Key::Num2, sf::Keyboard::Num2},     {Key::Num3, sf::Keyboard::Num3},

@@ -22,6 +22,7 @@ constexpr std::pair<const char*, Key> kKeys[] = {
     {"F1", Key::F1},         {"Escape", Key::Escape},
     {"F5", Key::F5},         {"F9", Key::F9},
     {"Q", Key::Q},           {"E", Key::E},
+    {"L", Key::L},
     {"Num1", Key::Num1},     {"Num2", Key::Num2},
     {"Num3", Key::Num3},     {"Num4", Key::Num4},
     {"Num5", Key::Num5},     {"Num6", Key::Num6},

@@ -52,7 +52,7 @@ constexpr ImGuiWindowFlags kOverlayFlags =
     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
     ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoMove;
 
-constexpr std::array<ControlHelp, 20> kControls{{
+constexpr std::array<ControlHelp, 21> kControls{{
     {"S", "Cycle views: metaballs, pressure, particles"},
     {"G", "Gravity on / zero-g"},
     {"Left drag", "Push the fluid"},
@@ -61,6 +61,7 @@ constexpr std::array<ControlHelp, 20> kControls{{
     {"Q / E (grabbing)", "Turn a grabbed plank"},
     {"Space", "Drop a blob of the current material"},
     {"M", "Switch material (water / yoghurt)"},
+    {"L", "Laser from the cursor: where it meets the liquid, and the normal"},
     {"Ctrl + click", "Drop a crate (levels with bodies)"},
     {"R", "Reset the level"},
     {"P", "Pause / resume"},
@@ -552,6 +553,17 @@ void drawHud(const HudInfo& info) {
             ImGui::SameLine();
             ImGui::TextDisabled("(%llu dropped)",
                                 static_cast<unsigned long long>(info.droppedSteps));
+        }
+        // The liquid under the cursor (fluid::sample) and the laser's hit (fluid::rayCast).
+        if (!info.cursor.empty()) {
+            ImGui::TextDisabled("cursor");
+            ImGui::SameLine();
+            text(info.cursor);
+        }
+        if (!info.laser.empty()) {
+            ImGui::TextDisabled("laser");
+            ImGui::SameLine();
+            text(info.laser);
         }
         ImGui::TextDisabled("F1 help   Esc levels   Tab tuning");
         // Auto-resized: the size is the one measured in an earlier frame.

@@ -38,10 +38,14 @@ struct HudInfo {
     double speed = 1.0;
     /// `FramePacer::droppedSteps()` (unit: count).
     uint64_t droppedSteps = 0;
+    /// The liquid under the cursor (`LiquidProbe::cursorText`; empty: no line).
+    std::string_view cursor;
+    /// The laser's hit (`LiquidProbe::laserText`; empty while it is off: no line).
+    std::string_view laser;
 };
 
 /// Draws the HUD top-left: fps, particles, sim ms/frame, sub-steps, view, material, gravity or
-/// zero-g, PAUSED, and "simulation behind: 71% speed" in amber while `behind`. Labels and hints
+/// zero-g, the liquid under the cursor and the laser's hit, PAUSED, and "simulation behind: 71% speed" in amber while `behind`. Labels and hints
 /// are a light grey on an 82% opaque backing, readable over the grey walls. No decoration,
 /// takes no input; `drawLevelBanner` keeps clear of its right edge (as measured when last
 /// drawn). Thread rule (every function here): between `ImGuiBridge::newFrame` and `render`,

@@ -312,3 +312,29 @@ TEST_CASE("game: --record writes the input down as a script that replays to the 
     CHECK(replayed.text("bodies") == original.text("bodies"));
     CHECK(std::stoi(original.text("bodies")) == 10); // the level's nine and the dropped crate
 }
+
+TEST_CASE("game: the HUD reads the liquid under the cursor, L casts the laser to its surface",
+          "[demo]") {
+    // From above the settled pool: the laser meets the surface (about 7 cm high after 2.5 s),
+    // its normal pointing up; the cursor is in the air.
+    const Summary laser = play("laser", "dam_break", 150, "1 move 0.12 0.42\n2 key L\n");
+    CHECK(laser.text("probe") == "out");
+    CHECK(laser.number("probe_depth") == 0.0);
+    const auto [x, y] = laser.point("laser");
+    const auto [nx, ny] = laser.point("laser_normal");
+    std::printf("[measure] laser: hits at (%.4f, %.4f), normal (%.3f, %.3f)\n", x, y, nx, ny);
+    CHECK(x == Approx(0.12 + 0.5 / 0.8660254 * (0.42 - y)).margin(1e-3)); // on the beam
+    CHECK(y > 0.04);
+    CHECK(y < 0.10);
+    CHECK(ny > 0.9);
+    // L twice is off: no laser fields. Into the side wall above the pool: a miss.
+    CHECK(play("laser_off", "dam_break", 10, "1 key L\n2 key L\n").fields.count("laser") == 0);
+    CHECK(play("laser_miss", "dam_break", 150, "1 move 0.5 0.45\n2 key L\n").text("laser") ==
+          "miss");
+    // The cursor in the water below the laser's hit: in, as deep as the surface is above it.
+    std::ostringstream move;
+    move << "1 move " << x << " 0.03\n";
+    const Summary probe = play("probe", "dam_break", 150, move.str());
+    CHECK(probe.text("probe") == "in");
+    CHECK(probe.number("probe_depth") == Approx(y - 0.03).margin(0.005));
+}
