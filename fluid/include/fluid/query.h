@@ -123,9 +123,10 @@ struct RayParticleHit {
 /// fraction to find the closest particle. NaN is refused.
 using RayVisitor = std::function<float(const RayParticleHit& hit)>;
 
-/// Calls `visit` for each particle whose circle of `radius` (unit: m; finite, > 0; the
-/// material's spacing is a good choice) the segment p1 -> p2 (unit: m; finite) passes through, in
-/// increasing fraction, until it returns 0 or the ray is clipped short of the next one. Returns
+/// Calls `visit` (which must not change the world) for each particle whose circle of `radius`
+/// (unit: m; finite, > 0; the material's spacing is a good choice) the segment p1 -> p2 (unit:
+/// m; finite) passes through, in increasing fraction, until it returns 0 or the ray is clipped
+/// short of the next one. Returns
 /// the particles visited (unit: count). Cost: the query grid's cells within `radius` of the
 /// ray. Throws `fluid::Error` naming the value for a non-finite end, a bad radius, an empty
 /// visitor or a NaN returned by it, and with `ErrorCode::WrongState` during the world's own
@@ -163,7 +164,7 @@ struct LiquidSample {
 /// density ratio, pressure and velocity interpolated from the particles around it, and the depth
 /// below the free surface above it. `materialFractions[k]` receives material k's share of the
 /// interpolation weight for k < its size (unit: 1; they sum to 1 where `neighbours` > 0, else
-/// 0). Errors and thread rule as `rayCast`. Cost: the query grid's cells around the point, and
+/// 0; entries past the world's materials receive 0). Errors and thread rule as `rayCast`. Cost: the query grid's cells around the point, and
 /// the cells up to the surface for the depth.
 LiquidSample sample(const World& world, glm::vec2 point, std::span<float> materialFractions = {},
                     const SurfaceField& field = {});
