@@ -231,7 +231,7 @@ TEST_CASE("every setting of the game preset at its documented minimum and maximu
 }
 
 TEST_CASE("every setting of the precise preset at its documented minimum and maximum holds a dam",
-          "[long][corners]") {
+          "[sweep][corners]") {
     WorldDef def;
     def.positionBased = positionBasedPreset(Quality::Precise);
     checkCorners(sweep("precise", def, water()), [](const Corner&) { return true; });
@@ -245,7 +245,7 @@ TEST_CASE("every setting of the precise preset at its documented minimum and max
 // without viscosity the dam gains energy at the walls as it runs.
 TEST_CASE("every setting of the explicit solver at its documented minimum and maximum stays "
           "finite, keeps every particle and gains no energy",
-          "[long][corners]") {
+          "[sweep][corners]") {
     WorldDef def;
     def.solver = Solver::Explicit;
     checkCorners(sweep("explicit", def, forSolver(water(), Solver::Explicit)),

@@ -8,7 +8,7 @@ using namespace fluid;
 using namespace fluid::test;
 
 TEST_CASE("dam break: 2,000 particles, 3 s, no NaN, no leak, no explosion",
-          "[slow][long][invariants][dam]") {
+          "[slow][sweep][invariants][dam]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
     CAPTURE(solverName(solver));
     Stopwatch sw(std::string("dam break 3 s, ") + solverName(solver));

@@ -147,7 +147,7 @@ TEST_CASE("each preset holds the 0.5 m resting tank to its stated accuracy",
 }
 
 TEST_CASE("fewer sweeps trade compression, not coherence: resting tanks at every setting",
-          "[slow][long][invariants][presets]") {
+          "[slow][sweep][invariants][presets]") {
     // Settings from the game preset's (4 x 1 with the coarse correction 0.4, viscosity every
     // second sub-step) down to 3 x 1 (viscosity once a frame), 1 x 4 and 2 x 2, and the precise
     // preset. Not yet here: 1 x 1

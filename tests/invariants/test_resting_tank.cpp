@@ -8,7 +8,7 @@
 using namespace fluid;
 using namespace fluid::test;
 
-TEST_CASE("a resting water tank 0.5 m deep settles", "[slow][long][invariants][tank]") {
+TEST_CASE("a resting water tank 0.5 m deep settles", "[slow][sweep][invariants][tank]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
     CAPTURE(solverName(solver));
     Stopwatch sw(std::string("resting tank 5 s, ") + solverName(solver));

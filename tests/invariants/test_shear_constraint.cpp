@@ -70,7 +70,7 @@ World blockOnFloor(const WorldDef& def, float tauY, uint32_t cols, uint32_t rows
 // block: docs/position_based.md, "The shear constraint".
 TEST_CASE("with the shear constraint a yoghurt block slumps into a heap that comes to rest at "
           "the game preset",
-          "[slow][long][invariants][yield][shear]") {
+          "[slow][sweep][invariants][yield][shear]") {
     const float tension = GENERATE(0.0f, 0.1f);
     CAPTURE(tension);
     std::vector<float> growth;

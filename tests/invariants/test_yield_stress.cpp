@@ -28,7 +28,7 @@ namespace {
 // (at 40 Pa from 1.10 m at 10 s to 1.40 m at 40 s). The target was the law within 15%
 // column by column, at rest; the mean meets it, the columns and the rest do not.
 TEST_CASE("a yield-stress block slumps into a heap that follows h^2 = 2 tau_y d / (rho g)",
-          "[slow][long][invariants][yield]") {
+          "[slow][sweep][invariants][yield]") {
     const float tauY = GENERATE(0.0f, 40.0f, 80.0f);
     CAPTURE(tauY);
     Stopwatch sw("yield heap, tau_y " + std::to_string(int(tauY)));

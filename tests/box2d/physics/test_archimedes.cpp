@@ -257,7 +257,7 @@ TEST_CASE("Archimedes: boxes and circles at 0.25, 0.5, 0.75 of water's density f
 // cm/s after 2.5 s). The sinking test below runs in the preset's yoghurt.
 TEST_CASE("Archimedes: boxes and circles at 0.25, 0.5, 0.75 of yoghurt's density float at that "
           "submerged fraction",
-          "[slow][long][box2d][archimedes]") {
+          "[slow][sweep][box2d][archimedes]") {
     Material newtonian = fluid::yoghurt();
     newtonian.yieldStress = 0.0f;
     newtonian.consistency = 0.0f;
@@ -349,7 +349,7 @@ TEST_CASE("Archimedes, game preset: bodies of 24 spacings at 0.5 and 0.75 of wat
 // spacing whatever the depth (figures: bench/box2d.md, "Floating in the game preset").
 TEST_CASE("Archimedes, precise preset: bodies of 12 spacings at 0.25, 0.5 and 0.75 of water's "
           "density float at that submerged fraction at 0.2 m and 0.6 m depth",
-          "[slow][long][box2d][archimedes]") {
+          "[slow][sweep][box2d][archimedes]") {
     const float depth = GENERATE(0.2f, 0.6f);
     CAPTURE(depth);
     const Bodies shape = bodiesOfSpacings(12.0f, Quality::Precise);
