@@ -2,8 +2,8 @@
 // where a brute-force march over every particle finds the drawn field crossing its threshold,
 // for the explicit solver and both position-based presets; the particle form reports what a
 // scan finds, in order, and its visitor steers it as LiquidFun's does; rays that start inside;
-// a resting tank's surface, pressure and depth; refusals; the same results for 1, 2 and 4
-// workers, after a save and load, and from several threads.
+// refusals; the same results for 1, 2 and 4 workers, after a save and load, and from several
+// threads. A resting tank's surface, pressure and depth: tests/invariants/test_rays_tank.cpp.
 #include "test_support.h"
 
 #include <fluid/query.h>
@@ -412,70 +412,6 @@ TEST_CASE("rays: a ray that starts inside, one of zero length, one that misses",
     const RayHit longer = rayCast(world, {0.1f, 1000.0f}, {0.1f, -1000.0f});
     REQUIRE(longer.hit);
     CHECK(longer.point.y == Approx(down.point.y).margin(0.01f * s));
-}
-
-TEST_CASE("rays: a resting tank's surface, hydrostatic pressure and depth", "[unit][rays]") {
-    const Setting setting = GENERATE(Setting::Explicit, Setting::Game, Setting::Precise);
-    CAPTURE(settingName(setting));
-    World world(defFor(setting, 2));
-    const MaterialId w = world.addMaterial(water());
-    const float s = world.spacing(w);
-    const uint32_t cols = 30, rows = 30;
-    const float width = float(cols) * s;
-    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
-    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, width, 0.6f));
-    world.spawnBlob(latticeBlock(world, w, 0.0f, 0.0f, cols, rows));
-    for (int frame = 0; frame < 150; ++frame) {
-        world.step(kFrame);
-    }
-    REQUIRE(allFinite(world));
-    // The far-field surface: the top row's mean height away from the walls, plus the half
-    // spacing the field's surface stands above the outer particles.
-    double topSum = 0.0;
-    uint32_t topCount = 0;
-    const auto px = world.positionX(), py = world.positionY();
-    const float highest = bounds(world).y1;
-    for (uint32_t i = 0; i < world.particleCount(); ++i) {
-        if (px[i] > 8.0f * s && px[i] < width - 8.0f * s && py[i] > highest - 0.5f * s) {
-            topSum += py[i];
-            ++topCount;
-        }
-    }
-    REQUIRE(topCount >= 8);
-    const double surface = topSum / topCount + 0.5 * s;
-    // Down onto the surface, at several places across the middle.
-    for (float x = 10.0f * s; x <= width - 10.0f * s; x += 2.5f * s) {
-        const RayHit down = rayCast(world, {x, 0.55f}, {x, 0.0f});
-        REQUIRE(down.hit);
-        CAPTURE(x, down.point.y, surface);
-        CHECK(std::fabs(down.point.y - surface) <= 0.5 * s);
-        CHECK(down.normal.y > 0.95f);
-    }
-    // In the middle column: depth within half a spacing; the pressure rho0 g depth within 5%
-    // with the explicit solver. The position-based solver's own pressure (World::pressure, which
-    // `sample` interpolates: see the next test) reads 5-21% over hydrostatic at these depths
-    // (tests/unit/test_position_based.cpp allows it 25%), so it is held to that.
-    const double pressureTolerance = setting == Setting::Explicit ? 0.05 : 0.25;
-    const float rho0 = world.material(w).restDensity;
-    for (const double fraction : {0.3, 0.5, 0.7, 0.85}) {
-        const float y = float(surface * (1.0 - fraction));
-        std::array<float, 1> share{};
-        const LiquidSample here = sample(world, {0.5f * width, y}, share);
-        const double depth = surface - y;
-        CAPTURE(fraction, y, here.pressure, here.depth, depth, here.densityRatio);
-        CHECK(here.inLiquid);
-        CHECK(here.depth == Approx(depth).margin(0.5 * s));
-        CHECK(here.pressure == Approx(rho0 * kG * depth).epsilon(pressureTolerance));
-        CHECK(here.densityRatio == Approx(1.0).margin(0.05));
-        CHECK(glm::length(here.velocity) < 0.05f);
-        CHECK(share[0] == Approx(1.0f));
-        CHECK(here.material == w);
-        CHECK(here.neighbours > 20);
-    }
-    // Above the liquid: not in it, no depth.
-    const LiquidSample above = sample(world, {0.5f * width, float(surface + s)});
-    CHECK_FALSE(above.inLiquid);
-    CHECK(above.depth == 0.0f);
 }
 
 TEST_CASE("rays: sample interpolates the particles' values with the solvers' kernel",
