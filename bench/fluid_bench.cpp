@@ -99,6 +99,9 @@ struct Options {
     /// Region queries timed after the run (unit: count; 0: none): 10 cm boxes at random places
     /// over the liquid's bounding box (fluid/query.h, docs/queries.md).
     uint32_t queries = 0;
+    /// Keep the previous sub-step's positions for drawing between steps
+    /// (fluid::setInterpolation; fluid/groups.h): its cost is the step's difference.
+    bool interpolate = false;
     /// "A:B" as given on the command line (empty: the timed frames); parsed into
     /// `windowFirst` and `windowLast`.
     std::string window;
@@ -488,6 +491,10 @@ int run(const Options& opt) {
                                               : buildDam(world, opt.particles, liquid);
     std::string what = scene.text;
     what += opt.material == "water" ? "" : ", " + opt.material;
+    if (opt.interpolate) {
+        fluid::setInterpolation(world, true);
+        what += ", interpolation on";
+    }
 
     // One frame of the scene: World::step alone, or (crates) the coupled frame or the uncoupled
     // reference. Declared in this order so the coupling goes before the b2World, and the
@@ -760,6 +767,9 @@ int main(int argc, char** argv) {
     app.add_option("--eos", opt.eos, "Equation of state of the explicit solver: tait or linear");
     app.add_option("--queries", opt.queries,
                    "Time this many region queries (10 cm boxes) after the run (0: none)");
+    app.add_flag("--interpolate", opt.interpolate,
+                 "Keep the previous sub-step's positions for drawing between steps "
+                 "(fluid::setInterpolation)");
     app.add_flag("--no-coupling", opt.noCoupling,
                  "Crates scene: step the Box2D crates without coupling them to the fluid");
     app.add_option("--window", opt.window,
