@@ -632,7 +632,6 @@ uint32_t World::placeBlob(const BlobDef& blob, glm::vec2 lo, glm::vec2 hi, float
     for (uint32_t i = first; i < m_state->particles.size(); ++i) {
         m_state->joinGroup(i, group, true);
     }
-    m_state->lastBlobGroup = group;
     return static_cast<uint32_t>(points.size());
 }
 

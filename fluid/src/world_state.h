@@ -399,7 +399,6 @@ struct WorldState {
     std::vector<uint32_t> slotGroup;
     std::vector<uint32_t> slotUserData;
     std::vector<uint32_t> emitterGroup; // per emitter: the group its particles join
-    uint32_t lastBlobGroup = kNoGroup;  // spawnBlob's group, for spawnGroup
     bool interpolate = false;           // keep Particles::lastX, lastY
     bool permuteLast = false;           // the sort permutes lastX, lastY (last sub-step)
     float colourMixing = 0.0f;          // 1/s

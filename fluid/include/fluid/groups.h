@@ -17,6 +17,7 @@ namespace fluid {
 /// mixing leaves it alone. Stored packed as `pack()` (r in the low byte), so the bytes of the
 /// `colours` span read r, g, b, a on the little-endian machines fluid runs on. Plain data.
 struct Colour {
+    /// Red, green, blue and alpha (unit: 0..255 each; alpha 0 = no colour).
     uint8_t r = 0, g = 0, b = 0, a = 0;
     /// r | g << 8 | b << 16 | a << 24.
     constexpr uint32_t pack() const {

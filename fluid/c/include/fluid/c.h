@@ -1096,6 +1096,7 @@ typedef struct fluid_group_id {
 /// A particle's colour (C++ fluid::Colour; unit: 0..255 per channel); alpha 0 = none (the
 /// material's style).
 typedef struct fluid_colour {
+    /// Red, green, blue and alpha (unit: 0..255 each; alpha 0 = no colour).
     uint8_t r, g, b, a;
 } fluid_colour;
 
