@@ -90,8 +90,7 @@ uint32_t checkedGroup(const WorldState& s, GroupHandle group, const char* functi
         throw Error(text.str());
     }
     const auto name = [&] {
-        text << "group handle {index " << group.index << ", generation " << group.generation
-             << "}";
+        text << "group handle {index " << group.index << ", generation " << group.generation << "}";
     };
     if (group.world != s.tag.value()) {
         name();
@@ -182,8 +181,8 @@ void mixColours(WorldState& s, double seconds) {
                     const double q = 1.0 - double(r2) / double(reach2);
                     const auto weight = int64_t(scale * q * q * q);
                     for (int c = 0; c < 4; ++c) {
-                        const int64_t d = int64_t((cj >> (8 * c)) & 255u) -
-                                          int64_t((ci >> (8 * c)) & 255u);
+                        const int64_t d =
+                            int64_t((cj >> (8 * c)) & 255u) - int64_t((ci >> (8 * c)) & 255u);
                         acc[c] += weight * d / 65536;
                     }
                 }
@@ -459,8 +458,8 @@ void mergeGroups(World& world, GroupHandle into, GroupHandle from) {
     const uint32_t a = detail::checkedGroup(s, into, "mergeGroups");
     const uint32_t b = detail::checkedGroup(s, from, "mergeGroups");
     if (a == b) {
-        throw Error("mergeGroups: into and from are the same group {index " +
-                    std::to_string(a) + "}; merge two different groups");
+        throw Error("mergeGroups: into and from are the same group {index " + std::to_string(a) +
+                    "}; merge two different groups");
     }
     for (uint32_t& member : s.slotGroup) {
         if (member == b) {

@@ -26,8 +26,8 @@ TEST_CASE("C: blobs and emitters are groups, and members, user data and colours 
           "[c][groups]") {
     fluid_world_def def = fluid_default_world_def();
     fluid::test::CWorld w(def);
-    const fluid_material_id water = fluid::test::waterTank(
-        w.world, {-0.3f, 0.0f}, {0.3f, 0.6f}, {-0.3f, 0.0f}, {-0.1f, 0.2f});
+    const fluid_material_id water =
+        fluid::test::waterTank(w.world, {-0.3f, 0.0f}, {0.3f, 0.6f}, {-0.3f, 0.0f}, {-0.1f, 0.2f});
     const fluid_group_def red{7, {255, 0, 0, 255}};
     fluid_group_id g{};
     uint32_t spawned = 0;
@@ -141,8 +141,8 @@ TEST_CASE("C: blobs and emitters are groups, and members, user data and colours 
 TEST_CASE("C: stale ids and bad values fail with a status and the C++ message", "[c][groups]") {
     fluid_world_def def = fluid_default_world_def();
     fluid::test::CWorld w(def);
-    const fluid_material_id water = fluid::test::waterTank(
-        w.world, {-0.3f, 0.0f}, {0.3f, 0.6f}, {-0.3f, 0.0f}, {-0.1f, 0.2f});
+    const fluid_material_id water =
+        fluid::test::waterTank(w.world, {-0.3f, 0.0f}, {0.3f, 0.6f}, {-0.3f, 0.0f}, {-0.1f, 0.2f});
     fluid_group_id g{};
     C_OK(fluid_world_create_group(w.world, nullptr, &g));
     C_OK(fluid_world_destroy_group(w.world, g, true));
@@ -151,8 +151,7 @@ TEST_CASE("C: stale ids and bad values fail with a status and the C++ message", 
     CHECK(std::string(fluid_last_error()) ==
           "groupCount: stale group handle {index " + std::to_string(g.index) +
               ", generation 1}: that group was destroyed or merged into another");
-    CHECK(fluid_world_move_group(w.world, fluid_group_id{}, {0.0f, 0.0f}) ==
-          FLUID_ERROR_STALE_ID);
+    CHECK(fluid_world_move_group(w.world, fluid_group_id{}, {0.0f, 0.0f}) == FLUID_ERROR_STALE_ID);
     CHECK(std::string(fluid_last_error()) == "moveGroup: null group handle");
     fluid_group_id live{};
     C_OK(fluid_world_create_group(w.world, nullptr, &live));

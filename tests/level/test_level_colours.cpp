@@ -24,9 +24,8 @@ std::string level(const std::string& world, const std::string& colour) {
 } // namespace
 
 TEST_CASE("level colours: a blob's colour and the world's mixing rate", "[level][groups]") {
-    const Level lvl =
-        parseLevel(level(R"("colourMixing": 2.5)", R"(, "colour": "#e0302A")"), "t.json",
-                   builtins());
+    const Level lvl = parseLevel(level(R"("colourMixing": 2.5)", R"(, "colour": "#e0302A")"),
+                                 "t.json", builtins());
     CHECK(colourMixing(lvl.world) == 2.5f);
     REQUIRE(lvl.world.particleCount() > 0);
     const GroupHandle g = groupOf(lvl.world, lvl.world.handleAt(0));
@@ -49,8 +48,9 @@ TEST_CASE("level colours: bad colours and rates name the file, line and key",
     CHECK(errorOf(level("", R"(, "colour": "red")")) ==
           "t.json:1:155: at /blobs/0/colour: expected \"#rrggbb\" or \"#rrggbbaa\" "
           "(hexadecimal sRGB, alpha not 00), got 'red'");
-    CHECK(errorOf(level("", R"(, "colour": "#12345g")")).find(
-              "at /blobs/0/colour: expected \"#rrggbb\" or \"#rrggbbaa\"") != std::string::npos);
+    CHECK(errorOf(level("", R"(, "colour": "#12345g")"))
+              .find("at /blobs/0/colour: expected \"#rrggbb\" or \"#rrggbbaa\"") !=
+          std::string::npos);
     CHECK(errorOf(level("", R"(, "colour": "#11223300")")).find("got '#11223300'") !=
           std::string::npos);
     CHECK(errorOf(level("", R"(, "colour": 255)")).find("at /blobs/0/colour: expected a string") !=

@@ -294,8 +294,7 @@ TEST_CASE("groups: stale, null and foreign handles and bad values are refused by
     CHECK_THROWS_WITH(
         groupCount(world, other.left),
         "groupCount: group handle {index 0, generation 1} belongs to another world (world " +
-            std::to_string(other.left.world) + "; this is world " +
-            std::to_string(sc.left.world) +
+            std::to_string(other.left.world) + "; this is world " + std::to_string(sc.left.world) +
             "; a handle saved with a snapshot needs fluid::adopt)");
     BlobDef blob = latticeBlock(world, MaterialId{0}, -0.1f, 0.3f, 4, 4);
     blob.group = sc.right;

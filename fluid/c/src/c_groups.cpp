@@ -101,8 +101,7 @@ fluid_status fluid_world_spawn_group(fluid_world* world, const fluid_blob_def* b
     });
 }
 
-fluid_status fluid_world_group_valid(const fluid_world* world, fluid_group_id group,
-                                     bool* valid) {
+fluid_status fluid_world_group_valid(const fluid_world* world, fluid_group_id group, bool* valid) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const World& w = worldOf(world, "fluid_world_group_valid");
         need(valid, "fluid_world_group_valid", "valid");
@@ -115,8 +114,7 @@ fluid_status fluid_world_particle_group(const fluid_world* world, fluid_particle
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const World& w = worldOf(world, "fluid_world_particle_group");
         need(group, "fluid_world_particle_group", "group");
-        handled(live(w, particle),
-                [&] { *group = toC(groupOf(w, fluid::c::toCpp(particle))); });
+        handled(live(w, particle), [&] { *group = toC(groupOf(w, fluid::c::toCpp(particle))); });
     });
 }
 
@@ -134,8 +132,8 @@ fluid_status fluid_world_emitter_group(const fluid_world* world, fluid_emitter_i
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const World& w = worldOf(world, "fluid_world_emitter_group");
         need(group, "fluid_world_emitter_group", "group");
-        const bool known = emitter.index < w.emitterCount() &&
-                           (emitter.world == 0 || emitter.world == tagOf(w));
+        const bool known =
+            emitter.index < w.emitterCount() && (emitter.world == 0 || emitter.world == tagOf(w));
         handled(known, [&] { *group = toC(emitterGroup(w, fluid::c::toCpp(emitter))); });
     });
 }
@@ -144,8 +142,8 @@ fluid_status fluid_world_set_emitter_group(fluid_world* world, fluid_emitter_id 
                                            fluid_group_id group) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         World& w = worldOf(world, "fluid_world_set_emitter_group");
-        const bool known = emitter.index < w.emitterCount() &&
-                           (emitter.world == 0 || emitter.world == tagOf(w));
+        const bool known =
+            emitter.index < w.emitterCount() && (emitter.world == 0 || emitter.world == tagOf(w));
         handled(known && live(w, group),
                 [&] { setEmitterGroup(w, fluid::c::toCpp(emitter), toCpp(group)); });
     });
@@ -204,8 +202,7 @@ fluid_status fluid_world_group_velocity(const fluid_world* world, fluid_group_id
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const World& w = worldOf(world, "fluid_world_group_velocity");
         need(velocity, "fluid_world_group_velocity", "velocity");
-        handled(live(w, group),
-                [&] { *velocity = fluid::c::toC(groupVelocity(w, toCpp(group))); });
+        handled(live(w, group), [&] { *velocity = fluid::c::toC(groupVelocity(w, toCpp(group))); });
     });
 }
 
@@ -236,8 +233,7 @@ fluid_status fluid_world_merge_groups(fluid_world* world, fluid_group_id into,
                                       fluid_group_id from) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         World& w = worldOf(world, "fluid_world_merge_groups");
-        handled(live(w, into) && live(w, from),
-                [&] { mergeGroups(w, toCpp(into), toCpp(from)); });
+        handled(live(w, into) && live(w, from), [&] { mergeGroups(w, toCpp(into), toCpp(from)); });
     });
 }
 
@@ -294,8 +290,7 @@ fluid_status fluid_world_set_particle_colour(fluid_world* world, fluid_particle_
                                              fluid_colour colour) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         World& w = worldOf(world, "fluid_world_set_particle_colour");
-        handled(live(w, particle),
-                [&] { setColour(w, fluid::c::toCpp(particle), toCpp(colour)); });
+        handled(live(w, particle), [&] { setColour(w, fluid::c::toCpp(particle), toCpp(colour)); });
     });
 }
 
@@ -322,15 +317,13 @@ fluid_status fluid_world_colours(const fluid_world* world, const fluid_colour** 
 }
 
 fluid_status fluid_world_set_colour_mixing(fluid_world* world, float rate) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        setColourMixing(worldOf(world, "fluid_world_set_colour_mixing"), rate);
-    });
+    return guard(FLUID_ERROR_INVALID_ARGUMENT,
+                 [&] { setColourMixing(worldOf(world, "fluid_world_set_colour_mixing"), rate); });
 }
 
 fluid_status fluid_world_set_interpolation(fluid_world* world, bool on) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        setInterpolation(worldOf(world, "fluid_world_set_interpolation"), on);
-    });
+    return guard(FLUID_ERROR_INVALID_ARGUMENT,
+                 [&] { setInterpolation(worldOf(world, "fluid_world_set_interpolation"), on); });
 }
 
 fluid_status fluid_world_interpolation_factor(const fluid_world* world, float* factor) {
@@ -342,8 +335,7 @@ fluid_status fluid_world_interpolation_factor(const fluid_world* world, float* f
 }
 
 fluid_status fluid_world_interpolated_positions(const fluid_world* world, float* x, float* y,
-                                                uint32_t capacity, float factor,
-                                                uint32_t* count) {
+                                                uint32_t capacity, float factor, uint32_t* count) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const char* const function = "fluid_world_interpolated_positions";
         const World& w = worldOf(world, function);
