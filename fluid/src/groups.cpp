@@ -68,6 +68,9 @@ void WorldState::joinGroup(uint32_t index, uint32_t g, bool spawn) {
         }
         if (Colour::unpack(groups[g].colour).isSet()) {
             colourChannel()[index] = groups[g].colour;
+            if (slot < slotColourFraction.size()) {
+                slotColourFraction[slot] = 0;
+            }
         }
     }
 }
@@ -79,6 +82,9 @@ void WorldState::leaveSlot(uint32_t slot) {
     }
     if (slot < slotUserData.size()) {
         slotUserData[slot] = 0;
+    }
+    if (slot < slotColourFraction.size()) {
+        slotColourFraction[slot] = 0;
     }
 }
 
@@ -146,31 +152,45 @@ void mixColours(WorldState& s, double seconds) {
     Grid grid;
     grid.build(p.px, p.py, reach, s.tasks);
     const std::span<const uint32_t> order = grid.order();
+    if (s.slotColourFraction.size() < s.slotIndex.size()) {
+        s.slotColourFraction.resize(s.slotIndex.size(), 0u);
+    }
+    // Each channel in 8.8 fixed point: the colour's byte and the slot's fraction byte.
     std::vector<float> sx(n), sy(n);
-    std::vector<uint32_t> sc(n);
+    std::vector<uint64_t> sc(n);
+    const auto fine = [&](uint32_t i) {
+        const uint32_t c = p.colour[i], f = s.slotColourFraction[p.slot[i]];
+        uint64_t v = 0;
+        for (int ch = 0; ch < 4; ++ch) {
+            v |= uint64_t(((c >> (8 * ch)) & 255u) << 8 | ((f >> (8 * ch)) & 255u)) << (16 * ch);
+        }
+        return v;
+    };
     for (uint32_t k = 0; k < n; ++k) {
         sx[k] = p.px[order[k]];
         sy[k] = p.py[order[k]];
-        sc[k] = p.colour[order[k]];
+        sc[k] = fine(order[k]);
     }
-    std::vector<uint32_t> next(n);
+    std::vector<uint32_t> next(n), nextFraction(n);
     // Each particle reads the old colours and writes its own new one. A pair's trade
     // trunc(K (c_j - c_i) / 65536) is exactly the negative of the reverse pair's (the same
     // weight K from the same r^2; integer division truncates toward zero), so every channel's
     // sum is kept, and integer sums give the same result in any order or split.
+    constexpr uint64_t kAlpha = uint64_t(0xFF00) << 48; // alpha's whole byte
     parallelFor(s.tasks, n, 256, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t k = b; k < e; ++k) {
-            const uint32_t ci = sc[k];
+            const uint64_t ci = sc[k];
             const uint32_t i = order[k];
-            if ((ci >> 24) == 0) {
-                next[i] = ci;
+            if ((ci & kAlpha) == 0) {
+                next[i] = p.colour[i];
+                nextFraction[i] = s.slotColourFraction[p.slot[i]];
                 continue;
             }
             int64_t acc[4] = {0, 0, 0, 0};
             grid.forEachRange(sx[k], sy[k], [&](uint32_t mb, uint32_t me) {
                 for (uint32_t m = mb; m < me; ++m) {
-                    const uint32_t cj = sc[m];
-                    if (m == k || (cj >> 24) == 0) {
+                    const uint64_t cj = sc[m];
+                    if (m == k || (cj & kAlpha) == 0) {
                         continue;
                     }
                     const float dx = sx[m] - sx[k], dy = sy[m] - sy[k];
@@ -181,22 +201,28 @@ void mixColours(WorldState& s, double seconds) {
                     const double q = 1.0 - double(r2) / double(reach2);
                     const auto weight = int64_t(scale * q * q * q);
                     for (int c = 0; c < 4; ++c) {
-                        const int64_t d =
-                            int64_t((cj >> (8 * c)) & 255u) - int64_t((ci >> (8 * c)) & 255u);
+                        const int64_t d = int64_t((cj >> (16 * c)) & 0xFFFFu) -
+                                          int64_t((ci >> (16 * c)) & 0xFFFFu);
                         acc[c] += weight * d / 65536;
                     }
                 }
             });
-            uint32_t out = 0;
+            uint32_t out = 0, fraction = 0;
             for (int c = 0; c < 4; ++c) {
-                const int64_t v = std::clamp<int64_t>(int64_t((ci >> (8 * c)) & 255u) + acc[c],
-                                                      c == 3 ? 1 : 0, 255);
-                out |= uint32_t(v) << (8 * c);
+                // A convex combination of old values: in range (alpha stays at least 1.0).
+                const int64_t v = std::clamp<int64_t>(
+                    int64_t((ci >> (16 * c)) & 0xFFFFu) + acc[c], c == 3 ? 256 : 0, 0xFFFF);
+                out |= uint32_t(v >> 8) << (8 * c);
+                fraction |= uint32_t(v & 255) << (8 * c);
             }
             next[i] = out;
+            nextFraction[i] = fraction;
         }
     });
     p.colour.swap(next);
+    for (uint32_t i = 0; i < n; ++i) {
+        s.slotColourFraction[p.slot[i]] = nextFraction[i];
+    }
 }
 
 } // namespace detail
@@ -528,6 +554,9 @@ void setColour(World& world, ParticleHandle particle, Colour c) {
         return;
     }
     s.colourChannel()[i] = c.isSet() ? c.pack() : 0u;
+    if (particle.slot < s.slotColourFraction.size()) {
+        s.slotColourFraction[particle.slot] = 0;
+    }
 }
 
 void setGroupColour(World& world, GroupHandle group, Colour c) {
@@ -537,7 +566,13 @@ void setGroupColour(World& world, GroupHandle group, Colour c) {
         return;
     }
     std::vector<uint32_t>& channel = s.colourChannel();
-    eachMember(s, g, [&](uint32_t i) { channel[i] = c.isSet() ? c.pack() : 0u; });
+    eachMember(s, g, [&](uint32_t i) {
+        channel[i] = c.isSet() ? c.pack() : 0u;
+        const uint32_t slot = s.particles.slot[i];
+        if (slot < s.slotColourFraction.size()) {
+            s.slotColourFraction[slot] = 0;
+        }
+    });
 }
 
 std::span<const uint32_t> colours(const World& world) {

@@ -306,8 +306,8 @@ void checkSolverState(const detail::WorldState& s) {
 }
 
 // Version 7's last section (groups.h): interpolation on, the colour mixing rate, the group
-// table, membership and user data per handle slot (as long as the handle table, or empty when
-// unused), each emitter's group, and the colour channel (empty when unused). The previous
+// table, membership, user data and colour fractions per handle slot (as long as the handle
+// table, or empty when unused), each emitter's group, and the colour channel (empty when unused). The previous
 // positions are not saved: a loaded world's are its current ones.
 void putGroups(Out& o, const detail::WorldState& s) {
     o.put(uint8_t(s.interpolate));
@@ -331,6 +331,7 @@ void putGroups(Out& o, const detail::WorldState& s) {
     };
     o.array(padded(s.slotGroup, detail::WorldState::kNoGroup));
     o.array(padded(s.slotUserData, 0u));
+    o.array(padded(s.slotColourFraction, 0u));
     o.array(s.emitterGroup);
     o.array(s.particles.colour);
 }
@@ -363,6 +364,7 @@ void getGroups(In& in, detail::WorldState& s) {
     in.array(s.freeGroups, "the free groups");
     in.array(s.slotGroup, "the particles' groups");
     in.array(s.slotUserData, "the particles' user data");
+    in.array(s.slotColourFraction, "the colours' fractions");
     in.array(s.emitterGroup, "the emitters' groups");
     in.array(s.particles.colour, "the colour channel");
     std::vector<uint8_t> listed(s.groups.size(), 0);
@@ -380,6 +382,7 @@ void getGroups(In& in, detail::WorldState& s) {
     const size_t slots = s.slotIndex.size();
     if ((!s.slotGroup.empty() && s.slotGroup.size() != slots) ||
         (!s.slotUserData.empty() && s.slotUserData.size() != slots) ||
+        (!s.slotColourFraction.empty() && s.slotColourFraction.size() != slots) ||
         s.emitterGroup.size() != s.emitters.size() ||
         (!s.particles.colour.empty() && s.particles.colour.size() != s.particles.size())) {
         corrupt("group, user data or colour channels of inconsistent sizes");

@@ -398,6 +398,11 @@ struct WorldState {
     std::vector<uint32_t> freeGroups;
     std::vector<uint32_t> slotGroup;
     std::vector<uint32_t> slotUserData;
+    // Colour mixing's fractions: per handle slot, 8 bits below each 8-bit channel of the
+    // particle's colour (r in the low byte), so that mixing trades colour at 1/256 of a level
+    // and keeps each channel's sum exactly; empty until mixing first runs, 0 for a colour just
+    // set (leaveSlot, setColour).
+    std::vector<uint32_t> slotColourFraction;
     std::vector<uint32_t> emitterGroup; // per emitter: the group its particles join
     bool interpolate = false;           // keep Particles::lastX, lastY
     bool permuteLast = false;           // the sort permutes lastX, lastY (last sub-step)

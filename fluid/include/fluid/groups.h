@@ -145,9 +145,11 @@ std::span<const uint32_t> colours(const World& world);
 /// colours, channel by channel: a coloured blob that meets another blends where they touch
 /// (LiquidFun's colour mixing). `rate` (unit: 1/s; range [0, 1000]; 0, the default, is off)
 /// sets how fast: a particle inside a liquid of two colours moves about 1 - exp(-rate t) of
-/// the way to their mean in time t. Integer arithmetic, pair by pair antisymmetric: the sum of
-/// each channel over the world's coloured particles never changes, and the result is the same
-/// on any number of workers.
+/// the way to their mean in time t. Each channel carries 8 more bits below the visible byte
+/// (kept per handle slot and saved; 0 for a colour just set), and the trades are integers of
+/// 1/256 of a level, pair by pair antisymmetric: the sum of each channel over the coloured
+/// particles never changes at that precision (the visible bytes' sum stays within one level per
+/// particle of it), and the result is the same on any number of workers.
 void setColourMixing(World& world, float rate);
 /// The colour mixing rate (unit: 1/s; 0 = off).
 float colourMixing(const World& world);
