@@ -103,6 +103,9 @@ struct Options {
     /// across the liquid's bounding box, rays straight down onto it, samples at random points
     /// (fluid/query.h, docs/queries.md).
     uint32_t rays = 0;
+    /// Keep the previous sub-step's positions for drawing between steps
+    /// (fluid::setInterpolation; fluid/groups.h): its cost is the step's difference.
+    bool interpolate = false;
     /// "A:B" as given on the command line (empty: the timed frames); parsed into
     /// `windowFirst` and `windowLast`.
     std::string window;
@@ -213,6 +216,55 @@ void timeRays(const fluid::World& world, uint32_t count) {
                 count, wetMs + dryMs, wet, wet > 0 ? 1000.0 * wetMs / wet : 0.0,
                 wet > 0 ? depth / wet : 0.0, count - wet,
                 count > wet ? 1000.0 * dryMs / (count - wet) : 0.0);
+}
+
+/// What interpolation adds to a frame (fluid::setInterpolation), timed alone because it is far
+/// below the step's noise: the copy of the positions at the start of the frame's last sub-step
+/// (2 channels), the sort's 2 extra channels in that sub-step (a gather through a random
+/// permutation here: an upper bound, the sort's order is close to the identity), and a call of
+/// fluid::interpolatedPositions (what drawing reads); each the least of 50 runs. One line.
+void timeInterpolation(const fluid::World& world) {
+    const auto px = world.positionX(), py = world.positionY();
+    const size_t n = px.size();
+    if (n == 0) {
+        return;
+    }
+    std::vector<float> lx(n), ly(n), tx(n), ty(n);
+    std::vector<uint32_t> order(n);
+    for (size_t i = 0; i < n; ++i) {
+        order[i] = uint32_t(i);
+    }
+    std::shuffle(order.begin(), order.end(), std::mt19937(7));
+    using Clock = std::chrono::steady_clock;
+    const auto least = [](auto&& body) {
+        double best = 1e30;
+        for (int run = 0; run < 50; ++run) {
+            const auto t0 = Clock::now();
+            body();
+            best = std::min(best, std::chrono::duration<double, std::micro>(Clock::now() - t0)
+                                      .count());
+        }
+        return best;
+    };
+    const double copy = least([&] {
+        std::copy(px.begin(), px.end(), lx.begin());
+        std::copy(py.begin(), py.end(), ly.begin());
+    });
+    const double gather = least([&] {
+        for (size_t k = 0; k < n; ++k) {
+            tx[k] = lx[order[k]];
+        }
+        for (size_t k = 0; k < n; ++k) {
+            ty[k] = ly[order[k]];
+        }
+        lx.swap(tx);
+        ly.swap(ty);
+    });
+    const double drawn = least([&] { fluid::interpolatedPositions(world, tx, ty); });
+    std::printf("interpolation: %zu particles: capture %.1f us + the sort's 2 extra channels "
+                "%.1f us (random order: an upper bound) per frame; interpolatedPositions "
+                "%.1f us per call (least of 50, one thread)\n",
+                n, copy, gather, drawn);
 }
 
 /// What a scene builder made.
@@ -557,6 +609,10 @@ int run(const Options& opt) {
                                               : buildDam(world, opt.particles, liquid);
     std::string what = scene.text;
     what += opt.material == "water" ? "" : ", " + opt.material;
+    if (opt.interpolate) {
+        fluid::setInterpolation(world, true);
+        what += ", interpolation on";
+    }
 
     // One frame of the scene: World::step alone, or (crates) the coupled frame or the uncoupled
     // reference. Declared in this order so the coupling goes before the b2World, and the
@@ -752,6 +808,9 @@ int run(const Options& opt) {
     if (opt.rays > 0) {
         timeRays(world, opt.rays);
     }
+    if (opt.interpolate) {
+        timeInterpolation(world);
+    }
     const auto stacked = uint32_t(stackedIndices(world.positionX(), world.positionY()).size());
     std::printf("stacked: %u particles share their exact position with another\n", stacked);
     char window[32];
@@ -835,6 +894,9 @@ int main(int argc, char** argv) {
     app.add_option("--rays", opt.rays,
                    "Time this many ray casts (random, and straight down) and samples after the "
                    "run (0: none)");
+    app.add_flag("--interpolate", opt.interpolate,
+                 "Keep the previous sub-step's positions for drawing between steps "
+                 "(fluid::setInterpolation)");
     app.add_flag("--no-coupling", opt.noCoupling,
                  "Crates scene: step the Box2D crates without coupling them to the fluid");
     app.add_option("--window", opt.window,

@@ -1,6 +1,7 @@
 // fluid-demo — headless runs.
 #include "demo/headless.h"
 
+
 #include "demo/imgui_bridge.h"
 #include "demo/overlay.h"
 #include "demo/platform.h"
@@ -8,6 +9,7 @@
 #include "demo/ui.h"
 
 #include <fluid/gl/renderer.h>
+#include <fluid/groups.h>
 
 #include <cstdio>
 #include <exception>
@@ -89,9 +91,38 @@ int runHeadless(const HeadlessOptions& options) {
         const gl::Camera camera = session->camera(options.size);
         gl::RenderSettings settings;
         uint32_t levelErrors = 0;
+        // At a display rate: the frames whose picture repeats the one before while the liquid
+        // moves, drawn between sub-steps (as the renderer draws) and at the current positions.
+        uint32_t repeated = 0, repeatedCurrent = 0, moving = 0;
+        std::vector<float> drawn, lastDrawn, lastCurrent;
         try {
             for (uint32_t frame = 1; frame <= options.frames; ++frame) {
-                session->step();
+                if (options.displayHz > 0.0f) {
+                    session->stepFor(1.0f / options.displayHz);
+                    const World& world = session->level().world;
+                    const uint32_t n = world.particleCount();
+                    drawn.resize(2 * size_t(n));
+                    interpolatedPositions(world, std::span(drawn).first(n),
+                                          std::span(drawn).subspan(n));
+                    std::vector<float> current(world.positionX().begin(),
+                                               world.positionX().end());
+                    current.insert(current.end(), world.positionY().begin(),
+                                   world.positionY().end());
+                    float fastest = 0.0f;
+                    for (uint32_t i = 0; i < n; ++i) {
+                        fastest = std::max(fastest, std::hypot(world.velocityX()[i],
+                                                               world.velocityY()[i]));
+                    }
+                    if (frame > 1 && fastest > 0.01f) {
+                        ++moving;
+                        repeated += drawn == lastDrawn ? 1 : 0;
+                        repeatedCurrent += current == lastCurrent ? 1 : 0;
+                    }
+                    lastDrawn.swap(drawn);
+                    lastCurrent.swap(current);
+                } else {
+                    session->step();
+                }
                 if (options.renderEvery > 0 && frame % options.renderEvery == 0 &&
                     frame != options.frames) {
                     session->drawShapes(camera, false, under, over);
@@ -107,6 +138,12 @@ int runHeadless(const HeadlessOptions& options) {
         } catch (const std::exception& e) {
             std::fprintf(stderr, "fluid-demo: %s: %s\n", file.stem.c_str(), e.what());
             return 1;
+        }
+        if (options.displayHz > 0.0f) {
+            std::printf("fluid-demo: display level=%s hz=%g frames=%u moving=%u repeated=%u "
+                        "repeated_current=%u\n",
+                        file.stem.c_str(), double(options.displayHz), options.frames, moving,
+                        repeated, repeatedCurrent);
         }
         session->drawShapes(camera, false, under, over);
         for (const gl::View view : options.views) {

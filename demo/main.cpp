@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
     std::string view = "metaballs";
     uint32_t threads = 2;
     uint32_t renderEvery = 0;
+    float displayHz = 0.0f;
     bool noHud = false, fullscreen = false;
     std::string scriptPath;
     app.add_option("--level", level,
@@ -87,6 +88,10 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--render-every", renderEvery,
                    "Headless: also render every K frames while stepping (0 = only at the end)");
+    app.add_option("--display-hz", displayHz,
+                   "Headless: step each frame by 1/HZ s (the display's rate) and draw the "
+                   "liquid between sub-steps (0 = one level frame per frame)")
+        ->check(CLI::Range(0.0f, 1000.0f));
     app.add_flag("--no-hud", noHud, "Headless: leave the HUD and level banner out of images");
     app.add_flag("--fullscreen", fullscreen, "Start in fullscreen (F11 toggles)");
     std::string saveDir;
@@ -238,6 +243,7 @@ int main(int argc, char** argv) {
         options.levels = chosen;
         options.frames = frames;
         options.renderEvery = renderEvery;
+        options.displayHz = displayHz;
         options.size = {width, height};
         options.workers = threads;
         options.hud = !noHud;

@@ -1,7 +1,9 @@
 // fluid-demo — a level being played.
 #include "demo/session.h"
 
+
 #include <fluid/box2d/coupling.h>
+#include <fluid/groups.h>
 #include <fluid/plugins/builtin.h>
 
 #include <box2d/box2d.h>
@@ -38,6 +40,8 @@ Session::Session(const LevelFile& file, uint32_t workers)
     registerBuiltinPlugins(m_registry);
     m_level = loadLevel(file.path, m_registry, optionsFor(workers));
     World& world = m_level.world;
+    // Drawn between sub-steps (fluid/groups.h): smooth at any display rate.
+    setInterpolation(world, true);
 
     // The bounds come first: they frame the particles as the file placed them.
     m_bounds = levelBounds(m_level);
@@ -149,10 +153,14 @@ float Session::lineWidth(const gl::Camera& camera) const {
 }
 
 void Session::step() {
+    stepFor(1.0f / m_level.frameRate);
+}
+
+void Session::stepFor(float frameDt) {
     m_pointer->setPointer(m_pointerPos, std::abs(m_pointerPush));
     m_pointer->setParam("strength", m_pointerPush < 0.0f ? -40.0 : 40.0);
     const auto start = std::chrono::steady_clock::now();
-    m_level.step();
+    m_level.step(frameDt);
     const auto end = std::chrono::steady_clock::now();
     m_lastStepMs = std::chrono::duration<double, std::milli>(end - start).count();
 }
@@ -188,7 +196,18 @@ uint32_t Session::dropBlob(glm::vec2 center) {
     const float extent = std::max(m_bounds.hi.x - m_bounds.lo.x, m_bounds.hi.y - m_bounds.lo.y);
     blob.shape = Shape::circle(center, std::clamp(0.05f * extent, 0.02f, 0.08f));
     blob.material = m_materials[m_drop];
-    return m_level.world.spawnBlob(blob);
+    World& world = m_level.world;
+    if (colourMixing(world) > 0.0f) {
+        // A level that mixes colours: each blob dropped is a group of a colour of its own.
+        static constexpr Colour kPalette[] = {{230, 60, 200, 255}, {40, 200, 90, 255},
+                                              {250, 140, 20, 255}, {30, 200, 230, 255},
+                                              {240, 240, 240, 255}, {120, 60, 230, 255}};
+        const Colour colour = kPalette[m_dropped++ % std::size(kPalette)];
+        const uint32_t before = world.particleCount();
+        spawnGroup(world, blob, GroupDef{0, colour});
+        return world.particleCount() - before;
+    }
+    return world.spawnBlob(blob);
 }
 
 bool Session::dropCrate(glm::vec2 center) {

@@ -46,6 +46,9 @@ public:
 
     /// Steps one frame (1 / frameRate s) and measures it. Throws as `Level::step`.
     void step();
+    /// Steps a frame of `frameDt` s (the display's frame time; the world carries what is not a
+    /// whole sub-step and the renderer draws between sub-steps). Throws as `Level::step`.
+    void stepFor(float frameDt);
     /// Wall time of the last step (unit: ms).
     double lastStepMs() const { return m_lastStepMs; }
 
@@ -104,6 +107,7 @@ private:
     MaterialId m_materials[2]{};
     std::string m_materialNames[2]{"water", "yoghurt"};
     uint32_t m_drop = 0;
+    uint32_t m_dropped = 0; // blobs dropped (the next colour, in levels that mix colours)
     uint32_t m_crates = 0;
     double m_lastStepMs = 0.0;
 };

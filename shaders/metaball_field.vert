@@ -7,6 +7,7 @@ layout(location = 0) in vec2 aCorner;  // quad corner in [-1, 1]^2 (per vertex)
 layout(location = 1) in float aX;      // particle position x (m, per instance)
 layout(location = 2) in float aY;      // particle position y (m, per instance)
 layout(location = 6) in uint aMaterial; // material index (per instance)
+layout(location = 7) in vec4 aColour;   // particle colour, sRGB (per instance; alpha 0: none)
 
 // ---- uniforms ----
 uniform mat3 uWorldToClip;      // camera: world (m) to clip space
@@ -26,5 +27,8 @@ void main() {
     vec2 world = vec2(aX, aY) + aCorner * radius;
     gl_Position = vec4((uWorldToClip * vec3(world, 1.0)).xy, 0.0, 1.0);
     vLocal = aCorner;
-    vContribution = vec4(uColour[m], 1.0) * uWeight;
+    // A particle's own colour (fluid::Colour, sRGB) replaces its material's, in linear RGB: the
+    // field mixes them where colours meet as it mixes materials.
+    vec3 colour = aColour.a > 0.0 ? pow(aColour.rgb, vec3(2.2)) : uColour[m];
+    vContribution = vec4(colour, 1.0) * uWeight;
 }

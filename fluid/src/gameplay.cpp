@@ -161,6 +161,11 @@ uint32_t emitParticles(WorldState& s, float frameDt, uint32_t& blocked, uint32_t
                 // It left the nozzle `age` ago: its lifetime started then.
                 s.append(centre + across * lateral, dir * d.speed, d.material.index,
                          expiryTime(s.time - age, d.lifetime));
+                const auto emitter = size_t(&e - s.emitters.data());
+                if (emitter < s.emitterGroup.size() &&
+                    s.emitterGroup[emitter] != WorldState::kNoGroup) {
+                    s.joinGroup(s.particles.size() - 1, s.emitterGroup[emitter], true);
+                }
                 ++e.emitted;
                 ++total;
             }
@@ -190,7 +195,16 @@ void EmissionUndo::restore(WorldState& s) const {
         return;
     }
     for (uint32_t i = m_count; i < p.size(); ++i) {
+        s.leaveSlot(p.slot[i]);
         s.slotIndex[p.slot[i]] = UINT32_MAX;
+    }
+    for (std::vector<float>* channel : {&p.lastX, &p.lastY}) {
+        if (!channel->empty()) {
+            channel->resize(m_count);
+        }
+    }
+    if (!p.colour.empty()) {
+        p.colour.resize(m_count);
     }
     for (std::vector<float>* channel : p.keptFloats()) {
         channel->resize(m_count);
@@ -221,6 +235,13 @@ void WorldState::removeMarked(const std::vector<uint8_t>& kill) {
             p.material[w] = p.material[i];
             p.slot[w] = slot;
             p.expiry[w] = p.expiry[i];
+            if (!p.lastX.empty()) {
+                p.lastX[w] = p.lastX[i];
+                p.lastY[w] = p.lastY[i];
+            }
+            if (!p.colour.empty()) {
+                p.colour[w] = p.colour[i];
+            }
         }
         slotIndex[slot] = w;
         ++w;
@@ -231,6 +252,14 @@ void WorldState::removeMarked(const std::vector<uint8_t>& kill) {
     p.material.resize(w);
     p.slot.resize(w);
     p.expiry.resize(w);
+    for (std::vector<float>* channel : {&p.lastX, &p.lastY}) {
+        if (!channel->empty()) {
+            channel->resize(w);
+        }
+    }
+    if (!p.colour.empty()) {
+        p.colour.resize(w);
+    }
 }
 
 uint32_t finishGameplay(WorldState& s) {

@@ -32,9 +32,13 @@ namespace fluid {
 namespace {
 
 constexpr char kMagic[8] = {'F', 'L', 'U', 'I', 'D', 'S', 'N', 'P'};
-constexpr uint32_t kVersion = 6; // 4: Herschel-Bulkley fields, stress and pending kicks; 5: the
+constexpr uint32_t kVersion = 7; // 4: Herschel-Bulkley fields, stress and pending kicks; 5: the
                                  // position-based solver's carried frame time; 6: the yielding
-                                 // particles' structure (Particles::structure)
+                                 // particles' structure (Particles::structure); 7: groups, user
+                                 // data, colours and interpolation (groups.h), a last section
+// The oldest version this build reads: a version 6 snapshot loads without that last section
+// (no groups but the emitters' own, no user data or colours, interpolation off).
+constexpr uint32_t kOldestVersion = 6;
 
 // The last step's profile as a snapshot holds it: its counts and figures, in the order of the
 // format since version 2. The eight floats where the stage times once stood are written as 0
@@ -301,6 +305,117 @@ void checkSolverState(const detail::WorldState& s) {
     }
 }
 
+// Version 7's last section (groups.h): interpolation on, the colour mixing rate, the group
+// table, membership, user data and colour fractions per handle slot (as long as the handle
+// table, or empty when unused), each emitter's group, and the colour channel (empty when unused). The previous
+// positions are not saved: a loaded world's are its current ones.
+void putGroups(Out& o, const detail::WorldState& s) {
+    o.put(uint8_t(s.interpolate));
+    o.put(s.colourMixing);
+    o.put<uint64_t>(s.groups.size());
+    for (const detail::WorldState::Group& g : s.groups) {
+        o.put(g.generation);
+        o.put(g.count);
+        o.put(uint8_t(g.live));
+        o.put(g.userData);
+        o.put(g.colour);
+    }
+    o.array(s.freeGroups);
+    const auto padded = [&](const std::vector<uint32_t>& perSlot, uint32_t none) {
+        std::vector<uint32_t> out;
+        if (!perSlot.empty()) {
+            out.assign(s.slotIndex.size(), none);
+            std::copy_n(perSlot.begin(), std::min(perSlot.size(), out.size()), out.begin());
+        }
+        return out;
+    };
+    o.array(padded(s.slotGroup, detail::WorldState::kNoGroup));
+    o.array(padded(s.slotUserData, 0u));
+    o.array(padded(s.slotColourFraction, 0u));
+    o.array(s.emitterGroup);
+    o.array(s.particles.colour);
+}
+
+// Reads what `putGroups` wrote and checks it against the particles and emitters read before.
+void getGroups(In& in, detail::WorldState& s) {
+    using detail::WorldState;
+    s.interpolate = in.small(true, "the interpolation flag");
+    s.colourMixing = in.get<float>("the colour mixing rate");
+    if (!(s.colourMixing >= 0.0f && s.colourMixing <= 1000.0f)) {
+        std::ostringstream text;
+        text << "the colour mixing rate " << s.colourMixing << " is outside [0, 1000] 1/s";
+        corrupt(text.str());
+    }
+    const auto count = in.get<uint64_t>("the group count");
+    if (count > uint64_t(s.slotIndex.size()) + s.emitters.size() + (uint64_t(1) << 24)) {
+        corrupt("the group count " + std::to_string(count) + " is implausible");
+    }
+    s.groups.assign(size_t(count), {});
+    for (WorldState::Group& g : s.groups) {
+        g.generation = in.get<uint32_t>("a group's generation");
+        g.count = in.get<uint32_t>("a group's count");
+        g.live = in.small(true, "a group's live flag");
+        g.userData = in.get<uint32_t>("a group's user data");
+        g.colour = in.get<uint32_t>("a group's colour");
+        if (g.generation == 0) {
+            corrupt("a group has generation 0");
+        }
+    }
+    in.array(s.freeGroups, "the free groups");
+    in.array(s.slotGroup, "the particles' groups");
+    in.array(s.slotUserData, "the particles' user data");
+    in.array(s.slotColourFraction, "the colours' fractions");
+    in.array(s.emitterGroup, "the emitters' groups");
+    in.array(s.particles.colour, "the colour channel");
+    std::vector<uint8_t> listed(s.groups.size(), 0);
+    for (const uint32_t g : s.freeGroups) {
+        if (g >= s.groups.size() || s.groups[g].live || listed[g] != 0) {
+            corrupt("a free group is in use or listed twice");
+        }
+        listed[g] = 1;
+    }
+    for (size_t g = 0; g < s.groups.size(); ++g) {
+        if (!s.groups[g].live && listed[g] == 0) {
+            corrupt("group " + std::to_string(g) + " is neither live nor free");
+        }
+    }
+    const size_t slots = s.slotIndex.size();
+    if ((!s.slotGroup.empty() && s.slotGroup.size() != slots) ||
+        (!s.slotUserData.empty() && s.slotUserData.size() != slots) ||
+        (!s.slotColourFraction.empty() && s.slotColourFraction.size() != slots) ||
+        s.emitterGroup.size() != s.emitters.size() ||
+        (!s.particles.colour.empty() && s.particles.colour.size() != s.particles.size())) {
+        corrupt("group, user data or colour channels of inconsistent sizes");
+    }
+    std::vector<uint32_t> counted(s.groups.size(), 0);
+    for (size_t slot = 0; slot < s.slotGroup.size(); ++slot) {
+        const uint32_t g = s.slotGroup[slot];
+        if (g == WorldState::kNoGroup) {
+            continue;
+        }
+        if (g >= s.groups.size() || !s.groups[g].live || s.slotIndex[slot] == UINT32_MAX) {
+            corrupt("handle slot " + std::to_string(slot) +
+                    " is in a group that is not live, or is free and in a group");
+        }
+        ++counted[g];
+    }
+    for (size_t g = 0; g < s.groups.size(); ++g) {
+        if (s.groups[g].count != counted[g]) {
+            corrupt("group " + std::to_string(g) + " counts " +
+                    std::to_string(s.groups[g].count) + " particles but has " +
+                    std::to_string(counted[g]));
+        }
+    }
+    for (const uint32_t g : s.emitterGroup) {
+        if (g != WorldState::kNoGroup && (g >= s.groups.size() || !s.groups[g].live)) {
+            corrupt("an emitter feeds a group that is not live");
+        }
+    }
+    if (s.interpolate) {
+        detail::resetPrevious(s);
+    }
+}
+
 } // namespace
 
 void World::save(std::ostream& out) const {
@@ -382,6 +497,7 @@ void World::save(std::ostream& out) const {
     o.put(uint8_t(s.fieldMeasured));
     o.put(s.lastMaxAccel);
     o.put(ProfileRecord::of(s.profile));
+    putGroups(o, s);
 
     out.write(kMagic, sizeof(kMagic));
     const uint32_t version = kVersion;
@@ -448,19 +564,19 @@ std::vector<char> readUpTo(std::istream& in, uint64_t n) {
 // The payload and checksum of a snapshot: the header (magic, version, payload size) is read
 // and checked first, and the size against the bytes the stream holds, before the body is read
 // or anything is sized by it (a huge file of another version is refused after 20 bytes).
-std::vector<char> readBody(std::istream& input, uint64_t& size) {
+std::vector<char> readBody(std::istream& input, uint64_t& size, uint32_t& version) {
     char header[sizeof(kMagic) + sizeof(uint32_t) + sizeof(uint64_t)];
     input.read(header, sizeof(header));
     if (std::size_t(input.gcount()) < sizeof(header) ||
         std::memcmp(header, kMagic, sizeof(kMagic)) != 0) {
         throw Error("snapshot: not a fluid snapshot (no FLUIDSNP header)");
     }
-    uint32_t version = 0;
     std::memcpy(&version, header + sizeof(kMagic), sizeof(version));
     std::memcpy(&size, header + sizeof(kMagic) + sizeof(version), sizeof(size));
-    if (version != kVersion) {
+    if (version < kOldestVersion || version > kVersion) {
         throw Error("snapshot: format version " + std::to_string(version) +
-                    " is not supported; this fluid reads version " + std::to_string(kVersion));
+                    " is not supported; this fluid reads versions " +
+                    std::to_string(kOldestVersion) + " to " + std::to_string(kVersion));
     }
     const auto refuse = [&](uint64_t holds) {
         std::ostringstream s;
@@ -538,7 +654,8 @@ void getEmitterClock(In& in, detail::EmitterState& e) {
 World World::load(std::istream& input, const Registry& registry, uint32_t workerCount,
                   const TaskHook& tasks) {
     uint64_t size = 0;
-    const std::vector<char> body = readBody(input, size);
+    uint32_t version = 0;
+    const std::vector<char> body = readBody(input, size, version);
     uint64_t sum = 0;
     std::memcpy(&sum, body.data() + size, sizeof(sum));
     if (internal::fnv1a(std::string_view(body.data(), size)) != sum) {
@@ -627,6 +744,9 @@ World World::load(std::istream& input, const Registry& registry, uint32_t worker
         text << "the carried frame time is " << s.carry
              << " s, less than minus half the longest sub-step (-1/120 s)";
         corrupt(text.str());
+    }
+    if (version >= 7) {
+        getGroups(in, s);
     }
     if (!in.done()) {
         corrupt("unexpected data after the last section");

@@ -425,6 +425,13 @@ private:
         if (s.yielding) {
             applyPendingKicks(s);
         }
+        if (sub.last && s.interpolate) {
+            // Interpolation (groups.h): where the particles start the frame's last sub-step;
+            // this sub-step's sort carries them along.
+            std::copy(p.px.begin(), p.px.end(), p.lastX.begin());
+            std::copy(p.py.begin(), p.py.end(), p.lastY.begin());
+            s.permuteLast = true;
+        }
         const IntegrateStats st =
             integrate(s, x.extX, x.extY, m_c.dt, m_speedCap, x.startX, x.startY);
         s.profile.nonFiniteRepaired += st.repaired;

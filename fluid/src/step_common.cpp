@@ -359,6 +359,15 @@ void sortParticles(WorldState& s, float cellSize,
     for (auto* channel : extra) {
         permute(*channel, order, s.sortScratch, tasks);
     }
+    // Issue 63's optional channels: colours whenever a world has them; the previous positions
+    // only in the sort of a step's last sub-step, which captured them (permuteLast).
+    if (!p.colour.empty()) {
+        permute(p.colour, order, s.sortScratch, tasks);
+    }
+    if (s.permuteLast) {
+        permute(p.lastX, order, s.sortScratch, tasks);
+        permute(p.lastY, order, s.sortScratch, tasks);
+    }
     // Slots and materials pass through the float scratch too: no scratch array of their own.
     permute(p.slot, order, s.sortScratch, tasks);
     permute(p.material, order, s.sortScratch, tasks);

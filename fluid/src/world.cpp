@@ -259,6 +259,14 @@ void WorldState::reserveParticles(size_t count) {
     grow(p.material);
     grow(p.slot);
     grow(p.expiry);
+    for (std::vector<float>* channel : {&p.lastX, &p.lastY}) {
+        if (!channel->empty()) {
+            grow(*channel);
+        }
+    }
+    if (!p.colour.empty()) {
+        grow(p.colour);
+    }
     grow(slotIndex);
     grow(slotGeneration);
 }
@@ -292,10 +300,18 @@ ParticleHandle WorldState::append(glm::vec2 x, glm::vec2 v, uint16_t material, d
     p.material.push_back(material);
     p.slot.push_back(slot);
     p.expiry.push_back(expiry);
+    if (interpolate) { // new particles do not streak: previous = current
+        p.lastX.push_back(x.x);
+        p.lastY.push_back(x.y);
+    }
+    if (!p.colour.empty()) {
+        p.colour.push_back(0);
+    }
     return handleOf(slot);
 }
 
 void WorldState::releaseSlot(uint32_t slot) {
+    leaveSlot(slot);
     slotIndex[slot] = UINT32_MAX;
     // Generation 0 is the null handle's: skip it when a slot's counter wraps.
     slotGeneration[slot] = slotGeneration[slot] + 1 == 0 ? 1 : slotGeneration[slot] + 1;
@@ -313,7 +329,23 @@ void WorldState::removeAt(uint32_t index) {
         p.material[index] = p.material[last];
         p.slot[index] = p.slot[last];
         p.expiry[index] = p.expiry[last];
+        for (std::vector<float>* channel : {&p.lastX, &p.lastY}) {
+            if (!channel->empty()) {
+                (*channel)[index] = (*channel)[last];
+            }
+        }
+        if (!p.colour.empty()) {
+            p.colour[index] = p.colour[last];
+        }
         slotIndex[p.slot[index]] = index;
+    }
+    for (std::vector<float>* channel : {&p.lastX, &p.lastY}) {
+        if (!channel->empty()) {
+            channel->pop_back();
+        }
+    }
+    if (!p.colour.empty()) {
+        p.colour.pop_back();
     }
     for (std::vector<float>* channel : p.keptFloats()) {
         channel->pop_back();
@@ -584,9 +616,21 @@ uint32_t World::placeBlob(const BlobDef& blob, glm::vec2 lo, glm::vec2 hi, float
                     std::to_string(m_state->def.maxParticles));
     }
     const double expiry = detail::expiryTime(m_state->time, blob.lifetime);
+    // The blob's group: the one named, or a new one (made only once the blob fits).
+    uint32_t group = detail::WorldState::kNoGroup;
+    if (!blob.group.isNull()) {
+        group = detail::checkedGroup(*m_state, blob.group, "spawnBlob");
+    }
     m_state->reserveParticles(size_t(m_state->particles.size()) + points.size());
+    if (group == detail::WorldState::kNoGroup) {
+        group = m_state->newGroup(0, 0);
+    }
+    const uint32_t first = m_state->particles.size();
     for (glm::vec2 p : points) {
         m_state->append(p, blob.velocity, blob.material.index, expiry, blob.structure);
+    }
+    for (uint32_t i = first; i < m_state->particles.size(); ++i) {
+        m_state->joinGroup(i, group, true);
     }
     return static_cast<uint32_t>(points.size());
 }
@@ -758,6 +802,11 @@ void World::step(float frameDt) {
         throw;
     }
     s.carry = carryAfter;
+    s.permuteLast = false;
+    if (s.interpolate && s.def.solver == Solver::Explicit) {
+        detail::resetPrevious(s); // whole frames: nothing to draw between
+    }
+    detail::mixColours(s, double(simulated));
     s.profile.removed = detail::finishGameplay(s);
     s.profile.emitted = emitted;
     s.profile.emitBlocked = blocked;
@@ -836,6 +885,8 @@ EmitterId World::addEmitter(const EmitterDef& def) {
     e.def = def;
     e.random = def.seed;
     m_state->emitters.push_back(e);
+    m_state->emitterGroup.resize(m_state->emitters.size() - 1, detail::WorldState::kNoGroup);
+    m_state->emitterGroup.push_back(m_state->newGroup(0, 0));
     return EmitterId{static_cast<uint32_t>(m_state->emitters.size() - 1), m_state->tag.value()};
 }
 

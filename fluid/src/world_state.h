@@ -49,6 +49,13 @@ struct Particles {
     std::vector<float> invRho;
     std::vector<float> h, massPerDepth, viscosity, mass, restDensity, gamma;
     std::vector<float> invMass, volume, pairPressure, invLattice;
+    // ---- Issue 63 (groups.cpp): optional channels, empty until a world uses them ----
+    // Interpolation: positions at the start of the last sub-step (m), permuted by the sort of
+    // the last sub-step only (WorldState::permuteLast); empty while interpolation is off.
+    std::vector<float> lastX, lastY;
+    // Packed RGBA8 colour per particle (Colour::pack; alpha 0 = none); empty until some
+    // particle gets a colour. Permuted by every sort when present.
+    std::vector<uint32_t> colour;
 
     uint32_t size() const { return static_cast<uint32_t>(px.size()); }
     /// The float channels that persist between steps (besides material, slot and expiry).
@@ -375,6 +382,45 @@ struct WorldState {
         float minX = 0.0f, minY = 0.0f, maxX = 0.0f, maxY = 0.0f;
     };
     std::unique_ptr<QueryGrid> queryGrid = std::make_unique<QueryGrid>();
+
+    // ---- Issue 63: groups, user data, colours, interpolation (groups.cpp) ----
+    // Groups by index; a free entry has live false and is listed in freeGroups (reused
+    // last-in first-out, its generation bumped). Membership and user data are kept per handle
+    // slot (slotGroup, slotUserData: empty until first used, possibly shorter than the handle
+    // table: a missing entry reads kNoGroup / 0), so sorts never touch them.
+    static constexpr uint32_t kNoGroup = UINT32_MAX;
+    struct Group {
+        uint32_t generation = 1;
+        uint32_t count = 0;
+        bool live = false;
+        uint32_t userData = 0; // GroupDef
+        uint32_t colour = 0;   // GroupDef, packed
+    };
+    std::vector<Group> groups;
+    std::vector<uint32_t> freeGroups;
+    std::vector<uint32_t> slotGroup;
+    std::vector<uint32_t> slotUserData;
+    // Colour mixing's fractions: per handle slot, 8 bits below each 8-bit channel of the
+    // particle's colour (r in the low byte), so that mixing trades colour at 1/256 of a level
+    // and keeps each channel's sum exactly; empty until mixing first runs, 0 for a colour just
+    // set (leaveSlot, setColour).
+    std::vector<uint32_t> slotColourFraction;
+    std::vector<uint32_t> emitterGroup; // per emitter: the group its particles join
+    bool interpolate = false;           // keep Particles::lastX, lastY
+    bool permuteLast = false;           // the sort permutes lastX, lastY (last sub-step)
+    float colourMixing = 0.0f;          // 1/s
+    uint32_t groupOfSlot(uint32_t slot) const {
+        return slot < slotGroup.size() ? slotGroup[slot] : kNoGroup;
+    }
+    // A new group entry (live, count 0) with the given spawn data; returns its index.
+    uint32_t newGroup(uint32_t userData, uint32_t colour);
+    // The particle at `index` joins group `g` (leaving its old one): membership, count, and
+    // when `spawn` the group's user data and colour.
+    void joinGroup(uint32_t index, uint32_t g, bool spawn);
+    // A particle in `slot` is gone: its group count and user data (releaseSlot calls it).
+    void leaveSlot(uint32_t slot);
+    // The colour channel, allocated (zeros) if it was not.
+    std::vector<uint32_t>& colourChannel();
     StageProbe stageProbe; // tests only: see StageProbe
     double time = 0.0;
     // Position-based: frame time passed to World::step that no sub-step has simulated yet (s, in
@@ -458,6 +504,16 @@ inline glm::vec2 unitDirection(glm::vec2 direction) {
     }
     return {float(double(direction.x) / len), float(double(direction.y) / len)};
 }
+
+/// The index of the live group `group` names; throws fluid::Error "<function>: ..." for a
+/// null, stale or other world's handle (groups.cpp).
+uint32_t checkedGroup(const WorldState& s, GroupHandle group, const char* function);
+/// Colour mixing over `seconds` of simulated time (groups.cpp; World::step after the solver,
+/// before removals): nothing unless a rate is set and some particle has a colour.
+void mixColours(WorldState& s, double seconds);
+/// Interpolation (groups.cpp): previous = current for every particle (when turned on, after an
+/// explicit step, after a load).
+void resetPrevious(WorldState& s);
 
 /// The explicit solver's step (solver_explicit.cpp).
 void stepExplicit(WorldState& state, float frameDt);

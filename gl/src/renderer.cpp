@@ -56,14 +56,24 @@ enum Attribute : GLuint {
     kVy = 4,
     kPressure = 5,
     kMaterial = 6,
+    kColour = 7,
     kShapePosition = 0,
     kShapeColour = 1,
 };
 
 // Per-particle buffers, one per channel.
-enum Channel : size_t { kChX, kChY, kChVx, kChVy, kChPressure, kChMaterial, kChannelCount };
-constexpr std::array<GLuint, kChannelCount> kChannelAttribute{kX,  kY,        kVx,
-                                                              kVy, kPressure, kMaterial};
+enum Channel : size_t {
+    kChX,
+    kChY,
+    kChVx,
+    kChVy,
+    kChPressure,
+    kChMaterial,
+    kChColour,
+    kChannelCount
+};
+constexpr std::array<GLuint, kChannelCount> kChannelAttribute{kX,        kY,        kVx,    kVy,
+                                                              kPressure, kMaterial, kColour};
 
 std::string sizeText(glm::ivec2 size) {
     return "(" + std::to_string(size.x) + ", " + std::to_string(size.y) + ")";
@@ -186,6 +196,8 @@ struct Renderer::Impl {
     // triangles of both shape batches (the solids).
     std::vector<float> pressureScratch;
     std::vector<ShapeVertex> solidScratch;
+    // Positions between steps (ParticleSpans::previousX): the interpolated x and y.
+    std::vector<float> drawnX, drawnY;
 
     explicit Impl(glm::ivec2 targetSize);
     ~Impl();
@@ -309,6 +321,9 @@ Renderer::Impl::Impl(glm::ivec2 targetSize) {
         if (c == kChMaterial) {
             // Integer attribute: the shader indexes the style arrays with it.
             glVertexAttribIPointer(location, 1, GL_UNSIGNED_SHORT, 0, nullptr);
+        } else if (c == kChColour) {
+            // RGBA8 per particle, read as normalised floats (alpha 0: the material's colour).
+            glVertexAttribPointer(location, 4, GL_UNSIGNED_BYTE, GL_TRUE, 0, nullptr);
         } else {
             glVertexAttribPointer(location, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
         }
@@ -464,6 +479,8 @@ void Renderer::Impl::uploadChannel(Channel channel, const void* data, size_t byt
         glDisableVertexAttribArray(location);
         if (channel == kChMaterial) {
             glVertexAttribI4ui(location, 0, 0, 0, 0);
+        } else if (channel == kChColour) {
+            glVertexAttrib4f(location, 0.0f, 0.0f, 0.0f, 0.0f); // no colour: the material's
         } else {
             glVertexAttrib1f(location, 0.0f);
         }
@@ -684,6 +701,13 @@ RenderStats Renderer::render(const Camera& camera, const ParticleSpans& particle
     checkSpan(particles.vy.size(), "vy", true);
     checkSpan(particles.pressure.size(), "pressure", true);
     checkSpan(particles.material.size(), "material", true);
+    checkSpan(particles.colour.size(), "colour", true);
+    checkSpan(particles.previousX.size(), "previousX", true);
+    checkSpan(particles.previousY.size(), "previousY", particles.previousX.empty());
+    if (!(particles.factor >= 0.0f && particles.factor <= 1.0f)) {
+        throw Error("fluid::gl: Renderer: particle spans' factor = " +
+                    std::to_string(particles.factor) + " is out of range [0, 1]");
+    }
     if (n > size_t(1) << 30) {
         throw Error("fluid::gl: Renderer: " + std::to_string(n) +
                     " particles is out of range [0, 2^30]");
@@ -793,14 +817,28 @@ RenderStats Renderer::render(const Camera& camera, const ParticleSpans& particle
     m.drawShapes(0, static_cast<GLsizei>(underCount));
 
     // ---- 2. the liquid ----
+    // Positions between steps: previous + factor (current - previous), as
+    // fluid::interpolatedPositions computes them.
+    std::span<const float> drawnX = particles.x, drawnY = particles.y;
+    if (n > 0 && !particles.previousX.empty()) {
+        const float f = particles.factor;
+        m.drawnX.resize(n);
+        m.drawnY.resize(n);
+        for (size_t i = 0; i < n; ++i) {
+            m.drawnX[i] = (1.0f - f) * particles.previousX[i] + f * particles.x[i];
+            m.drawnY[i] = (1.0f - f) * particles.previousY[i] + f * particles.y[i];
+        }
+        drawnX = m.drawnX;
+        drawnY = m.drawnY;
+    }
     if (n > 0) {
         const View view = settings.view;
         const bool usePressure = view == View::Pressure && !particles.pressure.empty();
         const bool useVelocity = view == View::Particles;
         // Enabling and disabling attribute arrays is state of the bound vertex array.
         glBindVertexArray(m.particleVao);
-        m.uploadChannel(kChX, particles.x.data(), n * sizeof(float), true);
-        m.uploadChannel(kChY, particles.y.data(), n * sizeof(float), true);
+        m.uploadChannel(kChX, drawnX.data(), n * sizeof(float), true);
+        m.uploadChannel(kChY, drawnY.data(), n * sizeof(float), true);
         m.uploadChannel(kChVx, particles.vx.data(), n * sizeof(float),
                         useVelocity && !particles.vx.empty());
         m.uploadChannel(kChVy, particles.vy.data(), n * sizeof(float),
@@ -808,6 +846,8 @@ RenderStats Renderer::render(const Camera& camera, const ParticleSpans& particle
         m.uploadChannel(kChPressure, particles.pressure.data(), n * sizeof(float), usePressure);
         m.uploadChannel(kChMaterial, particles.material.data(), n * sizeof(uint16_t),
                         !particles.material.empty());
+        m.uploadChannel(kChColour, particles.colour.data(), n * sizeof(uint32_t),
+                        !particles.colour.empty());
 
         // The rim band: about a third of a spacing of the first material, 1.5 to 12 px.
         const float rimWidth = std::clamp(0.3f * m.spacing[0] * targetPixelsPerMetre, 1.5f, 12.0f);
@@ -829,7 +869,7 @@ RenderStats Renderer::render(const Camera& camera, const ParticleSpans& particle
             // grown by the largest kernel radius.
             glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
             for (size_t i = 0; i < n; ++i) {
-                const float x = particles.x[i], y = particles.y[i];
+                const float x = drawnX[i], y = drawnY[i];
                 lo.x = x < lo.x ? x : lo.x;
                 hi.x = x > hi.x ? x : hi.x;
                 lo.y = y < lo.y ? y : lo.y;

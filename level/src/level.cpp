@@ -4,6 +4,7 @@
 #include "json_positions.h"
 #include "names.h"
 
+#include <fluid/groups.h>
 #include <fluid/level.h>
 #include <fluid/material.h>
 #include <fluid/shape.h>
@@ -143,7 +144,8 @@ private:
             const ObjectReader w(m_doc, *value, root.pointer("world"), "the world settings");
             std::vector<std::string_view> allowed{"gravity", "frameRate", "solver", "quality"};
             addNames(allowed, positionBasedFields());
-            allowed.insert(allowed.end(), {"equationOfState", "soundSpeed", "workers"});
+            allowed.insert(allowed.end(),
+                           {"equationOfState", "soundSpeed", "workers", "colourMixing"});
             addNames(allowed, worldFields());
             w.allowOnly(allowed);
             if (w.has("gravity")) {
@@ -186,6 +188,8 @@ private:
             def.soundSpeed = float(c);
             readFields(w, worldFields(), def);
             def.workerCount = uint32_t(w.integer("workers", {1, 256, "count"}, 1));
+            // Colour mixing between coloured blobs (fluid/groups.h), set once the world exists.
+            colourMixing = float(w.number("colourMixing", {0, 1000, "1/s"}, 0.0));
         }
         if (m_options.workerCount > 0) {
             def.workerCount = m_options.workerCount;
@@ -196,6 +200,7 @@ private:
         }
         m_level.world = located(m_doc, root.has("world") ? root.pointer("world") : "",
                                 [&] { return World(def); });
+        setColourMixing(m_level.world, colourMixing);
         if (gravity) {
             // force.gravity is the world's first force, so plugins listed later act after it.
             const std::array<ParamValue, 2> g{{{"gx", gravity->x}, {"gy", gravity->y}}};
@@ -438,12 +443,40 @@ private:
         return shape;
     }
 
+    // "#rrggbb" or "#rrggbbaa" (alpha not 0), or nothing.
+    static std::optional<Colour> parseColour(const std::string& text) {
+        if ((text.size() != 7 && text.size() != 9) || text[0] != '#') {
+            return std::nullopt;
+        }
+        uint8_t bytes[4] = {0, 0, 0, 255};
+        for (std::size_t k = 1; k < text.size(); k += 2) {
+            uint32_t v = 0;
+            for (std::size_t d = k; d < k + 2; ++d) {
+                const char ch = text[d];
+                const int digit = ch >= '0' && ch <= '9'   ? ch - '0'
+                                  : ch >= 'a' && ch <= 'f' ? ch - 'a' + 10
+                                  : ch >= 'A' && ch <= 'F' ? ch - 'A' + 10
+                                                           : -1;
+                if (digit < 0) {
+                    return std::nullopt;
+                }
+                v = v * 16 + uint32_t(digit);
+            }
+            bytes[(k - 1) / 2] = uint8_t(v);
+        }
+        if (bytes[3] == 0) {
+            return std::nullopt;
+        }
+        return Colour{bytes[0], bytes[1], bytes[2], bytes[3]};
+    }
+
     void readBlobs(const ObjectReader& root) {
         const Json* list = root.array("blobs", "blobs");
         for (std::size_t i = 0; list != nullptr && i < list->size(); ++i) {
             const std::string at = childPointer(root.pointer("blobs"), i);
             const ObjectReader b(m_doc, (*list)[i], at, "a blob");
-            const Shape shape = readShape(b, {"material", "velocity", "lifetime", "structure"});
+            const Shape shape =
+                readShape(b, {"material", "velocity", "lifetime", "structure", "colour"});
             BlobDef blob;
             blob.shape = shape;
             blob.material =
@@ -452,6 +485,16 @@ private:
             blob.velocity = b.point("velocity", kVelocity, {0.0f, 0.0f});
             blob.lifetime = float(b.number("lifetime", kLifetime, 0.0));
             blob.structure = float(b.number("structure", kStructure, 0.0));
+            // "colour": "#rrggbb" or "#rrggbbaa" (sRGB): the blob is a group of that colour.
+            if (b.has("colour")) {
+                const std::string text = b.string("colour", "");
+                const std::optional<Colour> c = parseColour(text);
+                if (!c) {
+                    b.failAt("colour", "expected \"#rrggbb\" or \"#rrggbbaa\" (hexadecimal "
+                                       "sRGB, alpha not 00), got " + internal::quoted(text));
+                }
+                blob.group = createGroup(m_level.world, GroupDef{0, *c});
+            }
             const double lattice = checkBlobSize(b, shape, blob.material);
             const uint32_t first = m_level.world.particleCount();
             uint32_t inside = 0;
@@ -708,6 +751,7 @@ private:
     const Registry& m_registry;
     const LevelOptions& m_options;
     Level& m_level;
+    float colourMixing = 0.0f; // the world's "colourMixing" (1/s)
     // Overlapping blobs (warnOverlaps): the first particle of each blob read so far and the
     // blob's index in the file, the particles by cell, the cell size (m).
     std::vector<uint32_t> m_blobStarts;
@@ -792,7 +836,11 @@ Level& Level::operator=(Level&& other) noexcept {
 }
 
 void Level::step() {
-    const float dt = 1.0f / frameRate;
+    step(1.0f / frameRate);
+}
+
+void Level::step(float frameDt) {
+    const float dt = frameDt;
     if (coupling) {
         coupling->step(world, dt);
     } else {

@@ -76,14 +76,14 @@ TEST_CASE("level errors: unknown keys are named with the allowed ones", "[level]
     CHECK(errorOf(level(R"(, "world": {"zz": 1, "frameRate": 60, "aa": 2})")) ==
           "t.json:1:60: at /world/zz: unknown key 'zz'; allowed: gravity, frameRate, solver, "
           "quality, substeps, iterations, viscosityInterval, coarseCorrection, vorticity, "
-          "shearConstraint, equationOfState, soundSpeed, workers, depth, courant, maxSubsteps, "
-          "maxParticles");
+          "shearConstraint, equationOfState, soundSpeed, workers, colourMixing, depth, "
+          "courant, maxSubsteps, maxParticles");
     // Keys that belong to another shape are unknown too.
     CHECK(
         errorOf(level(
             R"(, "blobs": [{"material": "water", "shape": "box", "min": [0, 0], "max": [1, 1], "radius": 1}])")) ==
         "t.json:1:128: at /blobs/0/radius: unknown key 'radius'; allowed: material, velocity, "
-        "lifetime, structure, shape, min, max");
+        "lifetime, structure, colour, shape, min, max");
     // A blob's starting structure is a share in [0, 1].
     CHECK(
         errorOf(level(

@@ -189,9 +189,14 @@ TEST_CASE("snapshot: truncated, corrupt or foreign data is refused", "[snapshot]
     flipped[bytes.size() / 2] = char(flipped[bytes.size() / 2] ^ 0x10);
     CHECK_THROWS_WITH(restored(flipped, registry), "snapshot: corrupt: checksum mismatch");
     std::string version = bytes;
-    version[8] = 7;
-    CHECK_THROWS_WITH(restored(version, registry),
-                      "snapshot: format version 7 is not supported; this fluid reads version 6");
+    version[8] = 8;
+    CHECK_THROWS_WITH(
+        restored(version, registry),
+        "snapshot: format version 8 is not supported; this fluid reads versions 6 to 7");
+    version[8] = 5;
+    CHECK_THROWS_WITH(
+        restored(version, registry),
+        "snapshot: format version 5 is not supported; this fluid reads versions 6 to 7");
     // Every truncation point is refused, none crashes.
     for (size_t cut = 0; cut < bytes.size(); cut += 97) {
         CHECK_THROWS_AS(restored(bytes.substr(0, cut), registry), Error);
@@ -314,7 +319,7 @@ TEST_CASE("snapshot: a huge file is refused from its header, before its body is 
         CHECK_THROWS_MATCHES(
             World::load(in, registry), Error,
             Catch::Message("snapshot: format version 9 is not supported; this fluid reads "
-                           "version 6"));
+                           "versions 6 to 7"));
         CHECK(file.served() <= 65536); // the first window only
     }
     {

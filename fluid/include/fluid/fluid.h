@@ -3,6 +3,7 @@
 
 #include <fluid/error.h>
 #include <fluid/gameplay.h>
+#include <fluid/groups.h>
 #include <fluid/handle.h>
 #include <fluid/material.h>
 #include <fluid/plugin.h>

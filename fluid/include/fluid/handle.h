@@ -44,4 +44,23 @@ struct MaterialId {
     friend constexpr bool operator==(MaterialId a, MaterialId b) { return a.index == b.index; }
 };
 
+// ---- Groups (groups.h; issue 63) ----
+
+/// A group of particles: a blob, an emitter's output, or one the game made (`createGroup`).
+/// Groups are destroyed (`destroyGroup`) or merged away (`mergeGroups`), after which the handle
+/// is stale: calls that take it throw `fluid::Error` naming it. The all-zero handle is null.
+/// Thread rule: a plain value, copy it anywhere.
+struct GroupHandle {
+    /// Index in the world's group table (unit: index).
+    uint32_t index = 0;
+    /// Generation of the entry when the handle was made (unit: count; 0 means null).
+    uint32_t generation = 0;
+    /// Tag of the `World` that made it (as `ParticleHandle::world`; 0 in the null handle).
+    uint32_t world = 0;
+    /// True for the null handle.
+    constexpr bool isNull() const { return generation == 0; }
+    /// Handles are equal when index, generation and world are.
+    friend constexpr bool operator==(GroupHandle, GroupHandle) = default;
+};
+
 } // namespace fluid

@@ -194,6 +194,11 @@ struct BlobDef {
     /// first step (docs/position_based.md, "The shear constraint"). Unused for other
     /// materials.
     float structure = 0.0f;
+    // ---- Groups (groups.h) ----
+    /// The group the particles join (`createGroup`): they take its user data and colour
+    /// (`GroupDef`). Null, the default, makes a new group for the blob (`spawnGroup` returns it;
+    /// `groupOf` finds it from any of its particles). A stale handle is refused.
+    GroupHandle group{};
 };
 
 /// The most stages a step's profile names (unit: count).

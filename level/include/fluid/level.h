@@ -189,6 +189,11 @@ struct Level {
     /// `coupling->step(world, dt)` (fluid step, fluid forces on the bodies, `b2World::Step`);
     /// without, `world.step(dt)`. Throws as `World::step` and `box2d::Coupling::step`.
     void step();
+    /// Steps the level by a frame of `frameDt` s (unit: s; finite, range (0, 1]), as `step`
+    /// does for 1 / `frameRate`: for a game that steps by the display's frame time and draws
+    /// positions between sub-steps (fluid/groups.h, `fluid::setInterpolation`). Throws as
+    /// `step`, and `fluid::Error` naming frameDt out of range.
+    void step(float frameDt);
 
     /// Destroys `body`, a body of `physics` (the file's or one the game added), with the joints
     /// attached to it, and drops them from `bodies` and `joints` (the fluid no longer meets it

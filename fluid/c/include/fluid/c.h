@@ -1177,6 +1177,169 @@ FLUID_C_API fluid_status fluid_level_set_body_velocity(fluid_level* level, uint3
                                                        fluid_vec2 velocity,
                                                        float angular_velocity);
 
+/* ---- Groups, per-particle user data and colours, positions between steps (fluid/groups.h,
+ * docs/groups.md). Calls from inside the world's step fail with FLUID_ERROR_REFUSED; a stale,
+ * null or other world's group or particle id with FLUID_ERROR_STALE_ID and the C++ message
+ * ("groupCount: stale group handle {index 1, generation 1}: ..."). ---- */
+
+/// A group of particles (C++ fluid::GroupHandle): a blob, an emitter's output, or one made with
+/// fluid_world_create_group. All zero is null. A plain value.
+typedef struct fluid_group_id {
+    /// Index in the world's group table (unit: index).
+    uint32_t index;
+    /// Generation (unit: count; 0 in the null id).
+    uint32_t generation;
+    /// Tag of the world that made it.
+    uint32_t world;
+} fluid_group_id;
+
+/// A particle's colour (C++ fluid::Colour; unit: 0..255 per channel); alpha 0 = none (the
+/// material's style).
+typedef struct fluid_colour {
+    /// Red, green, blue and alpha (unit: 0..255 each; alpha 0 = no colour).
+    uint8_t r, g, b, a;
+} fluid_colour;
+
+/// What particles that join a group at spawn start with (C++ fluid::GroupDef).
+typedef struct fluid_group_def {
+    /// User data of each new particle (0 = none).
+    uint32_t user_data;
+    /// Colour of each new particle (alpha 0 = none).
+    fluid_colour colour;
+} fluid_group_def;
+
+/// Makes an empty group; `def` may be NULL (no user data, no colour).
+FLUID_C_API fluid_status fluid_world_create_group(fluid_world* world, const fluid_group_def* def,
+                                                  fluid_group_id* group);
+
+/// Spawns a blob (as fluid_world_spawn_blob) into `into`, or, when `into` is null (all zero),
+/// into a new group made with `def` (may be NULL); `group` receives the group, `spawned` (may be
+/// NULL) the particle count.
+FLUID_C_API fluid_status fluid_world_spawn_group(fluid_world* world, const fluid_blob_def* blob,
+                                                 fluid_group_id into, const fluid_group_def* def,
+                                                 fluid_group_id* group, uint32_t* spawned);
+
+/// True in `*valid` while the group exists.
+FLUID_C_API fluid_status fluid_world_group_valid(const fluid_world* world, fluid_group_id group,
+                                                 bool* valid);
+
+/// The particle's group (null when it has none).
+FLUID_C_API fluid_status fluid_world_particle_group(const fluid_world* world,
+                                                    fluid_particle_id particle,
+                                                    fluid_group_id* group);
+
+/// Moves the particle into `group` (it keeps its user data and colour).
+FLUID_C_API fluid_status fluid_world_set_particle_group(fluid_world* world,
+                                                        fluid_particle_id particle,
+                                                        fluid_group_id group);
+
+/// The group an emitter's particles join (made for it by fluid_world_add_emitter).
+FLUID_C_API fluid_status fluid_world_emitter_group(const fluid_world* world,
+                                                   fluid_emitter_id emitter,
+                                                   fluid_group_id* group);
+
+/// Makes an emitter's future particles join `group`.
+FLUID_C_API fluid_status fluid_world_set_emitter_group(fluid_world* world,
+                                                       fluid_emitter_id emitter,
+                                                       fluid_group_id group);
+
+/// Replaces what the group's new particles take (its particles keep theirs).
+FLUID_C_API fluid_status fluid_world_set_group_def(fluid_world* world, fluid_group_id group,
+                                                   const fluid_group_def* def);
+
+/// Particles in the group (unit: count).
+FLUID_C_API fluid_status fluid_world_group_count(const fluid_world* world, fluid_group_id group,
+                                                 uint32_t* count);
+
+/// Writes the ids of the group's particles in increasing index, at most `capacity` (`ids` may
+/// be NULL with capacity 0); `count` receives the group's count.
+FLUID_C_API fluid_status fluid_world_group_particles(const fluid_world* world,
+                                                     fluid_group_id group,
+                                                     fluid_particle_id* ids, uint32_t capacity,
+                                                     uint32_t* count);
+
+/// The group's centre of mass (unit: m; (0, 0) when empty).
+FLUID_C_API fluid_status fluid_world_group_centre(const fluid_world* world, fluid_group_id group,
+                                                  fluid_vec2* centre);
+
+/// The group's mass-weighted mean velocity (unit: m/s; (0, 0) when empty).
+FLUID_C_API fluid_status fluid_world_group_velocity(const fluid_world* world,
+                                                    fluid_group_id group, fluid_vec2* velocity);
+
+/// Translates the group by `offset` (unit: m; finite); all or nothing.
+FLUID_C_API fluid_status fluid_world_move_group(fluid_world* world, fluid_group_id group,
+                                                fluid_vec2 offset);
+
+/// Sets the velocity of every particle of the group (unit: m/s; finite).
+FLUID_C_API fluid_status fluid_world_set_group_velocity(fluid_world* world, fluid_group_id group,
+                                                        fluid_vec2 velocity);
+
+/// Destroys the group, with its particles when `with_particles`, else leaving them without one.
+FLUID_C_API fluid_status fluid_world_destroy_group(fluid_world* world, fluid_group_id group,
+                                                   bool with_particles);
+
+/// Moves every particle of `from` into `into` and destroys `from`.
+FLUID_C_API fluid_status fluid_world_merge_groups(fluid_world* world, fluid_group_id into,
+                                                  fluid_group_id from);
+
+/// A particle's user data (0 when never set).
+FLUID_C_API fluid_status fluid_world_particle_user_data(const fluid_world* world,
+                                                        fluid_particle_id particle,
+                                                        uint32_t* value);
+
+/// Sets a particle's user data.
+FLUID_C_API fluid_status fluid_world_set_particle_user_data(fluid_world* world,
+                                                            fluid_particle_id particle,
+                                                            uint32_t value);
+
+/// Sets the user data of every particle of the group.
+FLUID_C_API fluid_status fluid_world_set_group_user_data(fluid_world* world, fluid_group_id group,
+                                                         uint32_t value);
+
+/// Writes every particle's user data in index order, at most `capacity` (`values` may be NULL
+/// with capacity 0); `count` receives the particle count.
+FLUID_C_API fluid_status fluid_world_user_data(const fluid_world* world, uint32_t* values,
+                                               uint32_t capacity, uint32_t* count);
+
+/// A particle's colour (alpha 0 when none).
+FLUID_C_API fluid_status fluid_world_particle_colour(const fluid_world* world,
+                                                     fluid_particle_id particle,
+                                                     fluid_colour* colour);
+
+/// Sets a particle's colour (alpha 0 takes it away).
+FLUID_C_API fluid_status fluid_world_set_particle_colour(fluid_world* world,
+                                                         fluid_particle_id particle,
+                                                         fluid_colour colour);
+
+/// Sets the colour of every particle of the group.
+FLUID_C_API fluid_status fluid_world_set_group_colour(fluid_world* world, fluid_group_id group,
+                                                      fluid_colour colour);
+
+/// Every particle's colour in index order, as fluid_colour (r, g, b, a bytes), valid until the
+/// world changes; `*colours` receives NULL and `*count` 0 while no particle ever had one.
+FLUID_C_API fluid_status fluid_world_colours(const fluid_world* world,
+                                             const fluid_colour** colours, uint32_t* count);
+
+/// Colour mixing between touching coloured particles (unit: 1/s; range [0, 1000]; 0 off).
+FLUID_C_API fluid_status fluid_world_set_colour_mixing(fluid_world* world, float rate);
+
+/// Keeps (or drops) the previous sub-step's positions for drawing between steps (off by
+/// default; costs nothing while off).
+FLUID_C_API fluid_status fluid_world_set_interpolation(fluid_world* world, bool on);
+
+/// How far between the previous and current positions to draw now (unit: 1; [0, 1]):
+/// carried time over the sub-step plus a half (1 for the explicit solver).
+FLUID_C_API fluid_status fluid_world_interpolation_factor(const fluid_world* world,
+                                                          float* factor);
+
+/// Writes the positions interpolated at `factor` (unit: 1; [0, 1], negative for
+/// fluid_world_interpolation_factor) into `x` and `y`, at most `capacity` each (NULL with
+/// capacity 0); `count` (may be NULL) receives the particle count. The current positions while
+/// interpolation is off.
+FLUID_C_API fluid_status fluid_world_interpolated_positions(const fluid_world* world, float* x,
+                                                            float* y, uint32_t capacity,
+                                                            float factor, uint32_t* count);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

@@ -9,6 +9,7 @@
 #include <fluid/gl/camera.h>
 #include <fluid/gl/shapes.h>
 #include <fluid/surface_field.h>
+#include <fluid/groups.h>
 #include <fluid/world.h>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -59,12 +60,37 @@ struct ParticleSpans {
     std::span<const float> pressure;
     /// Material index per particle (index into `Renderer::setMaterials`).
     std::span<const uint16_t> material;
+    /// Colour per particle, packed RGBA8 (`fluid::Colour::pack`, sRGB; may be empty): the
+    /// metaball view draws a particle whose alpha is not 0 in its own colour instead of its
+    /// material's, and mixes colours where they meet as it mixes materials.
+    std::span<const uint32_t> colour;
+    /// Positions at the start of the last sub-step (unit: m; may be empty, else both sizes of
+    /// `x`): when given, particles are drawn at `previous + factor (current - previous)`,
+    /// positions between steps (fluid/groups.h, `fluid::setInterpolation`).
+    std::span<const float> previousX, previousY;
+    /// How far from the previous to the current positions to draw (unit: 1; range [0, 1]; read
+    /// only with `previousX`); `fluid::interpolationFactor(world)`.
+    float factor = 1.0f;
 };
 
-/// The spans of `world`'s particles, valid until its next step. Thread rule: as `World`.
+/// The spans of `world`'s particles, valid until its next step: with its colours
+/// (`fluid::colours`) and, when the world interpolates (`fluid::setInterpolation`), its
+/// previous positions and interpolation factor. Thread rule: as `World`.
 inline ParticleSpans particles(const World& world) {
-    return {world.positionX(), world.positionY(), world.velocityX(),
-            world.velocityY(), world.pressure(),  world.materialIndex()};
+    ParticleSpans spans;
+    spans.x = world.positionX();
+    spans.y = world.positionY();
+    spans.vx = world.velocityX();
+    spans.vy = world.velocityY();
+    spans.pressure = world.pressure();
+    spans.material = world.materialIndex();
+    spans.colour = fluid::colours(world);
+    if (fluid::interpolating(world)) {
+        spans.previousX = fluid::previousPositionX(world);
+        spans.previousY = fluid::previousPositionY(world);
+        spans.factor = fluid::interpolationFactor(world);
+    }
+    return spans;
 }
 
 /// What the liquid looks like.
