@@ -31,8 +31,8 @@ namespace fluid {
 /// contexts). 5: `BoundaryPlugin` gained `rigidBodies` and `receiveBodyImpulses` (bodies in the
 /// coarse pressure solve). 6: `BoundaryPlugin` gained `steppedBy` (a plugin whose host must step
 /// the world). 7: `Plugin` gained `checkParams`, and `Error` writes control characters as
-/// "\xNN". Thread rule: a constant.
-inline constexpr uint32_t kPluginAbiVersion = 7;
+/// "\xNN". 8: `RigidBody` gained `contacts` (contact events). Thread rule: a constant.
+inline constexpr uint32_t kPluginAbiVersion = 8;
 
 /// FNV-1a (32 bit) of the declarations of fluid/plugin.h and fluid/registry.h with `//`
 /// comments and all whitespace removed (see `pluginAbiDeclHash`). Part of
