@@ -6,6 +6,7 @@
 #include "box2d_math.h"
 #include "solver_state.h"
 
+#include <fluid/contacts.h>
 #include <fluid/error.h>
 #include <fluid/internal/binary.h>
 #include <fluid/internal/checks.h>
@@ -162,6 +163,7 @@ Coupling::Coupling(World& world, b2World& physics, const CouplingDef& def)
             world.addBoundary(std::make_unique<BodyBoundary>()));
     }
     m_boundary->attach(&physics, &m_def);
+    m_boundary->setContactBodies(&m_contactBodies);
 }
 
 void registerCouplingPlugin(Registry& registry) {
@@ -173,7 +175,130 @@ void registerCouplingPlugin(Registry& registry) {
 }
 
 Coupling::~Coupling() {
+    m_boundary->setContactBodies(nullptr);
     m_boundary->attach(nullptr, nullptr);
+}
+
+void Coupling::setContactEvents(const b2Body* body, bool on) {
+    bool found = false;
+    for (const b2Body* b = m_physics->GetBodyList(); b != nullptr && !found; b = b->GetNext()) {
+        found = b == body;
+    }
+    if (!found) {
+        throw Error("fluid::box2d::Coupling::setContactEvents: the body is not one of the "
+                    "coupling's b2World (a null, destroyed or another world's body)");
+    }
+    if (on) {
+        m_contactBodies.insert(body);
+    } else {
+        m_contactBodies.erase(body);
+    }
+}
+
+bool Coupling::contactEvents(const b2Body* body) const {
+    return m_contactBodies.count(body) != 0;
+}
+
+std::span<const ParticleContact> Coupling::particleContacts() const {
+    return m_particleContacts;
+}
+
+std::span<const ParticleHandle> Coupling::contactParticles(uint32_t contact) const {
+    if (contact >= m_particleContacts.size()) {
+        throw Error("fluid::box2d::Coupling::contactParticles: contact = " +
+                    std::to_string(contact) + " is out of range: the last step reported " +
+                    std::to_string(m_particleContacts.size()) + " contacts");
+    }
+    const uint32_t b = m_contactBegin[contact], e = m_contactBegin[contact + 1];
+    return std::span<const ParticleHandle>(m_contactHandles).subspan(b, e - b);
+}
+
+// One round's contact events of the world, for the bodies of this coupling's plugin, added to
+// the frame's sums (bodies in the order they first report).
+void Coupling::collectContacts(const World& world, float dt) {
+    const std::span<const BodyContact> contacts = bodyContacts(world);
+    if (contacts.empty()) {
+        return;
+    }
+    uint32_t plugin = 0;
+    while (plugin < world.boundaries().size() && world.boundaries()[plugin].get() != m_boundary) {
+        ++plugin;
+    }
+    const std::span<const BodyEntry> bodies = m_boundary->bodies();
+    for (uint32_t i = 0; i < contacts.size(); ++i) {
+        const BodyContact& e = contacts[i];
+        if (e.plugin != plugin || e.body >= bodies.size()) {
+            continue;
+        }
+        b2Body* body = bodies[e.body].body;
+        auto sum = std::find_if(m_contactSums.begin(), m_contactSums.end(),
+                                [&](const ContactSum& c) { return c.body == body; });
+        if (sum == m_contactSums.end()) {
+            m_contactSums.push_back(ContactSum{});
+            sum = m_contactSums.end() - 1;
+            sum->body = body;
+        }
+        const std::span<const ParticleHandle> handles = fluid::contactParticles(world, i);
+        sum->handles.insert(sum->handles.end(), handles.begin(), handles.end());
+        if (sum->materials.size() <= e.material.index) {
+            sum->materials.resize(std::size_t(e.material.index) + 1, 0);
+        }
+        sum->materials[e.material.index] += e.particles;
+        // The round's force as the coupling measures it (m_reports is in bodies() order).
+        sum->impulse += double(dt) * glm::dvec2(m_reports[e.body].force);
+        sum->pointSum += double(e.particles) * glm::dvec2(e.point);
+        sum->touches += double(e.particles);
+        sum->approach = std::max(sum->approach, e.approachSpeed);
+    }
+}
+
+// The frame's events from its sums, in the b2World's body order.
+void Coupling::finishContacts(const World& world) {
+    m_particleContacts.clear();
+    m_contactHandles.clear();
+    m_contactBegin.clear();
+    if (!m_contactSums.empty()) {
+        for (b2Body* b = m_physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
+            const auto sum = std::find_if(m_contactSums.begin(), m_contactSums.end(),
+                                          [&](const ContactSum& c) { return c.body == b; });
+            if (sum == m_contactSums.end()) {
+                continue;
+            }
+            std::vector<ParticleHandle> handles = sum->handles;
+            std::sort(handles.begin(), handles.end(), [](ParticleHandle x, ParticleHandle y) {
+                return x.slot != y.slot ? x.slot < y.slot : x.generation < y.generation;
+            });
+            handles.erase(std::unique(handles.begin(), handles.end()), handles.end());
+            ParticleContact c;
+            c.body = b;
+            c.material = world.adopt(MaterialId{uint16_t(
+                std::max_element(sum->materials.begin(), sum->materials.end()) -
+                sum->materials.begin())});
+            c.group = 0; // the world's BodyContact::group once particles carry groups
+            c.particles = uint32_t(handles.size());
+            c.impulse = glm::vec2(sum->impulse);
+            c.point = glm::vec2(sum->pointSum / sum->touches);
+            c.approachSpeed = sum->approach;
+            m_contactBegin.push_back(uint32_t(m_contactHandles.size()));
+            m_contactHandles.insert(m_contactHandles.end(), handles.begin(), handles.end());
+            m_particleContacts.push_back(c);
+        }
+    }
+    m_contactBegin.push_back(uint32_t(m_contactHandles.size()));
+}
+
+// Forgets the contact settings of bodies no longer in the b2World (destroyed since).
+void Coupling::forgetDestroyedContactBodies() {
+    if (m_contactBodies.empty()) {
+        return;
+    }
+    std::unordered_set<const b2Body*> alive; // lookup only
+    for (const b2Body* b = m_physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
+        if (m_contactBodies.count(b) != 0) {
+            alive.insert(b);
+        }
+    }
+    m_contactBodies = std::move(alive);
 }
 
 const CouplingDef& Coupling::def() const {
@@ -301,6 +426,9 @@ void Coupling::step(World& world, float dt) {
     m_contacts.clear();
     m_removed.clear();
     m_profile = Profile{};
+    m_contactSums.clear();
+    finishContacts(world);
+    forgetDestroyedContactBodies();
     if (world.def().solver != Solver::PositionBased) {
         // The explicit solver: kExplicitRounds rounds a 1/60 s frame, more for a longer one by
         // the long-frame rule (see the class comment), each in its own CFL sub-steps.
@@ -349,6 +477,9 @@ void Coupling::stepFluid(World& world, float dt) {
     m_contacts.clear();
     m_removed.clear();
     m_profile = Profile{};
+    m_contactSums.clear();
+    finishContacts(world);
+    forgetDestroyedContactBodies();
     // The time the world simulates: dt, or for the position-based solver the whole sub-steps
     // due (its carried time included).
     const bool positionBased = world.def().solver == Solver::PositionBased;
@@ -423,6 +554,10 @@ void Coupling::fluidRound(World& world, float given, float simulated) {
     const std::span<const RemovedEvent> removed = world.removedEvents();
     m_removed.insert(m_removed.end(), removed.begin(), removed.end());
     makeReports(world);
+    if (!m_contactBodies.empty()) {
+        collectContacts(world, dt);
+        finishContacts(world);
+    }
     applyForces(dt);
     remember();
 }
@@ -717,7 +852,8 @@ void Coupling::makeReports(const World& world) {
 
 namespace {
 constexpr char kStateMagic[8] = {'F', 'L', 'C', 'O', 'U', 'P', 'L', 'E'};
-constexpr uint32_t kStateVersion = 1;
+// 2: the bodies that ask for contact events follow the poses (a version-1 save has none).
+constexpr uint32_t kStateVersion = 2;
 // Bounds of a saved body state, from the live limits: a coupled body is at most 1e5 m from the
 // origin and at most 1e3 m/s fast (BodyBoundary: faster or farther bodies are skipped), and of
 // at most 1e9 kg (the fluid's RigidBody::mass). The momentum such a body can hold bounds what
@@ -770,6 +906,16 @@ void Coupling::save(std::ostream& out) const {
         w.put(p.com.y);
         w.put(p.angle);
     }
+    std::vector<uint32_t> asking;
+    for (const b2Body* b = m_physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
+        if (m_contactBodies.count(b) != 0) {
+            asking.push_back(index.at(b));
+        }
+    }
+    w.put(uint32_t(asking.size()));
+    for (const uint32_t k : asking) {
+        w.put(k);
+    }
     if (!out) {
         throw Error("fluid::box2d::Coupling::save: the stream failed while writing");
     }
@@ -786,8 +932,8 @@ void Coupling::load(std::istream& in) {
         r.fail("not a coupling save (bad magic)");
     }
     const auto version = r.get<uint32_t>("version");
-    if (version != kStateVersion) {
-        r.fail("version " + std::to_string(version) + " is not supported (this build reads " +
+    if (version != 1 && version != kStateVersion) {
+        r.fail("version " + std::to_string(version) + " is not supported (this build reads 1 and " +
                std::to_string(kStateVersion) + ")");
     }
     const auto bodyIndex = [&](const char* field) {
@@ -827,7 +973,15 @@ void Coupling::load(std::istream& in) {
         p.com.y = r.number(of + "y", -kMaxPosition, kMaxPosition, "m");
         p.angle = r.number(of + "angle", -kMaxAngle, kMaxAngle, "rad");
     }
+    std::unordered_set<const b2Body*> asking;
+    if (version >= 2) {
+        const uint32_t count = r.count("contact body count", uint32_t(bodies.size()));
+        for (uint32_t k = 0; k < count; ++k) {
+            asking.insert(bodies[bodyIndex("contact body index")]);
+        }
+    }
     // Everything read: now the coupling changes.
+    m_contactBodies = std::move(asking);
     m_previous = std::move(previous);
     m_boundary->setSeenPoses(poses);
     m_reports.clear();
@@ -835,6 +989,10 @@ void Coupling::load(std::istream& in) {
     m_contacts.clear();
     m_removed.clear();
     m_profile = Profile{};
+    m_contactSums.clear();
+    m_particleContacts.clear();
+    m_contactHandles.clear();
+    m_contactBegin.assign(1, 0);
     // A Box2D world restored by loadPhysics from a version-2 save carries the forces Box2D has
     // accumulated (these among them): adding them again would double them. A world without any
     // (a version-1 save, a world rebuilt by hand) gets them here.
