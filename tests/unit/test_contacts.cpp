@@ -166,7 +166,7 @@ TEST_CASE("contacts: a disc held in a resting tank reports the particles around 
     CHECK(e.approachSpeed < 0.05f);
 }
 
-TEST_CASE("contacts: a dry disc and a disc that does not ask report nothing; asking changes "
+TEST_CASE("contacts: a dry disc and a disc that does not ask report nothing, and asking changes "
           "nothing of the step",
           "[unit][contacts]") {
     for (const Solver solver : {Solver::PositionBased, Solver::Explicit}) {
