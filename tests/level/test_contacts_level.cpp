@@ -9,7 +9,12 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 using namespace fluid;
@@ -109,4 +114,46 @@ TEST_CASE("level contacts: the key where it cannot apply is refused", "[level][c
           {"shape": "circle", "radius": 0.1, "density": 1}]}]})") ==
           "t.json:1:90: at /bodies/0/contacts: a body with \"fluid\": false never touches the "
           "liquid: it has no contact events");
+}
+
+TEST_CASE("level contacts: fluid-run writes the asking bodies' and shapes' contacts to its CSV",
+          "[level][contacts][fluid-run]") {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / "fluid_run_contacts";
+    fs::create_directories(dir);
+    {
+        std::ofstream(dir / "contacts.json") << kLevel;
+    }
+    std::ostringstream command;
+    command << std::quoted(FLUID_RUN_PATH) << ' ' << std::quoted((dir / "contacts.json").string())
+            << " --frames 20 --csv " << std::quoted((dir / "c.csv").string())
+            << " >/dev/null 2>&1 </dev/null";
+    REQUIRE(std::system(command.str().c_str()) == 0);
+    std::ifstream in(dir / "c.csv");
+    std::string header, line, last;
+    std::getline(in, header);
+    while (std::getline(in, line)) {
+        last = line;
+    }
+    // The columns: the crate's and the post's four each, last; the lamp (not asking) has none.
+    const std::string columns = ",b_crate_contact_particles,b_crate_contact_ix,b_crate_contact_iy,"
+                                "b_crate_contact_speed,p_post_contact_particles,p_post_contact_ix,"
+                                "p_post_contact_iy,p_post_contact_speed";
+    REQUIRE(header.size() > columns.size());
+    CHECK(header.substr(header.size() - columns.size()) == columns);
+    CHECK(header.find("b_lamp_contact") == std::string::npos);
+    // The last frame's: the level stepped in this process gives the same numbers.
+    Level level = parseLevel(kLevel, "t.json", builtins());
+    for (int frame = 0; frame < 20; ++frame) {
+        level.step();
+    }
+    REQUIRE(level.coupling->particleContacts().size() == 1);
+    const box2d::ParticleContact& crate = level.coupling->particleContacts()[0];
+    const BodyContact& post = bodyContacts(level.world)[0];
+    std::ostringstream expected;
+    expected << std::setprecision(9) << ',' << crate.particles << ',' << crate.impulse.x << ','
+             << crate.impulse.y << ',' << crate.approachSpeed << ',' << post.particles << ','
+             << post.impulse.x << ',' << post.impulse.y << ',' << post.approachSpeed;
+    REQUIRE(last.size() > expected.str().size());
+    CHECK(last.substr(last.size() - expected.str().size()) == expected.str());
 }
