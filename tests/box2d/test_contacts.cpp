@@ -23,8 +23,8 @@ using fluid::box2d::ParticleContact;
 namespace {
 
 // Water 0.2 m deep in a 0.6 m tank; a 10 cm crate at half the water's density 0.2 m above the
-// surface (asking for contact events; it does not turn), another beside it (not asking), and a static box above
-// the water that never touches it (asking).
+// surface (asking for contact events; it does not turn), another beside it (not asking), and a
+// static box above the water that never touches it (asking).
 struct Scene {
     World world;
     MaterialId water;
@@ -52,13 +52,13 @@ std::unique_ptr<Scene> crateScene(uint32_t workers, Quality quality = Quality::G
     s->physics = std::make_unique<b2World>(b2Vec2(0.0f, -kG));
     addTankWalls(*s->physics, 0.0f, 0.0f, width, 1.0f);
     const float rho = box2d::arealDensity(s->world, s->water);
-    s->crate = addBox(*s->physics, b2_dynamicBody, {0.2f, s->surface + kDrop}, kHalf, kHalf,
-                      0.5f * rho);
+    s->crate =
+        addBox(*s->physics, b2_dynamicBody, {0.2f, s->surface + kDrop}, kHalf, kHalf, 0.5f * rho);
     // Upright: a half-dense square floats corner down (its stable pose), and the game preset's
     // coarse solve leaves a gap under a corner (docs/box2d.md, "Which preset").
     s->crate->SetFixedRotation(true);
-    s->quiet = addBox(*s->physics, b2_dynamicBody, {0.45f, s->surface + kDrop}, kHalf, kHalf,
-                      0.5f * rho);
+    s->quiet =
+        addBox(*s->physics, b2_dynamicBody, {0.45f, s->surface + kDrop}, kHalf, kHalf, 0.5f * rho);
     s->dry = addBox(*s->physics, b2_staticBody, {0.05f, s->surface + 0.3f}, 0.03f, 0.03f, 0.0f);
     box2d::CouplingDef cd;
     cd.categoryMask = kFluidMask;
@@ -192,8 +192,8 @@ TEST_CASE("contacts: a crate's events are the same for 1, 2 and 4 workers and af
     auto loaded = std::make_unique<Scene>(
         Scene{World::load(world, registry), s->water, s->surface, nullptr, nullptr});
     loaded->physics = box2d::loadPhysics(physics);
-    loaded->coupling = std::make_unique<Coupling>(loaded->world, *loaded->physics,
-                                                  s->coupling->def());
+    loaded->coupling =
+        std::make_unique<Coupling>(loaded->world, *loaded->physics, s->coupling->def());
     loaded->coupling->load(coupling);
     std::vector<b2Body*> bodies;
     for (b2Body* b = loaded->physics->GetBodyList(); b != nullptr; b = b->GetNext()) {

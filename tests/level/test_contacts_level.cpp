@@ -121,9 +121,7 @@ TEST_CASE("level contacts: fluid-run writes the asking bodies' and shapes' conta
     namespace fs = std::filesystem;
     const fs::path dir = fs::temp_directory_path() / "fluid_run_contacts";
     fs::create_directories(dir);
-    {
-        std::ofstream(dir / "contacts.json") << kLevel;
-    }
+    { std::ofstream(dir / "contacts.json") << kLevel; }
     std::ostringstream command;
     command << std::quoted(FLUID_RUN_PATH) << ' ' << std::quoted((dir / "contacts.json").string())
             << " --frames 20 --csv " << std::quoted((dir / "c.csv").string())

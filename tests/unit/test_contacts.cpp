@@ -133,8 +133,8 @@ TEST_CASE("contacts: a disc held in a resting tank reports the particles around 
     // Archimedes: the fluid's mean force on the disc over the last second is the weight of the
     // water it displaces, rho g pi R^2 depth, within 5% (measured 2%: the samples stand for the
     // disc's outline at the lattice's resolution), and nothing sideways.
-    const double buoyancy = 1000.0 * double(kG) * std::numbers::pi * kRadius * kRadius *
-                            double(t.world.def().depth);
+    const double buoyancy =
+        1000.0 * double(kG) * std::numbers::pi * kRadius * kRadius * double(t.world.def().depth);
     const double seconds = double(frames) * double(kFrame);
     std::printf("[measure] disc of 5 cm in a resting tank: lift %.3f N (buoyancy %.3f N), "
                 "side %.4f N, %u particles touching\n",
@@ -172,9 +172,9 @@ TEST_CASE("contacts: a dry disc and a disc that does not ask report nothing, and
     for (const Solver solver : {Solver::PositionBased, Solver::Explicit}) {
         INFO(solverName(solver));
         const int frames = solver == Solver::Explicit ? 10 : 30;
-        Tank dry = discTank({0.0f, 0.7f}, true, def(1, solver));       // 0.25 m above the water
-        Tank quiet = discTank({0.0f, 0.2f}, false, def(1, solver));    // in it, not asking
-        Tank asking = discTank({0.0f, 0.2f}, true, def(1, solver));    // in it, asking
+        Tank dry = discTank({0.0f, 0.7f}, true, def(1, solver));    // 0.25 m above the water
+        Tank quiet = discTank({0.0f, 0.2f}, false, def(1, solver)); // in it, not asking
+        Tank asking = discTank({0.0f, 0.2f}, true, def(1, solver)); // in it, asking
         for (int f = 0; f < frames; ++f) {
             dry.world.step(kFrame);
             quiet.world.step(kFrame);

@@ -146,9 +146,8 @@ fluid_status fluid_level_set_body_contact_events(fluid_level* level, uint32_t in
     });
 }
 
-fluid_status fluid_level_body_contacts(const fluid_level* level,
-                                       fluid_level_body_contact* contacts, uint32_t capacity,
-                                       uint32_t* count) {
+fluid_status fluid_level_body_contacts(const fluid_level* level, fluid_level_body_contact* contacts,
+                                       uint32_t capacity, uint32_t* count) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const char* const function = "fluid_level_body_contacts";
         const Level& l = levelOf(level, function);
@@ -183,7 +182,7 @@ fluid_status fluid_level_body_contact_particles(const fluid_level* level, uint32
                               " is out of range: the last step reported " +
                               std::to_string(listed.size()) + " contacts"};
         }
-        copyOut(l.coupling->contactParticles(listed[contact].index), ids, capacity, count,
-                function, "ids", idOf);
+        copyOut(l.coupling->contactParticles(listed[contact].index), ids, capacity, count, function,
+                "ids", idOf);
     });
 }
