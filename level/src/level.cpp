@@ -832,6 +832,11 @@ void Level::destroyBody(b2Body* body) {
         return j.second->GetBodyA() == body || j.second->GetBodyB() == body;
     });
     std::erase_if(bodies, [&](const std::pair<std::string, b2Body*>& b) { return b.second == body; });
+    // Its contact events go with it: a body made before the next step at its address must not
+    // inherit the setting.
+    if (coupling) {
+        coupling->setContactEvents(body, false);
+    }
     physics->DestroyBody(body);
 }
 

@@ -312,8 +312,10 @@ public:
     /// Asks for contact events with `body` (`particleContacts`) from the next step on, or stops
     /// them (the default: off, at no cost). `body` must be a body of `physics()` (throws
     /// `fluid::Error` naming the function otherwise; nullptr too). The setting is kept by the
-    /// body's address until the body is destroyed (a later step forgets it), and saved with
-    /// the coupling (`save`). Stepping thread, between frames.
+    /// body's address until the body is destroyed (a later step forgets it; a game that
+    /// destroys a body and makes another before the next step turns it off first, as
+    /// `Level::destroyBody` does), and saved with the coupling (`save`). Stepping thread,
+    /// between frames.
     void setContactEvents(const b2Body* body, bool on);
     /// True when `body` asks for contact events.
     bool contactEvents(const b2Body* body) const;
