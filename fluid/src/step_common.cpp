@@ -278,7 +278,9 @@ void placeSamples(WorldState& s, float t, float cellSize, bool rebuild) {
         if (wants[i] != 0) {
             out.reporting.push_back(k);
         }
-        if (!contactOf.empty() && contactOf[i] >= 0) {
+    }
+    for (uint32_t k = 0; k < total && !contactOf.empty(); ++k) {
+        if (contactOf[order[k]] >= 0) {
             s.contacts.samples.push_back(k);
         }
     }
