@@ -96,6 +96,9 @@ struct Options {
     std::string material = "water";
     /// Crates scene: step Box2D next to the fluid without coupling them (the reference run).
     bool noCoupling = false;
+    /// Crates scene: every crate asks for contact events (Coupling::setContactEvents), read
+    /// after each frame.
+    bool contacts = false;
     /// Region queries timed after the run (unit: count; 0: none): 10 cm boxes at random places
     /// over the liquid's bounding box (fluid/query.h, docs/queries.md).
     uint32_t queries = 0;
@@ -627,6 +630,7 @@ int run(const Options& opt) {
     std::unique_ptr<b2World> physics;
     std::unique_ptr<fluid::box2d::Coupling> coupling;
     std::vector<Crate> crates;
+    std::size_t contactsRead = 0; // --contacts: particles the events listed, so none is unused
     if (opt.scene == "crates") {
         physics = std::make_unique<b2World>(b2Vec2(0.0f, -9.81f)); // the fluid's gravity
         crates = addCrates(*physics, scene, fluid::box2d::arealDensity(world, scene.water));
@@ -643,10 +647,23 @@ int run(const Options& opt) {
             // The bodies are solids: the dam's boundary.box, a container, projects after them.
             coupling = std::make_unique<fluid::box2d::Coupling>(world, *physics, cdef);
             frame = [&] { coupling->step(world, frameDt); };
+            if (opt.contacts) {
+                for (const Crate& crate : crates) {
+                    coupling->setContactEvents(crate.body, true);
+                }
+                // Read as a game would: every event and its particles, each frame.
+                frame = [&] {
+                    coupling->step(world, frameDt);
+                    for (uint32_t k = 0; k < coupling->particleContacts().size(); ++k) {
+                        contactsRead += coupling->contactParticles(k).size();
+                    }
+                };
+            }
             profile = [&]() -> const fluid::Profile& { return coupling->profile(); };
         }
         what += ", 20 Box2D crates (0.25x-2x water's areal density), ";
         what += opt.noCoupling ? "not coupled" : "coupled";
+        what += opt.contacts && !opt.noCoupling ? ", contact events on" : "";
     }
 #endif
 
@@ -774,6 +791,11 @@ int run(const Options& opt) {
 #if FLUID_BENCH_BOX2D
     if (opt.scene == "crates") {
         printCrates(world, scene, crates, coupling.get());
+        if (opt.contacts && coupling) {
+            std::printf("contact events: %zu particle contacts listed over the run (warm-up included), "
+                        "%zu crates touching at the end\n",
+                        contactsRead, coupling->particleContacts().size());
+        }
     }
 #endif
     const double windowMean = windowMeanSum / double(opt.windowLast - opt.windowFirst + 1);
@@ -899,6 +921,8 @@ int main(int argc, char** argv) {
                  "(fluid::setInterpolation)");
     app.add_flag("--no-coupling", opt.noCoupling,
                  "Crates scene: step the Box2D crates without coupling them to the fluid");
+    app.add_flag("--contacts", opt.contacts,
+                 "Crates scene: every crate asks for contact events, read after each frame");
     app.add_option("--window", opt.window,
                    "A:B: frames (1-based, counted from the first simulated frame, warm-up "
                    "included) the window_compression fields cover (default: the timed frames)");

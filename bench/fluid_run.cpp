@@ -9,6 +9,7 @@
 // a bad command line.
 #include "command_line.h"
 
+#include <fluid/box2d/coupling.h>
 #include <fluid/fluid.h>
 #include <fluid/level.h>
 #include <fluid/plugin_library.h>
@@ -85,6 +86,36 @@ struct MaterialStats {
     uint32_t count = 0;
 };
 
+// The level's boundary shapes that ask for contact events ("contacts": true), with their
+// column names and plugin indices, in file order.
+std::vector<std::pair<std::string, uint32_t>> contactShapes(const fluid::Level& level) {
+    std::vector<std::pair<std::string, uint32_t>> named;
+    for (const fluid::Level::PluginEntry& p : level.plugins) {
+        if (p.kind != fluid::PluginKind::Boundary) {
+            continue;
+        }
+        const auto* shape =
+            dynamic_cast<const fluid::KinematicShape*>(level.world.boundaries()[p.index].get());
+        if (shape != nullptr && shape->contactEvents()) {
+            named.emplace_back(p.name, p.index);
+        }
+    }
+    return named;
+}
+
+// A contact's columns: particles, impulse x and y (N s), approach speed (m/s); all empty when
+// the body stayed dry during the frame.
+void writeContact(std::ostream& csv, const uint32_t* particles, glm::vec2 impulse, float speed) {
+    if (particles == nullptr) {
+        csv << ",0,,,";
+        return;
+    }
+    csv << ',' << *particles << ',' << impulse.x << ',' << impulse.y << ',' << speed;
+}
+
+const char* const kContactColumns[] = {"_contact_particles", "_contact_ix", "_contact_iy",
+                                       "_contact_speed"};
+
 void writeHeader(std::ostream& csv, const fluid::Level& level) {
     csv << "frame,time,particles,substeps,kinetic_energy,density_error_mean,density_error_max";
     const std::vector<std::string> materials = columnNames(level.materials);
@@ -106,6 +137,21 @@ void writeHeader(std::ostream& csv, const fluid::Level& level) {
         const std::string b = "b_" + body;
         csv << ',' << b << "_x," << b << "_y," << b << "_angle," << b << "_vx," << b << "_vy," << b
             << "_omega," << b << "_submerged";
+    }
+    // Contact events of the bodies and shapes that ask for them (docs/box2d.md, "Contact
+    // events"): a level that asks for none keeps the columns above only.
+    const std::vector<std::string> bodies = columnNames(level.bodies);
+    for (std::size_t k = 0; k < level.bodies.size(); ++k) {
+        if (level.coupling && level.coupling->contactEvents(level.bodies[k].second)) {
+            for (const char* column : kContactColumns) {
+                csv << ",b_" << bodies[k] << column;
+            }
+        }
+    }
+    for (const std::string& shape : columnNames(contactShapes(level))) {
+        for (const char* column : kContactColumns) {
+            csv << ",p_" << shape << column;
+        }
     }
     csv << '\n';
 }
@@ -160,6 +206,27 @@ void writeRow(std::ostream& csv, uint32_t frame, const fluid::Level& level) {
         if (const fluid::box2d::BodyReport* report = level.coupling->report(body)) {
             csv << report->submergedFraction;
         }
+    }
+    for (const auto& [name, body] : level.bodies) {
+        if (!level.coupling || !level.coupling->contactEvents(body)) {
+            continue;
+        }
+        const fluid::box2d::ParticleContact* found = nullptr;
+        for (const fluid::box2d::ParticleContact& c : level.coupling->particleContacts()) {
+            found = c.body == body ? &c : found;
+        }
+        writeContact(csv, found != nullptr ? &found->particles : nullptr,
+                     found != nullptr ? found->impulse : glm::vec2(0.0f),
+                     found != nullptr ? found->approachSpeed : 0.0f);
+    }
+    for (const auto& [name, plugin] : contactShapes(level)) {
+        const fluid::BodyContact* found = nullptr;
+        for (const fluid::BodyContact& c : fluid::bodyContacts(world)) {
+            found = c.plugin == plugin ? &c : found;
+        }
+        writeContact(csv, found != nullptr ? &found->particles : nullptr,
+                     found != nullptr ? found->impulse : glm::vec2(0.0f),
+                     found != nullptr ? found->approachSpeed : 0.0f);
     }
     csv << '\n';
 }

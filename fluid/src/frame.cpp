@@ -24,7 +24,7 @@ void runFrame(WorldState& s, float frameDt, Solver& solver) {
     Stages stages(prof, solver.stageNames(), &s.stageProbe);
     const uint32_t n = s.particles.size();
     s.present = presentMaterials(s);
-    const SceneFacts facts = sceneFacts(s);
+    SceneFacts facts = sceneFacts(s);
     const StepContext context{frameDt, s.time, facts.sampleSpacing, facts.maxSupport};
 
     // Opening: plugins, boundary samples, material constants, then the solver's plan.
@@ -34,6 +34,8 @@ void runFrame(WorldState& s, float frameDt, Solver& solver) {
             plugin->prepare(context);
         }
         gatherSamples(s, context);
+        // Bodies asking for contact events need the forces on their samples.
+        facts.wantsForces = facts.wantsForces || !s.contacts.bodies.empty();
         refreshConstants(s);
         plan = solver.plan(facts, frameDt);
     });
@@ -54,6 +56,7 @@ void runFrame(WorldState& s, float frameDt, Solver& solver) {
         sub.begin = float(elapsed);
         sub.end = sub.last && !plan.lastTakesRest ? frameDt : float(elapsed + double(dt));
         solver.substep(stages, plan, sub);
+        contactPass(s); // nothing unless a body asks for contact events
         elapsed += double(dt);
         if (plan.respread) {
             dt = float((double(frameDt) - elapsed) / double(plan.count - index - 1));
@@ -69,6 +72,7 @@ void runFrame(WorldState& s, float frameDt, Solver& solver) {
         if (facts.wantsForces) {
             deliverSampleForces(s);
         }
+        finishContacts(s, frameDt);
         finishPlugins(s, context);
     });
     s.time += frameDt;

@@ -177,6 +177,7 @@ void gatherSamples(WorldState& s, const StepContext& context) {
             s.bodies.push_back(body);
         }
     }
+    gatherContactBodies(s, context);
 }
 
 void deliverBodyImpulses(WorldState& s, float frameDt) {
@@ -255,6 +256,15 @@ void placeSamples(WorldState& s, float t, float cellSize, bool rebuild) {
                       uint8_t(1));
         }
     }
+    // The samples of bodies that ask for contact events report their forces too (the events'
+    // impulse), and the contact pass visits them.
+    const std::vector<int32_t>& contactOf = s.contacts.bodyOf;
+    s.contacts.samples.clear();
+    if (!contactOf.empty()) {
+        for (uint32_t i = 0; i < total; ++i) {
+            wants[i] = contactOf[i] >= 0 ? uint8_t(1) : wants[i];
+        }
+    }
     out.reporting.clear();
     out.body.resize(total);
     for (uint32_t k = 0; k < total; ++k) {
@@ -267,6 +277,11 @@ void placeSamples(WorldState& s, float t, float cellSize, bool rebuild) {
         out.friction[k] = friction[i];
         if (wants[i] != 0) {
             out.reporting.push_back(k);
+        }
+    }
+    for (uint32_t k = 0; k < total && !contactOf.empty(); ++k) {
+        if (contactOf[order[k]] >= 0) {
+            s.contacts.samples.push_back(k);
         }
     }
 }

@@ -166,4 +166,12 @@ void densityError(WorldState& s);
 /// Hands each boundary that wants them the summed forces on its samples.
 void deliverSampleForces(WorldState& s);
 
+// Contact events (contacts.cpp, fluid/contacts.h): the bodies that ask for them (end of
+// gatherSamples), the particles touching them after each sub-step (runFrame), the events at the
+// end of the step (runFrame's closing); clearContacts (world_state.h) for a step that simulated
+// nothing.
+void gatherContactBodies(WorldState& s, const StepContext& context);
+void contactPass(WorldState& s);
+void finishContacts(WorldState& s, float frameDt);
+
 } // namespace fluid::detail

@@ -761,6 +761,7 @@ void World::step(float frameDt) {
         if (count == 0) {
             s.carry = due;
             s.removed.clear();
+            detail::clearContacts(s);
             s.profile = Profile{};
             s.profile.particles = s.particles.size();
             return;

@@ -3,6 +3,7 @@
 
 #include "grid.h"
 
+#include <fluid/contacts.h>
 #include <fluid/world.h>
 
 #include <algorithm>
@@ -190,6 +191,32 @@ struct BodyState {
     float dvx = 0, dvy = 0, ox = 0, oy = 0;
     double impulseX = 0, impulseY = 0; // summed over the step (N s)
 };
+/// Contact events (contacts.cpp; fluid/contacts.h): the rigid bodies that ask for them in this
+/// step, what the sub-steps found, and the last step's events. Never saved.
+struct ContactState {
+    struct Body {
+        uint32_t plugin = 0, index = 0;          // plugin and index in its rigidBodies()
+        uint32_t sampleBegin = 0, sampleEnd = 0; // its samples, in concatenation order
+        int32_t state = -1;                      // its entry in WorldState::bodies, or -1
+    };
+    struct Touch {
+        uint32_t slot = 0;
+        uint16_t material = 0;
+    };
+    std::vector<Body> bodies;        // gatherSamples; empty: the step pays nothing
+    std::vector<int32_t> bodyOf;     // per concatenated sample: its entry in `bodies`, or -1
+    std::vector<uint32_t> samples;   // sorted indices of the asking bodies' samples
+    std::vector<uint32_t> stamp;     // per particle: the last (sub-step, body) mark that took it
+    uint32_t mark = 0;               // the first mark of the current sub-step
+    float reach = 0.0f;              // kContactReach sample spacings (m)
+    std::vector<std::vector<Touch>> touches; // per body: (particle, sub-step) contacts
+    std::vector<double> sumX, sumY;          // per body: their positions summed (m)
+    std::vector<float> approach;             // per body: the largest approach speed (m/s)
+    std::vector<BodyContact> events;         // the last step's
+    std::vector<ParticleHandle> handles;     // the events' particles, event by event
+    std::vector<uint32_t> handleBegin;       // per event, then the total
+};
+
 /// An emitter: its settings, and the state a snapshot carries.
 struct EmitterState {
     EmitterDef def;
@@ -353,6 +380,7 @@ struct WorldState {
     std::vector<SensorDef> sensors;
     std::vector<SensorReading> sensorReadings; // sensor-major: [sensor * materials + material]
     std::vector<RemovedEvent> removed;         // the last step's removals
+    ContactState contacts;                     // contact events (contacts.cpp)
 
     Profile profile;
     // True while World::step runs: calls that change the world refuse (checkIdle), so that a
@@ -489,6 +517,9 @@ uint32_t emitParticles(WorldState& s, float frameDt, uint32_t& blocked, uint32_t
 /// After a step (time already advanced): drains and expired lifetimes remove particles (into
 /// `removed`), sensors measure. Returns the count removed.
 uint32_t finishGameplay(WorldState& s);
+
+/// Drops the last step's contact events (a step that simulated nothing; contacts.cpp).
+void clearContacts(WorldState& s);
 
 /// Particles across one emitter row: 1 + round(width / spacing) (unit: count).
 inline double emitterLanes(float width, float spacing) {

@@ -153,6 +153,9 @@ public:
         located(m_doc, root.pointer("bodies"), [&] {
             m_level.coupling =
                 std::make_unique<box2d::Coupling>(m_level.world, *m_level.physics, def);
+            for (const b2Body* body : m_contactBodies) {
+                m_level.coupling->setContactEvents(body, true);
+            }
         });
     }
 
@@ -223,7 +226,7 @@ private:
         const ObjectReader b(m_doc, value, at, "a body");
         b.allowOnly({"name", "type", "position", "angle", "velocity", "angularVelocity",
                      "linearDamping", "angularDamping", "fixedRotation", "bullet", "fluid",
-                     "fixtures"});
+                     "contacts", "fixtures"});
         // An unnamed body is "body<k>": the name it has in Level::bodies, joints and fluid-run.
         const bool named = b.has("name");
         const std::string name = named ? requiredName(b, "body") : "body" + str(index);
@@ -254,6 +257,11 @@ private:
         def.fixedRotation = b.boolean("fixedRotation", false);
         def.bullet = b.boolean("bullet", false);
         const bool wet = b.boolean("fluid", true);
+        const bool contacts = b.boolean("contacts", false);
+        if (contacts && !wet) {
+            b.failAt("contacts", "a body with \"fluid\": false never touches the liquid: it has "
+                                 "no contact events");
+        }
 
         const Json& list = b.required("fixtures", "an array of at least one fixture");
         b.array("fixtures", "fixtures");
@@ -304,6 +312,9 @@ private:
             body->SetAngularVelocity(omega);
         }
         m_level.bodies.emplace_back(name, body);
+        if (contacts) {
+            m_contactBodies.push_back(body);
+        }
     }
 
     // Box2D gives a dynamic body without mass 1 kg, and asserts when its rotational inertia
@@ -524,6 +535,7 @@ private:
         m_level.joints.emplace_back(name, m_level.physics->CreateJoint(&def));
     }
 
+    std::vector<const b2Body*> m_contactBodies; // bodies with "contacts": true
     const JsonDocument& m_doc;
     Level& m_level;
     // Indices in Level::bodies and Level::joints.

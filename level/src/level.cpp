@@ -6,6 +6,7 @@
 
 #include <fluid/groups.h>
 #include <fluid/level.h>
+#include <fluid/plugins/kinematic_shape.h>
 #include <fluid/material.h>
 #include <fluid/shape.h>
 
@@ -276,7 +277,7 @@ private:
         for (std::size_t i = 0; list != nullptr && i < list->size(); ++i) {
             const std::string at = childPointer(root.pointer("plugins"), i);
             const ObjectReader p(m_doc, (*list)[i], at, "a plugin");
-            p.allowOnly({"type", "name", "params"});
+            p.allowOnly({"type", "name", "params", "contacts"});
             const std::string type = p.requiredString("type", "a plugin type (a string)");
             const PluginInfo* info = m_registry.find(type);
             if (info == nullptr) {
@@ -311,6 +312,16 @@ private:
             // error at the parameters, not a step that throws later.
             located(m_doc, p.has("params") ? p.pointer("params") : at,
                     [&] { plugin.checkParams(); });
+            // Contact events (fluid/contacts.h): a shape asks for them.
+            if (p.boolean("contacts", false)) {
+                auto* shape = dynamic_cast<KinematicShape*>(boundary.get());
+                if (shape == nullptr) {
+                    p.failAt("contacts", "contact events are reported for the shapes "
+                                         "boundary.polygon, boundary.chain and boundary.circle; " +
+                                             internal::quoted(type) + " has none");
+                }
+                shape->setContactEvents(true);
+            }
             uint32_t index = 0;
             located(m_doc, at, [&] {
                 if (force) {
@@ -869,6 +880,11 @@ void Level::destroyBody(b2Body* body) {
         return j.second->GetBodyA() == body || j.second->GetBodyB() == body;
     });
     std::erase_if(bodies, [&](const std::pair<std::string, b2Body*>& b) { return b.second == body; });
+    // Its contact events go with it: a body made before the next step at its address must not
+    // inherit the setting.
+    if (coupling) {
+        coupling->setContactEvents(body, false);
+    }
     physics->DestroyBody(body);
 }
 

@@ -103,6 +103,37 @@ void KinematicShape::prepare(const StepContext& context) {
         m_samples.add(static_cast<float>(w.x), static_cast<float>(w.y), static_cast<float>(v.x),
                       static_cast<float>(v.y));
     }
+    m_body = RigidBody{0.0f, 0, static_cast<uint32_t>(m_samples.size()), true};
+}
+
+void KinematicShape::setContactEvents(bool on) {
+    m_contacts = on;
+}
+
+std::span<const RigidBody> KinematicShape::rigidBodies() const {
+    if (!m_contacts || m_body.sampleEnd != m_samples.size()) {
+        return {};
+    }
+    return {&m_body, 1};
+}
+
+void KinematicShape::saveState(StateWriter& out) const {
+    if (m_contacts) {
+        out.write(uint8_t(1));
+    }
+}
+
+void KinematicShape::restoreState(StateReader& in) {
+    if (in.remaining() == 0) {
+        m_contacts = false;
+        return;
+    }
+    const auto flag = in.read<uint8_t>();
+    if (flag > 1) {
+        throw Error("snapshot: plugin '" + std::string(type()) + "': contact events flag = " +
+                    std::to_string(flag) + " is not 0 or 1");
+    }
+    m_contacts = flag == 1;
 }
 
 KinematicShape::Sweep KinematicShape::sweep(const ProjectContext& context) const {

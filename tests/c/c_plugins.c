@@ -163,6 +163,7 @@ static void box_prepare(void* user, const fluid_step_context* context,
     box->body.mass = box->mass;
     box->body.sample_begin = 0;
     box->body.sample_end = box->sample_count;
+    box->body.contacts = false;
 }
 
 /* Particles inside the box go to its nearest side; their velocity into the box becomes the

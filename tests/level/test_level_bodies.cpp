@@ -51,7 +51,7 @@ TEST_CASE("level bodies: errors in a body name the key, value and range", "[leve
     CHECK(errorOf(withBodies(R"({"fixtures": [], "mass": 1})")) ==
           "t.json:1:78: at /bodies/0/mass: unknown key 'mass'; allowed: name, type, position, "
           "angle, velocity, angularVelocity, linearDamping, angularDamping, fixedRotation, bullet, "
-          "fluid, fixtures");
+          "fluid, contacts, fixtures");
     CHECK(errorOf(withBodies(R"({"type": "ghost", "fixtures": []})")) ==
           "t.json:1:70: at /bodies/0/type: unknown body type 'ghost'; known: static, kinematic, "
           "dynamic");

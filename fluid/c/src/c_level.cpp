@@ -485,3 +485,36 @@ fluid_status fluid_level_set_body_velocity(fluid_level* level, uint32_t index,
 }
 
 } // extern "C"
+
+// ---- The level behind its handle, for c_contacts.cpp --------------------------------------
+
+namespace fluid::c {
+
+Level& levelOf(const fluid_level* level, const char* function) {
+    need(level, function, "level");
+    return const_cast<fluid_level*>(level)->level;
+}
+
+b2Body* levelBody(const fluid_level* level, uint32_t index, const char* function) {
+    need(level, function, "level");
+    return bodyAt(*level, index, function);
+}
+
+bool levelBodyIndex(const fluid_level* level, const b2Body* body, uint32_t& index) {
+    const auto& named = level->level.bodies;
+    for (uint32_t k = 0; k < named.size(); ++k) {
+        if (named[k].second == body) {
+            index = k;
+            return true;
+        }
+    }
+    for (uint32_t k = 0; k < level->added.size(); ++k) {
+        if (level->added[k] == body) {
+            index = uint32_t(named.size()) + k;
+            return true;
+        }
+    }
+    return false;
+}
+
+} // namespace fluid::c

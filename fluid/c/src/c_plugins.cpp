@@ -152,7 +152,9 @@ private:
     fluid_force_plugin_def m_def;
 };
 
-static_assert(sizeof(fluid_rigid_body) == sizeof(RigidBody), "fluid_rigid_body's layout");
+static_assert(sizeof(fluid_rigid_body) == sizeof(RigidBody) &&
+                  offsetof(fluid_rigid_body, contacts) == offsetof(RigidBody, contacts),
+              "fluid_rigid_body's layout");
 static_assert(sizeof(fluid_rigid_body_impulse) == sizeof(RigidBodyImpulse),
               "fluid_rigid_body_impulse's layout");
 

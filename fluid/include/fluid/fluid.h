@@ -1,6 +1,7 @@
 // fluid — 2D SPH liquid for games. The umbrella header: include this one.
 #pragma once
 
+#include <fluid/contacts.h>
 #include <fluid/error.h>
 #include <fluid/gameplay.h>
 #include <fluid/groups.h>

@@ -292,13 +292,18 @@ struct ProjectContext {
 /// unknowns (docs/position_based.md, "Bodies in the coarse solve"). The solve moves the body
 /// along x and y; its turning comes from the sweeps' forces on its samples (`receiveForces`).
 /// A body left out of `BoundaryPlugin::rigidBodies`, or with `mass` 0, is moved by the host only
-/// (static, kinematic): the solve takes no flux through it. Plain data.
+/// (static, kinematic): the solve takes no flux through it. A body may also be listed only to
+/// ask for contact events (`contacts`). Plain data.
 struct RigidBody {
     /// Mass (unit: kg, weighed as the fluid's particles are: `Material::mass`, a slab
     /// `WorldDef::depth` deep; range (0, 1e9], or 0 for a body the fluid cannot move).
     float mass = 0.0f;
     /// Its samples: [sampleBegin, sampleEnd) of the plugin's `samples()` (unit: index).
     uint32_t sampleBegin = 0, sampleEnd = 0;
+    /// True to have the world report the liquid's contacts with this body after each step
+    /// (`fluid::bodyContacts`, <fluid/contacts.h>); a body of any mass, 0 included, may ask.
+    /// False (the default) costs nothing.
+    bool contacts = false;
 };
 
 /// What the coarse pressure solve did to one `RigidBody` over a `World::step`: the pressure's

@@ -469,6 +469,7 @@ void BodyBoundary::prepare(const StepContext& context) {
             }
             rigid.sampleBegin = m_colliders[be.colliderBegin].sampleBegin;
             rigid.sampleEnd = m_colliders[be.colliderEnd - 1].sampleEnd;
+            rigid.contacts = m_contactBodies != nullptr && m_contactBodies->count(body) != 0;
             m_rigid.push_back(rigid);
             m_bodies.push_back(be);
         }

@@ -14,6 +14,7 @@
 #include <span>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 class b2Body;
@@ -185,6 +186,11 @@ public:
     const char* steppedBy() const override;
     /// Marks the coupling's own `World::step` calls (set while one runs; stepping thread).
     void setHostStepping(bool stepping) { m_hostStepping = stepping; }
+    /// The bodies that ask for contact events (`RigidBody::contacts`); owned by the coupling,
+    /// nullptr for none. Stepping thread, between steps.
+    void setContactBodies(const std::unordered_set<const b2Body*>* bodies) {
+        m_contactBodies = bodies;
+    }
 
     /// The coupled bodies of the last `prepare`, in body-list order.
     std::span<const BodyEntry> bodies() const { return m_bodies; }
@@ -220,6 +226,7 @@ private:
     b2World* m_physics = nullptr;
     bool m_hostStepping = false; // inside the coupling's own World::step
     const CouplingDef* m_def = nullptr;
+    const std::unordered_set<const b2Body*>* m_contactBodies = nullptr;
     std::vector<FixtureEntry> m_entries;
     std::unordered_map<const b2Fixture*, uint32_t> m_index; // lookup only, never iterated
     std::vector<BodyEntry> m_bodies;

@@ -162,6 +162,7 @@ Coupling::Coupling(World& world, b2World& physics, const CouplingDef& def)
             world.addBoundary(std::make_unique<BodyBoundary>()));
     }
     m_boundary->attach(&physics, &m_def);
+    m_boundary->setContactBodies(&m_contactBodies);
 }
 
 void registerCouplingPlugin(Registry& registry) {
@@ -173,6 +174,7 @@ void registerCouplingPlugin(Registry& registry) {
 }
 
 Coupling::~Coupling() {
+    m_boundary->setContactBodies(nullptr);
     m_boundary->attach(nullptr, nullptr);
 }
 
@@ -301,6 +303,9 @@ void Coupling::step(World& world, float dt) {
     m_contacts.clear();
     m_removed.clear();
     m_profile = Profile{};
+    m_contactSums.clear();
+    finishContacts(world);
+    forgetDestroyedContactBodies();
     if (world.def().solver != Solver::PositionBased) {
         // The explicit solver: kExplicitRounds rounds a 1/60 s frame, more for a longer one by
         // the long-frame rule (see the class comment), each in its own CFL sub-steps.
@@ -349,6 +354,9 @@ void Coupling::stepFluid(World& world, float dt) {
     m_contacts.clear();
     m_removed.clear();
     m_profile = Profile{};
+    m_contactSums.clear();
+    finishContacts(world);
+    forgetDestroyedContactBodies();
     // The time the world simulates: dt, or for the position-based solver the whole sub-steps
     // due (its carried time included).
     const bool positionBased = world.def().solver == Solver::PositionBased;
@@ -423,6 +431,10 @@ void Coupling::fluidRound(World& world, float given, float simulated) {
     const std::span<const RemovedEvent> removed = world.removedEvents();
     m_removed.insert(m_removed.end(), removed.begin(), removed.end());
     makeReports(world);
+    if (!m_contactBodies.empty()) {
+        collectContacts(world, dt);
+        finishContacts(world);
+    }
     applyForces(dt);
     remember();
 }
@@ -717,7 +729,8 @@ void Coupling::makeReports(const World& world) {
 
 namespace {
 constexpr char kStateMagic[8] = {'F', 'L', 'C', 'O', 'U', 'P', 'L', 'E'};
-constexpr uint32_t kStateVersion = 1;
+// 2: the bodies that ask for contact events follow the poses (a version-1 save has none).
+constexpr uint32_t kStateVersion = 2;
 // Bounds of a saved body state, from the live limits: a coupled body is at most 1e5 m from the
 // origin and at most 1e3 m/s fast (BodyBoundary: faster or farther bodies are skipped), and of
 // at most 1e9 kg (the fluid's RigidBody::mass). The momentum such a body can hold bounds what
@@ -770,6 +783,16 @@ void Coupling::save(std::ostream& out) const {
         w.put(p.com.y);
         w.put(p.angle);
     }
+    std::vector<uint32_t> asking;
+    for (const b2Body* b = m_physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
+        if (m_contactBodies.count(b) != 0) {
+            asking.push_back(index.at(b));
+        }
+    }
+    w.put(uint32_t(asking.size()));
+    for (const uint32_t k : asking) {
+        w.put(k);
+    }
     if (!out) {
         throw Error("fluid::box2d::Coupling::save: the stream failed while writing");
     }
@@ -786,8 +809,8 @@ void Coupling::load(std::istream& in) {
         r.fail("not a coupling save (bad magic)");
     }
     const auto version = r.get<uint32_t>("version");
-    if (version != kStateVersion) {
-        r.fail("version " + std::to_string(version) + " is not supported (this build reads " +
+    if (version != 1 && version != kStateVersion) {
+        r.fail("version " + std::to_string(version) + " is not supported (this build reads 1 and " +
                std::to_string(kStateVersion) + ")");
     }
     const auto bodyIndex = [&](const char* field) {
@@ -827,7 +850,15 @@ void Coupling::load(std::istream& in) {
         p.com.y = r.number(of + "y", -kMaxPosition, kMaxPosition, "m");
         p.angle = r.number(of + "angle", -kMaxAngle, kMaxAngle, "rad");
     }
+    std::unordered_set<const b2Body*> asking;
+    if (version >= 2) {
+        const uint32_t count = r.count("contact body count", uint32_t(bodies.size()));
+        for (uint32_t k = 0; k < count; ++k) {
+            asking.insert(bodies[bodyIndex("contact body index")]);
+        }
+    }
     // Everything read: now the coupling changes.
+    m_contactBodies = std::move(asking);
     m_previous = std::move(previous);
     m_boundary->setSeenPoses(poses);
     m_reports.clear();
@@ -835,6 +866,10 @@ void Coupling::load(std::istream& in) {
     m_contacts.clear();
     m_removed.clear();
     m_profile = Profile{};
+    m_contactSums.clear();
+    m_particleContacts.clear();
+    m_contactHandles.clear();
+    m_contactBegin.assign(1, 0);
     // A Box2D world restored by loadPhysics from a version-2 save carries the forces Box2D has
     // accumulated (these among them): adding them again would double them. A world without any
     // (a version-1 save, a world rebuilt by hand) gets them here.

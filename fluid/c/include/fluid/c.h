@@ -897,6 +897,9 @@ typedef struct fluid_rigid_body {
     uint32_t sample_begin;
     /// One past the last (unit: index).
     uint32_t sample_end;
+    /// True to have the world report the liquid's contacts with this body after each step
+    /// (fluid_world_contacts); false (zero-initialised) costs nothing.
+    bool contacts;
 } fluid_rigid_body;
 
 /// What the coarse pressure solve did to a body over a step (C++ fluid::RigidBodyImpulse).
@@ -1339,6 +1342,98 @@ FLUID_C_API fluid_status fluid_world_interpolation_factor(const fluid_world* wor
 FLUID_C_API fluid_status fluid_world_interpolated_positions(const fluid_world* world, float* x,
                                                             float* y, uint32_t capacity,
                                                             float factor, uint32_t* count);
+
+/* ------------------------------------------------------------------------------------------ */
+/* Contact events (C++ fluid/contacts.h; docs/c_api.md, "Contact events")                      */
+/* ------------------------------------------------------------------------------------------ */
+
+/// What the liquid did to one body that asked for contact events during the last step (C++
+/// fluid::BodyContact): reported for each asking body some particle touched (came within 1.5
+/// sample spacings of its samples at the end of a sub-step); a dry body reports nothing.
+typedef struct fluid_body_contact {
+    /// The boundary plugin (kind FLUID_PLUGIN_BOUNDARY).
+    fluid_plugin_id plugin;
+    /// The body among the plugin's rigid bodies (unit: index; 0 for a boundary shape).
+    uint32_t body;
+    /// The material most of the touching particles have.
+    fluid_material_id material;
+    /// The particle group most of them belong to: 0 until particle groups land (unit: id).
+    uint32_t group;
+    /// Distinct particles that touched the body during the step (unit: count; >= 1).
+    uint32_t particles;
+    /// The liquid's impulse on the body over the step (unit: N s).
+    fluid_vec2 impulse;
+    /// Mean position of the touching particles (unit: m).
+    fluid_vec2 point;
+    /// Largest speed at which a touching particle moved towards the body (unit: m/s; >= 0).
+    float approach_speed;
+} fluid_body_contact;
+
+/// Asks for contact events with a boundary shape ("boundary.polygon", "boundary.chain",
+/// "boundary.circle"; a level file's "contacts": true) from the next step on, or stops them
+/// (the default: off, at no cost); saved with the world. FLUID_ERROR_STALE_ID for an unknown
+/// plugin, FLUID_ERROR_INVALID_ARGUMENT for a force or another boundary type; REFUSED from
+/// inside the world's step. Between steps.
+FLUID_C_API fluid_status fluid_world_set_contact_events(fluid_world* world, fluid_plugin_id shape,
+                                                        bool on);
+
+/// The contacts of the last step, ordered by plugin then body (the same for any number of
+/// workers and after a save and load): writes at most `capacity` of them to `contacts` (may be
+/// NULL with capacity 0); `count` receives how many there are. REFUSED from inside the world's
+/// step. Between steps.
+FLUID_C_API fluid_status fluid_world_contacts(const fluid_world* world,
+                                              fluid_body_contact* contacts, uint32_t capacity,
+                                              uint32_t* count);
+
+/// The particles that touched the body of contact `contact` (an index into
+/// fluid_world_contacts' list) during the last step, in increasing slot order: writes at most
+/// `capacity` ids to `ids` (may be NULL with capacity 0); `count` receives how many there are.
+/// FLUID_ERROR_INVALID_ARGUMENT naming the index for one past the list.
+FLUID_C_API fluid_status fluid_world_contact_particles(const fluid_world* world,
+                                                       uint32_t contact, fluid_particle_id* ids,
+                                                       uint32_t capacity, uint32_t* count);
+
+/// A Box2D body's contacts during the last fluid_level_step (C++ fluid::box2d::ParticleContact):
+/// as fluid_body_contact, with the body as its fluid_level_body index, the impulse the
+/// coupling's force over the frame's rounds.
+typedef struct fluid_level_body_contact {
+    /// The body (fluid_level_body's index: the file's bodies, then the added ones).
+    uint32_t body;
+    /// The material most of the touching particles have.
+    fluid_material_id material;
+    /// The particle group most of them belong to: 0 until particle groups land (unit: id).
+    uint32_t group;
+    /// Distinct particles that touched the body during the frame (unit: count; >= 1).
+    uint32_t particles;
+    /// The liquid's impulse on the body over the frame (unit: N s).
+    fluid_vec2 impulse;
+    /// Mean position of the touching particles (unit: m).
+    fluid_vec2 point;
+    /// Largest speed at which a touching particle moved towards the body (unit: m/s; >= 0).
+    float approach_speed;
+} fluid_level_body_contact;
+
+/// Asks for contact events with body `index` (fluid_level_body's index; a level file's
+/// "contacts": true on the body) from the next step on, or stops them (the default: off);
+/// saved with the level. FLUID_ERROR_STALE_ID for an index past the bodies; REFUSED for a level
+/// without bodies. Between steps.
+FLUID_C_API fluid_status fluid_level_set_body_contact_events(fluid_level* level, uint32_t index,
+                                                             bool on);
+
+/// The Box2D bodies' contacts of the last fluid_level_step, in body order: writes at most
+/// `capacity` of them to `contacts` (may be NULL with capacity 0); `count` receives how many
+/// there are (0 for a level without bodies). A body the level no longer lists is left out.
+FLUID_C_API fluid_status fluid_level_body_contacts(const fluid_level* level,
+                                                   fluid_level_body_contact* contacts,
+                                                   uint32_t capacity, uint32_t* count);
+
+/// The particles that touched the body of contact `contact` (an index into
+/// fluid_level_body_contacts' list) during the last frame, in increasing slot order, as
+/// fluid_world_contact_particles.
+FLUID_C_API fluid_status fluid_level_body_contact_particles(const fluid_level* level,
+                                                            uint32_t contact,
+                                                            fluid_particle_id* ids,
+                                                            uint32_t capacity, uint32_t* count);
 
 #ifdef __cplusplus
 } /* extern "C" */

@@ -165,6 +165,22 @@ public:
     /// The samples in the local frame, as last laid (unit: m). Empty before the first `prepare`.
     std::span<const glm::dvec2> localSamples() const { return m_local; }
 
+    /// Asks the world for contact events with this shape (`fluid::bodyContacts`, plugin = this
+    /// plugin's index, body 0) from the next step on, or stops them (the default: off, at no
+    /// cost). Saved with the world's snapshots. Stepping thread, between steps.
+    void setContactEvents(bool on);
+    /// True when the shape asks for contact events.
+    bool contactEvents() const { return m_contacts; }
+    /// With contact events on: the whole shape as one rigid body of mass 0 (the host moves it),
+    /// asking for them; otherwise none.
+    std::span<const RigidBody> rigidBodies() const override;
+    /// Writes the contact-events flag when it is on (nothing otherwise, so that the snapshots
+    /// of shapes without it stay as they were).
+    void saveState(StateWriter& out) const override;
+    /// Reads what `saveState` wrote (an empty state: off); throws `fluid::Error` for a flag
+    /// other than 0 or 1.
+    void restoreState(StateReader& in) override;
+
 protected:
     /// `params` must start with `kPoseParams` (see `withPoseParams`).
     KinematicShape(std::string_view type, std::span<const ParamDecl> params);
@@ -223,6 +239,8 @@ private:
                const Contact& contact) const;
 
     std::vector<glm::dvec2> m_local;
+    bool m_contacts = false;
+    RigidBody m_body; // the shape as a body, for contact events
     LocalBounds m_bounds;
     bool m_built = false;
     float m_builtSpacing = 0.0f;

@@ -11,6 +11,7 @@
 #include <iosfwd>
 #include <memory>
 #include <span>
+#include <unordered_set>
 #include <vector>
 
 class b2Body;
@@ -100,6 +101,36 @@ struct ContactEvent {
     ContactPhase phase = ContactPhase::Begin;
     /// The material touched most (Begin: now; End: at the last wet step).
     MaterialId material{};
+};
+
+/// What the liquid did to one body that asked for contact events (`Coupling::setContactEvents`)
+/// during the last `Coupling::step` or `stepFluid`, over all its rounds: the world's
+/// `fluid::BodyContact` (<fluid/contacts.h>) for a Box2D body. Made for each asking body that
+/// some particle touched (came within `fluid::kContactReach` sample spacings of its samples at
+/// the end of a sub-step); a dry body reports nothing. Plain data; valid until the next step.
+struct ParticleContact {
+    /// The body (owned by the game's `b2World`).
+    b2Body* body = nullptr;
+    /// The material most of the touching particles have, over the rounds (ties: the lower
+    /// index).
+    MaterialId material{};
+    /// The particle group most of the touching particles belong to: 0 until particle groups
+    /// land (unit: id).
+    uint32_t group = 0;
+    /// Distinct particles that touched the body during the frame (unit: count; >= 1);
+    /// `Coupling::contactParticles` lists them.
+    uint32_t particles = 0;
+    /// The liquid's impulse on the body over the frame (unit: N s): each round's
+    /// `BodyReport::force` (pressure, viscosity, projection and coarse solve; before the
+    /// relaxation hands it to Box2D) times the round's time, summed. Floating at rest, it
+    /// balances the body's weight times the frame's time.
+    glm::vec2 impulse{0.0f, 0.0f};
+    /// Mean position of the touching particles, each counted once per sub-step it touched
+    /// (unit: m).
+    glm::vec2 point{0.0f, 0.0f};
+    /// Largest speed at which a touching particle moved towards the body's surface, relative to
+    /// the surface, at the end of a sub-step (unit: m/s; >= 0): a splash's loudness.
+    float approachSpeed = 0.0f;
 };
 
 /// The areal density of a material (unit: kg/m^2): rest density x the world's slab depth. A
@@ -278,6 +309,25 @@ public:
     /// coupled last). Valid until the next step.
     std::span<const ContactEvent> contacts() const;
 
+    /// Asks for contact events with `body` (`particleContacts`) from the next step on, or stops
+    /// them (the default: off, at no cost). `body` must be a body of `physics()` (throws
+    /// `fluid::Error` naming the function otherwise; nullptr too). The setting is kept by the
+    /// body's address until the body is destroyed (a later step forgets it; a game that
+    /// destroys a body and makes another before the next step turns it off first, as
+    /// `Level::destroyBody` does), and saved with the coupling (`save`). Stepping thread,
+    /// between frames.
+    void setContactEvents(const b2Body* body, bool on);
+    /// True when `body` asks for contact events.
+    bool contactEvents(const b2Body* body) const;
+    /// The contacts of the last `step` or `stepFluid` (see `ParticleContact`), in the
+    /// `b2World`'s body order: the same for any number of workers and after a save and load.
+    /// Valid until the next step.
+    std::span<const ParticleContact> particleContacts() const;
+    /// The particles that touched the body of `particleContacts()[contact]` during the last
+    /// frame, by handle, in increasing slot order. Throws `fluid::Error` naming the index and
+    /// the count for `contact` >= `particleContacts().size()`.
+    std::span<const ParticleHandle> contactParticles(uint32_t contact) const;
+
     /// Particles drains and lifetimes removed during the last `step` or `stepFluid`, over all
     /// its rounds: each removal once, rounds in order, each round's events as
     /// `World::removedEvents` orders them (which after a coupled step holds only the last
@@ -296,7 +346,8 @@ public:
     /// Writes the coupling's state between frames to `out`: per body (by its index in the
     /// `b2World`'s `GetBodyList()`) the wet state and material the contact events compare with,
     /// the relaxation's unpaid impulse, the force and torque applied for Box2D's next step, and
-    /// the pose the fluid last saw it at. Bodies stand by index, so the Box2D world must be
+    /// the pose the fluid last saw it at; and the bodies that ask for contact events
+    /// (`setContactEvents`). Bodies stand by index, so the Box2D world must be
     /// restored with its bodies in the same order (`savePhysics` and `loadPhysics` keep it).
     /// Reports and events of the last frame are not state and are not saved. Stepping thread,
     /// between frames; throws `fluid::Error` if the stream fails.
@@ -324,6 +375,9 @@ private:
     void applyForces(float dt);
     void applyCorrections();
     void makeReports(const World& world);
+    void collectContacts(const World& world, float dt);
+    void finishContacts(const World& world);
+    void forgetDestroyedContactBodies();
     void remember();
 
     // A body after the previous round: wet state and material for contact events, and what
@@ -353,6 +407,21 @@ private:
     std::vector<float> m_appliedTorque;
     std::vector<double> m_addedMass; // per body of the step (kg), for the relaxation
     std::vector<double> m_displaced; // fluid mass displaced (kg): submerged area x density
+    // Contact events: the bodies that ask (lookup only, never iterated), and the frame's
+    // rounds gathered per body in body order, then the events made from them.
+    std::unordered_set<const b2Body*> m_contactBodies;
+    struct ContactSum {
+        b2Body* body = nullptr;
+        std::vector<ParticleHandle> handles;
+        std::vector<uint32_t> materials; // per handle
+        glm::dvec2 impulse{0.0, 0.0}, pointSum{0.0, 0.0};
+        double touches = 0.0;
+        float approach = 0.0f;
+    };
+    std::vector<ContactSum> m_contactSums;
+    std::vector<ParticleContact> m_particleContacts;
+    std::vector<ParticleHandle> m_contactHandles;
+    std::vector<uint32_t> m_contactBegin;
 };
 
 } // namespace fluid::box2d

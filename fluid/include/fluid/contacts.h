@@ -1,0 +1,73 @@
+// fluid — contact events: which bodies the liquid touched during the last step, how many
+// particles, how hard (docs/plugins.md and docs/box2d.md, "Contact events").
+#pragma once
+
+#include <fluid/handle.h>
+
+#include <glm/vec2.hpp>
+
+#include <cstdint>
+#include <span>
+
+namespace fluid {
+
+class World;
+
+/// How close a particle's centre must come to one of a body's boundary samples to touch the body
+/// (unit: sample spacings, `StepContext::sampleSpacing`). A body's outermost samples lie half a
+/// spacing inside its surface and the liquid's first row half a spacing outside it, so a
+/// particle resting on the body stands one spacing from them and the second row two: 1.5 counts
+/// the first row only. Thread rule: a constant.
+inline constexpr float kContactReach = 1.5f;
+
+/// What the liquid did to one body during the last step. Reported, after the step, for every
+/// rigid body (`BoundaryPlugin::rigidBodies`) that asked for it (`RigidBody::contacts`) and that
+/// some particle touched (came within `kContactReach` sample spacings of one of its samples at
+/// the end of one of the step's sub-steps); a body that asked but stayed dry reports nothing.
+/// Plain data; valid until the next step.
+struct BodyContact {
+    /// The boundary plugin, by its index in `World::boundaries()` (unit: index).
+    uint32_t plugin = 0;
+    /// The body, by its index in that plugin's `rigidBodies()` (unit: index).
+    uint32_t body = 0;
+    /// The material most of the touching particles have (ties: the lower index).
+    MaterialId material{};
+    /// The particle group most of the touching particles belong to: 0 until particle groups
+    /// land (unit: id).
+    uint32_t group = 0;
+    /// Distinct particles that touched the body during the step, over all its sub-steps (unit:
+    /// count; >= 1). `contactParticles` lists them.
+    uint32_t particles = 0;
+    /// The liquid's impulse on the body over the step (unit: N s): its pressure and viscous
+    /// forces on the body's samples summed over the sub-steps (the force `receiveForces` gets,
+    /// times the step's time), plus the position-based coarse solve's push on a body with a
+    /// mass. Divide by the step's time (`World::step`'s simulated time) for the mean force.
+    glm::vec2 impulse{0.0f, 0.0f};
+    /// Mean position of the touching particles, each counted once per sub-step it touched (unit:
+    /// m): where a splash sound or effect goes.
+    glm::vec2 point{0.0f, 0.0f};
+    /// Largest speed at which a touching particle moved towards one of the body's samples,
+    /// relative to the sample's own velocity, at the end of a sub-step (unit: m/s; >= 0; 0 when
+    /// every touching particle moved away or along). The solver stops an incoming particle over
+    /// a few sub-steps, so a fast hit reads a good part of its speed: a splash's loudness.
+    float approachSpeed = 0.0f;
+};
+
+/// The contacts of the last `World::step`, ordered by plugin (in `World::boundaries()` order),
+/// then by body index: the same for any number of workers and after a save and load. Empty
+/// after a step that simulated nothing (a frame shorter than half a sub-step) and in a world
+/// loaded from a snapshot until it steps (events are not state). Cost: nothing in a world where
+/// no body asks; otherwise a pass over the asking bodies' samples per sub-step (and the
+/// position-based solver then measures the forces on their samples). Throws `fluid::Error` with
+/// `ErrorCode::WrongState` during the world's own step. Thread rule: between steps, from any
+/// thread (the world must not change meanwhile).
+std::span<const BodyContact> bodyContacts(const World& world);
+
+/// The particles that touched the body of `bodyContacts(world)[contact]` during the last step,
+/// by handle, in increasing slot order (`ParticleHandle::slot`); a particle a drain or its
+/// lifetime removed at the end of the step has a stale handle by now. Throws `fluid::Error`
+/// naming the index and the count for `contact` >= `bodyContacts(world).size()`, and with
+/// `ErrorCode::WrongState` during the world's own step. Thread rule: as `bodyContacts`.
+std::span<const ParticleHandle> contactParticles(const World& world, uint32_t contact);
+
+} // namespace fluid
