@@ -115,11 +115,25 @@ void contactPass(WorldState& s) {
 
 namespace {
 
-// The group a contact reports: the group most of its particles belong to. Particles carry no
-// group yet, so it is 0; once they do, count `touches`' groups here as `finishContacts` counts
-// their materials.
-uint32_t contactGroup(const WorldState& /*s*/, std::span<const ContactState::Touch> /*touches*/) {
-    return 0;
+// The group a contact reports: the group most of its (distinct) particles belong to, ties to
+// the lower index; null when none of them is in a group. Membership is kept per handle slot, so
+// it reads the same at any point of the step.
+GroupHandle contactGroup(const WorldState& s, std::span<const ContactState::Touch> touches,
+                         std::vector<uint32_t>& counts) {
+    counts.assign(s.groups.size(), 0);
+    bool any = false;
+    for (const ContactState::Touch& t : touches) {
+        const uint32_t g = s.groupOfSlot(t.slot);
+        if (g != WorldState::kNoGroup && g < counts.size()) {
+            ++counts[g];
+            any = true;
+        }
+    }
+    if (!any) {
+        return {};
+    }
+    const auto g = uint32_t(std::max_element(counts.begin(), counts.end()) - counts.begin());
+    return GroupHandle{g, s.groups[g].generation, s.tag.value()};
 }
 
 } // namespace
@@ -129,7 +143,7 @@ void finishContacts(WorldState& s, float frameDt) {
     c.events.clear();
     c.handles.clear();
     c.handleBegin.clear();
-    std::vector<uint32_t> materials;
+    std::vector<uint32_t> materials, groups;
     for (size_t b = 0; b < c.bodies.size(); ++b) {
         std::vector<ContactState::Touch>& touches = c.touches[b];
         if (touches.empty()) {
@@ -162,7 +176,7 @@ void finishContacts(WorldState& s, float frameDt) {
         e.material = MaterialId{
             uint16_t(std::max_element(materials.begin(), materials.end()) - materials.begin()),
             s.tag.value()};
-        e.group = contactGroup(s, touches);
+        e.group = contactGroup(s, touches, groups);
         // The forces on its samples, averaged over the step, times the step; and the coarse
         // solve's push, an impulse already.
         double ix = 0.0, iy = 0.0;

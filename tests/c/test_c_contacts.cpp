@@ -83,7 +83,10 @@ TEST_CASE("C: a shape's contact events are the C++ events", "[c][contacts]") {
         CHECK(g.plugin.world == disc.world);
         CHECK(g.body == 0);
         CHECK(g.material.index == e.material.index);
-        CHECK(g.group == 0);
+        CHECK(g.group.index == e.group.index);
+        CHECK(g.group.generation == e.group.generation);
+        CHECK(g.group.world == g.plugin.world); // the C world's tag (e is another world's)
+        CHECK(g.group.generation != 0);
         CHECK(g.particles == e.particles);
         CHECK(std::memcmp(&g.impulse, &e.impulse, sizeof g.impulse) == 0);
         CHECK(std::memcmp(&g.point, &e.point, sizeof g.point) == 0);

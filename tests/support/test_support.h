@@ -16,6 +16,7 @@
 #include <ctime>
 #include <functional>
 #include <map>
+#include <span>
 #include <memory>
 #include <string>
 #include <utility>
@@ -345,6 +346,29 @@ inline Reading readInterior(const World& world, MaterialId id) {
 
 /// A removal event's fields as bytes, without the world tags of its handle and ids (each World
 /// object has a tag of its own; two runs compare what the tags name) and without padding.
+/// The group most of `handles` belong to, by a plain count (ties: the lower index; handles in no
+/// group not counted): what a contact event's `group` must say. Null when none is in a group.
+inline GroupHandle majorityGroup(const World& world, std::span<const ParticleHandle> handles) {
+    std::map<uint32_t, std::pair<uint32_t, GroupHandle>> counts;
+    for (const ParticleHandle h : handles) {
+        const GroupHandle g = groupOf(world, h);
+        if (g.generation != 0) {
+            auto& c = counts[g.index];
+            ++c.first;
+            c.second = g;
+        }
+    }
+    GroupHandle best{};
+    uint32_t most = 0;
+    for (const auto& [index, c] : counts) { // increasing index: a tie keeps the lower one
+        if (c.first > most) {
+            most = c.first;
+            best = c.second;
+        }
+    }
+    return best;
+}
+
 inline std::string removalRecord(const RemovedEvent& e) {
     std::string out;
     const auto add = [&](const auto& value) {

@@ -72,7 +72,8 @@ std::vector<uint8_t> eventBytes(const World& world) {
         add(&e.plugin, sizeof e.plugin);
         add(&e.body, sizeof e.body);
         add(&e.material.index, sizeof e.material.index);
-        add(&e.group, sizeof e.group);
+        add(&e.group.index, sizeof e.group.index); // not its world tag: each world has its own
+        add(&e.group.generation, sizeof e.group.generation);
         add(&e.particles, sizeof e.particles);
         add(&e.impulse, sizeof e.impulse);
         add(&e.point, sizeof e.point);
@@ -112,6 +113,14 @@ TEST_CASE("contacts: a disc held in a resting tank reports the particles around 
     const glm::vec2 centre{0.0f, 0.2f};
     Tank t = discTank(centre, true, precise());
     const float s = t.world.spacing(t.water);
+    // Two groups: the particles left of the disc's centre (less than half of those around it)
+    // move into a second one, so the event must name the group most of its particles are in.
+    const GroupHandle left = createGroup(t.world);
+    for (uint32_t i = 0; i < t.world.particleCount(); ++i) {
+        if (t.world.positionX()[i] < centre.x - 0.02f) {
+            setGroup(t.world, t.world.handleAt(i), left);
+        }
+    }
     double lift = 0.0, side = 0.0;
     int frames = 0;
     for (int f = 0; f < 120; ++f) {
@@ -122,8 +131,10 @@ TEST_CASE("contacts: a disc held in a resting tank reports the particles around 
         CHECK(e.plugin == 1);
         CHECK(e.body == 0);
         CHECK(e.material == t.water);
-        CHECK(e.group == 0);
         REQUIRE(contactParticles(t.world, 0).size() == e.particles);
+        CHECK(e.group == majorityGroup(t.world, contactParticles(t.world, 0)));
+        CHECK(isValid(t.world, e.group));
+        CHECK(e.group != left);
         if (f >= 60) {
             lift += double(e.impulse.y);
             side += double(e.impulse.x);

@@ -99,7 +99,7 @@ fluid_status fluid_world_contacts(const fluid_world* world, fluid_body_contact* 
                     c.plugin = {e.plugin, FLUID_PLUGIN_BOUNDARY, tag};
                     c.body = e.body;
                     c.material = toC(e.material);
-                    c.group = e.group;
+                    c.group = {e.group.index, e.group.generation, e.group.world};
                     c.particles = e.particles;
                     c.impulse = toC(e.impulse);
                     c.point = toC(e.point);
@@ -158,7 +158,7 @@ fluid_status fluid_level_body_contacts(const fluid_level* level, fluid_level_bod
                     fluid_level_body_contact c{};
                     c.body = lc.body;
                     c.material = toC(e.material);
-                    c.group = e.group;
+                    c.group = {e.group.index, e.group.generation, e.group.world};
                     c.particles = e.particles;
                     c.impulse = toC(e.impulse);
                     c.point = toC(e.point);

@@ -32,9 +32,9 @@ struct BodyContact {
     uint32_t body = 0;
     /// The material most of the touching particles have (ties: the lower index).
     MaterialId material{};
-    /// The particle group most of the touching particles belong to: 0 until particle groups
-    /// land (unit: id).
-    uint32_t group = 0;
+    /// The particle group most of the touching particles belong to (fluid/groups.h; ties: the
+    /// lower index; particles in no group are not counted); null when none of them is in one.
+    GroupHandle group{};
     /// Distinct particles that touched the body during the step, over all its sub-steps (unit:
     /// count; >= 1). `contactParticles` lists them.
     uint32_t particles = 0;

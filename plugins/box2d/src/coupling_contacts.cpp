@@ -6,6 +6,7 @@
 
 #include <fluid/contacts.h>
 #include <fluid/error.h>
+#include <fluid/groups.h>
 
 #include <box2d/box2d.h>
 
@@ -89,6 +90,41 @@ void Coupling::collectContacts(const World& world, float dt) {
     }
 }
 
+namespace {
+
+// The group most of `handles` belong to (ties: the lower index; particles in no group, and
+// those removed since they touched, are not counted); null when none is in a group.
+GroupHandle majorityGroup(const World& world, std::span<const ParticleHandle> handles) {
+    std::vector<std::pair<uint32_t, GroupHandle>> counts; // (count, group), by group index
+    for (const ParticleHandle h : handles) {
+        if (!world.isValid(h)) {
+            continue;
+        }
+        const GroupHandle g = groupOf(world, h);
+        if (g.generation == 0) {
+            continue;
+        }
+        auto it = std::find_if(counts.begin(), counts.end(),
+                               [&](const auto& c) { return c.second.index == g.index; });
+        if (it == counts.end()) {
+            counts.push_back({0, g});
+            it = counts.end() - 1;
+        }
+        ++it->first;
+    }
+    GroupHandle best{};
+    uint32_t most = 0;
+    for (const auto& [count, g] : counts) {
+        if (count > most || (count == most && g.index < best.index)) {
+            most = count;
+            best = g;
+        }
+    }
+    return best;
+}
+
+} // namespace
+
 // The frame's events from its sums, in the b2World's body order.
 void Coupling::finishContacts(const World& world) {
     m_particleContacts.clear();
@@ -111,7 +147,7 @@ void Coupling::finishContacts(const World& world) {
             c.material = world.adopt(
                 MaterialId{uint16_t(std::max_element(sum->materials.begin(), sum->materials.end()) -
                                     sum->materials.begin())});
-            c.group = 0; // the world's BodyContact::group once particles carry groups
+            c.group = majorityGroup(world, handles);
             c.particles = uint32_t(handles.size());
             c.impulse = glm::vec2(sum->impulse);
             c.point = glm::vec2(sum->pointSum / sum->touches);

@@ -1357,8 +1357,9 @@ typedef struct fluid_body_contact {
     uint32_t body;
     /// The material most of the touching particles have.
     fluid_material_id material;
-    /// The particle group most of them belong to: 0 until particle groups land (unit: id).
-    uint32_t group;
+    /// The particle group most of them belong to (ties: the lower index); the null id (all
+    /// zeros) when none of them is in a group.
+    fluid_group_id group;
     /// Distinct particles that touched the body during the step (unit: count; >= 1).
     uint32_t particles;
     /// The liquid's impulse on the body over the step (unit: N s).
@@ -1401,8 +1402,9 @@ typedef struct fluid_level_body_contact {
     uint32_t body;
     /// The material most of the touching particles have.
     fluid_material_id material;
-    /// The particle group most of them belong to: 0 until particle groups land (unit: id).
-    uint32_t group;
+    /// The particle group most of them belong to (ties: the lower index); the null id (all
+    /// zeros) when none of them is in a group.
+    fluid_group_id group;
     /// Distinct particles that touched the body during the frame (unit: count; >= 1).
     uint32_t particles;
     /// The liquid's impulse on the body over the frame (unit: N s).

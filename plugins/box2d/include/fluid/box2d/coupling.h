@@ -114,9 +114,9 @@ struct ParticleContact {
     /// The material most of the touching particles have, over the rounds (ties: the lower
     /// index).
     MaterialId material{};
-    /// The particle group most of the touching particles belong to: 0 until particle groups
-    /// land (unit: id).
-    uint32_t group = 0;
+    /// The particle group most of the touching particles belong to (fluid/groups.h; ties: the
+    /// lower index; particles in no group are not counted); null when none of them is in one.
+    GroupHandle group{};
     /// Distinct particles that touched the body during the frame (unit: count; >= 1);
     /// `Coupling::contactParticles` lists them.
     uint32_t particles = 0;
