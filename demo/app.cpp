@@ -728,7 +728,9 @@ private:
         m_probe.draw(2.0f / cam.pixelsPerMetre, 30.0f / cam.pixelsPerMetre, m_over);
         gl::RenderSettings settings;
         settings.view = kViews[m_view];
-        m_renderer->render(cam, gl::particles(m_session->level().world), m_under, m_over, settings);
+        gl::ParticleSpans spans = gl::particles(m_session->level().world);
+        spans.factor = m_pacer->drawFactor(); // between the last two level frames
+        m_renderer->render(cam, spans, m_under, m_over, settings);
         if (m_screenshotPending) {
             // Before the overlay: the picture of the liquid, not of the HUD.
             m_screenshotPending = false;

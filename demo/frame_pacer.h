@@ -1,6 +1,7 @@
 // fluid-demo — fixed-step pacing: how many simulation steps to run per rendered frame.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <deque>
 
@@ -81,6 +82,12 @@ public:
     /// Real time waiting in the accumulator (unit: s; in [-step/1000, step) after `advance`).
     /// step fraction = backlog() / def().step, e.g. for render interpolation.
     double backlog() const { return m_accumulator; }
+    /// How far between the last two steps to draw (unit: 1; [0, 1]): backlog() / def().step,
+    /// clamped; the factor of positions interpolated over whole steps
+    /// (`fluid::Interpolation::Step`).
+    float drawFactor() const {
+        return float(std::clamp(m_accumulator / m_def.step, 0.0, 1.0));
+    }
     /// The definition the pacer was made from.
     const FramePacerDef& def() const { return m_def; }
 

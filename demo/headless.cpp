@@ -1,6 +1,8 @@
 // fluid-demo — headless runs.
 #include "demo/headless.h"
 
+#include "demo/frame_pacer.h"
+
 
 #include "demo/imgui_bridge.h"
 #include "demo/overlay.h"
@@ -91,19 +93,30 @@ int runHeadless(const HeadlessOptions& options) {
         const gl::Camera camera = session->camera(options.size);
         gl::RenderSettings settings;
         uint32_t levelErrors = 0;
-        // At a display rate: the frames whose picture repeats the one before while the liquid
-        // moves, drawn between sub-steps (as the renderer draws) and at the current positions.
+        // At a display rate, as the game plays: fixed level frames from a frame pacer fed the
+        // display's frame time, the liquid drawn between the last two at the fraction of a frame
+        // the pacer holds (Interpolation::Step). Counted: the frames whose picture repeats the
+        // one before while the liquid moves, drawn so and at the current positions.
         uint32_t repeated = 0, repeatedCurrent = 0, moving = 0;
         std::vector<float> drawn, lastDrawn, lastCurrent;
+        FramePacerDef pacing;
+        pacing.step = 1.0 / double(session->level().frameRate);
+        pacing.maxFrameTime = std::max(pacing.maxFrameTime, pacing.step);
+        FramePacer pacer(pacing);
+        float factor = 1.0f;
         try {
             for (uint32_t frame = 1; frame <= options.frames; ++frame) {
                 if (options.displayHz > 0.0f) {
-                    session->stepFor(1.0f / options.displayHz);
+                    const uint32_t steps = pacer.advance(1.0 / double(options.displayHz));
+                    for (uint32_t k = 0; k < steps; ++k) {
+                        session->step();
+                    }
+                    factor = pacer.drawFactor();
                     const World& world = session->level().world;
                     const uint32_t n = world.particleCount();
                     drawn.resize(2 * size_t(n));
                     interpolatedPositions(world, std::span(drawn).first(n),
-                                          std::span(drawn).subspan(n));
+                                          std::span(drawn).subspan(n), factor);
                     std::vector<float> current(world.positionX().begin(),
                                                world.positionX().end());
                     current.insert(current.end(), world.positionY().begin(),
@@ -128,10 +141,10 @@ int runHeadless(const HeadlessOptions& options) {
                     session->drawShapes(camera, false, under, over);
                     for (const gl::View view : options.views) {
                         settings.view = view;
-                        levelErrors += renderer
-                                           ->render(camera, gl::particles(session->level().world),
-                                                    under, over, settings)
-                                           .glErrors;
+                        gl::ParticleSpans spans = gl::particles(session->level().world);
+                        spans.factor = factor;
+                        levelErrors +=
+                            renderer->render(camera, spans, under, over, settings).glErrors;
                     }
                 }
             }
@@ -146,10 +159,12 @@ int runHeadless(const HeadlessOptions& options) {
                         repeated, repeatedCurrent);
         }
         session->drawShapes(camera, false, under, over);
+        gl::ParticleSpans finalSpans = gl::particles(session->level().world);
+        finalSpans.factor = factor;
         for (const gl::View view : options.views) {
             settings.view = view;
             const gl::RenderStats stats = renderer->render(
-                camera, gl::particles(session->level().world), under, over, settings);
+                camera, finalSpans, under, over, settings);
             levelErrors += stats.glErrors;
             if (imgui) {
                 drawOverlay(*imgui, *renderer, *session, view);

@@ -24,8 +24,9 @@ struct HeadlessOptions {
     /// Also render every this many frames while stepping (unit: count; 0 = only at the end),
     /// so a test sees GL errors of mid-run states.
     uint32_t renderEvery = 0;
-    /// Display rate (unit: Hz; 0 = off): each frame steps 1 / displayHz s instead of one
-    /// level frame, and the renderer draws the liquid between sub-steps (fluid/groups.h).
+    /// Display rate (unit: Hz; 0 = off): each frame feeds 1 / displayHz s to a frame pacer that
+    /// runs whole level frames, as the game does, and the liquid is drawn between the last two
+    /// at the fraction of a frame the pacer holds (fluid/groups.h, Interpolation::Step).
     float displayHz = 0.0f;
     /// Image size (unit: px).
     glm::ivec2 size{960, 540};

@@ -89,8 +89,8 @@ int main(int argc, char** argv) {
     app.add_option("--render-every", renderEvery,
                    "Headless: also render every K frames while stepping (0 = only at the end)");
     app.add_option("--display-hz", displayHz,
-                   "Headless: step each frame by 1/HZ s (the display's rate) and draw the "
-                   "liquid between sub-steps (0 = one level frame per frame)")
+                   "Headless: a display at HZ: level frames paced by 1/HZ s of display time, the "
+                   "liquid drawn between the last two (0 = one level frame per frame)")
         ->check(CLI::Range(0.0f, 1000.0f));
     app.add_flag("--no-hud", noHud, "Headless: leave the HUD and level banner out of images");
     app.add_flag("--fullscreen", fullscreen, "Start in fullscreen (F11 toggles)");

@@ -40,8 +40,10 @@ Session::Session(const LevelFile& file, uint32_t workers)
     registerBuiltinPlugins(m_registry);
     m_level = loadLevel(file.path, m_registry, optionsFor(workers));
     World& world = m_level.world;
-    // Drawn between sub-steps (fluid/groups.h): smooth at any display rate.
-    setInterpolation(world, true);
+    // Drawn between the last two level frames (fluid/groups.h, Interpolation::Step): the game
+    // steps fixed frames from its frame pacer and draws at the fraction of a frame the pacer
+    // holds, smooth at any display rate.
+    setInterpolation(world, Interpolation::Step);
 
     // The bounds come first: they frame the particles as the file placed them.
     m_bounds = levelBounds(m_level);

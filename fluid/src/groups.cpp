@@ -591,8 +591,26 @@ float colourMixing(const World& world) {
 }
 
 void setInterpolation(World& world, bool on) {
+    setInterpolation(world, on ? Interpolation::Substep : Interpolation::Off);
+}
+
+Interpolation interpolation(const World& world) {
+    const WorldState& s = reading(world, "interpolation");
+    return !s.interpolate        ? Interpolation::Off
+           : s.interpolateSteps ? Interpolation::Step
+                                : Interpolation::Substep;
+}
+
+void setInterpolation(World& world, Interpolation mode) {
+    if (mode != Interpolation::Off && mode != Interpolation::Substep &&
+        mode != Interpolation::Step) {
+        throw Error("setInterpolation: mode = " + std::to_string(int(mode)) +
+                    " is not an Interpolation (Off 0, Substep 1, Step 2)");
+    }
     WorldState& s = changing(world, "setInterpolation");
+    const bool on = mode != Interpolation::Off;
     s.interpolate = on;
+    s.interpolateSteps = mode == Interpolation::Step;
     s.permuteLast = false;
     if (on) {
         detail::resetPrevious(s);
@@ -608,7 +626,7 @@ bool interpolating(const World& world) {
 
 float interpolationFactor(const World& world) {
     const WorldState& s = reading(world, "interpolationFactor");
-    if (s.def.solver != Solver::PositionBased) {
+    if (s.def.solver != Solver::PositionBased || s.interpolateSteps) {
         return 1.0f;
     }
     const double h = detail::substepLength(s.def.positionBased.substeps);

@@ -12,6 +12,7 @@
 #include "world_state.h"
 
 #include <fluid/error.h>
+#include <fluid/groups.h>
 #include <fluid/internal/binary.h>
 #include <fluid/registry.h>
 
@@ -310,7 +311,7 @@ void checkSolverState(const detail::WorldState& s) {
 // table, or empty when unused), each emitter's group, and the colour channel (empty when unused). The previous
 // positions are not saved: a loaded world's are its current ones.
 void putGroups(Out& o, const detail::WorldState& s) {
-    o.put(uint8_t(s.interpolate));
+    o.put(uint8_t(s.interpolate ? (s.interpolateSteps ? 2 : 1) : 0)); // Interpolation
     o.put(s.colourMixing);
     o.put<uint64_t>(s.groups.size());
     for (const detail::WorldState::Group& g : s.groups) {
@@ -339,7 +340,9 @@ void putGroups(Out& o, const detail::WorldState& s) {
 // Reads what `putGroups` wrote and checks it against the particles and emitters read before.
 void getGroups(In& in, detail::WorldState& s) {
     using detail::WorldState;
-    s.interpolate = in.small(true, "the interpolation flag");
+    const Interpolation mode = in.small(Interpolation::Step, "the interpolation mode");
+    s.interpolate = mode != Interpolation::Off;
+    s.interpolateSteps = mode == Interpolation::Step;
     s.colourMixing = in.get<float>("the colour mixing rate");
     if (!(s.colourMixing >= 0.0f && s.colourMixing <= 1000.0f)) {
         std::ostringstream text;

@@ -425,9 +425,10 @@ private:
         if (s.yielding) {
             applyPendingKicks(s);
         }
-        if (sub.last && s.interpolate) {
-            // Interpolation (groups.h): where the particles start the frame's last sub-step;
-            // this sub-step's sort carries them along.
+        if (s.interpolate && (s.interpolateSteps ? sub.index == 0 : sub.last)) {
+            // Interpolation (groups.h): where the particles start the frame's last sub-step
+            // (Interpolation::Step: its first); the sorts from here to the frame's end carry
+            // them along.
             std::copy(p.px.begin(), p.px.end(), p.lastX.begin());
             std::copy(p.py.begin(), p.py.end(), p.lastY.begin());
             s.permuteLast = true;

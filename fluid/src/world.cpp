@@ -789,6 +789,13 @@ void World::step(float frameDt) {
     try {
         const Stepping stepping(s);
         emitted = detail::emitParticles(s, frameDt, blocked, skipped);
+        if (s.interpolate && s.interpolateSteps && s.def.solver == Solver::Explicit &&
+            frameDt > 0.0f) {
+            // Interpolation::Step (groups.h): where the particles start the frame; its sorts
+            // carry them along (the position-based solver takes them in its first sub-step).
+            detail::resetPrevious(s);
+            s.permuteLast = true;
+        }
         switch (s.def.solver) {
         case Solver::PositionBased:
             detail::stepPositionBased(s, frameDt);
@@ -804,8 +811,8 @@ void World::step(float frameDt) {
     }
     s.carry = carryAfter;
     s.permuteLast = false;
-    if (s.interpolate && s.def.solver == Solver::Explicit) {
-        detail::resetPrevious(s); // whole frames: nothing to draw between
+    if (s.interpolate && !s.interpolateSteps && s.def.solver == Solver::Explicit) {
+        detail::resetPrevious(s); // whole frames: nothing to draw between sub-steps
     }
     detail::mixColours(s, double(simulated));
     s.profile.removed = detail::finishGameplay(s);

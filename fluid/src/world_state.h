@@ -435,6 +435,7 @@ struct WorldState {
     std::vector<uint32_t> slotColourFraction;
     std::vector<uint32_t> emitterGroup; // per emitter: the group its particles join
     bool interpolate = false;           // keep Particles::lastX, lastY
+    bool interpolateSteps = false;      // ... from a step's start (Interpolation::Step)
     bool permuteLast = false;           // the sort permutes lastX, lastY (last sub-step)
     float colourMixing = 0.0f;          // 1/s
     uint32_t groupOfSlot(uint32_t slot) const {

@@ -158,6 +158,18 @@ TEST_CASE("C: stale ids and bad values fail with a status and the C++ message", 
     CHECK(fluid_world_move_group(w.world, live, {NAN, 0.0f}) == FLUID_ERROR_INVALID_ARGUMENT);
     CHECK(std::string(fluid_last_error()) ==
           "moveGroup: offset = (nan, 0) is not finite (unit: m)");
+    CHECK(fluid_world_set_interpolation_mode(w.world, fluid_interpolation(7)) ==
+          FLUID_ERROR_INVALID_ARGUMENT);
+    CHECK(std::string(fluid_last_error()) ==
+          "setInterpolation: mode = 7 is not an Interpolation (Off 0, Substep 1, Step 2)");
+    // Over whole steps: the world's factor reads 1 (the game's own counts), and the previous
+    // positions are those at the step's start.
+    C_OK(fluid_world_set_interpolation_mode(w.world, FLUID_INTERPOLATION_STEP));
+    C_OK(fluid_world_step(w.world, 1.0f / 60.0f));
+    float stepFactor = 0.0f;
+    C_OK(fluid_world_interpolation_factor(w.world, &stepFactor));
+    CHECK(stepFactor == 1.0f);
+    C_OK(fluid_world_set_interpolation_mode(w.world, FLUID_INTERPOLATION_OFF));
     CHECK(fluid_world_set_colour_mixing(w.world, 5000.0f) == FLUID_ERROR_INVALID_ARGUMENT);
     CHECK_THAT(fluid_last_error(),
                Catch::Matchers::StartsWith("setColourMixing: rate = 5000 is out of range"));

@@ -78,6 +78,68 @@ TEST_CASE("interpolation: at 144 Hz and 480 Hz the drawn liquid moves every fram
     }
 }
 
+TEST_CASE("interpolation over whole steps: fixed 60 Hz ticks drawn at 144 Hz and 480 Hz move the "
+          "picture every frame, one tick behind",
+          "[interpolation]") {
+    const float hz = GENERATE(144.0f, 480.0f);
+    const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
+    CAPTURE(hz, solverName(solver));
+    WorldDef def;
+    def.solver = solver;
+    World world(def);
+    const MaterialId w = world.addMaterial(water());
+    world.spawnBlob(latticeBlock(world, w, 0.0f, 0.0f, 16, 16, {kDrift, 0.0f}));
+    setInterpolation(world, Interpolation::Step);
+    REQUIRE(interpolation(world) == Interpolation::Step);
+    REQUIRE(interpolating(world));
+    const double tick = 1.0 / 60.0, frameDt = 1.0 / double(hz);
+    const double x0 = meanX(world.positionX());
+    std::vector<float> x(world.particleCount()), y(world.particleCount());
+    double accumulator = 0.0, lastDrawn = x0, ticks = 0.0;
+    uint32_t idleFrames = 0;
+    for (int frame = 1; frame <= int(hz); ++frame) { // one second of display frames
+        accumulator += frameDt;
+        bool ticked = false;
+        while (accumulator >= tick) { // the game's fixed-step loop
+            world.step(float(tick));
+            accumulator -= tick;
+            ticks += 1.0;
+            ticked = true;
+        }
+        idleFrames += ticked ? 0 : 1;
+        CHECK(interpolationFactor(world) == 1.0f); // the game's own factor counts here
+        const float factor = float(accumulator / tick);
+        interpolatedPositions(world, x, y, factor);
+        const double drawn = meanX(x);
+        if (ticks < 1.0) {
+            CHECK(drawn == Approx(x0).margin(1e-6)); // nothing simulated yet: previous = current
+            continue;
+        }
+        // One tick behind the display's time: the blob drifts exactly with the ticks simulated.
+        const double expected = x0 + double(kDrift) * ((ticks - 1.0) * tick + double(factor) * tick);
+        CHECK(std::fabs(drawn - expected) < 2e-5);
+        if (ticks >= 2.0 || !ticked) { // the first tick's picture starts at x0
+            CHECK(drawn - lastDrawn > 0.9 * kDrift * frameDt);
+            CHECK(drawn - lastDrawn < 1.1 * kDrift * frameDt);
+        }
+        lastDrawn = drawn;
+    }
+    CHECK(idleFrames > uint32_t(hz / 3.0f)); // frames that step no tick, where positions repeat
+    // The mode is saved; a loaded world's previous positions are its current ones.
+    std::ostringstream out;
+    world.save(out);
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    std::istringstream in(out.str());
+    World loaded = World::load(in, registry);
+    CHECK(interpolation(loaded) == Interpolation::Step);
+    CHECK(std::equal(previousPositionX(loaded).begin(), previousPositionX(loaded).end(),
+                     loaded.positionX().begin(), loaded.positionX().end()));
+    CHECK_THROWS_WITH(setInterpolation(world, Interpolation(7)),
+                      "setInterpolation: mode = 7 is not an Interpolation (Off 0, Substep 1, "
+                      "Step 2)");
+}
+
 TEST_CASE("interpolation: the factor is the carried time over the sub-step plus a half",
           "[interpolation]") {
     World world = driftingBlob(1);

@@ -326,6 +326,13 @@ fluid_status fluid_world_set_interpolation(fluid_world* world, bool on) {
                  [&] { setInterpolation(worldOf(world, "fluid_world_set_interpolation"), on); });
 }
 
+fluid_status fluid_world_set_interpolation_mode(fluid_world* world, fluid_interpolation mode) {
+    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
+        setInterpolation(worldOf(world, "fluid_world_set_interpolation_mode"),
+                         Interpolation(int(mode)));
+    });
+}
+
 fluid_status fluid_world_interpolation_factor(const fluid_world* world, float* factor) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const World& w = worldOf(world, "fluid_world_interpolation_factor");

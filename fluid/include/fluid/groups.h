@@ -164,16 +164,35 @@ float colourMixing(const World& world);
 // also when a frame simulates no sub-step (docs/groups.md, "Positions between steps").
 // The explicit solver steps whole frames: its factor is 1 (the current positions).
 
-/// Turns interpolation on or off (off by default; the setting is saved in snapshots, the
-/// previous positions are not: a loaded world's previous positions are its current ones).
-/// Turning it on sets every previous position to the current one. A world with it off keeps
-/// no previous positions and pays nothing.
+/// Which previous positions a world keeps (`setInterpolation`). Thread rule: a plain value.
+enum class Interpolation : uint8_t {
+    /// None (the default): the world keeps nothing and pays nothing.
+    Off,
+    /// The positions at the start of the last simulated sub-step, for a game that steps its
+    /// world with each display frame's time: `interpolationFactor` gives the factor.
+    Substep,
+    /// The positions at the start of the last `World::step` that simulated a sub-step, for a
+    /// game that steps fixed ticks (`step(1/60)` from an accumulator) and draws faster: the game
+    /// passes its own factor, the fraction of a tick its accumulator holds after the ticks it
+    /// ran, to `interpolatedPositions` (and `fluid::gl::ParticleSpans::factor`); the picture is
+    /// one tick behind. `interpolationFactor` reads 1 in this mode. Both solvers.
+    Step,
+};
+
+/// Chooses which previous positions the world keeps (`Interpolation`; off by default; the
+/// setting is saved in snapshots, the previous positions are not: a loaded world's previous
+/// positions are its current ones). Setting a mode other than `Off` sets every previous
+/// position to the current one. Thread rule: between steps.
+void setInterpolation(World& world, Interpolation mode);
+/// `setInterpolation(world, on ? Interpolation::Substep : Interpolation::Off)`.
 void setInterpolation(World& world, bool on);
-/// True when the world keeps previous positions.
+/// The world's interpolation mode. Thread rule: between steps, any number of readers.
+Interpolation interpolation(const World& world);
+/// True when the world keeps previous positions (a mode other than `Off`).
 bool interpolating(const World& world);
 /// How far between the previous and the current positions to draw (unit: 1; range [0, 1]):
-/// `carriedTime() / substepLength() + 0.5` clamped to [0, 1] for the position-based solver;
-/// 1 for the explicit solver.
+/// in `Interpolation::Substep`, `carriedTime() / substepLength() + 0.5` clamped to [0, 1] for
+/// the position-based solver and 1 for the explicit solver; 1 otherwise.
 float interpolationFactor(const World& world);
 /// Previous positions x and y per array index (unit: m; empty while interpolation is off). New,
 /// emitted, moved (`moveGroup`) and loaded particles have previous = current.

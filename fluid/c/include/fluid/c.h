@@ -1327,8 +1327,26 @@ FLUID_C_API fluid_status fluid_world_colours(const fluid_world* world,
 FLUID_C_API fluid_status fluid_world_set_colour_mixing(fluid_world* world, float rate);
 
 /// Keeps (or drops) the previous sub-step's positions for drawing between steps (off by
-/// default; costs nothing while off).
+/// default; costs nothing while off): fluid_world_set_interpolation_mode with
+/// FLUID_INTERPOLATION_SUBSTEP or FLUID_INTERPOLATION_OFF.
 FLUID_C_API fluid_status fluid_world_set_interpolation(fluid_world* world, bool on);
+
+/// Which previous positions a world keeps (C++ fluid::Interpolation).
+typedef enum fluid_interpolation {
+    /// None (the default).
+    FLUID_INTERPOLATION_OFF = 0,
+    /// The start of the last simulated sub-step: for a game that steps with each display
+    /// frame's time; fluid_world_interpolation_factor gives the factor.
+    FLUID_INTERPOLATION_SUBSTEP = 1,
+    /// The start of the last step that simulated a sub-step: for a game that steps fixed ticks
+    /// and draws faster; it passes the fraction of a tick its accumulator holds as the factor.
+    FLUID_INTERPOLATION_STEP = 2
+} fluid_interpolation;
+
+/// Sets which previous positions the world keeps; FLUID_ERROR_INVALID_ARGUMENT for a value not
+/// in fluid_interpolation. Between steps.
+FLUID_C_API fluid_status fluid_world_set_interpolation_mode(fluid_world* world,
+                                                            fluid_interpolation mode);
 
 /// How far between the previous and current positions to draw now (unit: 1; [0, 1]):
 /// carried time over the sub-step plus a half (1 for the explicit solver).
