@@ -374,7 +374,7 @@ void sortParticles(WorldState& s, float cellSize,
     for (auto* channel : extra) {
         permute(*channel, order, s.sortScratch, tasks);
     }
-    // Issue 63's optional channels: colours whenever a world has them; the previous positions
+    // The optional channels: colours whenever a world has them; the previous positions
     // only in the sort of a step's last sub-step, which captured them (permuteLast).
     if (!p.colour.empty()) {
         permute(p.colour, order, s.sortScratch, tasks);

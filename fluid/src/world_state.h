@@ -50,7 +50,7 @@ struct Particles {
     std::vector<float> invRho;
     std::vector<float> h, massPerDepth, viscosity, mass, restDensity, gamma;
     std::vector<float> invMass, volume, pairPressure, invLattice;
-    // ---- Issue 63 (groups.cpp): optional channels, empty until a world uses them ----
+    // ---- Optional channels (groups.cpp), empty until a world uses them ----
     // Interpolation: positions at the start of the last sub-step (m), permuted by the sort of
     // the last sub-step only (WorldState::permuteLast); empty while interpolation is off.
     std::vector<float> lastX, lastY;
@@ -411,7 +411,7 @@ struct WorldState {
     };
     std::unique_ptr<QueryGrid> queryGrid = std::make_unique<QueryGrid>();
 
-    // ---- Issue 63: groups, user data, colours, interpolation (groups.cpp) ----
+    // ---- Groups, user data, colours, interpolation (groups.cpp) ----
     // Groups by index; a free entry has live false and is listed in freeGroups (reused
     // last-in first-out, its generation bumped). Membership and user data are kept per handle
     // slot (slotGroup, slotUserData: empty until first used, possibly shorter than the handle

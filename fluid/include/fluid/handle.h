@@ -44,7 +44,7 @@ struct MaterialId {
     friend constexpr bool operator==(MaterialId a, MaterialId b) { return a.index == b.index; }
 };
 
-// ---- Groups (groups.h; issue 63) ----
+// ---- Groups (groups.h) ----
 
 /// A group of particles: a blob, an emitter's output, or one the game made (`createGroup`).
 /// Groups are destroyed (`destroyGroup`) or merged away (`mergeGroups`), after which the handle
