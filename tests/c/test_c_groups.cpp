@@ -158,10 +158,10 @@ TEST_CASE("C: stale ids and bad values fail with a status and the C++ message", 
     CHECK(fluid_world_move_group(w.world, live, {NAN, 0.0f}) == FLUID_ERROR_INVALID_ARGUMENT);
     CHECK(std::string(fluid_last_error()) ==
           "moveGroup: offset = (nan, 0) is not finite (unit: m)");
-    CHECK(fluid_world_set_interpolation_mode(w.world, fluid_interpolation(7)) ==
-          FLUID_ERROR_INVALID_ARGUMENT);
+    CHECK(fluid_world_set_interpolation_mode(w.world, 258) == FLUID_ERROR_INVALID_ARGUMENT);
     CHECK(std::string(fluid_last_error()) ==
-          "setInterpolation: mode = 7 is not an Interpolation (Off 0, Substep 1, Step 2)");
+          "fluid_world_set_interpolation_mode: mode = 258 is not a fluid_interpolation "
+          "(FLUID_INTERPOLATION_OFF 0, FLUID_INTERPOLATION_SUBSTEP 1, FLUID_INTERPOLATION_STEP 2)");
     // Over whole steps: the world's factor reads 1 (the game's own counts), and the previous
     // positions are those at the step's start.
     C_OK(fluid_world_set_interpolation_mode(w.world, FLUID_INTERPOLATION_STEP));

@@ -4,6 +4,7 @@
 
 #include <fluid/groups.h>
 
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -326,10 +327,15 @@ fluid_status fluid_world_set_interpolation(fluid_world* world, bool on) {
                  [&] { setInterpolation(worldOf(world, "fluid_world_set_interpolation"), on); });
 }
 
-fluid_status fluid_world_set_interpolation_mode(fluid_world* world, fluid_interpolation mode) {
+fluid_status fluid_world_set_interpolation_mode(fluid_world* world, uint32_t mode) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        setInterpolation(worldOf(world, "fluid_world_set_interpolation_mode"),
-                         Interpolation(int(mode)));
+        World& w = worldOf(world, "fluid_world_set_interpolation_mode");
+        if (mode > FLUID_INTERPOLATION_STEP) {
+            throw Error("fluid_world_set_interpolation_mode: mode = " + std::to_string(mode) +
+                        " is not a fluid_interpolation (FLUID_INTERPOLATION_OFF 0, "
+                        "FLUID_INTERPOLATION_SUBSTEP 1, FLUID_INTERPOLATION_STEP 2)");
+        }
+        setInterpolation(w, Interpolation(uint8_t(mode)));
     });
 }
 

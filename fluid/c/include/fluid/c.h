@@ -1343,10 +1343,9 @@ typedef enum fluid_interpolation {
     FLUID_INTERPOLATION_STEP = 2
 } fluid_interpolation;
 
-/// Sets which previous positions the world keeps; FLUID_ERROR_INVALID_ARGUMENT for a value not
-/// in fluid_interpolation. Between steps.
-FLUID_C_API fluid_status fluid_world_set_interpolation_mode(fluid_world* world,
-                                                            fluid_interpolation mode);
+/// Sets which previous positions the world keeps (`mode`: a fluid_interpolation);
+/// FLUID_ERROR_INVALID_ARGUMENT for another value. Between steps.
+FLUID_C_API fluid_status fluid_world_set_interpolation_mode(fluid_world* world, uint32_t mode);
 
 /// How far between the previous and current positions to draw now (unit: 1; [0, 1]):
 /// carried time over the sub-step plus a half (1 for the explicit solver).
