@@ -15,26 +15,6 @@
 using namespace fluid;
 using namespace fluid::test;
 
-namespace {
-
-// The three solvers a game may step with.
-enum class Setting { Explicit, Game, Precise };
-
-const char* settingName(Setting s) {
-    return s == Setting::Explicit ? "explicit" : s == Setting::Game ? "game" : "precise";
-}
-
-WorldDef defFor(Setting setting, uint32_t workers) {
-    WorldDef def;
-    def.workerCount = workers;
-    def.solver = setting == Setting::Explicit ? Solver::Explicit : Solver::PositionBased;
-    def.positionBased =
-        positionBasedPreset(setting == Setting::Precise ? Quality::Precise : Quality::Game);
-    return def;
-}
-
-} // namespace
-
 TEST_CASE("rays: a resting tank's surface, hydrostatic pressure and depth",
           "[slow][invariants][rays]") {
     const Setting setting = GENERATE(Setting::Explicit, Setting::Game, Setting::Precise);

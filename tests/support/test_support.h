@@ -573,6 +573,25 @@ inline Material forSolver(Material material, Solver solver) {
 }
 
 /// The solver's name in test output.
+/// The three ways a game may step a world: the explicit solver and the position-based
+/// solver's two presets.
+enum class Setting { Explicit, Game, Precise };
+
+/// "explicit", "game" or "precise".
+inline const char* settingName(Setting s) {
+    return s == Setting::Explicit ? "explicit" : s == Setting::Game ? "game" : "precise";
+}
+
+/// A world definition of `setting` on `workers` threads.
+inline WorldDef defFor(Setting setting, uint32_t workers) {
+    WorldDef def;
+    def.workerCount = workers;
+    def.solver = setting == Setting::Explicit ? Solver::Explicit : Solver::PositionBased;
+    def.positionBased =
+        positionBasedPreset(setting == Setting::Precise ? Quality::Precise : Quality::Game);
+    return def;
+}
+
 inline const char* solverName(Solver solver) {
     return solver == Solver::PositionBased ? "position-based" : "explicit";
 }

@@ -25,22 +25,6 @@ using namespace fluid::test;
 
 namespace {
 
-// The three solvers a game may step with.
-enum class Setting { Explicit, Game, Precise };
-
-const char* settingName(Setting s) {
-    return s == Setting::Explicit ? "explicit" : s == Setting::Game ? "game" : "precise";
-}
-
-WorldDef defFor(Setting setting, uint32_t workers) {
-    WorldDef def;
-    def.workerCount = workers;
-    def.solver = setting == Setting::Explicit ? Solver::Explicit : Solver::PositionBased;
-    def.positionBased =
-        positionBasedPreset(setting == Setting::Precise ? Quality::Precise : Quality::Game);
-    return def;
-}
-
 // A tank with a few blobs of water (and yoghurt) at random places, stepped a random number of
 // frames: a surface with splashes and droplets.
 World randomWorld(Setting setting, uint32_t seed, uint32_t workers = 1) {

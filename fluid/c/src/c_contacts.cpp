@@ -63,6 +63,17 @@ std::vector<LevelContact> levelContacts(const fluid_level* level, const Level& l
     return out;
 }
 
+// The fields a world's contact (fluid::BodyContact) and a coupling's (box2d::ParticleContact)
+// share, into their C records.
+template <class CRecord, class Event> void fillShared(CRecord& c, const Event& e) {
+    c.material = toC(e.material);
+    c.group = {e.group.index, e.group.generation, e.group.world};
+    c.particles = e.particles;
+    c.impulse = toC(e.impulse);
+    c.point = toC(e.point);
+    c.approach_speed = e.approachSpeed;
+}
+
 } // namespace
 
 fluid_status fluid_world_set_contact_events(fluid_world* world, fluid_plugin_id shape, bool on) {
@@ -98,12 +109,7 @@ fluid_status fluid_world_contacts(const fluid_world* world, fluid_body_contact* 
                     fluid_body_contact c{};
                     c.plugin = {e.plugin, FLUID_PLUGIN_BOUNDARY, tag};
                     c.body = e.body;
-                    c.material = toC(e.material);
-                    c.group = {e.group.index, e.group.generation, e.group.world};
-                    c.particles = e.particles;
-                    c.impulse = toC(e.impulse);
-                    c.point = toC(e.point);
-                    c.approach_speed = e.approachSpeed;
+                    fillShared(c, e);
                     return c;
                 });
     });
@@ -157,12 +163,7 @@ fluid_status fluid_level_body_contacts(const fluid_level* level, fluid_level_bod
                     const box2d::ParticleContact& e = l.coupling->particleContacts()[lc.index];
                     fluid_level_body_contact c{};
                     c.body = lc.body;
-                    c.material = toC(e.material);
-                    c.group = {e.group.index, e.group.generation, e.group.world};
-                    c.particles = e.particles;
-                    c.impulse = toC(e.impulse);
-                    c.point = toC(e.point);
-                    c.approach_speed = e.approachSpeed;
+                    fillShared(c, e);
                     return c;
                 });
     });
