@@ -721,7 +721,7 @@ private:
 
     void render(float realSeconds) {
         const gl::Camera cam = camera();
-        m_session->drawShapes(cam, true, m_under, m_over);
+        m_session->drawShapes(cam, true, m_under, m_over, m_pacer->drawFactor());
         // The liquid under the cursor and the laser (L), over the liquid: 2 px wide, the normal
         // 30 px long.
         m_probe.update(m_session->level().world, mouseWorld());

@@ -138,7 +138,7 @@ int runHeadless(const HeadlessOptions& options) {
                 }
                 if (options.renderEvery > 0 && frame % options.renderEvery == 0 &&
                     frame != options.frames) {
-                    session->drawShapes(camera, false, under, over);
+                    session->drawShapes(camera, false, under, over, factor);
                     for (const gl::View view : options.views) {
                         settings.view = view;
                         gl::ParticleSpans spans = gl::particles(session->level().world);
@@ -158,7 +158,7 @@ int runHeadless(const HeadlessOptions& options) {
                         file.stem.c_str(), double(options.displayHz), options.frames, moving,
                         repeated, repeatedCurrent);
         }
-        session->drawShapes(camera, false, under, over);
+        session->drawShapes(camera, false, under, over, factor);
         gl::ParticleSpans finalSpans = gl::particles(session->level().world);
         finalSpans.factor = factor;
         for (const gl::View view : options.views) {

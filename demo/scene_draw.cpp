@@ -121,9 +121,9 @@ glm::vec4 bodyColour(const Level& level, const b2Body& body) {
     return {glm::mix(light, dark, s), 1.0f};
 }
 
-void drawBody(const Level& level, const b2Body& body, float lineWidth, gl::ShapeBatch& batch) {
+void drawBody(const Level& level, const b2Body& body, const b2Transform& xf, float lineWidth,
+              gl::ShapeBatch& batch) {
     const glm::vec4 fill = bodyColour(level, body);
-    const b2Transform& xf = body.GetTransform();
     for (const b2Fixture* f = body.GetFixtureList(); f != nullptr; f = f->GetNext()) {
         const b2Shape* shape = f->GetShape();
         switch (shape->GetType()) {
@@ -293,7 +293,8 @@ void drawUnder(const Level& level, double goalFill, float lineWidth, gl::ShapeBa
     }
 }
 
-void drawOver(const Level& level, float lineWidth, gl::ShapeBatch& batch) {
+void drawOver(const Level& level, float lineWidth, gl::ShapeBatch& batch,
+              std::span<const BodyPose> previous, float factor) {
     const World& world = level.world;
     for (const auto& [name, id] : level.emitters) {
         const EmitterDef& e = world.emitter(id);
@@ -311,7 +312,16 @@ void drawOver(const Level& level, float lineWidth, gl::ShapeBatch& batch) {
     }
     for (const b2Body* body = level.physics->GetBodyList(); body != nullptr;
          body = body->GetNext()) {
-        drawBody(level, *body, lineWidth, batch);
+        b2Transform xf = body->GetTransform();
+        const auto was = std::find_if(previous.begin(), previous.end(),
+                                      [&](const BodyPose& p) { return p.body == body; });
+        if (was != previous.end() && factor < 1.0f) {
+            // Between the frame's start and its end: the angle the short way round.
+            const float turn = std::remainder(body->GetAngle() - was->angle, 2.0f * b2_pi);
+            const glm::vec2 at = glm::mix(was->position, toGlm(body->GetPosition()), factor);
+            xf.Set({at.x, at.y}, was->angle + factor * turn);
+        }
+        drawBody(level, *body, xf, lineWidth, batch);
     }
 }
 

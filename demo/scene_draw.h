@@ -6,6 +6,10 @@
 
 #include <glm/vec2.hpp>
 
+#include <span>
+
+class b2Body;
+
 namespace fluid::demo {
 
 /// The world rectangle a level is framed in (unit: m).
@@ -26,9 +30,20 @@ ViewBounds levelBounds(const Level& level);
 /// (unit: m). Stepping thread (reads plugins and Box2D).
 void drawUnder(const Level& level, double goalFill, float lineWidth, gl::ShapeBatch& batch);
 
+/// A Box2D body's pose at the start of the last level frame (`drawOver`).
+struct BodyPose {
+    const b2Body* body = nullptr;
+    glm::vec2 position{0.0f, 0.0f}; // m
+    float angle = 0.0f;             // rad
+};
+
 /// Box2D bodies (filled, outlined, shaded by density: light floats, dark sinks), kinematic
 /// plugin shapes and emitter nozzles, drawn over the liquid. `lineWidth` (unit: m) is the
 /// outline width, about 1.5 px. Stepping thread.
-void drawOver(const Level& level, float lineWidth, gl::ShapeBatch& batch);
+/// A body listed in `previous` is drawn `factor` (unit: 1; [0, 1]) of the way from that pose to
+/// its current one, as the liquid is drawn between frames (fluid::Interpolation::Step); others
+/// at their current pose.
+void drawOver(const Level& level, float lineWidth, gl::ShapeBatch& batch,
+              std::span<const BodyPose> previous = {}, float factor = 1.0f);
 
 } // namespace fluid::demo

@@ -161,6 +161,12 @@ void Session::step() {
 void Session::stepFor(float frameDt) {
     m_pointer->setPointer(m_pointerPos, std::abs(m_pointerPush));
     m_pointer->setParam("strength", m_pointerPush < 0.0f ? -40.0 : 40.0);
+    m_previousPoses.clear();
+    if (m_level.physics) {
+        for (const b2Body* b = m_level.physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
+            m_previousPoses.push_back({b, {b->GetPosition().x, b->GetPosition().y}, b->GetAngle()});
+        }
+    }
     const auto start = std::chrono::steady_clock::now();
     m_level.step(frameDt);
     const auto end = std::chrono::steady_clock::now();
@@ -222,6 +228,7 @@ bool Session::dropCrate(glm::vec2 center) {
     def.position = {center.x, center.y};
     def.angle = 0.3f * float(m_crates % 3) - 0.3f;
     b2Body* body = m_level.physics->CreateBody(&def);
+    m_previousPoses.clear(); // a new body may sit where a destroyed one's pose is kept
     b2PolygonShape box;
     box.SetAsBox(0.05f, 0.05f);
     b2FixtureDef fixture;
@@ -235,7 +242,7 @@ bool Session::dropCrate(glm::vec2 center) {
 }
 
 void Session::drawShapes(const gl::Camera& camera, bool showPointer, gl::ShapeBatch& under,
-                         gl::ShapeBatch& over) const {
+                         gl::ShapeBatch& over, float factor) const {
     under.clear();
     over.clear();
     const double fill = m_level.goal.present && m_level.goal.amount > 0.0
@@ -245,7 +252,7 @@ void Session::drawShapes(const gl::Camera& camera, bool showPointer, gl::ShapeBa
     const glm::vec2 size = m_bounds.hi - m_bounds.lo;
     drawUnder(m_level, fill, 0.004f * std::max(size.x, size.y), under);
     const float width = lineWidth(camera);
-    drawOver(m_level, width, over);
+    drawOver(m_level, width, over, m_previousPoses, factor);
     if (showPointer) {
         const glm::vec4 colour = m_pointerPush > 0.0f   ? glm::vec4(1.0f, 0.55f, 0.3f, 0.8f)
                                  : m_pointerPush < 0.0f ? glm::vec4(0.4f, 0.8f, 1.0f, 0.8f)

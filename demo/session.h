@@ -88,14 +88,17 @@ public:
 
     /// Fills `under` and `over` with the level's walls, sensors, bodies and nozzles, and the
     /// pointer ring when `showPointer`.
+    /// The bodies are drawn `factor` (unit: 1; [0, 1]) of the way from their pose at the start
+    /// of the last level frame to their current one, as the liquid (1: current).
     void drawShapes(const gl::Camera& camera, bool showPointer, gl::ShapeBatch& under,
-                    gl::ShapeBatch& over) const;
+                    gl::ShapeBatch& over, float factor = 1.0f) const;
 
 private:
     LevelFile m_file;
     uint32_t m_workers = 1;
     Registry m_registry;
     Level m_level;
+    std::vector<BodyPose> m_previousPoses; // the bodies at the start of the last level frame
     ViewBounds m_bounds;
     std::vector<gl::MaterialStyle> m_styles;
     PointerForce* m_pointer = nullptr;
