@@ -515,8 +515,11 @@ RayHit rayCast(const World& world, glm::vec2 p1, glm::vec2 p2, const SurfaceFiel
     return hit;
 }
 
-uint32_t rayCastParticles(const World& world, glm::vec2 p1, glm::vec2 p2, float radius,
-                          const RayVisitor& visit) {
+namespace {
+
+// rayCastParticles' arguments checked (errors name the value); the world's state.
+const WorldState& checkParticleCast(const World& world, glm::vec2 p1, glm::vec2 p2, float radius,
+                                    const RayVisitor& visit) {
     const char* const function = "rayCastParticles";
     const WorldState& s = detail::queryState(world, function);
     checkPoint(p1, function, "p1");
@@ -528,6 +531,32 @@ uint32_t rayCastParticles(const World& world, glm::vec2 p1, glm::vec2 p2, float 
         throw Error("rayCastParticles: radius = " + internal::formatValue(radius) +
                     " is out of range (0, inf) (unit: m)");
     }
+    return s;
+}
+
+// What rayCastParticles reports for particle `index`, entered `t` (m) along the unit direction
+// (ux, uy) from p1 (t = 0: the ray starts inside its circle).
+RayParticleHit particleHit(const WorldState& s, uint32_t index, glm::vec2 p1, double ux,
+                           double uy, double t, float fraction) {
+    const detail::Particles& p = s.particles;
+    RayParticleHit hit;
+    hit.index = index;
+    hit.handle = s.handleOf(p.slot[index]);
+    hit.material = MaterialId{p.material[index], s.tag.value()};
+    const double x = double(p1.x) + t * ux, y = double(p1.y) + t * uy;
+    hit.point = t == 0.0 ? p1 : glm::vec2(float(x), float(y));
+    const double nx = double(hit.point.x) - p.px[index], ny = double(hit.point.y) - p.py[index];
+    const double n = std::hypot(nx, ny);
+    hit.normal = n > 0.0 ? glm::vec2(float(nx / n), float(ny / n)) : glm::vec2(0.0f);
+    hit.fraction = fraction;
+    return hit;
+}
+
+} // namespace
+
+uint32_t rayCastParticles(const World& world, glm::vec2 p1, glm::vec2 p2, float radius,
+                          const RayVisitor& visit) {
+    const WorldState& s = checkParticleCast(world, p1, p2, radius, visit);
     const uint32_t count = s.particles.size();
     if (count == 0) {
         return 0;
@@ -583,17 +612,8 @@ uint32_t rayCastParticles(const World& world, glm::vec2 p1, glm::vec2 p2, float 
                 stopped = true;
                 return;
             }
-            RayParticleHit hit;
-            hit.index = v.index;
-            hit.handle = s.handleOf(p.slot[v.index]);
-            hit.material = MaterialId{p.material[v.index], s.tag.value()};
-            const double x = double(p1.x) + v.t * ux, y = double(p1.y) + v.t * uy;
-            hit.point = v.t == 0.0 ? p1 : glm::vec2(float(x), float(y));
-            const double nx = double(hit.point.x) - p.px[v.index],
-                         ny = double(hit.point.y) - p.py[v.index];
-            const double n = std::hypot(nx, ny);
-            hit.normal = n > 0.0 ? glm::vec2(float(nx / n), float(ny / n)) : glm::vec2(0.0f);
-            hit.fraction = fractionOf(v.t);
+            const RayParticleHit hit =
+                particleHit(s, v.index, p1, ux, uy, v.t, fractionOf(v.t));
             ++visited;
             const float f = visit(hit);
             if (std::isnan(f)) {

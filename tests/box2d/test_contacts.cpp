@@ -151,7 +151,7 @@ TEST_CASE("contacts: a crate dropped into a tank reports its impact, then its we
     // sqrt(2 g h) (within 20%: Box2D's step and the first sub-steps' slowing).
     CHECK(impact == Approx(std::sqrt(2.0 * kG * (kDrop - kHalf))).epsilon(0.2));
     // At rest the liquid holds the crate up: its impulse over the last 1.5 s is the weight's
-    // (measured 0.03% off). The crate still bobs at under 1 cm/s: a momentum change of at most
+    // (docs/box2d.md, "Contact events"). The crate still bobs at under 1 cm/s: a momentum change of at most
     // 0.01 m/s x its mass over 1.5 s, 0.07% of the weight; 1% allows for that and the rounds'
     // one-round lag.
     CHECK(force == Approx(weight).epsilon(0.01));

@@ -142,8 +142,8 @@ TEST_CASE("contacts: a disc held in a resting tank reports the particles around 
         }
     }
     // Archimedes: the fluid's mean force on the disc over the last second is the weight of the
-    // water it displaces, rho g pi R^2 depth, within 5% (measured 2%: the samples stand for the
-    // disc's outline at the lattice's resolution), and nothing sideways.
+    // water it displaces, rho g pi R^2 depth, within 5% (the samples stand for the disc's outline
+    // at the lattice's resolution; docs/plugins.md, "Contact events"), and nothing sideways.
     const double buoyancy =
         1000.0 * double(kG) * std::numbers::pi * kRadius * kRadius * double(t.world.def().depth);
     const double seconds = double(frames) * double(kFrame);
@@ -168,7 +168,7 @@ TEST_CASE("contacts: a disc held in a resting tank reports the particles around 
     }
     CHECK(std::includes(reported.begin(), reported.end(), now.begin(), now.end()));
     // The first row round the disc: one particle per spacing of its circumference, less the
-    // gaps of a square lattice bent round a circle (27 of 31 measured).
+    // gaps of a square lattice bent round a circle.
     const double ring = 2.0 * std::numbers::pi * kRadius / double(s);
     CHECK(double(e.particles) > 0.75 * ring);
     CHECK(double(e.particles) < 1.1 * ring);
