@@ -4,7 +4,7 @@ shared library, builds the dam (water, a tank and gravity by their registry name
 second and reads the positions: the water fell and spread, none left the tank. Also a failing
 call: its status and message.
 
-    python3 tests/c/ctypes_smoke.py build/release/fluid/c/libfluid_c.so
+    python3 tests/c/ctypes_smoke.py build/release/c/libfluid_c.so
 """
 import ctypes as C
 import sys

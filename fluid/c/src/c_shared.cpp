@@ -1,1 +1,0 @@
-// libfluid_c.so: the objects of fluid_c, whole (fluid/c/CMakeLists.txt); nothing of its own.
