@@ -237,9 +237,6 @@ void pbfSamplePush(WorldState& s, const PbfConstants& c, std::span<const float> 
                    bool first) {
     const Particles& p = s.particles;
     Samples& w = s.samples;
-    const float* __restrict px = p.px.data();
-    const float* __restrict py = p.py.data();
-    const float* __restrict hs = p.h.data();
     const float* __restrict il = p.invLattice.data();
     const float* __restrict dl = change.data();
     const auto count = static_cast<uint32_t>(w.reporting.size());
@@ -250,15 +247,13 @@ void pbfSamplePush(WorldState& s, const PbfConstants& c, std::span<const float> 
         w.pushPrevY.assign(count, 0.0f);
     }
     const float invDt2 = 1.0f / (c.dt * c.dt);
+    const SampleReach reach(p);
     samplePass<2>(
         s, count, w.reporting.data(),
         [&](uint32_t k) {
             const float xw = w.px[k], yw = w.py[k];
             return [&, xw, yw](size_t j, SampleLane<2> a) {
-                const float dx = px[j] - xw, dy = py[j] - yw;
-                const float invH = 1.0f / hs[j];
-                const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
-                const float invH4 = (invH * invH) * (invH * invH);
+                const auto [dx, dy, invH, q, t, invH4] = reach.at(j, xw, yw);
                 // pbfDisplace's wall term moves j by w_j kG dl_j V_w L_j h^-4 t^3 (x_j - x_w).
                 const float f = -dl[j] * il[j] * kG * invH4 * (t * t * t);
                 a[0] += f * dx;
@@ -295,26 +290,21 @@ void pbfDeliverPush(WorldState& s, float weight) {
 void pbfSampleFriction(WorldState& s, const PbfConstants& c, float scale, float weight) {
     const Particles& p = s.particles;
     Samples& w = s.samples;
-    const float* __restrict px = p.px.data();
-    const float* __restrict py = p.py.data();
     const float* __restrict vx = p.vx.data();
     const float* __restrict vy = p.vy.data();
-    const float* __restrict hs = p.h.data();
     const float* __restrict mu = p.viscosity.data();
     const float* __restrict vol = p.volume.data();
     const float depth = s.def.depth;
     const auto count = static_cast<uint32_t>(w.reporting.size());
     // Channels: the force's x and y, and its derivative in the sample's velocity (drag).
+    const SampleReach reach(p);
     samplePass<3>(
         s, count, w.reporting.data(),
         [&](uint32_t k) {
             const float xw = w.px[k], yw = w.py[k];
             const float vxw = w.vx[k], vyw = w.vy[k], friction = w.friction[k];
             return [&, xw, yw, vxw, vyw, friction](size_t j, SampleLane<3> a) {
-                const float dx = px[j] - xw, dy = py[j] - yw;
-                const float invH = 1.0f / hs[j];
-                const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
-                const float invH4 = (invH * invH) * (invH * invH);
+                const auto [dx, dy, invH, q, t, invH4] = reach.at(j, xw, yw);
                 // pbfViscosity's wall friction on j: m_j mu_j/rho0_j f V_w L (v_w - v_j),
                 // m_j/rho0_j = V_j depth.
                 const float fv = depth * vol[j] * friction * mu[j] * kL * invH4 * t;
@@ -335,9 +325,6 @@ void pbfSampleStress(WorldState& s, const PbfConstants& c, float weight) {
     const Particles& p = s.particles;
     const YieldScratch& y = s.yieldScratch;
     Samples& w = s.samples;
-    const float* __restrict px = p.px.data();
-    const float* __restrict py = p.py.data();
-    const float* __restrict hs = p.h.data();
     const float* __restrict tx = y.tx.data();
     const float* __restrict ty = y.ty.data();
     const float* __restrict nx = y.wallNx.data();
@@ -346,15 +333,13 @@ void pbfSampleStress(WorldState& s, const PbfConstants& c, float weight) {
     const float* __restrict rho0 = p.restDensity.data();
     const float* __restrict adhesion = y.wallAdhesion.data();
     const auto count = static_cast<uint32_t>(w.reporting.size());
+    const SampleReach reach(p);
     samplePass<2>(
         s, count, w.reporting.data(),
         [&](uint32_t k) {
             const float xw = w.px[k], yw = w.py[k];
             return [&, xw, yw](size_t j, SampleLane<2> a) {
-                const float dx = px[j] - xw, dy = py[j] - yw;
-                const float invH = 1.0f / hs[j];
-                const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
-                const float invH4 = (invH * invH) * (invH * invH);
+                const auto [dx, dy, invH, q, t, invH4] = reach.at(j, xw, yw);
                 // pbfStress's wall terms on j from this sample, the sample takes the
                 // opposite: the traction m_j kG 2 rho0_j V_w f h^-4 t^3 (s_j/rho0_j^2) .
                 // (x_j - x_w) along the wall, and this sample's share of j's adhesion

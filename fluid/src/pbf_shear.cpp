@@ -377,10 +377,8 @@ void pbfShearSamples(WorldState& s, const PbfConstants& c, float weight) {
     const Particles& p = s.particles;
     const YieldScratch& y = s.yieldScratch;
     Samples& w = s.samples;
-    const float* __restrict px = p.px.data();
-    const float* __restrict py = p.py.data();
-    const float* __restrict hs = p.h.data();
     const float* __restrict mass = p.mass.data();
+    const SampleReach reach(p);
     const uint16_t* __restrict material = p.material.data();
     const std::vector<uint8_t> yields = yieldingMaterials(s);
     const auto count = static_cast<uint32_t>(w.reporting.size());
@@ -401,7 +399,7 @@ void pbfShearSamples(WorldState& s, const PbfConstants& c, float weight) {
                 if (yields[material[j]] == 0 || !(friction > 0.0f)) {
                     return;
                 }
-                const float invH = 1.0f / hs[j];
+                const float invH = 1.0f / reach.hs[j];
                 const float rx = y.refX[j] - xw, ry = y.refY[j] - yw;
                 const float qr = std::sqrt(rx * rx + ry * ry) * invH;
                 if (qr < 1.0f && y.wallWeight[j] > 0.0f) {
@@ -410,12 +408,11 @@ void pbfShearSamples(WorldState& s, const PbfConstants& c, float weight) {
                     a[2] += share * y.holdX[j];
                     a[3] += share * y.holdY[j];
                 }
-                const float dx = px[j] - xw, dy = py[j] - yw;
-                const float q = std::sqrt(dx * dx + dy * dy) * invH;
-                if (!(q < 1.0f)) {
+                const WallPair d = reach.at(j, xw, yw);
+                if (!(d.q < 1.0f)) {
                     return;
                 }
-                const float t = 1.0f - q;
+                const float t = d.t, dx = d.dx, dy = d.dy;
                 const float g = friction * c.sampleVolume * kG * (invH * invH) * (invH * invH) *
                                 (t * t * t);
                 const float gx = g * dx, gy = g * dy;

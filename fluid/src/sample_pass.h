@@ -11,10 +11,36 @@
 #include "parallel.h"
 #include "world_state.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
 namespace fluid::detail {
+
+/// Particle j as a boundary sample at (xw, yw) sees it: the offset d = x_j - x_w (unit: m),
+/// 1/h_j (unit: 1/m), q = |d| / h_j, the kernel factor t = max(1 - q, 0) and h_j^-4, the
+/// factors every sample pass's Wendland terms are made of.
+struct WallPair {
+    float dx, dy, invH, q, t, invH4;
+};
+
+/// What every sample pass reads of the particles: their positions and smoothing lengths.
+struct SampleReach {
+    const float* __restrict px;
+    const float* __restrict py;
+    const float* __restrict hs;
+
+    explicit SampleReach(const Particles& p) : px(p.px.data()), py(p.py.data()), hs(p.h.data()) {}
+
+    /// Particle j seen from the sample at (xw, yw).
+    WallPair at(size_t j, float xw, float yw) const {
+        const float dx = px[j] - xw, dy = py[j] - yw;
+        const float invH = 1.0f / hs[j];
+        const float q = std::sqrt(dx * dx + dy * dy) * invH;
+        return {dx, dy, invH, q, std::max(1.0f - q, 0.0f), (invH * invH) * (invH * invH)};
+    }
+};
 
 /// One lane's accumulators in an N-channel sample pass: a[c] is channel c's accumulator of
 /// the lane the pair term runs in.

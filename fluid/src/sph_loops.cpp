@@ -222,26 +222,22 @@ void computeSamplePressure(WorldState& s) {
     const Particles& p = s.particles;
     const ExplicitScratch& x = s.explicitScratch;
     Samples& w = s.samples;
-    const float* __restrict px = p.px.data();
-    const float* __restrict py = p.py.data();
-    const float* __restrict hs = p.h.data();
     const float* __restrict rho = p.density.data();
     const float* __restrict pressure = p.pressure.data();
     const float* __restrict ex = x.ex.data();
     const float* __restrict ey = x.ey.data();
     // Channels: the kernel-weighted pressures with their hydrostatic terms, the kernel weights.
+    const SampleReach reach(p);
     samplePass<2>(
         s, w.size(), nullptr,
         [&](uint32_t k) {
             const float xw = w.px[k], yw = w.py[k];
             return [&, xw, yw](size_t j, SampleLane<2> a) {
-                const float dx = xw - px[j], dy = yw - py[j];
-                const float invH = 1.0f / hs[j];
-                const float q = std::sqrt(dx * dx + dy * dy) * invH;
-                const float t = std::max(1.0f - q, 0.0f);
-                const float t2 = t * t;
-                const float wk = (invH * invH) * (t2 * t2) * (1.0f + 4.0f * q);
-                a[0] += (pressure[j] + rho[j] * (ex[j] * dx + ey[j] * dy)) * wk;
+                // (x_w - x_j): the pair's offset negated, exactly.
+                const WallPair d = reach.at(j, xw, yw);
+                const float t2 = d.t * d.t;
+                const float wk = (d.invH * d.invH) * (t2 * t2) * (1.0f + 4.0f * d.q);
+                a[0] += (pressure[j] - rho[j] * (ex[j] * d.dx + ey[j] * d.dy)) * wk;
                 a[1] += wk;
             };
         },
@@ -253,27 +249,22 @@ void computeSamplePressure(WorldState& s) {
 void computeSampleForces(WorldState& s, float sampleVolume, float weight) {
     const Particles& p = s.particles;
     Samples& w = s.samples;
-    const float* __restrict px = p.px.data();
-    const float* __restrict py = p.py.data();
     const float* __restrict vx = p.vx.data();
     const float* __restrict vy = p.vy.data();
-    const float* __restrict hs = p.h.data();
     const float* __restrict mass = p.mass.data();
     const float* __restrict rho0 = p.restDensity.data();
     const float* __restrict mu = p.viscosity.data();
     const float* __restrict invRho = p.invRho.data();
     const float* __restrict pressure = p.pressure.data();
     // Channels: the force's x and y, and its derivative in the sample's velocity (drag).
+    const SampleReach reach(p);
     samplePass<3>(
         s, w.size(), nullptr,
         [&](uint32_t k) {
             const float xw = w.px[k], yw = w.py[k], pw = w.pressure[k];
             const float vxw = w.vx[k], vyw = w.vy[k], friction = w.friction[k];
             return [&, xw, yw, pw, vxw, vyw, friction](size_t j, SampleLane<3> a) {
-                const float dx = px[j] - xw, dy = py[j] - yw;
-                const float invH = 1.0f / hs[j];
-                const float t = std::max(1.0f - std::sqrt(dx * dx + dy * dy) * invH, 0.0f);
-                const float invH4 = (invH * invH) * (invH * invH);
+                const auto [dx, dy, invH, q, t, invH4] = reach.at(j, xw, yw);
                 const float fp = mass[j] * rho0[j] * (pressure[j] + pw) * invRho[j] * invRho[j] *
                                  kG * invH4 * (t * t * t);
                 const float fv = mass[j] * friction * mu[j] * invRho[j] * kL * invH4 * t;
