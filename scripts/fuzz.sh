@@ -11,7 +11,7 @@
 # or running out of memory (2 GB) stops the run, leaves the input in build/fuzz/artifacts/ and
 # exits non-zero; reproduce it with
 #   build/fuzz/fluid-fuzz-level build/fuzz/artifacts/crash-...
-# Installs clang-14 and libclang-rt-14-dev when missing (as root), like scripts/deps.sh.
+# Installs clang-14 and libclang-rt-14-dev when missing (as root), through scripts/deps.sh.
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -27,21 +27,7 @@ else
     exit 2
 fi
 
-missing=()
-for pkg in clang-14 libclang-rt-14-dev; do
-    status=$(dpkg-query -W -f='${db:Status-Status}' "$pkg" 2>/dev/null || true)
-    [[ "$status" == "installed" ]] || missing+=("$pkg")
-done
-if [[ ${#missing[@]} -gt 0 ]]; then
-    if [[ $(id -u) -ne 0 ]]; then
-        echo "fuzz.sh: missing Debian packages: ${missing[*]} (run as root or apt-get install them)" >&2
-        exit 1
-    fi
-    echo "fuzz.sh: installing ${missing[*]}"
-    export DEBIAN_FRONTEND=noninteractive
-    apt-get update -qq </dev/null
-    apt-get install -y -qq --no-install-recommends "${missing[@]}" </dev/null >/dev/null
-fi
+bash scripts/deps.sh clang-14 libclang-rt-14-dev
 
 # FLUID_FUZZ_BUILD names a configured tree that already has the fuzz target (the asan preset's
 # build/asan: FLUID_BUILD_FUZZ); without it the fuzzer gets a project of its own in build/fuzz.

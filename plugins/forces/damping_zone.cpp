@@ -21,14 +21,7 @@ void DampingZoneForce::apply(const ForceContext& context, uint32_t begin, uint32
     // As the wind with zero wind velocity: keeps exactly exp(-c dt) of the velocity per
     // sub-step and never reverses it.
     const auto lambda = static_cast<float>(detail::relaxationRate(value(kRate), context.dt));
-    const auto px = context.particles.px, py = context.particles.py;
-    const auto vx = context.particles.vx, vy = context.particles.vy;
-    for (uint32_t i = begin; i < end; ++i) {
-        if (px[i] >= x0 && px[i] <= x1 && py[i] >= y0 && py[i] <= y1) {
-            context.ax[i] -= lambda * vx[i];
-            context.ay[i] -= lambda * vy[i];
-        }
-    }
+    detail::relaxInBox(context, begin, end, {x0, y0}, {x1, y1}, lambda, 0.0f, 0.0f);
 }
 
 } // namespace fluid

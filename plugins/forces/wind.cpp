@@ -18,14 +18,7 @@ void WindForce::apply(const ForceContext& context, uint32_t begin, uint32_t end)
     const auto x0 = static_cast<float>(value(kMinX)), y0 = static_cast<float>(value(kMinY));
     const auto x1 = static_cast<float>(value(kMaxX)), y1 = static_cast<float>(value(kMaxY));
     const auto lambda = static_cast<float>(detail::relaxationRate(value(kRate), context.dt));
-    const auto px = context.particles.px, py = context.particles.py;
-    const auto vx = context.particles.vx, vy = context.particles.vy;
-    for (uint32_t i = begin; i < end; ++i) {
-        if (px[i] >= x0 && px[i] <= x1 && py[i] >= y0 && py[i] <= y1) {
-            context.ax[i] += lambda * (wx - vx[i]);
-            context.ay[i] += lambda * (wy - vy[i]);
-        }
-    }
+    detail::relaxInBox(context, begin, end, {x0, y0}, {x1, y1}, lambda, wx, wy);
 }
 
 } // namespace fluid

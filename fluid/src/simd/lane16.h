@@ -18,39 +18,26 @@
 // as a loop over an array in memory, which made the SSE2 passes 2.5x slower.
 #define FLUID_UNROLL _Pragma("GCC unroll 16")
 
+// The wrappers every x86 instruction set spells the same way, from its intrinsics' prefix
+// (_mm512, _mm256, _mm): set1, unaligned load and store, + - * /, max and sqrt.
+#define FLUID_REG_ARITH(P)                                                                       \
+    inline Reg regSet1(float x) { return P##_set1_ps(x); }                                       \
+    inline Reg regLoad(const float* p) { return P##_loadu_ps(p); }                               \
+    inline void regStore(float* p, Reg a) { P##_storeu_ps(p, a); }                               \
+    inline Reg regAdd(Reg a, Reg b) { return P##_add_ps(a, b); }                                 \
+    inline Reg regSub(Reg a, Reg b) { return P##_sub_ps(a, b); }                                 \
+    inline Reg regMul(Reg a, Reg b) { return P##_mul_ps(a, b); }                                 \
+    inline Reg regDiv(Reg a, Reg b) { return P##_div_ps(a, b); }                                 \
+    inline Reg regMax(Reg a, Reg b) { return P##_max_ps(a, b); }                                 \
+    inline Reg regSqrt(Reg a) { return P##_sqrt_ps(a); }
+
 namespace {
 
 #if defined(FLUID_SIMD_AVX512)
 constexpr int kParts = 1;
 using Reg = __m512;
 using MReg = __mmask16;
-inline Reg regSet1(float x) {
-    return _mm512_set1_ps(x);
-}
-inline Reg regLoad(const float* p) {
-    return _mm512_loadu_ps(p);
-}
-inline void regStore(float* p, Reg a) {
-    _mm512_storeu_ps(p, a);
-}
-inline Reg regAdd(Reg a, Reg b) {
-    return _mm512_add_ps(a, b);
-}
-inline Reg regSub(Reg a, Reg b) {
-    return _mm512_sub_ps(a, b);
-}
-inline Reg regMul(Reg a, Reg b) {
-    return _mm512_mul_ps(a, b);
-}
-inline Reg regDiv(Reg a, Reg b) {
-    return _mm512_div_ps(a, b);
-}
-inline Reg regMax(Reg a, Reg b) {
-    return _mm512_max_ps(a, b);
-}
-inline Reg regSqrt(Reg a) {
-    return _mm512_sqrt_ps(a);
-}
+FLUID_REG_ARITH(_mm512)
 inline MReg regGreater(Reg a, Reg b) {
     return _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ);
 }
@@ -67,33 +54,7 @@ inline Reg regSelect(MReg m, Reg a, Reg b) {
 constexpr int kParts = 2;
 using Reg = __m256;
 using MReg = __m256;
-inline Reg regSet1(float x) {
-    return _mm256_set1_ps(x);
-}
-inline Reg regLoad(const float* p) {
-    return _mm256_loadu_ps(p);
-}
-inline void regStore(float* p, Reg a) {
-    _mm256_storeu_ps(p, a);
-}
-inline Reg regAdd(Reg a, Reg b) {
-    return _mm256_add_ps(a, b);
-}
-inline Reg regSub(Reg a, Reg b) {
-    return _mm256_sub_ps(a, b);
-}
-inline Reg regMul(Reg a, Reg b) {
-    return _mm256_mul_ps(a, b);
-}
-inline Reg regDiv(Reg a, Reg b) {
-    return _mm256_div_ps(a, b);
-}
-inline Reg regMax(Reg a, Reg b) {
-    return _mm256_max_ps(a, b);
-}
-inline Reg regSqrt(Reg a) {
-    return _mm256_sqrt_ps(a);
-}
+FLUID_REG_ARITH(_mm256)
 inline MReg regGreater(Reg a, Reg b) {
     return _mm256_cmp_ps(a, b, _CMP_GT_OQ);
 }
@@ -110,33 +71,7 @@ inline Reg regSelect(MReg m, Reg a, Reg b) {
 constexpr int kParts = 4;
 using Reg = __m128;
 using MReg = __m128;
-inline Reg regSet1(float x) {
-    return _mm_set1_ps(x);
-}
-inline Reg regLoad(const float* p) {
-    return _mm_loadu_ps(p);
-}
-inline void regStore(float* p, Reg a) {
-    _mm_storeu_ps(p, a);
-}
-inline Reg regAdd(Reg a, Reg b) {
-    return _mm_add_ps(a, b);
-}
-inline Reg regSub(Reg a, Reg b) {
-    return _mm_sub_ps(a, b);
-}
-inline Reg regMul(Reg a, Reg b) {
-    return _mm_mul_ps(a, b);
-}
-inline Reg regDiv(Reg a, Reg b) {
-    return _mm_div_ps(a, b);
-}
-inline Reg regMax(Reg a, Reg b) {
-    return _mm_max_ps(a, b);
-}
-inline Reg regSqrt(Reg a) {
-    return _mm_sqrt_ps(a);
-}
+FLUID_REG_ARITH(_mm)
 inline MReg regGreater(Reg a, Reg b) {
     return _mm_cmpgt_ps(a, b);
 }
@@ -193,6 +128,7 @@ inline Reg regSelect(MReg m, Reg a, Reg b) {
     return m ? a : b;
 }
 #endif
+#undef FLUID_REG_ARITH
 
 constexpr int kLanes16 = 16;
 constexpr int kWidth = kLanes16 / kParts; // floats per register

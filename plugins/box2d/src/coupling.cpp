@@ -292,13 +292,7 @@ void Coupling::checkBodies(const World& world, const char* function) const {
     }
 }
 
-void Coupling::step(World& world, float dt) {
-    checkWorld(world, "step");
-    checkBodies(world, "step");
-    if (!(dt > 0.0f && dt <= 1.0f)) {
-        const HostStep host(*m_boundary);
-        world.step(dt); // throws World::step's own message, before Box2D moves anything
-    }
+void Coupling::startFrame(const World& world) {
     m_splashes.clear();
     m_contacts.clear();
     m_removed.clear();
@@ -306,6 +300,16 @@ void Coupling::step(World& world, float dt) {
     m_contactSums.clear();
     finishContacts(world);
     forgetDestroyedContactBodies();
+}
+
+void Coupling::step(World& world, float dt) {
+    checkWorld(world, "step");
+    checkBodies(world, "step");
+    if (!(dt > 0.0f && dt <= 1.0f)) {
+        const HostStep host(*m_boundary);
+        world.step(dt); // throws World::step's own message, before Box2D moves anything
+    }
+    startFrame(world);
     if (world.def().solver != Solver::PositionBased) {
         // The explicit solver: kExplicitRounds rounds a 1/60 s frame, more for a longer one by
         // the long-frame rule (see the class comment), each in its own CFL sub-steps.
@@ -350,13 +354,7 @@ void Coupling::step(World& world, float dt) {
 void Coupling::stepFluid(World& world, float dt) {
     checkWorld(world, "stepFluid");
     checkBodies(world, "stepFluid");
-    m_splashes.clear();
-    m_contacts.clear();
-    m_removed.clear();
-    m_profile = Profile{};
-    m_contactSums.clear();
-    finishContacts(world);
-    forgetDestroyedContactBodies();
+    startFrame(world);
     // The time the world simulates: dt, or for the position-based solver the whole sub-steps
     // due (its carried time included).
     const bool positionBased = world.def().solver == Solver::PositionBased;

@@ -377,6 +377,9 @@ private:
     void makeReports(const World& world);
     void collectContacts(const World& world, float dt);
     void finishContacts(const World& world);
+    // A frame's start (step, stepFluid): the last frame's reports, profile and contact events
+    // cleared, the contact settings of destroyed bodies forgotten.
+    void startFrame(const World& world);
     void forgetDestroyedContactBodies();
     void remember();
 
