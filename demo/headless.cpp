@@ -1,14 +1,13 @@
 // fluid-demo — headless runs.
 #include "demo/headless.h"
 
+#include "demo/banner.h"
 #include "demo/frame_pacer.h"
-
-
+#include "demo/hud.h"
 #include "demo/imgui_bridge.h"
 #include "demo/overlay.h"
 #include "demo/platform.h"
 #include "demo/session.h"
-#include "demo/ui.h"
 
 #include <fluid/gl/renderer.h>
 #include <fluid/groups.h>
