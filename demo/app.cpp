@@ -4,6 +4,7 @@
 #include "demo/banner.h"
 #include "demo/game.h"
 #include "demo/hud.h"
+#include "demo/layout.h"
 #include "demo/menus.h"
 #include "demo/overlay.h"
 #include "demo/summary.h"
@@ -203,7 +204,9 @@ void Game::simulate(double realSeconds) {
 
 void Game::render(float realSeconds) {
     const gl::Camera cam = camera();
-    m_session->drawShapes(cam, true, m_under, m_over, m_pacer->drawFactor());
+    // The pointer's ring once the pointer was seen over the window (before, it would sit at
+    // the pixel (0, 0)).
+    m_session->drawShapes(cam, m_pointerSeen, m_under, m_over, m_pacer->drawFactor());
     // The liquid under the cursor and the laser (L), over the liquid: 2 px wide, the normal
     // 30 px long.
     m_probe.update(m_session->level().world, mouseWorld());
@@ -229,12 +232,14 @@ void Game::render(float realSeconds) {
     hud.behind = m_pacer->behind();
     hud.speed = m_pacer->speed();
     hud.droppedSteps = m_pacer->droppedSteps();
-    hud.cursor = m_probe.cursorText();
+    // No pointer line before the pointer was seen over the window.
+    hud.cursor = m_pointerSeen ? m_probe.cursorText() : std::string_view{};
     hud.laser = m_probe.laserText();
-    drawHud(hud);
+    const OverlayLayout layout = overlayLayout(m_renderer->size());
+    const float hudRight = drawHud(hud, layout.hud, layout.scale);
     BannerInfo banner = bannerFor(level);
     banner.panelOpen = m_showTuning;
-    drawLevelBanner(banner, m_imgui->bannerFont());
+    drawLevelBanner(banner, m_imgui->bannerFont(), layout, hudRight);
     if (m_showHelp) {
         drawHelp(&m_showHelp, level.name, banner.text);
     }

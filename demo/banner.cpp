@@ -1,7 +1,6 @@
 // fluid-demo — the level banner (see banner.h).
 #include "demo/banner.h"
 
-#include "demo/hud.h"
 #include "demo/ui_common.h"
 
 #include <imgui.h>
@@ -19,10 +18,6 @@ using namespace ui;
 // on the right while it is open.
 constexpr float kBannerMaxWidth = 760.0f;
 constexpr float kSideRoom = 370.0f;
-// Share of the window's height the level leaves free above it (unit: 1): Session::camera
-// frames the level with a fifth of its height of room on top and a 5% margin, 0.26 of 1.32
-// of the framed height when the height decides, more otherwise. The banner stays inside it.
-constexpr float kBannerRoom = 0.19f;
 
 // `line` cut at a word end so that it and an ellipsis fit in `width` (px, current font).
 std::string withEllipsis(std::string_view line, float width) {
@@ -105,25 +100,27 @@ std::vector<std::string_view> wrapWords(std::string_view text, float width,
     return lines;
 }
 
-void drawLevelBanner(const BannerInfo& info, ImFont* big) {
+void drawLevelBanner(const BannerInfo& info, ImFont* big, const OverlayLayout& layout,
+                     float hudRight) {
     const ImGuiViewport* viewport = ImGui::GetMainViewport();
     const float screenWidth = viewport->WorkSize.x;
-    const float screenHeight = viewport->WorkSize.y;
+    const float kEdge = layout.edge;
     // Between the HUD and the window's right edge (the tuning panel's left edge while it is
     // open), centred on the window when that fits, else centred in the room; on a tiny window
     // over everything.
-    const float roomLeft = std::max(hudRight(), kEdge);
+    const float roomLeft = std::max(hudRight + kEdge, kEdge);
     const float roomRight = screenWidth - kEdge - (info.panelOpen ? kSideRoom : 0.0f);
     float width = std::min(kBannerMaxWidth, roomRight - roomLeft);
     float left = 0.5f * (screenWidth - width);
     if (left < roomLeft || left + width > roomRight) {
         left = roomLeft + 0.5f * (roomRight - roomLeft - width);
     }
-    if (width < 240.0f) {
+    if (width < 240.0f * layout.scale) {
         width = std::max(std::min(kBannerMaxWidth, screenWidth - 2.0f * kEdge), 1.0f);
         left = 0.5f * (screenWidth - width);
     }
-    ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + left, viewport->WorkPos.y + kEdge));
+    ImGui::SetNextWindowPos(
+        ImVec2(viewport->WorkPos.x + left, viewport->WorkPos.y + layout.banner.min.y));
     ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0.0f), ImVec2(width, FLT_MAX));
     ImGui::SetNextWindowBgAlpha(kOverlayBackground);
     const HintColour hints;
@@ -131,23 +128,24 @@ void drawLevelBanner(const BannerInfo& info, ImFont* big) {
         const ImGuiStyle& style = ImGui::GetStyle();
         float used = 2.0f * style.WindowPadding.y;
         {
-            const BigFont font(big, 1.0f);
+            const BigFont font(big, layout.scale);
             centredText(info.name);
             used += ImGui::GetTextLineHeightWithSpacing();
         }
+        ImGui::SetWindowFontScale(layout.scale);
         const bool goal = info.state != GoalState::None;
         if (goal) {
             // The progress bar (the clock in its label) and the spacing above it.
             used += ImGui::GetFrameHeightWithSpacing() + style.ItemSpacing.y;
         }
         if (!info.text.empty()) {
-            // As many lines as the room above the level holds (at least one), broken at
-            // spaces only; a cut text ends in an ellipsis.
+            // As many lines as the band above the level holds (none when the title and the
+            // progress bar fill it), broken at spaces only; a cut text ends in an ellipsis.
             const float avail = ImGui::GetContentRegionAvail().x;
             const std::vector<std::string_view> lines = wrapWords(info.text, avail, textWidth);
-            const float budget = kBannerRoom * screenHeight - kEdge;
+            const float budget = layout.banner.height();
             const size_t fit = static_cast<size_t>(
-                std::max((budget - used) / ImGui::GetTextLineHeightWithSpacing(), 1.0f));
+                std::max((budget - used) / ImGui::GetTextLineHeightWithSpacing(), 0.0f));
             const size_t shown = std::min(lines.size(), fit);
             for (size_t k = 0; k < shown; ++k) {
                 std::string line(lines[k]);
@@ -189,6 +187,7 @@ void drawLevelBanner(const BannerInfo& info, ImFont* big) {
             ImGui::ProgressBar(static_cast<float>(fraction), ImVec2(-1.0f, 0.0f), label.c_str());
             ImGui::PopStyleColor(hurry ? 2 : 1);
         }
+        ImGui::SetWindowFontScale(1.0f);
     }
     ImGui::End();
 

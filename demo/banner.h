@@ -1,6 +1,8 @@
 // fluid-demo — the level banner (title, text, goal progress), the outcome, word wrapping.
 #pragma once
 
+#include "demo/layout.h"
+
 #include <fluid/level.h>
 
 #include <functional>
@@ -35,17 +37,19 @@ struct BannerInfo {
     bool panelOpen = false;
 };
 
-/// Draws the banner at the top, between the HUD and the window's right edge (the tuning panel
-/// while it is open), centred on the window when it fits: the title in `big`
+/// Draws the banner at the top of `layout.banner`, between `hudRight` (unit: px; the HUD's
+/// right edge, `drawHud`) plus a margin and the window's right edge (the tuning panel while it
+/// is open), centred on the window when it fits: the title in `big`
 /// (`ImGuiBridge::bannerFont()`; nullptr or a font under 20 px is scaled up), the text wrapped
 /// at spaces only (`wrapWords`: a number such as "5,000" or a word never splits), and with a
 /// goal a progress bar (value / amount) whose label also holds the time left (amber under
-/// 10 s) or played. The banner stays within the top 19% of the window, the room
-/// `Session::camera` leaves above the level: a text with more lines than fit is cut at a word
+/// 10 s) or played; all at `layout.scale`. The banner stays within `layout.banner`, in the
+/// band above the level (`frameLevel`): a text with more lines than fit is cut at a word
 /// with "..." (the F1 help shows it whole). When the goal is Won or Lost, also a large centred
 /// "Level complete!" (green) or "Time's up" (red) over "R retry, N next level". Takes no input.
 /// To fade it out, wrap the call in `ImGui::PushStyleVar(ImGuiStyleVar_Alpha, a)`.
-void drawLevelBanner(const BannerInfo& info, ImFont* big);
+void drawLevelBanner(const BannerInfo& info, ImFont* big, const OverlayLayout& layout,
+                     float hudRight);
 
 /// Splits `text` into lines at most `width` wide (unit: as `measure`, e.g. px), breaking only
 /// at spaces and at newlines: a number ("5,000", "2.5"), a hyphenated or any other word stays

@@ -75,6 +75,7 @@ private:
     QuickSaves m_saves;
     Toast m_toast;
     glm::vec2 m_mousePixel{0.0f, 0.0f};
+    bool m_pointerSeen = false; // a pointer event came: m_mousePixel is the pointer's
     float m_push = 0.0f;
     bool m_shift = false, m_ctrl = false;
     size_t m_view = 0;

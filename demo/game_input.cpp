@@ -246,6 +246,7 @@ void Game::handleEvent(const Event& input) {
         break;
     case Event::Type::MouseMoved:
         m_mousePixel = glm::vec2(event.position);
+        m_pointerSeen = true;
         break;
     case Event::Type::MousePressed:
         if (!m_imgui->wantsMouse()) {
@@ -265,6 +266,7 @@ void Game::handleEvent(const Event& input) {
 
 void Game::pointerPressed(const Event& event) {
     m_mousePixel = glm::vec2(event.position);
+    m_pointerSeen = true;
     const glm::vec2 p = mouseWorld();
     const bool shift = modifierHeld(Key::LShift, Key::RShift, m_shift);
     const bool ctrl = modifierHeld(Key::LControl, Key::RControl, m_ctrl);

@@ -1,8 +1,12 @@
 // fluid-demo — the HUD: frame rate, particles, simulation cost, modes and probes, top left.
 #pragma once
 
+#include "demo/layout.h"
+
 #include <cstdint>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace fluid::demo {
 
@@ -36,16 +40,39 @@ struct HudInfo {
     std::string_view laser;
 };
 
-/// Draws the HUD top-left: fps, particles, sim ms/frame, sub-steps, view, material, gravity or
-/// zero-g, the liquid under the cursor and the laser's hit, PAUSED, and "simulation behind: 71% speed" in amber while `behind`. Labels and hints
-/// are a light grey on an 82% opaque backing, readable over the grey walls. No decoration,
-/// takes no input; `drawLevelBanner` keeps clear of its right edge (as measured when last
-/// drawn). Thread rule (every function here): between `ImGuiBridge::newFrame` and `render`,
-/// on the GL thread.
-void drawHud(const HudInfo& info);
+/// One piece of a HUD line and how it is coloured.
+struct HudSpan {
+    /// How a span is drawn.
+    enum class Style : uint8_t {
+        /// A value: ImGui's text colour.
+        Value,
+        /// A label or a hint: the light grey `ui::kHint`.
+        Label,
+        /// A warning: amber (PAUSED, "simulation behind").
+        Warning,
+        /// Zero-g: cyan.
+        ZeroG,
+    };
+    /// The text.
+    std::string text;
+    /// Its colour.
+    Style style = Style::Value;
+};
 
-/// Right edge of the HUD as last drawn, margin included (unit: px; 260 before the first
-/// draw): the banner keeps clear of it. Same thread rule as `drawHud`.
-float hudRight();
+/// The HUD's lines, top to bottom, each a row of spans drawn with ImGui's item spacing between
+/// them: "60 fps | 406 particles", "sim 0.8 ms/frame | 4 sub-steps", "view metaballs  material
+/// water  gravity on" (or "zero-g"), then "PAUSED P resume, . step" while paused, "simulation
+/// behind: 71% speed (3 dropped)" while behind, "cursor ..." and "laser ..." when set, and
+/// the hints "F1 help   Esc levels   Tab tuning". Pure: any thread.
+std::vector<std::vector<HudSpan>> hudLines(const HudInfo& info);
+
+/// Draws the HUD (`hudLines`) at the top left of `box` (unit: px; `OverlayLayout::hud`) at
+/// `scale` (`OverlayLayout::scale`: text, padding and spacing) or smaller, as large as lets
+/// every line fit inside the box; at half size, lines that still do not fit are left out (the
+/// hints, then the simulation's cost, then lines from the bottom). Labels and hints are a light grey on an 82% opaque backing,
+/// readable over the grey walls. No decoration, takes no input. Returns the HUD's right edge
+/// (unit: px): the banner starts a margin right of it. Thread rule (every function drawing
+/// here): between `ImGuiBridge::newFrame` and `render`, on the GL thread.
+float drawHud(const HudInfo& info, const PixelRect& box, float scale = 1.0f);
 
 } // namespace fluid::demo
