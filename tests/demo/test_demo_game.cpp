@@ -219,9 +219,10 @@ TEST_CASE("game: a script position that is not a finite number, or a directory g
 TEST_CASE("game: a script position off the window is refused with its file and line, the game "
           "ends without a summary",
           "[demo]") {
-    // At 480x270 crates.json shows x in [-0.3728, 2.373] m and y in [-0.1802, 1.364] m.
-    const std::string view = " window, which shows x in [-0.3728, 2.373] m and y in "
-                             "[-0.1802, 1.364] m of level crates\n";
+    // At 480x270 crates.json shows x in [-0.485, 2.485] m and y in [-0.1685, 1.502] m (the
+    // level framed below the overlays' band, demo/layout.h).
+    const std::string view = " window, which shows x in [-0.485, 2.485] m and y in "
+                             "[-0.1685, 1.502] m of level crates\n";
     const std::pair<const char*, const char*> lines[] = {
         // Once the pixel wrapped through int: a crate dropped near 3e6 m, every step after it
         // failed and the run still exited 0.
@@ -230,7 +231,7 @@ TEST_CASE("game: a script position off the window is refused with its file and l
         {"2 move 0.4 0.1\n3 press left -1 0.3\n", ":2: 'press' at -1 0.3 m is off the 480x270"},
         {"1 move 0.5 -0.5\n", ":1: 'move' at 0.5 -0.5 m is off the 480x270"},
         {"1 move 1e30 0.5\n", ":1: 'move' at 1e+30 0.5 m is off the 480x270"},
-        {"1 move 0.5 1.4\n", ":1: 'move' at 0.5 1.4 m is off the 480x270"},
+        {"1 move 0.5 1.6\n", ":1: 'move' at 0.5 1.6 m is off the 480x270"},
     };
     int k = 0;
     for (const auto& [script, message] : lines) {
@@ -245,7 +246,7 @@ TEST_CASE("game: a script position off the window is refused with its file and l
     }
     // Just inside the window's corners plays.
     const Summary corners = play("on_window", "crates", 4,
-                                 "1 move -0.37 1.36\n2 press left 2.36 -0.17\n3 release left\n");
+                                 "1 move -0.48 1.5\n2 press left 2.48 -0.165\n3 release left\n");
     CHECK(corners.number("particles") > 0.0);
 }
 
