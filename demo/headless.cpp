@@ -1,14 +1,14 @@
 // fluid-demo — headless runs.
 #include "demo/headless.h"
 
+#include "demo/banner.h"
 #include "demo/frame_pacer.h"
-
-
+#include "demo/hud.h"
 #include "demo/imgui_bridge.h"
+#include "demo/layout.h"
 #include "demo/overlay.h"
 #include "demo/platform.h"
 #include "demo/session.h"
-#include "demo/ui.h"
 
 #include <fluid/gl/renderer.h>
 #include <fluid/groups.h>
@@ -32,10 +32,11 @@ void drawOverlay(ImGuiBridge& imgui, const gl::Renderer& renderer, const Session
     HudInfo hud = hudFor(session, view);
     hud.fps = 60.0f;
     hud.speed = 1.0;
+    const OverlayLayout layout = overlayLayout(renderer.size());
     for (int pass = 0; pass < 2; ++pass) {
         imgui.newFrame(renderer.size(), 1.0f / 60.0f);
-        drawHud(hud);
-        drawLevelBanner(bannerFor(level), imgui.bannerFont());
+        const float hudRight = drawHud(hud, layout.hud, layout.scale);
+        drawLevelBanner(bannerFor(level), imgui.bannerFont(), layout, hudRight);
         if (pass == 0) {
             imgui.skipFrame();
         }

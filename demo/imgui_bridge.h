@@ -66,7 +66,7 @@ public:
     /// a later call succeeds.
     void reloadDeviceObjects();
     /// Font for banners (about 28 px): DejaVu Sans when found, else ImGui's default font; in
-    /// that case its `FontSize` is 13 and ui.cpp scales it up. Valid for the bridge's life.
+    /// that case its `FontSize` is 13 and ui_common.cpp scales it up (BigFont). Valid for the bridge's life.
     ImFont* bannerFont() const { return m_bannerFont; }
 
 private:

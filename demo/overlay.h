@@ -2,7 +2,8 @@
 // the renderer's frame.
 #pragma once
 #include "demo/session.h"
-#include "demo/ui.h"
+#include "demo/banner.h"
+#include "demo/hud.h"
 
 #include <fluid/gl/renderer.h>
 #include <fluid/level.h>

@@ -1,6 +1,8 @@
 // fluid-demo — a level being played.
 #include "demo/session.h"
 
+#include "demo/layout.h"
+
 
 #include <fluid/box2d/coupling.h>
 #include <fluid/groups.h>
@@ -144,10 +146,8 @@ void Session::restore(const std::string& path) {
 }
 
 gl::Camera Session::camera(glm::ivec2 size) const {
-    // The banner covers about the top 100 px; a fifth of the level's height keeps it clear
-    // of the walls at the usual sizes.
-    const glm::vec2 room{0.0f, 0.2f * (m_bounds.hi.y - m_bounds.lo.y)};
-    return gl::Camera::fit(m_bounds.lo, m_bounds.hi + room, size);
+    // Below the band the HUD and the banner keep to (demo/layout.h).
+    return frameLevel(m_bounds.lo, m_bounds.hi, size);
 }
 
 float Session::lineWidth(const gl::Camera& camera) const {

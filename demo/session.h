@@ -38,8 +38,8 @@ public:
     const ViewBounds& bounds() const { return m_bounds; }
     /// How the renderer draws each material index.
     const std::vector<gl::MaterialStyle>& styles() const { return m_styles; }
-    /// The camera that frames the level in a target of `size` (unit: px), with room above it
-    /// for the level banner.
+    /// The camera that frames the level in a target of `size` (unit: px) below the band the
+    /// HUD and the level banner keep to (`frameLevel`, demo/layout.h).
     gl::Camera camera(glm::ivec2 size) const;
     /// A line about 1.5 px wide at the camera's zoom (unit: m).
     float lineWidth(const gl::Camera& camera) const;

@@ -37,8 +37,18 @@ EM_JS(void, announceExit, (int status), {
     }
 });
 
+// Counts the frames the game has drawn in `Module.fluidFramesDrawn` (0 until the first): what
+// a screenshot of the page waits for (tests/web/play.mjs --frames-drawn, docs/web.md).
+EM_JS(void, noteFrameDrawn, (), {
+    Module.fluidFramesDrawn = (Module.fluidFramesDrawn || 0) + 1;
+});
+
 void frame() {
-    if (g_game && !g_game->frame()) {
+    if (g_game && g_game->frame()) {
+        noteFrameDrawn();
+        return;
+    }
+    if (g_game) {
         const int status = g_game->finish();
         g_game.reset();
         emscripten_cancel_main_loop();

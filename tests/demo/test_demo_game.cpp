@@ -3,6 +3,8 @@
 // a fixed number of frames of one step each, so results do not depend on the machine's speed.
 #include "demo_support.h"
 
+#include <SFML/Graphics/Image.hpp>
+
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -217,9 +219,10 @@ TEST_CASE("game: a script position that is not a finite number, or a directory g
 TEST_CASE("game: a script position off the window is refused with its file and line, the game "
           "ends without a summary",
           "[demo]") {
-    // At 480x270 crates.json shows x in [-0.3728, 2.373] m and y in [-0.1802, 1.364] m.
-    const std::string view = " window, which shows x in [-0.3728, 2.373] m and y in "
-                             "[-0.1802, 1.364] m of level crates\n";
+    // At 480x270 crates.json shows x in [-0.485, 2.485] m and y in [-0.1685, 1.502] m (the
+    // level framed below the overlays' band, demo/layout.h).
+    const std::string view = " window, which shows x in [-0.485, 2.485] m and y in "
+                             "[-0.1685, 1.502] m of level crates\n";
     const std::pair<const char*, const char*> lines[] = {
         // Once the pixel wrapped through int: a crate dropped near 3e6 m, every step after it
         // failed and the run still exited 0.
@@ -228,7 +231,7 @@ TEST_CASE("game: a script position off the window is refused with its file and l
         {"2 move 0.4 0.1\n3 press left -1 0.3\n", ":2: 'press' at -1 0.3 m is off the 480x270"},
         {"1 move 0.5 -0.5\n", ":1: 'move' at 0.5 -0.5 m is off the 480x270"},
         {"1 move 1e30 0.5\n", ":1: 'move' at 1e+30 0.5 m is off the 480x270"},
-        {"1 move 0.5 1.4\n", ":1: 'move' at 0.5 1.4 m is off the 480x270"},
+        {"1 move 0.5 1.6\n", ":1: 'move' at 0.5 1.6 m is off the 480x270"},
     };
     int k = 0;
     for (const auto& [script, message] : lines) {
@@ -243,7 +246,7 @@ TEST_CASE("game: a script position off the window is refused with its file and l
     }
     // Just inside the window's corners plays.
     const Summary corners = play("on_window", "crates", 4,
-                                 "1 move -0.37 1.36\n2 press left 2.36 -0.17\n3 release left\n");
+                                 "1 move -0.48 1.5\n2 press left 2.48 -0.165\n3 release left\n");
     CHECK(corners.number("particles") > 0.0);
 }
 
@@ -337,4 +340,63 @@ TEST_CASE("game: the HUD reads the liquid under the cursor, L casts the laser to
     const Summary probe = play("probe", "dam_break", 150, move.str());
     CHECK(probe.text("probe") == "in");
     CHECK(probe.number("probe_depth") == Approx(y - 0.03).margin(0.005));
+}
+
+TEST_CASE("game: no pointer ring before the pointer is seen, and one after a move",
+          "[demo]") {
+    // The camera of dam_break at 960 x 540: a headless run's px_per_m and center.
+    const demo_test::Run shot = demo_test::runDemo(
+        "--level dam_break --frames 1 --size 960x540 --no-hud --threads 1 --screenshot '" +
+        std::string(FLUID_DEMO_WORK_DIR) + "/pointer_camera.png'");
+    REQUIRE(shot.status == 0);
+    const auto field = [&](const std::string& key) {
+        const auto at = shot.output.find(key + "=");
+        REQUIRE(at != std::string::npos);
+        return shot.output.substr(at + key.size() + 1);
+    };
+    const double ppm = std::stod(field("px_per_m"));
+    const std::string center = field("center");
+    const double cx = std::stod(center), cy = std::stod(center.substr(center.find(',') + 1));
+    // The pixels the overlays leave bare along the window's top and left edges (10 px), as
+    // many as are the background colour (the bottom-right corner's).
+    auto bareEdge = [](const std::string& png, int& background, int& total) {
+        sf::Image image;
+        REQUIRE(image.loadFromFile(png));
+        const sf::Vector2u size = image.getSize();
+        const sf::Color back = image.getPixel(size.x - 1, size.y - 1);
+        background = total = 0;
+        for (unsigned y = 0; y < size.y; ++y) {
+            for (unsigned x = 0; x < size.x; ++x) {
+                if (x < 10 || y < 10) {
+                    ++total;
+                    background += image.getPixel(x, y) == back ? 1 : 0;
+                }
+            }
+        }
+    };
+    auto run = [&](const std::string& name, const std::string& script) {
+        const std::string script_path = std::string(FLUID_DEMO_WORK_DIR) + "/" + name + ".script";
+        const std::string png = std::string(FLUID_DEMO_WORK_DIR) + "/" + name + ".png";
+        std::ofstream(script_path) << script;
+        const demo_test::Run r =
+            demo_test::runDemo("--level dam_break --size 960x540 --threads 1 --frames 5 "
+                               "--script '" + script_path + "' --screenshot '" + png + "'");
+        INFO(r.output);
+        REQUIRE(r.status == 0);
+        return png;
+    };
+    int background = 0, total = 0;
+    // Keys only: the pointer was never over the window, so no ring (at the pixel (0, 0) it
+    // would cross both edges).
+    bareEdge(run("pointer_unseen", "1 key P\n"), background, total);
+    std::printf("[measure] pointer unseen: %d of %d edge pixels background\n", background, total);
+    CHECK(total > 10000);
+    CHECK(background == total);
+    // A move to the window's left edge at mid height (left of the tank): the ring crosses it.
+    char move[96];
+    std::snprintf(move, sizeof move, "1 move %.6f %.6f\n", cx + (4.0 - 480.0) / ppm,
+                  cy - (300.0 - 270.0) / ppm);
+    bareEdge(run("pointer_seen", move), background, total);
+    std::printf("[measure] pointer seen: %d of %d edge pixels background\n", background, total);
+    CHECK(total - background > 20);
 }

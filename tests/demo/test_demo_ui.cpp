@@ -1,6 +1,6 @@
-// The demo's text wrapping (demo/ui.cpp wrapWords), which the level banner and the help use:
+// The demo's text wrapping (demo/banner.cpp wrapWords), which the level banner and the help use:
 // lines break at spaces only, so a number such as "5,000" or a word never splits.
-#include "demo/ui.h"
+#include "demo/banner.h"
 
 #include <catch2/catch.hpp>
 

@@ -7,6 +7,8 @@
 //
 //   node tests/web/play.mjs [options] SCREENSHOT.png URL [URL ...]
 //     --timeout S          seconds to wait for each game (default 600)
+//     --frames-drawn N     wait until the game has drawn N frames (Module.fluidFramesDrawn)
+//                          instead of its exit: a screenshot of a level being played
 //     --copy FROM:TO       after the last URL, copy the page's file FROM to TO (repeatable)
 //     --viewport WxH       the page's size in CSS pixels (default 1300x820)
 //     --touch FX,FY ...    in the first URL, once the game runs: one finger down at the first
@@ -16,11 +18,13 @@
 import fs from 'node:fs';
 import puppeteer from 'puppeteer-core';
 
-const usage = 'usage: node play.mjs [--timeout S] [--copy FROM:TO] [--viewport WxH] ' +
+const usage = 'usage: node play.mjs [--timeout S] [--frames-drawn N] [--copy FROM:TO] ' +
+              '[--viewport WxH] ' +
               '[--touch "FX,FY FX,FY ..."] SCREENSHOT.png URL [URL ...]';
 let timeout = 600 * 1000;
 let viewport = {width: 1300, height: 820};
 let touch = [];
+let framesDrawn = 0;
 const copies = [];
 const positional = [];
 const args = process.argv.slice(2);
@@ -28,6 +32,9 @@ for (let i = 0; i < args.length; ++i) {
   const value = args[i + 1];
   if (args[i] === '--timeout') {
     timeout = Number(value) * 1000;
+    ++i;
+  } else if (args[i] === '--frames-drawn') {
+    framesDrawn = Number(value);
     ++i;
   } else if (args[i] === '--copy') {
     copies.push(value.split(':'));
@@ -45,6 +52,7 @@ for (let i = 0; i < args.length; ++i) {
 }
 const [screenshot, ...urls] = positional;
 if (!screenshot || urls.length === 0 || !(timeout > 0) || !(viewport.width > 0) ||
+    !(Number.isInteger(framesDrawn) && framesDrawn >= 0) ||
     touch.some((p) => p.length !== 2 || p.some((f) => !(f >= 0 && f <= 1)))) {
   console.error(usage);
   process.exit(2);
@@ -95,8 +103,15 @@ try {
       if (index === 0 && touch.length > 0) {
         await drag(page, touch);
       }
-      await page.waitForFunction('window.fluidExitCode !== undefined', {timeout, polling: 250});
-      own = await page.evaluate('window.fluidExitCode');
+      if (framesDrawn > 0) {
+        await page.waitForFunction(
+            `window.fluidExitCode !== undefined || (typeof Module !== 'undefined' && ` +
+            `(Module.fluidFramesDrawn ?? 0) >= ${framesDrawn})`, {timeout, polling: 100});
+        own = (await page.evaluate('window.fluidExitCode')) ?? 0;
+      } else {
+        await page.waitForFunction('window.fluidExitCode !== undefined', {timeout, polling: 250});
+        own = await page.evaluate('window.fluidExitCode');
+      }
     } catch (e) {
       console.log('play.mjs: no exit after ' + timeout / 1000 + ' s (' + url + '): ' + e.message);
       own = 3;
