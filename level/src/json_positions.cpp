@@ -486,61 +486,6 @@ std::string childPointer(std::string_view base, std::size_t index) {
     return std::string(base) + '/' + std::to_string(index);
 }
 
-namespace {
-
-// The shortest text that reads back as `value`, as std::to_chars's general format writes it:
-// the least digits that read back, fixed notation for decimal exponents -4 to 5, else
-// scientific. std::to_chars where the standard library has it for floating point; else the
-// same text from printf (emscripten's libc++ lacks the floating-point std::to_chars; how the two
-// were compared: docs/web.md, "Number text").
-template <class T> std::string shortest(T value) {
-#if defined(__cpp_lib_to_chars)
-    char buffer[64];
-    const auto result =
-        std::to_chars(buffer, buffer + sizeof(buffer), value, std::chars_format::general);
-    return std::string(buffer, result.ptr);
-#else
-    char buffer[64];
-    if (!std::isfinite(value)) {
-        std::snprintf(buffer, sizeof(buffer), "%g", double(value));
-        return buffer;
-    }
-    int digits = 1;
-    for (; digits < 17; ++digits) {
-        std::snprintf(buffer, sizeof(buffer), "%.*e", digits - 1, double(value));
-        if (T(std::strtod(buffer, nullptr)) == value) {
-            break;
-        }
-    }
-    std::snprintf(buffer, sizeof(buffer), "%.*e", digits - 1, double(value));
-    const int exponent = std::atoi(std::strchr(buffer, 'e') + 1);
-    if (exponent >= -4 && exponent < 6) {
-        std::snprintf(buffer, sizeof(buffer), "%.*f", std::max(digits - 1 - exponent, 0),
-                      double(value));
-    }
-    return buffer;
-#endif
-}
-
-} // namespace
-
-std::string formatNumber(double value) {
-    // Whole numbers in full (100000, not 1e+05) up to 2^53, the largest seed (every whole
-    // double up to there is exact); others in the shortest text that reads back.
-    if (std::isfinite(value) && value == std::floor(value) &&
-        std::fabs(value) <= 9007199254740992.0) {
-        return std::to_string(int64_t(value));
-    }
-    return shortest(value);
-}
-
-std::string formatNumber(float value) {
-    if (std::isfinite(value) && value == std::floor(value) && std::fabs(value) < 1e15f) {
-        return std::to_string(int64_t(value));
-    }
-    return shortest(value);
-}
-
 std::string describeType(const Json& value) {
     switch (value.type()) {
     case Json::value_t::null:

@@ -7,6 +7,8 @@
 // beyond nlohmann's own, and the scanner never recurses (deep nesting cannot overflow the stack).
 #pragma once
 
+#include <fluid/internal/number_text.h>
+
 #include <fluid/level.h>
 
 #include <glm/vec2.hpp>
@@ -65,11 +67,8 @@ std::string childPointer(std::string_view base, std::string_view token);
 /// `base` + "/" + the array index.
 std::string childPointer(std::string_view base, std::size_t index);
 
-/// A number as people write it: the shortest text that reads back as `value` (0.1, 1e+300,
-/// 67108864).
-std::string formatNumber(double value);
-/// As above for a float (0.1f reads "0.1", not its double expansion).
-std::string formatNumber(float value);
+/// Numbers as people write them (fluid/internal/number_text.h).
+using internal::formatNumber;
 
 /// "a string", "an object", "null"... for "expected X, got Y" messages.
 std::string describeType(const Json& value);

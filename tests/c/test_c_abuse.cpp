@@ -228,7 +228,7 @@ TEST_CASE("C: fluid_level_add_body runs a level file's checks before Box2D sees 
     // These aborted the process in Box2D's asserts.
     fluid_body_def tiny = crate;
     tiny.shape.half_extents = {0.0001f, 0.0001f};
-    refused(tiny, "a box's width is 2e-04 m; expected at least 0.005 m (Box2D's linear slop)");
+    refused(tiny, "a box's width is 0.0002 m; expected at least 0.005 m (Box2D's linear slop)");
     const fluid_vec2 sliver[] = {{0.0f, 0.0f}, {0.1f, 0.0f}, {0.05f, 1e-6f}};
     fluid_body_def sliverBody = crate;
     sliverBody.position = {0.9f, 0.5f};

@@ -55,12 +55,6 @@ bool isBodyEdge(sf::Color c) {
            std::abs(int(c.b) - 15) <= 2;
 }
 
-// The walls' fill (demo/scene_draw.cpp kWall: 0.42, 0.45, 0.50).
-bool isWall(sf::Color c) {
-    return std::abs(int(c.r) - 107) <= 2 && std::abs(int(c.g) - 115) <= 2 &&
-           std::abs(int(c.b) - 128) <= 2;
-}
-
 // Squared distance (px^2) from every pixel to the nearest pixel of `mask`, exact up to `cap`
 // px and `cap`^2 beyond: distances along rows, then the lower envelope down the columns within
 // the cap.

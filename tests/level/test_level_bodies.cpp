@@ -189,7 +189,7 @@ TEST_CASE("level bodies: densities: exactly one of density and densityRatio, and
     // kMinDensityRatio of the densest material's areal density (129 kg/m^2 here).
     CHECK(errorOf(withFixture(
               R"("shape": "box", "width": 0.01, "height": 0.01, "density": 0.01)")) ==
-          "t.json:1:74: at /bodies/0/fixtures: the fixtures weigh 1e-06 kg over 1e-04 m^2, an "
+          "t.json:1:74: at /bodies/0/fixtures: the fixtures weigh 1e-06 kg over 0.0001 m^2, an "
           "areal density of 0.01 kg/m^2, 7.73e-05 of the densest material's (129 kg/m^2); a "
           "dynamic body needs at least 0.05 of it (kMinDensityRatio), or the fluid throws it: "
           "raise their density to 6.47 kg/m^2 or more");

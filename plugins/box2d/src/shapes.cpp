@@ -3,12 +3,13 @@
 
 #include <fluid/box2d/coupling.h>
 
+#include <fluid/internal/number_text.h>
+
 #include <box2d/box2d.h>
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -19,16 +20,9 @@ namespace fluid::box2d {
 
 namespace {
 
-// Whole numbers in full, others in the shortest text that reads back as the same float (as the
-// level loader's messages write numbers).
+// Numbers in messages as the level loader writes a float's.
 std::string number(double value) {
-    const auto f = float(value);
-    if (std::isfinite(f) && f == std::floor(f) && std::fabs(f) < 1e15f) {
-        return std::to_string(int64_t(f));
-    }
-    char text[32];
-    const auto result = std::to_chars(text, text + sizeof(text), f);
-    return std::string(text, result.ptr);
+    return internal::formatNumber(float(value));
 }
 
 // A derived figure to three significant digits ("0.0001", "6.47").
