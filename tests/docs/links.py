@@ -3,7 +3,9 @@
 
 Reads README.md and docs/**/*.md for markdown links `[text](path)` and for page names written
 in the text (`docs/<name>.md`, `bench/<name>.md`); each must name a file of the project
-(anchors and web addresses are not checked). Fails naming the file, line and missing target.
+(anchors and web addresses are not checked). Every page of docs/ is in the README's docs index
+and in docs/README.md, and every study of docs/notes/ in docs/README.md. Fails naming the file,
+line and missing target or page.
 docs/errors.md is written on another branch (the error codes); until it lands it may be missing.
 Usage: python3 tests/docs/links.py [project root]   (ctest: docs.links)
 """
@@ -40,8 +42,29 @@ for page in [root / "README.md"] + sorted((root / "docs").rglob("*.md")):
             if not path.exists() and str(relative) not in pending:
                 failures.append(f"{page.relative_to(root)}:{number}: {text}: no such file")
 
+# The indexes: the README's "## Docs" list and docs/README.md.
+readme = (root / "README.md").read_text()
+index_at = readme.find("\n## Docs")
+if index_at < 0:
+    failures.append("README.md: no \"## Docs\" section (the index of the docs pages)")
+readme_index = readme[index_at:] if index_at >= 0 else ""
+docs_index = (root / "docs/README.md").read_text() if (root / "docs/README.md").exists() else ""
+for page in sorted((root / "docs").glob("*.md")):
+    name = page.name
+    if name == "README.md":
+        continue
+    if f"(docs/{name})" not in readme_index:
+        failures.append(f"README.md: the docs index (## Docs) does not list docs/{name}")
+    if f"({name})" not in docs_index:
+        failures.append(f"docs/README.md: does not list {name}")
+for page in sorted((root / "docs/notes").glob("*.md")):
+    if f"(notes/{page.name})" not in docs_index:
+        failures.append(f"docs/README.md: does not list notes/{page.name}")
+    if not page.read_text().startswith("# Study: "):
+        failures.append(f"docs/notes/{page.name}:1: a study's first line is \"# Study: <what>\"")
+
 for failure in failures:
     print(f"{me}: {failure}", file=sys.stderr)
 if failures:
-    sys.exit(f"{me}: {len(failures)} link(s) to missing files")
+    sys.exit(f"{me}: {len(failures)} problem(s): links to missing files or pages missing from the indexes")
 print(f"{me}: {checked} links and page names in README.md and docs/ name existing files")
