@@ -992,7 +992,7 @@ TEST_CASE("C API: fuzzed calls never crash, hang or leave NaN, and each failure 
 
 namespace {
 
-// docs/c_api.md's row for `field`: "| `name` | `member` | unit | range | ... | description |".
+// docs/c_api_reference.md's row for `field`: "| `name` | `member` | unit | range | ... | description |".
 template <class Def> void checkDocRow(const std::string& doc, const Field<Def>& field) {
     CAPTURE(field.name);
     const std::string head = "| `" + std::string(field.name) + "` | `";
@@ -1037,8 +1037,8 @@ template <class Def> void checkDocRow(const std::string& doc, const Field<Def>& 
 
 } // namespace
 
-TEST_CASE("C API: docs/c_api.md's field tables are the C++ field tables", "[c]") {
-    std::ifstream in(std::string(FLUID_SOURCE_DIR) + "/docs/c_api.md");
+TEST_CASE("C API: docs/c_api_reference.md's field tables are the C++ field tables", "[c]") {
+    std::ifstream in(std::string(FLUID_SOURCE_DIR) + "/docs/c_api_reference.md");
     REQUIRE(in);
     std::ostringstream text;
     text << in.rdbuf();

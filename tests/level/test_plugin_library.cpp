@@ -368,7 +368,7 @@ TEST_CASE("docs/plugins.md quotes the example's whirlpool as it is", "[level][do
 
 namespace {
 
-// A declared number as docs/levels.md prints it: the shortest form that reads back.
+// A declared number as docs/level_format.md prints it: the shortest form that reads back.
 template <class T> std::string docNumber(T value) {
     char text[32];
     const auto [end, error] = std::to_chars(text, text + sizeof text, value);
@@ -392,7 +392,7 @@ std::string cell(std::string_view text) {
     return out;
 }
 
-// docs/levels.md's table of the built-in plugin types, made from the registry's declarations:
+// docs/level_format.md's table of the built-in plugin types, made from the registry's declarations:
 // one row per parameter, the type named on its first row.
 std::string pluginTable(const Registry& registry) {
     std::string out = "| type | parameter | unit | default | range | meaning |\n"
@@ -420,12 +420,12 @@ std::string pluginTable(const Registry& registry) {
 
 namespace {
 
-// A field's value in `def` as docs/levels.md prints it, in the member's own type.
+// A field's value in `def` as docs/level_format.md prints it, in the member's own type.
 template <class Def> std::string valueText(const Field<Def>& f, const Def& def) {
     return f.real != nullptr ? docNumber(def.*f.real) : docNumber(def.*f.whole);
 }
 
-// docs/levels.md's numbers of a material, made from materialFields(): range and both presets.
+// docs/level_format.md's numbers of a material, made from materialFields(): range and both presets.
 std::string materialTable() {
     std::string out = "| key | unit | range | water | yoghurt | meaning |\n"
                       "|---|---|---|---|---|---|\n";
@@ -438,7 +438,7 @@ std::string materialTable() {
     return out;
 }
 
-// docs/levels.md's rows for `fields`, their defaults read from `defaults`.
+// docs/level_format.md's rows for `fields`, their defaults read from `defaults`.
 template <class Def>
 std::string fieldRows(std::span<const Field<Def>> fields, const Def& defaults) {
     std::string out;
@@ -451,11 +451,11 @@ std::string fieldRows(std::span<const Field<Def>> fields, const Def& defaults) {
     return out;
 }
 
-// Fails unless the text of docs/levels.md between `begin` and `end` is `expected`; with
+// Fails unless the text of docs/level_format.md between `begin` and `end` is `expected`; with
 // FLUID_UPDATE_DOCS=1 in the environment it writes `expected` there instead.
 void checkGenerated(const std::string& begin, const std::string& end,
                     const std::string& expected) {
-    const std::string path = std::string(FLUID_SOURCE_DIR) + "/docs/levels.md";
+    const std::string path = std::string(FLUID_SOURCE_DIR) + "/docs/level_format.md";
     const std::string page = readFile(path);
     const size_t from = page.find(begin);
     REQUIRE(from != std::string::npos);
@@ -466,25 +466,25 @@ void checkGenerated(const std::string& begin, const std::string& end,
     if (table != expected && update != nullptr && std::string(update) == "1") {
         std::ofstream(path, std::ios::binary)
             << page.substr(0, from + begin.size()) + expected + page.substr(to);
-        WARN("docs/levels.md: a generated table was written anew");
+        WARN("docs/level_format.md: a generated table was written anew");
         return;
     }
-    INFO("docs/levels.md's generated table differs from the declarations; write it anew with "
-         "FLUID_UPDATE_DOCS=1 fluid-tests-level \"docs/levels.md*\"");
+    INFO("docs/level_format.md's generated table differs from the declarations; write it anew with "
+         "FLUID_UPDATE_DOCS=1 fluid-tests-level \"docs/level_format.md*\"");
     CHECK(table == expected);
 }
 
 } // namespace
 
-TEST_CASE("docs/levels.md's plugin table is the registry's declarations", "[level][docs]") {
+TEST_CASE("docs/level_format.md's plugin table is the registry's declarations", "[level][docs]") {
     // The table between the markers is generated from every built-in type's ParamDecl array, so
     // a parameter, range, default or unit changed in a plugin's header changes the page. To
-    // write the page anew: FLUID_UPDATE_DOCS=1 fluid-tests-level "docs/levels.md*".
+    // write the page anew: FLUID_UPDATE_DOCS=1 fluid-tests-level "docs/level_format.md*".
     Registry registry;
     registerBuiltinPlugins(registry);
     const std::string expected = pluginTable(registry);
     checkGenerated("<!-- plugin table: generated from the registry; see the test \"docs/"
-                   "levels.md's plugin table is the registry's declarations\" -->\n",
+                   "level_format.md's plugin table is the registry's declarations\" -->\n",
                    "<!-- end of the plugin table -->\n", expected);
     // Every built-in type is there, with its parameters.
     CHECK(expected.find("| `force.gravity` | `gx` | m/s^2 | 0 | [-1000, 1000] |") !=
@@ -492,31 +492,33 @@ TEST_CASE("docs/levels.md's plugin table is the registry's declarations", "[leve
     CHECK(expected.find("| `boundary.polygon` |") != std::string::npos);
 }
 
-TEST_CASE("docs/levels.md's material table is materialFields()", "[level][docs]") {
+TEST_CASE("docs/level_format.md's material table is materialFields()", "[level][docs]") {
     // The same for the numbers of a material: what validation, the loader, snapshots and the
     // demo's panel read.
     const std::string expected = materialTable();
     checkGenerated("<!-- material table: generated from fluid::materialFields(); see the test "
-                   "\"docs/levels.md's material table is materialFields()\" -->\n",
+                   "\"docs/level_format.md's material table is materialFields()\" -->\n",
                    "<!-- end of the material table -->\n", expected);
     CHECK(expected.find("| `yieldStress` | Pa | [0, 1e5] | 0 | 400 |") != std::string::npos);
     CHECK(expected.find("| `mass` | kg | (0, 1000] | 0.013 | 0.014 |") != std::string::npos);
 }
 
-TEST_CASE("docs/levels.md's world and emitter numbers are their field tables", "[level][docs]") {
+TEST_CASE("docs/level_format.md's world and emitter numbers are their field tables",
+          "[level][docs]") {
     const std::string header = "| key | type | unit | range | default | meaning |\n"
                                "|---|---|---|---|---|---|\n";
     const WorldDef world;
     const std::string settings = header + fieldRows(positionBasedFields(), world.positionBased) +
                                  fieldRows(worldFields(), world);
     checkGenerated("<!-- world table: generated from fluid::positionBasedFields() and "
-                   "fluid::worldFields(); see the test \"docs/levels.md's world and emitter "
+                   "fluid::worldFields(); see the test \"docs/level_format.md's world and emitter "
                    "numbers are their field tables\" -->\n",
                    "<!-- end of the world table -->\n", settings);
     CHECK(settings.find("| `substeps` | whole | count | [1, 12] | 4 |") != std::string::npos);
     const std::string emitter = header + fieldRows(emitterFields(), EmitterDef{});
     checkGenerated("<!-- emitter table: generated from fluid::emitterFields(); see the test "
-                   "\"docs/levels.md's world and emitter numbers are their field tables\" -->\n",
+                   "\"docs/level_format.md's world and emitter numbers are their field "
+                   "tables\" -->\n",
                    "<!-- end of the emitter table -->\n", emitter);
     CHECK(emitter.find("| `jitter` | number | 1 | [0, 0.5] | 0 |") != std::string::npos);
 }
