@@ -1,6 +1,7 @@
 // fluid — two-way coupling with Box2D 2.4 rigid bodies (library target fluid::box2d).
 #pragma once
 
+#include <fluid/contacts.h>
 #include <fluid/material.h>
 #include <fluid/world.h>
 
@@ -108,29 +109,9 @@ struct ContactEvent {
 /// `fluid::BodyContact` (<fluid/contacts.h>) for a Box2D body. Made for each asking body that
 /// some particle touched (came within `fluid::kContactReach` sample spacings of its samples at
 /// the end of a sub-step); a dry body reports nothing. Plain data; valid until the next step.
-struct ParticleContact {
+struct ParticleContact : ContactSummary {
     /// The body (owned by the game's `b2World`).
     b2Body* body = nullptr;
-    /// The material most of the touching particles have, over the rounds (ties: the lower
-    /// index).
-    MaterialId material{};
-    /// The particle group most of the touching particles belong to (fluid/groups.h; ties: the
-    /// lower index; particles in no group are not counted); null when none of them is in one.
-    GroupHandle group{};
-    /// Distinct particles that touched the body during the frame (unit: count; >= 1);
-    /// `Coupling::contactParticles` lists them.
-    uint32_t particles = 0;
-    /// The liquid's impulse on the body over the frame (unit: N s): each round's
-    /// `BodyReport::force` (pressure, viscosity, projection and coarse solve; before the
-    /// relaxation hands it to Box2D) times the round's time, summed. Floating at rest, it
-    /// balances the body's weight times the frame's time.
-    glm::vec2 impulse{0.0f, 0.0f};
-    /// Mean position of the touching particles, each counted once per sub-step it touched
-    /// (unit: m).
-    glm::vec2 point{0.0f, 0.0f};
-    /// Largest speed at which a touching particle moved towards the body's surface, relative to
-    /// the surface, at the end of a sub-step (unit: m/s; >= 0): a splash's loudness.
-    float approachSpeed = 0.0f;
 };
 
 /// The areal density of a material (unit: kg/m^2): rest density x the world's slab depth. A
