@@ -63,15 +63,15 @@ int main(int argc, char** argv) {
     app.add_option("--rounds", rounds, "Rounds, each side in turn")->check(CLI::Range(1u, 1000u));
     app.add_option("--threads", threads, "Workers of each world")->check(CLI::Range(1u, 256u));
     app.add_option("--quality", quality, "game or precise")
-        ->check(CLI::IsMember({"game", "precise"}));
+        ->check(CLI::IsMember(fluid::tools::namesOf(fluid::kQualityNames)));
     if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
         return status;
     }
 
     // The C++ side.
     fluid::WorldDef def;
-    def.positionBased = fluid::positionBasedPreset(quality == "game" ? fluid::Quality::Game
-                                                                     : fluid::Quality::Precise);
+    def.positionBased =
+        fluid::positionBasedPreset(fluid::qualityFromName(quality).value_or(fluid::Quality::Game));
     def.workerCount = threads;
     fluid::World cpp(def);
     const fluid::MaterialId water = cpp.addMaterial(fluid::water());

@@ -309,7 +309,7 @@ TEST_CASE("contacts: reading the events during the world's own step is refused",
           "[unit][contacts]") {
     Tank t = discTank({0.0f, 0.2f}, true, def());
     std::string message;
-    ErrorCode code = ErrorCode::BadInput;
+    ErrorCode code = ErrorCode::BadArgument;
     t.world.addForce(std::make_unique<HookForce>([&] {
         try {
             (void)bodyContacts(t.world);

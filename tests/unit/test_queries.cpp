@@ -101,7 +101,7 @@ public:
     }
     void apply(const ForceContext&, uint32_t, uint32_t) override {}
     std::string message;
-    ErrorCode code = ErrorCode::BadInput;
+    ErrorCode code = ErrorCode::BadArgument;
 
 private:
     const World& m_world;

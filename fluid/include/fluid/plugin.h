@@ -75,7 +75,8 @@ public:
         static_assert(std::is_trivially_copyable_v<T>, "StateReader::read: plain data only");
         if (m_bytes.size() - m_offset < sizeof(T)) {
             throw Error("snapshot: plugin state is truncated (" + std::to_string(m_bytes.size()) +
-                        " bytes, read past the end at byte " + std::to_string(m_offset) + ")");
+                            " bytes, read past the end at byte " + std::to_string(m_offset) + ")",
+                        ErrorCode::BadFile);
         }
         T value;
         std::memcpy(&value, m_bytes.data() + m_offset, sizeof(T));
