@@ -769,7 +769,6 @@ fluid_status fluid_world_set_emitter(fluid_world* world, fluid_emitter_id id,
         need(def, "fluid_world_set_emitter", "def");
         checkMaterial(w, def->material);
         const EmitterDef cpp = emitterOf(*def);
-        (void)w.emittedCount(toCpp(id)); // a stale id first
         w.setEmitter(toCpp(id), cpp);
     });
 }

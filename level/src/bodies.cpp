@@ -242,14 +242,14 @@ private:
 
         const std::string typeName =
             b.string("type", std::string(nameIn(kBodyTypeNames, b2_dynamicBody)));
-        const std::optional<b2BodyType> named = valueIn(kBodyTypeNames, typeName);
-        if (!named) {
+        const std::optional<b2BodyType> typeNamed = valueIn(kBodyTypeNames, typeName);
+        if (!typeNamed) {
             b.failAt("type",
                      "unknown body type " + internal::quoted(typeName) +
                          "; known: " + namesIn(kBodyTypeNames, ", "),
                      ErrorCode::UnknownName);
         }
-        const b2BodyType type = *named;
+        const b2BodyType type = *typeNamed;
         b2BodyDef def;
         def.position = toB2(b.point("position", kPosition, {0.0f, 0.0f}));
         def.angle = float(b.number("angle", kAngle, 0.0));

@@ -6,6 +6,7 @@
 #include "c_status.h"
 
 #include <fluid/error.h>
+#include <fluid/world.h>
 
 #include <cstring>
 #include <map>
