@@ -75,8 +75,7 @@ public:
         static_assert(std::is_trivially_copyable_v<T>, "StateReader::read: plain data only");
         if (m_bytes.size() - m_offset < sizeof(T)) {
             throw Error("snapshot: plugin state is truncated (" + std::to_string(m_bytes.size()) +
-                            " bytes, read past the end at byte " + std::to_string(m_offset) + ")",
-                        ErrorCode::BadFile);
+                        " bytes, read past the end at byte " + std::to_string(m_offset) + ")");
         }
         T value;
         std::memcpy(&value, m_bytes.data() + m_offset, sizeof(T));
