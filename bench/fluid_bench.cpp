@@ -79,7 +79,7 @@ struct Options {
     /// "position-based" or "explicit".
     std::string solver = "position-based";
     /// Position-based preset the solver settings start from: "game" or "precise".
-    std::string quality = "game";
+    std::string quality{fluid::qualityName(fluid::Quality::Game)};
     /// PositionBasedDef::substeps (unit: count; 0 keeps the quality preset's).
     uint32_t substeps = 0;
     /// PositionBasedDef::iterations (unit: count; 0 keeps the quality preset's).
@@ -91,7 +91,7 @@ struct Options {
     /// PositionBasedDef::shearConstraint (unit: switch; negative keeps the preset's).
     int shearConstraint = -1;
     /// "tait" or "linear" (explicit solver).
-    std::string eos = "tait";
+    std::string eos{fluid::equationOfStateName(fluid::EquationOfState::Tait)};
     /// The scene's liquid: "water" or "yoghurt" (the presets of fluid/material.h).
     std::string material = "water";
     /// Crates scene: step Box2D next to the fluid without coupling them (the reference run).

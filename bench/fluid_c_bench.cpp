@@ -57,7 +57,7 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 int main(int argc, char** argv) {
     CLI::App app{"fluid-c-bench: the C API's cost over the C++ API on the dam"};
     uint32_t particles = 4000, frames = 120, rounds = 6, threads = 1;
-    std::string quality = "game";
+    std::string quality{fluid::qualityName(fluid::Quality::Game)};
     app.add_option("--particles", particles, "Particles, about")->check(CLI::Range(100u, 1000000u));
     app.add_option("--frames", frames, "Frames per round and side")->check(CLI::Range(1u, 100000u));
     app.add_option("--rounds", rounds, "Rounds, each side in turn")->check(CLI::Range(1u, 1000u));

@@ -63,7 +63,7 @@ struct Options {
     float size = 12.0f;
     float depth = 0.2f;
     float width = 0.6f;
-    std::string quality = "game";
+    std::string quality{fluid::qualityName(fluid::Quality::Game)};
     float seconds = 10.0f;
     uint32_t threads = 1;
     bool drop = false;

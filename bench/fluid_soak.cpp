@@ -128,7 +128,7 @@ int main(int argc, char** argv) {
                    "Before this frame's step, save the world, the Box2D world and the coupling "
                    "to PREFIX.world, PREFIX.b2d and PREFIX.coupling (to replay a failure)");
     app.add_option("--dump", dumpPrefix, "PREFIX for --dump-frame");
-    std::string quality = "game";
+    std::string quality{fluid::qualityName(fluid::Quality::Game)};
     app.add_option("--quality", quality, "The position-based preset: game (the default) or precise")
         ->check(CLI::IsMember(fluid::tools::namesOf(fluid::kQualityNames)));
     if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
