@@ -2,7 +2,13 @@
 // fluid-demo: a bad command line exits with status 2, as their documentation says.
 #pragma once
 
+#include <fluid/error.h>
+
 #include <CLI/CLI.hpp>
+
+#include <cstddef>
+#include <string>
+#include <vector>
 
 namespace fluid::tools {
 
@@ -18,6 +24,17 @@ inline int parseCommandLine(CLI::App& app, int argc, char** argv) {
         return status == 0 ? 0 : 2;
     }
     return -1;
+}
+
+/// The names of an enum's name table (`fluid::kQualityNames`...), for CLI::IsMember: an option
+/// takes exactly the names the library parses. Any thread.
+template <class Enum, std::size_t N>
+std::vector<std::string> namesOf(const EnumName<Enum> (&table)[N]) {
+    std::vector<std::string> names;
+    for (const EnumName<Enum>& row : table) {
+        names.emplace_back(row.name);
+    }
+    return names;
 }
 
 } // namespace fluid::tools

@@ -79,7 +79,7 @@ struct Options {
     /// "position-based" or "explicit".
     std::string solver = "position-based";
     /// Position-based preset the solver settings start from: "game" or "precise".
-    std::string quality = "game";
+    std::string quality{fluid::qualityName(fluid::Quality::Game)};
     /// PositionBasedDef::substeps (unit: count; 0 keeps the quality preset's).
     uint32_t substeps = 0;
     /// PositionBasedDef::iterations (unit: count; 0 keeps the quality preset's).
@@ -91,7 +91,7 @@ struct Options {
     /// PositionBasedDef::shearConstraint (unit: switch; negative keeps the preset's).
     int shearConstraint = -1;
     /// "tait" or "linear" (explicit solver).
-    std::string eos = "tait";
+    std::string eos{fluid::equationOfStateName(fluid::EquationOfState::Tait)};
     /// The scene's liquid: "water" or "yoghurt" (the presets of fluid/material.h).
     std::string material = "water";
     /// Crates scene: step Box2D next to the fluid without coupling them (the reference run).
@@ -585,7 +585,7 @@ int run(const Options& opt) {
     def.workerCount = opt.threads;
     def.solver = opt.solver == "explicit" ? fluid::Solver::Explicit : fluid::Solver::PositionBased;
     def.positionBased = fluid::positionBasedPreset(
-        opt.quality == "precise" ? fluid::Quality::Precise : fluid::Quality::Game);
+        fluid::qualityFromName(opt.quality).value_or(fluid::Quality::Game));
     if (opt.substeps > 0) {
         def.positionBased.substeps = opt.substeps;
     }
@@ -602,7 +602,7 @@ int run(const Options& opt) {
         def.positionBased.shearConstraint = uint32_t(opt.shearConstraint);
     }
     def.equationOfState =
-        opt.eos == "linear" ? fluid::EquationOfState::Linear : fluid::EquationOfState::Tait;
+        fluid::equationOfStateFromName(opt.eos).value_or(fluid::EquationOfState::Tait);
     fluid::World world(def);
     const fluid::Material liquid = opt.material == "yoghurt"        ? fluid::yoghurt()
                                    : opt.material == "seed_yoghurt" ? fluid::seedYoghurt()
@@ -955,9 +955,9 @@ int main(int argc, char** argv) {
                      opt.solver.c_str());
         return 2;
     }
-    if (opt.quality != "game" && opt.quality != "precise") {
-        std::fprintf(stderr, "fluid-bench: unknown quality '%s' (expected game or precise)\n",
-                     opt.quality.c_str());
+    if (!fluid::qualityFromName(opt.quality)) {
+        std::fprintf(stderr, "fluid-bench: unknown quality '%s' (expected %s)\n",
+                     opt.quality.c_str(), fluid::namesIn(fluid::kQualityNames).c_str());
         return 2;
     }
     if (opt.material != "water" && opt.material != "yoghurt" && opt.material != "seed_yoghurt") {
@@ -967,10 +967,9 @@ int main(int argc, char** argv) {
                      opt.material.c_str());
         return 2;
     }
-    if (opt.eos != "tait" && opt.eos != "linear") {
-        std::fprintf(stderr,
-                     "fluid-bench: unknown equation of state '%s' (expected tait or linear)\n",
-                     opt.eos.c_str());
+    if (!fluid::equationOfStateFromName(opt.eos)) {
+        std::fprintf(stderr, "fluid-bench: unknown equation of state '%s' (expected %s)\n",
+                     opt.eos.c_str(), fluid::namesIn(fluid::kEquationOfStateNames).c_str());
         return 2;
     }
     // Scene defaults: the tank runs 1500 particles for 300 simulated frames (5 s) in all.

@@ -63,7 +63,7 @@ struct Options {
     float size = 12.0f;
     float depth = 0.2f;
     float width = 0.6f;
-    std::string quality = "game";
+    std::string quality{fluid::qualityName(fluid::Quality::Game)};
     float seconds = 10.0f;
     uint32_t threads = 1;
     bool drop = false;
@@ -98,8 +98,7 @@ double archimedesDraft(bool circle, double ratio, double hh, double r) {
 int run(const Options& opt) {
     WorldDef def;
     def.workerCount = opt.threads;
-    def.positionBased =
-        positionBasedPreset(opt.quality == "precise" ? Quality::Precise : Quality::Game);
+    def.positionBased = positionBasedPreset(qualityFromName(opt.quality).value_or(Quality::Game));
     if (opt.substeps > 0) {
         def.positionBased.substeps = opt.substeps;
     }
@@ -261,7 +260,7 @@ int main(int argc, char** argv) {
     app.add_option("--depth", opt.depth, "fluid depth (m)")->check(CLI::Range(0.05, 3.0));
     app.add_option("--width", opt.width, "tank width (m)")->check(CLI::Range(0.1, 10.0));
     app.add_option("--quality", opt.quality, "game or precise")
-        ->check(CLI::IsMember({"game", "precise"}));
+        ->check(CLI::IsMember(fluid::tools::namesOf(kQualityNames)));
     app.add_option("--seconds", opt.seconds, "simulated time (s)")->check(CLI::Range(1.5, 600.0));
     app.add_option("--threads", opt.threads, "worker threads")->check(CLI::Range(1, 64));
     app.add_flag("--drop", opt.drop, "start with the body's bottom on the surface");

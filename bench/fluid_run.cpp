@@ -294,10 +294,12 @@ int main(int argc, char** argv) {
             in.read(magic, sizeof(magic));
         }
         if (std::string_view(magic, 8) == "FLUIDSNP") {
-            throw fluid::Error("fluid-run: '" + levelPath +
-                               "' is a world snapshot (World::saveFile), not a level: it holds "
-                               "no goal, names or frame rate to play on with; give a level file "
-                               "(.json) or a level save (.level, as --snapshot-every writes)");
+            throw fluid::Error(
+                "fluid-run: '" + levelPath +
+                    "' is a world snapshot (World::saveFile), not a level: it holds "
+                    "no goal, names or frame rate to play on with; give a level file "
+                    "(.json) or a level save (.level, as --snapshot-every writes)",
+                fluid::ErrorCode::BadFile);
         }
         const bool isSave = std::filesystem::path(levelPath).extension() == ".level" ||
                             std::string_view(magic, 8) == "FLUIDLVL";
@@ -311,7 +313,8 @@ int main(int argc, char** argv) {
         if (!csvPath.empty()) {
             csv.open(csvPath, std::ios::trunc);
             if (!csv) {
-                throw fluid::Error("fluid-run: cannot write '" + csvPath + "'");
+                throw fluid::Error("fluid-run: cannot write '" + csvPath + "'",
+                                   fluid::ErrorCode::Io);
             }
             csv << std::setprecision(9);
             writeHeader(csv, level);
@@ -352,7 +355,8 @@ int main(int argc, char** argv) {
         if (csv.is_open()) {
             csv.close();
             if (!csv) {
-                throw fluid::Error("fluid-run: writing '" + csvPath + "' failed");
+                throw fluid::Error("fluid-run: writing '" + csvPath + "' failed",
+                                   fluid::ErrorCode::Io);
             }
         }
         const double seconds = std::chrono::duration<double>(Clock::now() - start).count();

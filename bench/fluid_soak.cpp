@@ -128,16 +128,16 @@ int main(int argc, char** argv) {
                    "Before this frame's step, save the world, the Box2D world and the coupling "
                    "to PREFIX.world, PREFIX.b2d and PREFIX.coupling (to replay a failure)");
     app.add_option("--dump", dumpPrefix, "PREFIX for --dump-frame");
-    std::string quality = "game";
+    std::string quality{fluid::qualityName(fluid::Quality::Game)};
     app.add_option("--quality", quality, "The position-based preset: game (the default) or precise")
-        ->check(CLI::IsMember({"game", "precise"}));
+        ->check(CLI::IsMember(fluid::tools::namesOf(fluid::kQualityNames)));
     if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
         return status;
     }
 
     fluid::WorldDef def;
-    def.positionBased = fluid::positionBasedPreset(quality == "game" ? fluid::Quality::Game
-                                                                     : fluid::Quality::Precise);
+    def.positionBased =
+        fluid::positionBasedPreset(fluid::qualityFromName(quality).value_or(fluid::Quality::Game));
     def.workerCount = threads;
     def.maxParticles = 40000;
     fluid::World world(def);

@@ -253,9 +253,7 @@ int main(int argc, char** argv) {
             options.views = {fluid::gl::View::Metaballs, fluid::gl::View::Pressure,
                              fluid::gl::View::Particles};
         } else {
-            options.views = {view == "pressure"    ? fluid::gl::View::Pressure
-                             : view == "particles" ? fluid::gl::View::Particles
-                                                   : fluid::gl::View::Metaballs};
+            options.views = {fluid::gl::viewFromName(view).value_or(fluid::gl::View::Metaballs)};
         }
         return runHeadless(options);
     }

@@ -165,88 +165,22 @@ EmitterDef emitterOf(const fluid_emitter_def& d) {
     return def;
 }
 
-// A particle call's handle checked first: a stale one fails with the C++ API's message for it
-// (from `probe`, which throws it) and FLUID_ERROR_STALE_ID.
+// A particle call's handle checked first: a stale one fails with the C++ API's error for it
+// (from `probe`, which throws it: ErrorCode::StaleId, FLUID_ERROR_STALE_ID), before the call's
+// other arguments are looked at.
 template <class Probe> void checkParticle(const World& world, ParticleHandle h, Probe&& probe) {
     if (!world.isValid(h)) {
-        try {
-            probe();
-        } catch (const Error& e) {
-            throw Failure{FLUID_ERROR_STALE_ID, e.what()};
-        }
+        probe();
         throw Failure{FLUID_ERROR_STALE_ID, "stale particle handle"};
     }
 }
 
-// An id's index and tag checked against the world (tag 0: an id made by hand, good for any
-// world, as in the C++ API): a stale one fails with the C++ API's message (from `probe`, which
-// throws it) and FLUID_ERROR_STALE_ID.
-template <class Probe>
-void checkId(const World& world, uint32_t index, uint32_t tag, uint32_t count, Probe&& probe) {
-    if (index >= count || (tag != 0 && tag != tagOf(world))) {
-        try {
-            probe();
-        } catch (const Error& e) {
-            throw Failure{FLUID_ERROR_STALE_ID, e.what()};
-        }
-        throw Failure{FLUID_ERROR_STALE_ID, "stale id"};
-    }
-}
-
+// A material id checked first, by the C++ API (a stale one throws ErrorCode::StaleId).
 void checkMaterial(const World& world, fluid_material_id id) {
-    checkId(world, id.index, id.world, world.materialCount(),
-            [&] { (void)world.material(toCpp(id)); });
-}
-
-// Rethrows a C++ error about the particle cap as FLUID_ERROR_LIMIT; memory that ran out (whose
-// message also names maxParticles, as a way out) goes on to `guard` as FLUID_ERROR_OUT_OF_MEMORY.
-template <class Body> void particleCap(Body&& body) {
-    try {
-        body();
-    } catch (const Error& e) {
-        if (!ranOutOfMemory(e) &&
-            std::string_view(e.what()).find("maxParticles") != std::string_view::npos) {
-            throw Failure{FLUID_ERROR_LIMIT, e.what()};
-        }
-        throw;
-    }
-}
-
-// The plugin's declaration of `name`, or Failure(FLUID_ERROR_UNKNOWN_NAME) with the C++ API's
-// message for it (from `probe`).
-template <class Probe>
-void checkParam(const Plugin& plugin, const char* name, Probe&& probe) {
-    for (const ParamDecl& d : plugin.params()) {
-        if (d.name == name) {
-            return;
-        }
-    }
-    try {
-        probe();
-    } catch (const Error& e) {
-        throw Failure{FLUID_ERROR_UNKNOWN_NAME, e.what()};
-    }
-    throw Failure{FLUID_ERROR_UNKNOWN_NAME, "unknown parameter"};
+    (void)world.material(toCpp(id));
 }
 
 } // namespace
-
-bool ranOutOfMemory(const std::exception& e) noexcept {
-    if (dynamic_cast<const std::bad_alloc*>(&e) != nullptr) {
-        return true;
-    }
-    const auto* nested = dynamic_cast<const std::nested_exception*>(&e);
-    if (nested == nullptr || nested->nested_ptr() == nullptr) {
-        return false;
-    }
-    try {
-        nested->rethrow_nested();
-    } catch (const std::exception& inner) {
-        return ranOutOfMemory(inner);
-    } catch (...) {
-    }
-    return false;
-}
 
 namespace {
 
@@ -394,13 +328,14 @@ fluid_status fluid_world_def_set_quality(fluid_world_def* def, const char* quali
         need(def, "fluid_world_def_set_quality", "def");
         need(quality, "fluid_world_def_set_quality", "quality");
         const std::string_view name(quality);
-        if (name != "game" && name != "precise") {
+        const std::optional<Quality> named = qualityFromName(name);
+        if (!named) {
             throw Failure{FLUID_ERROR_UNKNOWN_NAME,
                           "fluid_world_def_set_quality: unknown quality " + internal::quoted(name) +
-                              " (expected game or precise)"};
+                              " (expected " + namesIn(kQualityNames) + ")"};
         }
         WorldDef cpp = worldDefOf(*def);
-        cpp.positionBased = positionBasedPreset(name == "game" ? Quality::Game : Quality::Precise);
+        cpp.positionBased = positionBasedPreset(*named);
         *def = worldDefToC(cpp);
     });
 }
@@ -445,12 +380,18 @@ fluid_status fluid_world_destroy(fluid_world* world) {
 }
 
 fluid_status fluid_world_step(fluid_world* world, float frame_dt) {
-    // A frame the C++ API refuses (outside (0, 1] s) is a bad argument; anything else it
-    // refuses is the world's state (a plugin that threw, a host that must step the world).
-    const fluid_status status = std::isfinite(frame_dt) && frame_dt > 0.0f && frame_dt <= 1.0f
-                                    ? FLUID_ERROR_REFUSED
-                                    : FLUID_ERROR_INVALID_ARGUMENT;
-    return guard(status, [&] { worldOf(world, "fluid_world_step").step(frame_dt); });
+    // A frame the C++ API refuses (outside (0, 1] s) is a bad argument (ErrorCode::OutOfRange);
+    // anything else it refuses is the world's state (a plugin that threw, a host that must step
+    // the world).
+    const bool goodFrame = std::isfinite(frame_dt) && frame_dt > 0.0f && frame_dt <= 1.0f;
+    return guard(goodFrame ? FLUID_ERROR_REFUSED : FLUID_ERROR_INVALID_ARGUMENT, [&] {
+        World& w = worldOf(world, "fluid_world_step");
+        if (goodFrame) {
+            refusedStep([&] { w.step(frame_dt); });
+        } else {
+            w.step(frame_dt);
+        }
+    });
 }
 
 fluid_status fluid_world_set_position_based(fluid_world* world, const fluid_world_def* def) {
@@ -561,15 +502,7 @@ fluid_status fluid_world_load(const void* data, size_t size, uint32_t worker_cou
         std::istringstream in(std::string(static_cast<const char*>(data), size),
                               std::ios::binary);
         auto made = std::make_unique<fluid_world>();
-        try {
-            made->owned = std::make_unique<World>(World::load(in, registry(), worker_count));
-        } catch (const Error& e) {
-            if (std::string_view(e.what()).find("is not in the registry") !=
-                std::string_view::npos) {
-                throw Failure{FLUID_ERROR_UNKNOWN_NAME, e.what()};
-            }
-            throw;
-        }
+        made->owned = std::make_unique<World>(World::load(in, registry(), worker_count));
         made->world = made->owned.get();
         *world = made.release();
     });
@@ -623,13 +556,6 @@ fluid_status fluid_world_add_material(fluid_world* world, const fluid_material_d
         need(def, "fluid_world_add_material", "def");
         need(id, "fluid_world_add_material", "id");
         const Material material = materialOf(*def);
-        if (w.materialCount() >= 65535) {
-            try {
-                w.addMaterial(material);
-            } catch (const Error& e) {
-                throw Failure{FLUID_ERROR_LIMIT, e.what()};
-            }
-        }
         *id = fluid::c::toC(w.addMaterial(material));
     });
 }
@@ -727,7 +653,7 @@ fluid_status fluid_world_spawn_blob(fluid_world* world, const fluid_blob_def* de
         blob.lifetime = def->lifetime;
         blob.structure = def->structure;
         uint32_t made = 0;
-        particleCap([&] { made = w.spawnBlob(blob); });
+        made = w.spawnBlob(blob);
         if (spawned != nullptr) {
             *spawned = made;
         }
@@ -742,8 +668,7 @@ fluid_status fluid_world_add_particle(fluid_world* world, fluid_vec2 position,
         need(id, "fluid_world_add_particle", "id");
         checkMaterial(w, material);
         ParticleHandle h;
-        particleCap(
-            [&] { h = w.addParticle(toVec(position), toVec(velocity), toCpp(material)); });
+        h = w.addParticle(toVec(position), toVec(velocity), toCpp(material));
         *id = fluid::c::toC(h);
     });
 }
@@ -844,8 +769,6 @@ fluid_status fluid_world_set_emitter(fluid_world* world, fluid_emitter_id id,
         need(def, "fluid_world_set_emitter", "def");
         checkMaterial(w, def->material);
         const EmitterDef cpp = emitterOf(*def);
-        checkId(w, id.index, id.world, w.emitterCount(),
-                [&] { w.setEmitter(toCpp(id), cpp); });
         w.setEmitter(toCpp(id), cpp);
     });
 }
@@ -855,8 +778,6 @@ fluid_status fluid_world_emitted_count(const fluid_world* world, fluid_emitter_i
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const World& w = worldOf(world, "fluid_world_emitted_count");
         need(count, "fluid_world_emitted_count", "count");
-        checkId(w, id.index, id.world, w.emitterCount(),
-                [&] { (void)w.emittedCount(toCpp(id)); });
         *count = w.emittedCount(toCpp(id));
     });
 }
@@ -897,8 +818,6 @@ fluid_status fluid_world_sensor_readings(const fluid_world* world, fluid_sensor_
         const World& w = worldOf(world, "fluid_world_sensor_readings");
         need(readings, "fluid_world_sensor_readings", "readings");
         need(count, "fluid_world_sensor_readings", "count");
-        checkId(w, id.index, id.world, w.sensorCount(),
-                [&] { (void)w.sensorReading(toCpp(id)); });
         const std::span<const SensorReading> r = w.sensorReading(toCpp(id));
         if (world->readings.size() <= id.index) {
             world->readings.resize(size_t(id.index) + 1);
@@ -956,25 +875,8 @@ fluid_status fluid_world_add_plugin(fluid_world* world, const char* type,
             need(params[i].name, "fluid_world_add_plugin", "a parameter's name");
             values.emplace_back(params[i].name, params[i].value);
         }
-        // An unknown type or parameter: the registry's own message, with its own status.
-        const Registry types = registry();
-        const PluginInfo* info = types.find(type);
-        bool unknownParam = false;
-        if (info != nullptr) {
-            for (const ParamValue& v : values) {
-                unknownParam |= std::none_of(info->params.begin(), info->params.end(),
-                                             [&](const ParamDecl& d) { return d.name == v.first; });
-            }
-        }
-        std::unique_ptr<Plugin> plugin;
-        try {
-            plugin = types.create(type, values);
-        } catch (const Error& e) {
-            if (info == nullptr || unknownParam) {
-                throw Failure{FLUID_ERROR_UNKNOWN_NAME, e.what()};
-            }
-            throw;
-        }
+        // An unknown type or parameter: the registry's own error (ErrorCode::UnknownName).
+        std::unique_ptr<Plugin> plugin = registry().create(type, values);
         if (plugin->kind() == PluginKind::Force) {
             std::unique_ptr<ForcePlugin> force(static_cast<ForcePlugin*>(plugin.release()));
             w.addForce(std::move(force));
@@ -994,7 +896,6 @@ fluid_status fluid_plugin_set_param(fluid_world* world, fluid_plugin_id id, cons
         World& w = worldOf(world, "fluid_plugin_set_param");
         need(name, "fluid_plugin_set_param", "name");
         Plugin& plugin = pluginOf(w, id, "fluid_plugin_set_param");
-        checkParam(plugin, name, [&] { plugin.setParam(name, value); });
         plugin.setParam(name, value);
     });
 }
@@ -1006,7 +907,6 @@ fluid_status fluid_plugin_get_param(const fluid_world* world, fluid_plugin_id id
         need(name, "fluid_plugin_get_param", "name");
         need(value, "fluid_plugin_get_param", "value");
         const Plugin& plugin = pluginOf(*world->world, id, "fluid_plugin_get_param");
-        checkParam(plugin, name, [&] { (void)plugin.param(name); });
         *value = plugin.param(name);
     });
 }
@@ -1024,7 +924,6 @@ fluid_status fluid_plugin_set_points(fluid_world* world, fluid_plugin_id id, con
         for (uint32_t i = 0; i < count; ++i) {
             copy[i] = toVec(points[i]);
         }
-        checkParam(plugin, name, [&] { plugin.setPoints(name, copy); });
         plugin.setPoints(name, copy);
     });
 }

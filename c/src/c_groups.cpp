@@ -31,25 +31,8 @@ GroupDef toCpp(const fluid_group_def* def) {
     return def == nullptr ? GroupDef{} : GroupDef{def->user_data, toCpp(def->colour)};
 }
 
-// Runs `body`; an error about a stale, null or foreign handle (the group's or particle's, as
-// `valid` says) becomes FLUID_ERROR_STALE_ID with the C++ message. Calls refused during a step
-// stay FLUID_ERROR_REFUSED (guard).
-template <class Body> void handled(bool valid, Body&& body) {
-    try {
-        body();
-    } catch (const Error& e) {
-        if (!valid && e.code() != ErrorCode::WrongState) {
-            throw Failure{FLUID_ERROR_STALE_ID, e.what()};
-        }
-        throw;
-    }
-}
-
 bool live(const World& w, fluid_group_id g) {
     return isValid(w, toCpp(g));
-}
-bool live(const World& w, fluid_particle_id p) {
-    return w.isValid(fluid::c::toCpp(p));
 }
 
 } // namespace
@@ -78,23 +61,9 @@ fluid_status fluid_world_spawn_group(fluid_world* world, const fluid_blob_def* b
         b.lifetime = blob->lifetime;
         b.structure = blob->structure;
         b.group = toCpp(into);
-        if (blob->material.index >= w.materialCount() ||
-            (blob->material.world != 0 && blob->material.world != tagOf(w))) {
-            handled(false, [&] { (void)w.material(b.material); });
-        }
+        (void)w.material(b.material); // a stale material id first, as the C API's calls do
         const uint32_t before = w.particleCount();
-        GroupHandle made;
-        handled(into.generation == 0 || live(w, into), [&] {
-            try {
-                made = spawnGroup(w, b, toCpp(def));
-            } catch (const Error& e) {
-                if (std::string_view(e.what()).find("maxParticles") != std::string_view::npos &&
-                    std::string_view(e.what()).find("memory ran out") == std::string_view::npos) {
-                    throw Failure{FLUID_ERROR_LIMIT, e.what()};
-                }
-                throw;
-            }
-        });
+        const GroupHandle made = spawnGroup(w, b, toCpp(def));
         *group = toC(made);
         if (spawned != nullptr) {
             *spawned = w.particleCount() - before;
@@ -115,7 +84,7 @@ fluid_status fluid_world_particle_group(const fluid_world* world, fluid_particle
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const World& w = worldOf(world, "fluid_world_particle_group");
         need(group, "fluid_world_particle_group", "group");
-        handled(live(w, particle), [&] { *group = toC(groupOf(w, fluid::c::toCpp(particle))); });
+        *group = toC(groupOf(w, fluid::c::toCpp(particle)));
     });
 }
 
@@ -123,8 +92,7 @@ fluid_status fluid_world_set_particle_group(fluid_world* world, fluid_particle_i
                                             fluid_group_id group) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         World& w = worldOf(world, "fluid_world_set_particle_group");
-        handled(live(w, particle) && live(w, group),
-                [&] { setGroup(w, fluid::c::toCpp(particle), toCpp(group)); });
+        setGroup(w, fluid::c::toCpp(particle), toCpp(group));
     });
 }
 
@@ -133,9 +101,7 @@ fluid_status fluid_world_emitter_group(const fluid_world* world, fluid_emitter_i
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const World& w = worldOf(world, "fluid_world_emitter_group");
         need(group, "fluid_world_emitter_group", "group");
-        const bool known =
-            emitter.index < w.emitterCount() && (emitter.world == 0 || emitter.world == tagOf(w));
-        handled(known, [&] { *group = toC(emitterGroup(w, fluid::c::toCpp(emitter))); });
+        *group = toC(emitterGroup(w, fluid::c::toCpp(emitter)));
     });
 }
 
@@ -143,10 +109,7 @@ fluid_status fluid_world_set_emitter_group(fluid_world* world, fluid_emitter_id 
                                            fluid_group_id group) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         World& w = worldOf(world, "fluid_world_set_emitter_group");
-        const bool known =
-            emitter.index < w.emitterCount() && (emitter.world == 0 || emitter.world == tagOf(w));
-        handled(known && live(w, group),
-                [&] { setEmitterGroup(w, fluid::c::toCpp(emitter), toCpp(group)); });
+        setEmitterGroup(w, fluid::c::toCpp(emitter), toCpp(group));
     });
 }
 
@@ -155,7 +118,7 @@ fluid_status fluid_world_set_group_def(fluid_world* world, fluid_group_id group,
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         World& w = worldOf(world, "fluid_world_set_group_def");
         need(def, "fluid_world_set_group_def", "def");
-        handled(live(w, group), [&] { setGroupDef(w, toCpp(group), toCpp(def)); });
+        setGroupDef(w, toCpp(group), toCpp(def));
     });
 }
 
@@ -164,7 +127,7 @@ fluid_status fluid_world_group_count(const fluid_world* world, fluid_group_id gr
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const World& w = worldOf(world, "fluid_world_group_count");
         need(count, "fluid_world_group_count", "count");
-        handled(live(w, group), [&] { *count = groupCount(w, toCpp(group)); });
+        *count = groupCount(w, toCpp(group));
     });
 }
 
@@ -179,7 +142,7 @@ fluid_status fluid_world_group_particles(const fluid_world* world, fluid_group_i
         }
         std::vector<ParticleHandle> handles(capacity);
         uint32_t n = 0;
-        handled(live(w, group), [&] { n = groupParticles(w, toCpp(group), handles); });
+        n = groupParticles(w, toCpp(group), handles);
         for (uint32_t k = 0; k < n && k < capacity; ++k) {
             ids[k] = fluid::c::toC(handles[k]);
         }
@@ -194,7 +157,7 @@ fluid_status fluid_world_group_centre(const fluid_world* world, fluid_group_id g
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const World& w = worldOf(world, "fluid_world_group_centre");
         need(centre, "fluid_world_group_centre", "centre");
-        handled(live(w, group), [&] { *centre = fluid::c::toC(groupCentre(w, toCpp(group))); });
+        *centre = fluid::c::toC(groupCentre(w, toCpp(group)));
     });
 }
 
@@ -203,14 +166,14 @@ fluid_status fluid_world_group_velocity(const fluid_world* world, fluid_group_id
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const World& w = worldOf(world, "fluid_world_group_velocity");
         need(velocity, "fluid_world_group_velocity", "velocity");
-        handled(live(w, group), [&] { *velocity = fluid::c::toC(groupVelocity(w, toCpp(group))); });
+        *velocity = fluid::c::toC(groupVelocity(w, toCpp(group)));
     });
 }
 
 fluid_status fluid_world_move_group(fluid_world* world, fluid_group_id group, fluid_vec2 offset) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         World& w = worldOf(world, "fluid_world_move_group");
-        handled(live(w, group), [&] { moveGroup(w, toCpp(group), toVec(offset)); });
+        moveGroup(w, toCpp(group), toVec(offset));
     });
 }
 
@@ -218,7 +181,7 @@ fluid_status fluid_world_set_group_velocity(fluid_world* world, fluid_group_id g
                                             fluid_vec2 velocity) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         World& w = worldOf(world, "fluid_world_set_group_velocity");
-        handled(live(w, group), [&] { setGroupVelocity(w, toCpp(group), toVec(velocity)); });
+        setGroupVelocity(w, toCpp(group), toVec(velocity));
     });
 }
 
@@ -226,7 +189,7 @@ fluid_status fluid_world_destroy_group(fluid_world* world, fluid_group_id group,
                                        bool with_particles) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         World& w = worldOf(world, "fluid_world_destroy_group");
-        handled(live(w, group), [&] { destroyGroup(w, toCpp(group), with_particles); });
+        destroyGroup(w, toCpp(group), with_particles);
     });
 }
 
@@ -234,7 +197,7 @@ fluid_status fluid_world_merge_groups(fluid_world* world, fluid_group_id into,
                                       fluid_group_id from) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         World& w = worldOf(world, "fluid_world_merge_groups");
-        handled(live(w, into) && live(w, from), [&] { mergeGroups(w, toCpp(into), toCpp(from)); });
+        mergeGroups(w, toCpp(into), toCpp(from));
     });
 }
 
@@ -243,7 +206,7 @@ fluid_status fluid_world_particle_user_data(const fluid_world* world, fluid_part
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const World& w = worldOf(world, "fluid_world_particle_user_data");
         need(value, "fluid_world_particle_user_data", "value");
-        handled(live(w, particle), [&] { *value = userData(w, fluid::c::toCpp(particle)); });
+        *value = userData(w, fluid::c::toCpp(particle));
     });
 }
 
@@ -251,7 +214,7 @@ fluid_status fluid_world_set_particle_user_data(fluid_world* world, fluid_partic
                                                 uint32_t value) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         World& w = worldOf(world, "fluid_world_set_particle_user_data");
-        handled(live(w, particle), [&] { setUserData(w, fluid::c::toCpp(particle), value); });
+        setUserData(w, fluid::c::toCpp(particle), value);
     });
 }
 
@@ -259,7 +222,7 @@ fluid_status fluid_world_set_group_user_data(fluid_world* world, fluid_group_id 
                                              uint32_t value) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         World& w = worldOf(world, "fluid_world_set_group_user_data");
-        handled(live(w, group), [&] { setGroupUserData(w, toCpp(group), value); });
+        setGroupUserData(w, toCpp(group), value);
     });
 }
 
@@ -282,8 +245,7 @@ fluid_status fluid_world_particle_colour(const fluid_world* world, fluid_particl
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const World& w = worldOf(world, "fluid_world_particle_colour");
         need(colour, "fluid_world_particle_colour", "colour");
-        handled(live(w, particle),
-                [&] { *colour = toC(fluid::colour(w, fluid::c::toCpp(particle))); });
+        *colour = toC(fluid::colour(w, fluid::c::toCpp(particle)));
     });
 }
 
@@ -291,7 +253,7 @@ fluid_status fluid_world_set_particle_colour(fluid_world* world, fluid_particle_
                                              fluid_colour colour) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         World& w = worldOf(world, "fluid_world_set_particle_colour");
-        handled(live(w, particle), [&] { setColour(w, fluid::c::toCpp(particle), toCpp(colour)); });
+        setColour(w, fluid::c::toCpp(particle), toCpp(colour));
     });
 }
 
@@ -299,7 +261,7 @@ fluid_status fluid_world_set_group_colour(fluid_world* world, fluid_group_id gro
                                           fluid_colour colour) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         World& w = worldOf(world, "fluid_world_set_group_colour");
-        handled(live(w, group), [&] { setGroupColour(w, toCpp(group), toCpp(colour)); });
+        setGroupColour(w, toCpp(group), toCpp(colour));
     });
 }
 
@@ -332,8 +294,9 @@ fluid_status fluid_world_set_interpolation_mode(fluid_world* world, uint32_t mod
         World& w = worldOf(world, "fluid_world_set_interpolation_mode");
         if (mode > FLUID_INTERPOLATION_STEP) {
             throw Error("fluid_world_set_interpolation_mode: mode = " + std::to_string(mode) +
-                        " is not a fluid_interpolation (FLUID_INTERPOLATION_OFF 0, "
-                        "FLUID_INTERPOLATION_SUBSTEP 1, FLUID_INTERPOLATION_STEP 2)");
+                            " is not a fluid_interpolation (FLUID_INTERPOLATION_OFF 0, "
+                            "FLUID_INTERPOLATION_SUBSTEP 1, FLUID_INTERPOLATION_STEP 2)",
+                        ErrorCode::OutOfRange);
         }
         setInterpolation(w, Interpolation(uint8_t(mode)));
     });

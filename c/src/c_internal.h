@@ -3,6 +3,8 @@
 #pragma once
 #include <fluid/c.h>
 
+#include "c_status.h"
+
 #include <fluid/error.h>
 #include <fluid/fluid.h>
 #include <fluid/level.h>
@@ -26,16 +28,9 @@ struct Failure {
 /// Records `message` as this thread's last error and returns `status`.
 fluid_status fail(fluid_status status, std::string_view message);
 
-/// True when `e` is std::bad_alloc or carries one as its nested exception, at any depth: how
-/// the C++ API says that memory ran out under an error of its own (World::spawnBlob's
-/// "memory ran out making room for ...", a level's blob).
-bool ranOutOfMemory(const std::exception& e) noexcept;
-
 /// Runs `body`, turning every exception into a status and this thread's message: Failure as it
-/// says; memory that ran out (`ranOutOfMemory`) as out of memory, with the C++ API's message
-/// when it gave one; fluid::LevelError as a bad file; other fluid::Error as `status` (or an
-/// input/output failure when the message says a file cannot be opened, read or written);
-/// anything else as `status` with its what().
+/// says; fluid::Error (fluid::LevelError among them) as its code says (`statusOf`), with its
+/// message; std::bad_alloc as out of memory; anything else as `status` with its message.
 template <class Body> fluid_status guard(fluid_status status, Body&& body) noexcept;
 
 /// Throws Failure(FLUID_ERROR_NULL_ARGUMENT) naming `what` in `function` when `pointer` is NULL.
@@ -87,6 +82,21 @@ inline void refuseWhileStepping(const World& world, const char* function) {
     }
 }
 
+/// Runs a step: a fluid::Error from inside it is the world refusing the step (a plugin that
+/// threw, a boundary that lays bad samples, a host that must step the world), whatever its
+/// code: Failure(FLUID_ERROR_REFUSED) with its message. Memory that ran out stays
+/// FLUID_ERROR_OUT_OF_MEMORY (`guard`).
+template <class Body> void refusedStep(Body&& body) {
+    try {
+        body();
+    } catch (const Error& e) {
+        if (e.code() == ErrorCode::OutOfMemory) {
+            throw;
+        }
+        throw Failure{FLUID_ERROR_REFUSED, e.what()};
+    }
+}
+
 /// Conversions between the C structs and the C++ ones.
 inline glm::vec2 toVec(fluid_vec2 v) { return {v.x, v.y}; }
 inline fluid_vec2 toC(glm::vec2 v) { return {v.x, v.y}; }
@@ -120,20 +130,7 @@ template <class Body> fluid_status guard(fluid_status status, Body&& body) noexc
     } catch (const Failure& f) {
         return fail(f.status, f.message);
     } catch (const Error& e) {
-        const std::string_view message = e.what();
-        fluid_status s = status;
-        if (e.code() == ErrorCode::WrongState) {
-            s = FLUID_ERROR_REFUSED; // a call from inside the world's own step
-        } else if (ranOutOfMemory(e)) {
-            s = FLUID_ERROR_OUT_OF_MEMORY;
-        } else if (dynamic_cast<const LevelError*>(&e) != nullptr) {
-            s = FLUID_ERROR_BAD_FILE;
-        } else if (message.find("cannot open") != std::string_view::npos ||
-                   message.find("cannot read '") != std::string_view::npos ||
-                   message.find("cannot write") != std::string_view::npos) {
-            s = FLUID_ERROR_IO;
-        }
-        return fail(s, message);
+        return fail(statusOf(e.code()), e.what());
     } catch (const std::bad_alloc&) {
         return fail(FLUID_ERROR_OUT_OF_MEMORY, "out of memory");
     } catch (const std::exception& e) {

@@ -151,7 +151,7 @@ fluid_status fluid_level_destroy(fluid_level* level) {
 fluid_status fluid_level_step(fluid_level* level) {
     return guard(FLUID_ERROR_REFUSED, [&] {
         need(level, "fluid_level_step", "level");
-        level->level.step();
+        refusedStep([&] { level->level.step(); });
     });
 }
 
@@ -331,8 +331,12 @@ fluid_status fluid_level_areal_density(const fluid_level* level, fluid_material_
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
         const Level& l = levelOf(level, "fluid_level_areal_density");
         need(density, "fluid_level_areal_density", "density");
-        if (material.index >= l.world.materialCount() ||
-            (material.world != 0 && material.world != tagOf(l.world))) {
+        try {
+            (void)l.world.material(toCpp(material)); // the world's id rule
+        } catch (const Error& e) {
+            if (e.code() != ErrorCode::StaleId) {
+                throw;
+            }
             throw Failure{FLUID_ERROR_STALE_ID,
                           "fluid_level_areal_density: no material " +
                               std::to_string(material.index) + " in the level's world"};

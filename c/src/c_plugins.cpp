@@ -173,7 +173,8 @@ public:
         m_samples.clear();
         if (samples.count > 0 && (samples.px == nullptr || samples.py == nullptr)) {
             throw Error(Declarations::type + ": prepare left " + std::to_string(samples.count) +
-                        " samples without their positions (px or py is NULL)");
+                            " samples without their positions (px or py is NULL)",
+                        ErrorCode::WrongState);
         }
         for (uint32_t i = 0; i < samples.count; ++i) {
             m_samples.add(samples.px[i], samples.py[i],
@@ -186,7 +187,8 @@ public:
             const uint32_t count = m_def.rigid_bodies(m_user, &bodies);
             if (count > 0 && bodies == nullptr) {
                 throw Error(Declarations::type + ": rigid_bodies returned " +
-                            std::to_string(count) + " bodies and a NULL array");
+                                std::to_string(count) + " bodies and a NULL array",
+                            ErrorCode::WrongState);
             }
             for (uint32_t i = 0; i < count; ++i) {
                 m_bodies.push_back(
@@ -323,7 +325,8 @@ std::deque<CType>& cTypesLocked() {
 std::unique_ptr<Plugin> makeInstance(const CType& t) {
     const std::string& name = t.declarations.type;
     auto refuse = [&](const std::string& why) {
-        return Error("plugin type " + internal::quoted(name) + " (written in C): " + why);
+        return Error("plugin type " + internal::quoted(name) + " (written in C): " + why,
+                     ErrorCode::BadArgument);
     };
     try {
         if (t.factory.kind == FLUID_PLUGIN_FORCE) {

@@ -227,8 +227,9 @@ std::span<const ParticleHandle> contactParticles(const World& world, uint32_t co
     const detail::ContactState& c = contactState(world, "fluid::contactParticles").contacts;
     if (contact >= c.events.size()) {
         throw Error("fluid::contactParticles: contact = " + std::to_string(contact) +
-                    " is out of range: the last step reported " + std::to_string(c.events.size()) +
-                    " contacts");
+                        " is out of range: the last step reported " +
+                        std::to_string(c.events.size()) + " contacts",
+                    ErrorCode::OutOfRange);
     }
     const uint32_t b = c.handleBegin[contact], e = c.handleBegin[contact + 1];
     return std::span<const ParticleHandle>(c.handles).subspan(b, e - b);

@@ -93,7 +93,7 @@ uint32_t checkedGroup(const WorldState& s, GroupHandle group, const char* functi
     text << function << ": ";
     if (group.isNull()) {
         text << "null group handle";
-        throw Error(text.str());
+        throw Error(text.str(), ErrorCode::StaleId);
     }
     const auto name = [&] {
         text << "group handle {index " << group.index << ", generation " << group.generation << "}";
@@ -102,14 +102,14 @@ uint32_t checkedGroup(const WorldState& s, GroupHandle group, const char* functi
         name();
         text << " belongs to another world (world " << group.world << "; this is world "
              << s.tag.value() << "; a handle saved with a snapshot needs fluid::adopt)";
-        throw Error(text.str());
+        throw Error(text.str(), ErrorCode::StaleId);
     }
     if (group.index >= s.groups.size() || !s.groups[group.index].live ||
         s.groups[group.index].generation != group.generation) {
         text << "stale ";
         name();
         text << ": that group was destroyed or merged into another";
-        throw Error(text.str());
+        throw Error(text.str(), ErrorCode::StaleId);
     }
     return group.index;
 }
@@ -252,13 +252,15 @@ GroupHandle handleOf(const WorldState& s, uint32_t g) {
 uint32_t emitterIndex(const WorldState& s, EmitterId id, const char* function) {
     if (id.world != 0 && id.world != s.tag.value()) {
         throw Error(std::string(function) + ": emitter id " + std::to_string(id.index) +
-                    " was made by another world (world " + std::to_string(id.world) +
-                    "; this is world " + std::to_string(s.tag.value()) +
-                    "; an id kept from the world a snapshot was saved from needs World::adopt)");
+                        " was made by another world (world " + std::to_string(id.world) +
+                        "; this is world " + std::to_string(s.tag.value()) +
+                        "; an id kept from the world a snapshot was saved from needs World::adopt)",
+                    ErrorCode::StaleId);
     }
     if (id.index >= s.emitters.size()) {
         throw Error(std::string(function) + ": unknown emitter id " + std::to_string(id.index) +
-                    "; the world has " + std::to_string(s.emitters.size()) + " emitters");
+                        "; the world has " + std::to_string(s.emitters.size()) + " emitters",
+                    ErrorCode::StaleId);
     }
     return id.index;
 }
@@ -288,7 +290,7 @@ void checkFinite(const char* function, const char* what, glm::vec2 v, const char
         std::ostringstream text;
         text << function << ": " << what << " = (" << v.x << ", " << v.y
              << ") is not finite (unit: " << unit << ")";
-        throw Error(text.str());
+        throw Error(text.str(), ErrorCode::BadArgument);
     }
 }
 
@@ -485,7 +487,8 @@ void mergeGroups(World& world, GroupHandle into, GroupHandle from) {
     const uint32_t b = detail::checkedGroup(s, from, "mergeGroups");
     if (a == b) {
         throw Error("mergeGroups: into and from are the same group {index " + std::to_string(a) +
-                    "}; merge two different groups");
+                        "}; merge two different groups",
+                    ErrorCode::BadArgument);
     }
     for (uint32_t& member : s.slotGroup) {
         if (member == b) {
@@ -605,7 +608,8 @@ void setInterpolation(World& world, Interpolation mode) {
     if (mode != Interpolation::Off && mode != Interpolation::Substep &&
         mode != Interpolation::Step) {
         throw Error("setInterpolation: mode = " + std::to_string(int(mode)) +
-                    " is not an Interpolation (Off 0, Substep 1, Step 2)");
+                        " is not an Interpolation (Off 0, Substep 1, Step 2)",
+                    ErrorCode::OutOfRange);
     }
     WorldState& s = changing(world, "setInterpolation");
     const bool on = mode != Interpolation::Off;
@@ -649,7 +653,7 @@ uint32_t interpolatedPositions(const World& world, std::span<float> x, std::span
         text << "interpolatedPositions: factor = " << factor
              << " is out of range; expected [0, 1], or a negative value for "
                 "interpolationFactor(world)";
-        throw Error(text.str());
+        throw Error(text.str(), ErrorCode::OutOfRange);
     }
     const float f = factor < 0.0f ? interpolationFactor(world) : factor;
     const detail::Particles& p = s.particles;

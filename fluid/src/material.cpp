@@ -93,7 +93,8 @@ void validate(const Material& m) {
             s << "material '" << m.name << "': " << f.name << " = " << internal::formatValue(value)
               << " is " << (std::isfinite(value) ? "out of range " : "not finite; expected ")
               << (f.openLow ? "(" : "[") << f.lo << ", " << f.hi << "] (unit: " << f.unit << ")";
-            throw Error(s.str());
+            throw Error(s.str(),
+                        std::isfinite(value) ? ErrorCode::OutOfRange : ErrorCode::BadArgument);
         }
     }
 }

@@ -35,15 +35,16 @@ std::size_t findParam(std::string_view type, std::span<const ParamDecl> decls,
     if (decls.empty()) {
         s << " (none)";
     }
-    throw Error(s.str());
+    throw Error(s.str(), ErrorCode::UnknownName);
 }
 
 void checkType(std::string_view type, const ParamDecl& decl, ParamType expected) {
     if (decl.type != expected) {
         throw Error("plugin " + internal::quoted(type) + ": parameter " +
-                    internal::quoted(decl.name) + " is " +
-                    (decl.type == ParamType::Points ? "a point list" : "a number") + ", not " +
-                    (expected == ParamType::Points ? "a point list" : "a number"));
+                        internal::quoted(decl.name) + " is " +
+                        (decl.type == ParamType::Points ? "a point list" : "a number") + ", not " +
+                        (expected == ParamType::Points ? "a point list" : "a number"),
+                    ErrorCode::BadArgument);
     }
 }
 
@@ -59,7 +60,7 @@ void checkValue(std::string_view type, const ParamDecl& decl, double value) {
       << " = " << value << " is "
       << (std::isfinite(value) ? "out of range" : "not finite; expected") << " [" << decl.minValue
       << ", " << decl.maxValue << "] (unit: " << decl.unit << ")";
-    throw Error(s.str());
+    throw Error(s.str(), std::isfinite(value) ? ErrorCode::OutOfRange : ErrorCode::BadArgument);
 }
 } // namespace
 
@@ -101,7 +102,7 @@ void Plugin::setPoints(std::string_view name, std::span<const glm::vec2> points)
         s << "plugin " << internal::quoted(m_type) << ": parameter " << internal::quoted(decl.name)
           << " has " << points.size() << " points; expected " << decl.minValue << " to "
           << decl.maxValue;
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::OutOfRange);
     }
     for (std::size_t k = 0; k < points.size(); ++k) {
         if (!std::isfinite(points[k].x) || !std::isfinite(points[k].y)) {
@@ -109,7 +110,7 @@ void Plugin::setPoints(std::string_view name, std::span<const glm::vec2> points)
             s << "plugin " << internal::quoted(m_type) << ": parameter "
               << internal::quoted(decl.name) << " point " << k << " = (" << points[k].x << ", "
               << points[k].y << ") is not finite";
-            throw Error(s.str());
+            throw Error(s.str(), ErrorCode::BadArgument);
         }
     }
     std::vector<glm::vec2> old(points.begin(), points.end());
@@ -124,28 +125,30 @@ void Plugin::setPoints(std::string_view name, std::span<const glm::vec2> points)
 
 void Registry::add(PluginInfo info) {
     if (info.type.empty()) {
-        throw Error("Registry::add: empty plugin type");
+        throw Error("Registry::add: empty plugin type", ErrorCode::BadArgument);
     }
     internal::checkName("Registry::add: plugin type", info.type);
     const std::string type = "Registry::add: plugin type " + internal::quoted(info.type);
     if (find(info.type) != nullptr) {
-        throw Error(type + " is already registered");
+        throw Error(type + " is already registered", ErrorCode::BadArgument);
     }
     if (!info.create) {
-        throw Error(type + " has no factory");
+        throw Error(type + " has no factory", ErrorCode::BadArgument);
     }
     for (size_t i = 0; i < info.params.size(); ++i) {
         const ParamDecl& decl = info.params[i];
         internal::checkName(type + " parameter", decl.name);
         for (size_t j = 0; j < i; ++j) {
             if (info.params[j].name == decl.name) {
-                throw Error(type + " declares parameter " + internal::quoted(decl.name) + " twice");
+                throw Error(type + " declares parameter " + internal::quoted(decl.name) + " twice",
+                            ErrorCode::BadArgument);
             }
         }
         if (decl.type == ParamType::Points &&
             !(decl.minValue >= 0.0 && decl.minValue <= decl.maxValue)) {
             throw Error(type + " point list " + internal::quoted(decl.name) +
-                        " has no valid count range [minValue, maxValue]");
+                            " has no valid count range [minValue, maxValue]",
+                        ErrorCode::BadArgument);
         }
         checkValue(info.type, decl, decl.defaultValue);
     }
@@ -173,7 +176,7 @@ std::unique_ptr<Plugin> Registry::create(std::string_view type,
         if (m_infos.empty()) {
             s << " (none: call registerBuiltinPlugins first)";
         }
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::UnknownName);
     }
     std::unique_ptr<Plugin> plugin = info->create();
     for (const ParamValue& value : values) {
@@ -187,7 +190,8 @@ namespace {
 template <class P>
 std::unique_ptr<P> downcast(std::unique_ptr<Plugin> plugin, PluginKind kind, const char* what) {
     if (plugin->kind() != kind) {
-        throw Error("plugin " + internal::quoted(plugin->type()) + " is not a " + what + " plugin");
+        throw Error("plugin " + internal::quoted(plugin->type()) + " is not a " + what + " plugin",
+                    ErrorCode::BadArgument);
     }
     return std::unique_ptr<P>(static_cast<P*>(plugin.release()));
 }

@@ -145,7 +145,7 @@ uint32_t visitAll(const detail::WorldState& s, const std::vector<uint32_t>& foun
 uint32_t queryParticles(const World& world, const Shape& region, const QueryVisitor& visit) {
     detail::WorldState& s = detail::queryState(world, "queryParticles");
     if (!visit) {
-        throw Error("queryParticles: the visitor is empty");
+        throw Error("queryParticles: the visitor is empty", ErrorCode::BadArgument);
     }
     return visitAll(s, inShape(s, region, "queryParticles"), visit);
 }
@@ -175,13 +175,13 @@ uint32_t countParticles(const World& world, const Shape& region, std::span<uint3
 uint32_t queryBox(const World& world, glm::vec2 lo, glm::vec2 hi, const QueryVisitor& visit) {
     detail::WorldState& s = detail::queryState(world, "queryBox");
     if (!visit) {
-        throw Error("queryBox: the visitor is empty");
+        throw Error("queryBox: the visitor is empty", ErrorCode::BadArgument);
     }
     if (!internal::finite(lo) || !internal::finite(hi) || !(lo.x <= hi.x) || !(lo.y <= hi.y)) {
         std::ostringstream text;
         text << "queryBox: the box [" << lo.x << ", " << hi.x << "] x [" << lo.y << ", " << hi.y
              << "] is not finite or inverted; expected finite lo <= hi on both axes (unit: m)";
-        throw Error(text.str());
+        throw Error(text.str(), ErrorCode::BadArgument);
     }
     const std::vector<uint32_t> found = candidates(s, lo, hi, [&](glm::vec2 x) {
         return x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y;

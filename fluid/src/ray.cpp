@@ -43,7 +43,7 @@ void checkPoint(glm::vec2 p, const char* function, const char* name) {
         std::ostringstream text;
         text << function << ": " << name << " = (" << p.x << ", " << p.y
              << ") is not finite (unit: m)";
-        throw Error(text.str());
+        throw Error(text.str(), ErrorCode::BadArgument);
     }
 }
 
@@ -525,11 +525,12 @@ const WorldState& checkParticleCast(const World& world, glm::vec2 p1, glm::vec2 
     checkPoint(p1, function, "p1");
     checkPoint(p2, function, "p2");
     if (!visit) {
-        throw Error("rayCastParticles: the visitor is empty");
+        throw Error("rayCastParticles: the visitor is empty", ErrorCode::BadArgument);
     }
     if (!(radius > 0.0f) || !std::isfinite(radius)) {
         throw Error("rayCastParticles: radius = " + internal::formatValue(radius) +
-                    " is out of range (0, inf) (unit: m)");
+                        " is out of range (0, inf) (unit: m)",
+                    ErrorCode::OutOfRange);
     }
     return s;
 }
@@ -619,7 +620,8 @@ uint32_t rayCastParticles(const World& world, glm::vec2 p1, glm::vec2 p2, float 
             if (std::isnan(f)) {
                 throw Error("rayCastParticles: the visitor returned nan; expected -1 (ignore "
                             "the particle), 0 (stop), a fraction in (0, 1) (clip the ray) or 1 "
-                            "(go on)");
+                            "(go on)",
+                            ErrorCode::BadArgument);
             }
             if (f < 0.0f) {
                 continue;

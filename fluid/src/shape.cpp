@@ -30,15 +30,20 @@ bool segmentsCross(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 d) {
     return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
 }
 
-[[noreturn]] void fail(std::string_view who, const std::string& what) {
-    throw Error(std::string(who) + ": " + what);
+// What is wrong with a shape, thrown by `check` and caught by `shapeProblem`.
+struct Problem {
+    std::string what;
+};
+
+[[noreturn]] void fail(const std::string& what) {
+    throw Problem{what};
 }
 
-void checkPoint(std::string_view who, const std::string& name, glm::vec2 v) {
+void checkPoint(const std::string& name, glm::vec2 v) {
     if (!finite(v)) {
         std::ostringstream s;
         s << name << " = (" << v.x << ", " << v.y << ") is not finite";
-        fail(who, s.str());
+        fail(s.str());
     }
 }
 
@@ -54,39 +59,38 @@ double signedArea2(const std::vector<glm::vec2>& v) {
     return area2;
 }
 
-} // namespace
-
-void validate(const Shape& shape, std::string_view who) {
+// Throws Problem for a shape `validate` refuses.
+void check(const Shape& shape) {
     switch (shape.type) {
     case ShapeType::Rectangle:
-        checkPoint(who, "center", shape.center);
+        checkPoint("center", shape.center);
         if (!(shape.halfExtents.x > 0.0f && shape.halfExtents.y > 0.0f) ||
             !finite(shape.halfExtents)) {
             std::ostringstream s;
             s << "halfExtents = (" << shape.halfExtents.x << ", " << shape.halfExtents.y
               << ") must be finite and > 0 (unit: m)";
-            fail(who, s.str());
+            fail(s.str());
         }
         return;
     case ShapeType::Circle:
-        checkPoint(who, "center", shape.center);
+        checkPoint("center", shape.center);
         if (!(shape.radius > 0.0f) || !std::isfinite(shape.radius)) {
             std::ostringstream s;
             s << "radius = " << shape.radius << " must be finite and > 0 (unit: m)";
-            fail(who, s.str());
+            fail(s.str());
         }
         return;
     case ShapeType::Polygon: {
         const std::vector<glm::vec2>& v = shape.vertices;
         if (v.size() < 3 || v.size() > kMaxPolygonVertices) {
-            fail(who, "polygon has " + std::to_string(v.size()) + " vertices; expected 3 to " +
-                          std::to_string(kMaxPolygonVertices));
+            fail("polygon has " + std::to_string(v.size()) + " vertices; expected 3 to " +
+                 std::to_string(kMaxPolygonVertices));
         }
         for (size_t i = 0; i < v.size(); ++i) {
-            checkPoint(who, "polygon vertex " + std::to_string(i), v[i]);
+            checkPoint("polygon vertex " + std::to_string(i), v[i]);
         }
         if (!(std::fabs(signedArea2(v)) > 0.0)) {
-            fail(who, "polygon has zero area");
+            fail("polygon has zero area");
         }
         const size_t n = v.size();
         for (size_t i = 0; i < n; ++i) {
@@ -95,15 +99,32 @@ void validate(const Shape& shape, std::string_view who) {
                     continue; // adjacent through the closing edge
                 }
                 if (segmentsCross(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n])) {
-                    fail(who, "polygon edges " + std::to_string(i) + " and " + std::to_string(j) +
-                                  " cross; expected a simple polygon");
+                    fail("polygon edges " + std::to_string(i) + " and " + std::to_string(j) +
+                         " cross; expected a simple polygon");
                 }
             }
         }
         return;
     }
     }
-    fail(who, "unknown shape type " + std::to_string(int(shape.type)));
+    fail("unknown shape type " + std::to_string(int(shape.type)));
+}
+
+} // namespace
+
+std::string shapeProblem(const Shape& shape) {
+    try {
+        check(shape);
+    } catch (const Problem& problem) {
+        return problem.what;
+    }
+    return {};
+}
+
+void validate(const Shape& shape, std::string_view who) {
+    if (std::string problem = shapeProblem(shape); !problem.empty()) {
+        throw Error(std::string(who) + ": " + problem, ErrorCode::BadArgument);
+    }
 }
 
 bool contains(const Shape& shape, glm::vec2 p) {

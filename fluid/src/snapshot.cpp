@@ -123,7 +123,7 @@ template <class Def> void getFields(In& in, std::span<const Field<Def>> fields, 
 
 // Throws "snapshot: corrupt: <message>", as the reader does.
 [[noreturn]] void corrupt(const std::string& message) {
-    throw Error("snapshot: corrupt: " + message);
+    throw Error("snapshot: corrupt: " + message, ErrorCode::BadFile);
 }
 
 void putShape(Out& o, const Shape& s) {
@@ -173,8 +173,9 @@ std::unique_ptr<Plugin> getPlugin(In& in, const Registry& registry, PluginKind k
     const std::string type = in.string("a plugin type");
     if (registry.find(type) == nullptr) {
         throw Error("snapshot: plugin type '" + type +
-                    "' is not in the registry; register it (or load its plugin library) "
-                    "before loading the snapshot");
+                        "' is not in the registry; register it (or load its plugin library) "
+                        "before loading the snapshot",
+                    ErrorCode::UnknownName);
     }
     std::unique_ptr<Plugin> plugin = registry.create(type);
     if (plugin->kind() != kind) {
@@ -183,7 +184,9 @@ std::unique_ptr<Plugin> getPlugin(In& in, const Registry& registry, PluginKind k
     const auto count = in.get<uint64_t>();
     if (count != plugin->params().size()) {
         throw Error("snapshot: plugin '" + type + "' was saved with " + std::to_string(count) +
-                    " parameters; this build declares " + std::to_string(plugin->params().size()));
+                        " parameters; this build declares " +
+                        std::to_string(plugin->params().size()),
+                    ErrorCode::BadFile);
     }
     const std::string where = std::string("snapshot: ") +
                               (kind == PluginKind::Force ? "force" : "boundary") + " plugin " +
@@ -192,14 +195,15 @@ std::unique_ptr<Plugin> getPlugin(In& in, const Registry& registry, PluginKind k
         try {
             set();
         } catch (const Error& e) {
-            throw Error(where + e.what());
+            throw Error(where + e.what(), ErrorCode::BadFile);
         }
     };
     for (const ParamDecl& decl : plugin->params()) {
         const std::string name = in.string("a parameter name");
         if (name != decl.name) {
             throw Error("snapshot: plugin '" + type + "' parameter '" + name +
-                        "' does not match this build's '" + std::string(decl.name) + "'");
+                            "' does not match this build's '" + std::string(decl.name) + "'",
+                        ErrorCode::BadFile);
         }
         if (decl.type == ParamType::Number) {
             const double value = in.get<double>();
@@ -511,19 +515,19 @@ void World::save(std::ostream& out) const {
     out.write(reinterpret_cast<const char*>(o.bytes.data()), std::streamsize(o.bytes.size()));
     out.write(reinterpret_cast<const char*>(&sum), sizeof(sum));
     if (!out) {
-        throw Error("World::save: writing the snapshot failed");
+        throw Error("World::save: writing the snapshot failed", ErrorCode::Io);
     }
 }
 
 void World::saveFile(const std::string& path) const {
     std::ofstream file(path, std::ios::binary | std::ios::trunc);
     if (!file) {
-        throw Error("World::saveFile: cannot open '" + path + "' for writing");
+        throw Error("World::saveFile: cannot open '" + path + "' for writing", ErrorCode::Io);
     }
     save(file);
     file.close();
     if (!file) {
-        throw Error("World::saveFile: writing '" + path + "' failed");
+        throw Error("World::saveFile: writing '" + path + "' failed", ErrorCode::Io);
     }
 }
 
@@ -572,21 +576,22 @@ std::vector<char> readBody(std::istream& input, uint64_t& size, uint32_t& versio
     input.read(header, sizeof(header));
     if (std::size_t(input.gcount()) < sizeof(header) ||
         std::memcmp(header, kMagic, sizeof(kMagic)) != 0) {
-        throw Error("snapshot: not a fluid snapshot (no FLUIDSNP header)");
+        throw Error("snapshot: not a fluid snapshot (no FLUIDSNP header)", ErrorCode::BadFile);
     }
     std::memcpy(&version, header + sizeof(kMagic), sizeof(version));
     std::memcpy(&size, header + sizeof(kMagic) + sizeof(version), sizeof(size));
     if (version < kOldestVersion || version > kVersion) {
         throw Error("snapshot: format version " + std::to_string(version) +
-                    " is not supported; this fluid reads versions " +
-                    std::to_string(kOldestVersion) + " to " + std::to_string(kVersion));
+                        " is not supported; this fluid reads versions " +
+                        std::to_string(kOldestVersion) + " to " + std::to_string(kVersion),
+                    ErrorCode::BadFile);
     }
     const auto refuse = [&](uint64_t holds) {
         std::ostringstream s;
         s << "snapshot: truncated or padded: the header promises " << size
           << " bytes of data and a checksum, the file holds " << holds
           << " bytes after the header";
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::BadFile);
     };
     const std::optional<uint64_t> remaining = remainingBytes(input);
     const bool fits = size <= UINT64_MAX - sizeof(uint64_t);
@@ -656,117 +661,134 @@ void getEmitterClock(In& in, detail::EmitterState& e) {
 
 World World::load(std::istream& input, const Registry& registry, uint32_t workerCount,
                   const TaskHook& tasks) {
-    uint64_t size = 0;
-    uint32_t version = 0;
-    const std::vector<char> body = readBody(input, size, version);
-    uint64_t sum = 0;
-    std::memcpy(&sum, body.data() + size, sizeof(sum));
-    if (internal::fnv1a(std::string_view(body.data(), size)) != sum) {
-        corrupt("checksum mismatch");
-    }
-    In in(std::string_view(body.data(), size), "snapshot: corrupt");
+    // What the snapshot holds goes through the checks the API runs on the same values (World's
+    // settings, addMaterial, addForce...): a value they refuse is the file's fault, so their
+    // bad-argument, out-of-range and stale-id errors leave here as ErrorCode::BadFile, the
+    // message as it was.
+    const auto read = [&]() -> World {
+        uint64_t size = 0;
+        uint32_t version = 0;
+        const std::vector<char> body = readBody(input, size, version);
+        uint64_t sum = 0;
+        std::memcpy(&sum, body.data() + size, sizeof(sum));
+        if (internal::fnv1a(std::string_view(body.data(), size)) != sum) {
+            corrupt("checksum mismatch");
+        }
+        In in(std::string_view(body.data(), size), "snapshot: corrupt");
 
-    WorldDef def = getWorldDef(in);
-    if (workerCount > 0) {
-        def.workerCount = workerCount;
-    }
-    def.tasks = tasks;
-    World world(def); // validates the settings
-    detail::WorldState& s = *world.m_state;
+        WorldDef def = getWorldDef(in);
+        if (workerCount > 0) {
+            def.workerCount = workerCount;
+        }
+        def.tasks = tasks;
+        World world(def); // validates the settings
+        detail::WorldState& s = *world.m_state;
 
-    const auto materials = in.get<uint64_t>();
-    for (uint64_t k = 0; k < materials; ++k) {
-        world.addMaterial(getMaterial(in));
-    }
-    detail::Particles& p = s.particles;
-    for (std::vector<float>* channel : p.keptFloats()) {
-        in.array(*channel, "a particle channel");
-    }
-    in.array(p.material, "the material channel");
-    in.array(p.slot, "the slot channel");
-    in.array(p.expiry, "the expiry channel");
-    in.array(s.slotIndex, "the handle table");
-    in.array(s.slotGeneration, "the handle generations");
-    in.array(s.freeSlots, "the free slots");
-    checkParticles(s);
-    s.kicksPending = std::any_of(p.kx.begin(), p.kx.end(), [](float k) { return k != 0.0f; }) ||
-                     std::any_of(p.ky.begin(), p.ky.end(), [](float k) { return k != 0.0f; });
+        const auto materials = in.get<uint64_t>();
+        for (uint64_t k = 0; k < materials; ++k) {
+            world.addMaterial(getMaterial(in));
+        }
+        detail::Particles& p = s.particles;
+        for (std::vector<float>* channel : p.keptFloats()) {
+            in.array(*channel, "a particle channel");
+        }
+        in.array(p.material, "the material channel");
+        in.array(p.slot, "the slot channel");
+        in.array(p.expiry, "the expiry channel");
+        in.array(s.slotIndex, "the handle table");
+        in.array(s.slotGeneration, "the handle generations");
+        in.array(s.freeSlots, "the free slots");
+        checkParticles(s);
+        s.kicksPending = std::any_of(p.kx.begin(), p.kx.end(), [](float k) { return k != 0.0f; }) ||
+                         std::any_of(p.ky.begin(), p.ky.end(), [](float k) { return k != 0.0f; });
 
-    const auto forces = in.get<uint64_t>();
-    for (uint64_t k = 0; k < forces; ++k) {
-        std::unique_ptr<Plugin> plugin = getPlugin(in, registry, PluginKind::Force, k);
-        world.addForce(std::unique_ptr<ForcePlugin>(static_cast<ForcePlugin*>(plugin.release())));
-    }
-    const auto boundaries = in.get<uint64_t>();
-    for (uint64_t k = 0; k < boundaries; ++k) {
-        std::unique_ptr<Plugin> plugin = getPlugin(in, registry, PluginKind::Boundary, k);
-        world.addBoundary(
-            std::unique_ptr<BoundaryPlugin>(static_cast<BoundaryPlugin*>(plugin.release())));
-    }
+        const auto forces = in.get<uint64_t>();
+        for (uint64_t k = 0; k < forces; ++k) {
+            std::unique_ptr<Plugin> plugin = getPlugin(in, registry, PluginKind::Force, k);
+            world.addForce(
+                std::unique_ptr<ForcePlugin>(static_cast<ForcePlugin*>(plugin.release())));
+        }
+        const auto boundaries = in.get<uint64_t>();
+        for (uint64_t k = 0; k < boundaries; ++k) {
+            std::unique_ptr<Plugin> plugin = getPlugin(in, registry, PluginKind::Boundary, k);
+            world.addBoundary(
+                std::unique_ptr<BoundaryPlugin>(static_cast<BoundaryPlugin*>(plugin.release())));
+        }
 
-    const auto emitters = in.get<uint64_t>();
-    for (uint64_t k = 0; k < emitters; ++k) {
-        const EmitterId id = world.addEmitter(getEmitterDef(in));
-        getEmitterClock(in, s.emitters[id.index]);
+        const auto emitters = in.get<uint64_t>();
+        for (uint64_t k = 0; k < emitters; ++k) {
+            const EmitterId id = world.addEmitter(getEmitterDef(in));
+            getEmitterClock(in, s.emitters[id.index]);
+        }
+        const auto drains = in.get<uint64_t>();
+        for (uint64_t k = 0; k < drains; ++k) {
+            DrainDef dr;
+            dr.shape = getShape(in);
+            dr.onlyMaterial = in.small(true, "a drain's material flag");
+            dr.material = MaterialId{in.get<uint16_t>("a drain's material")};
+            world.addDrain(dr);
+        }
+        const auto sensors = in.get<uint64_t>();
+        for (uint64_t k = 0; k < sensors; ++k) {
+            SensorDef se;
+            se.shape = getShape(in);
+            world.addSensor(se);
+        }
+        in.array(s.sensorReadings, "the sensor readings");
+        if (s.sensorReadings.size() != s.sensors.size() * s.materials.size()) {
+            corrupt("sensor readings of the wrong size");
+        }
+        s.time = in.get<double>();
+        s.carry = in.get<double>();
+        s.soundSpeed = in.get<float>();
+        s.fieldGH = in.get<float>();
+        s.fieldMeasured = in.small(true, "the field flag");
+        s.lastMaxAccel = in.get<float>();
+        s.profile = in.get<ProfileRecord>().profile();
+        checkSolverState(s);
+        if (s.carry > 1.0) {
+            std::ostringstream text;
+            text << "the carried frame time is " << s.carry << " s, more than a frame (1 s)";
+            corrupt(text.str());
+        }
+        // Negative when the sub-steps ran ahead of the frames, by at most half a sub-step, and a
+        // sub-step is at most 1/60 s (World::step).
+        if (s.carry < -double(1.0f / 60.0f) / 2.0) {
+            std::ostringstream text;
+            text << "the carried frame time is " << s.carry
+                 << " s, less than minus half the longest sub-step (-1/120 s)";
+            corrupt(text.str());
+        }
+        if (version >= 7) {
+            getGroups(in, s);
+        }
+        if (!in.done()) {
+            corrupt("unexpected data after the last section");
+        }
+        return world;
+    };
+    try {
+        return read();
+    } catch (const Error& e) {
+        const ErrorCode code = e.code();
+        if (code == ErrorCode::BadArgument || code == ErrorCode::OutOfRange ||
+            code == ErrorCode::StaleId) {
+            throw Error(e.what(), ErrorCode::BadFile);
+        }
+        throw;
     }
-    const auto drains = in.get<uint64_t>();
-    for (uint64_t k = 0; k < drains; ++k) {
-        DrainDef dr;
-        dr.shape = getShape(in);
-        dr.onlyMaterial = in.small(true, "a drain's material flag");
-        dr.material = MaterialId{in.get<uint16_t>("a drain's material")};
-        world.addDrain(dr);
-    }
-    const auto sensors = in.get<uint64_t>();
-    for (uint64_t k = 0; k < sensors; ++k) {
-        SensorDef se;
-        se.shape = getShape(in);
-        world.addSensor(se);
-    }
-    in.array(s.sensorReadings, "the sensor readings");
-    if (s.sensorReadings.size() != s.sensors.size() * s.materials.size()) {
-        corrupt("sensor readings of the wrong size");
-    }
-    s.time = in.get<double>();
-    s.carry = in.get<double>();
-    s.soundSpeed = in.get<float>();
-    s.fieldGH = in.get<float>();
-    s.fieldMeasured = in.small(true, "the field flag");
-    s.lastMaxAccel = in.get<float>();
-    s.profile = in.get<ProfileRecord>().profile();
-    checkSolverState(s);
-    if (s.carry > 1.0) {
-        std::ostringstream text;
-        text << "the carried frame time is " << s.carry << " s, more than a frame (1 s)";
-        corrupt(text.str());
-    }
-    // Negative when the sub-steps ran ahead of the frames, by at most half a sub-step, and a
-    // sub-step is at most 1/60 s (World::step).
-    if (s.carry < -double(1.0f / 60.0f) / 2.0) {
-        std::ostringstream text;
-        text << "the carried frame time is " << s.carry
-             << " s, less than minus half the longest sub-step (-1/120 s)";
-        corrupt(text.str());
-    }
-    if (version >= 7) {
-        getGroups(in, s);
-    }
-    if (!in.done()) {
-        corrupt("unexpected data after the last section");
-    }
-    return world;
 }
 
 World World::loadFile(const std::string& path, const Registry& registry, uint32_t workerCount,
                       const TaskHook& tasks) {
     std::ifstream file(path, std::ios::binary);
     if (!file) {
-        throw Error("World::loadFile: cannot open '" + path + "'");
+        throw Error("World::loadFile: cannot open '" + path + "'", ErrorCode::Io);
     }
     try {
         return load(file, registry, workerCount, tasks);
     } catch (const Error& e) {
-        throw Error("'" + path + "': " + e.what());
+        throw Error("'" + path + "': " + e.what(), e.code());
     }
 }
 

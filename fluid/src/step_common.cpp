@@ -103,9 +103,10 @@ void checkSamples(const BoundaryPlugin& plugin, size_t index) {
     const size_t n = b.px.size();
     if (b.py.size() != n || b.vx.size() != n || b.vy.size() != n) {
         throw Error(who + "its samples' arrays have different lengths (px " + std::to_string(n) +
-                    ", py " + std::to_string(b.py.size()) + ", vx " +
-                    std::to_string(b.vx.size()) + ", vy " + std::to_string(b.vy.size()) +
-                    "); lay samples with BoundarySamples::add");
+                        ", py " + std::to_string(b.py.size()) + ", vx " +
+                        std::to_string(b.vx.size()) + ", vy " + std::to_string(b.vy.size()) +
+                        "); lay samples with BoundarySamples::add",
+                    ErrorCode::WrongState);
     }
     for (size_t i = 0; i < n; ++i) {
         if (std::isfinite(b.px[i]) && std::isfinite(b.py[i]) && std::isfinite(b.vx[i]) &&
@@ -116,7 +117,7 @@ void checkSamples(const BoundaryPlugin& plugin, size_t index) {
         text << who << "sample " << i << " at (" << b.px[i] << ", " << b.py[i]
              << ") with velocity (" << b.vx[i] << ", " << b.vy[i]
              << ") is not finite; a boundary plugin's prepare must lay finite samples";
-        throw Error(text.str());
+        throw Error(text.str(), ErrorCode::WrongState);
     }
 }
 
@@ -147,7 +148,8 @@ void gatherSamples(WorldState& s, const StepContext& context) {
             const RigidBody& rb = bodies[b];
             const auto fail = [&](const std::string& what) {
                 throw Error(std::string(s.boundaries[p]->type()) + ": rigid body " +
-                            std::to_string(b) + ": " + what);
+                                std::to_string(b) + ": " + what,
+                            ErrorCode::WrongState);
             };
             if (!(rb.mass >= 0.0f && rb.mass <= kMaxBodyMass)) {
                 std::ostringstream text;

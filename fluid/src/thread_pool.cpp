@@ -187,7 +187,8 @@ uint32_t usableCores() {
 ThreadPool::ThreadPool(uint32_t workerCount) : m_workerCount(workerCount) {
     if (workerCount < 1 || workerCount > 256) {
         throw Error("ThreadPool: workerCount = " + std::to_string(workerCount) +
-                    " is out of range [1, 256]");
+                        " is out of range [1, 256]",
+                    ErrorCode::OutOfRange);
     }
     m_threadCount = std::min(workerCount, usableCores());
     m_impl = std::make_unique<Impl>(m_threadCount);

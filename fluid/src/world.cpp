@@ -32,7 +32,7 @@ void checkVec(const char* function, const char* what, glm::vec2 v) {
     if (!finite(v)) {
         std::ostringstream s;
         s << function << ": " << what << " = (" << v.x << ", " << v.y << ") is not finite";
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::BadArgument);
     }
 }
 
@@ -41,9 +41,10 @@ void checkVec(const char* function, const char* what, glm::vec2 v) {
 template <class Id> void checkTag(Id id, const char* what, uint32_t tag) {
     if (id.world != 0 && id.world != tag) {
         throw Error(std::string(what) + " id " + std::to_string(id.index) +
-                    " was made by another world (world " + std::to_string(id.world) +
-                    "; this is world " + std::to_string(tag) +
-                    "; an id kept from the world a snapshot was saved from needs World::adopt)");
+                        " was made by another world (world " + std::to_string(id.world) +
+                        "; this is world " + std::to_string(tag) +
+                        "; an id kept from the world a snapshot was saved from needs World::adopt)",
+                    ErrorCode::StaleId);
     }
 }
 
@@ -52,7 +53,7 @@ void checkFrameDt(const char* function, float frameDt) {
         std::ostringstream s;
         s << function << ": frameDt = " << frameDt
           << " s is out of range; expected a finite value in (0, 1] (typically 1/60)";
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::OutOfRange);
     }
 }
 
@@ -134,7 +135,7 @@ void validatePositionBased(const PositionBasedDef& pb, const char* prefix) {
           << " needs the coarse correction, but coarseCorrection = " << pb.coarseCorrection
           << "; use 2 or more iterations, or a coarseCorrection above 0 (the game preset: 1 "
              "iteration, 0.4)";
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::BadArgument);
     }
 }
 
@@ -143,7 +144,7 @@ void validate(const WorldDef& def) {
         std::ostringstream s;
         s << "WorldDef: soundSpeed = " << def.soundSpeed
           << " is out of range: 0 (derive from the scene) or [0.1, 10000] (unit: m/s)";
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::OutOfRange);
     }
     checkFields<WorldDef>(def, kWorldFields, "WorldDef: ");
     validatePositionBased(def.positionBased, "WorldDef: positionBased.");
@@ -151,7 +152,8 @@ void validate(const WorldDef& def) {
         checkRange<uint32_t>("workerCount", def.workerCount, 1, 256, "count");
     } else {
         if (def.tasks.finish == nullptr) {
-            throw Error("WorldDef: tasks.enqueue is set but tasks.finish is null");
+            throw Error("WorldDef: tasks.enqueue is set but tasks.finish is null",
+                        ErrorCode::BadArgument);
         }
         checkRange<uint32_t>("tasks.workerCount", def.tasks.workerCount, 1, 256, "count");
     }
@@ -176,7 +178,8 @@ WorldTag::WorldTag() {
     do {
         if (tag == UINT32_MAX) {
             throw Error("World: the process has made 4294967294 worlds, every world tag is used "
-                        "(tags are never reused, so that an old world's handles stay refused)");
+                        "(tags are never reused, so that an old world's handles stay refused)",
+                        ErrorCode::Full);
         }
     } while (!g_nextTag.compare_exchange_weak(tag, tag + 1, std::memory_order_relaxed));
     m_value = tag;
@@ -217,7 +220,7 @@ void WorldState::checkInRange(const char* function, const char* what, glm::vec2 
              << "' at " << particleSpacing(materials[finest], def.depth)
              << " m; docs/gameplay.md, Far from the origin)";
     }
-    throw Error(text.str());
+    throw Error(text.str(), ErrorCode::OutOfRange);
 }
 
 std::optional<uint32_t> WorldState::findIndex(ParticleHandle handle) const {
@@ -230,18 +233,20 @@ std::optional<uint32_t> WorldState::findIndex(ParticleHandle handle) const {
 
 uint32_t WorldState::checkedIndex(ParticleHandle handle, const char* function) const {
     if (handle.isNull()) {
-        throw Error(std::string(function) + ": null particle handle");
+        throw Error(std::string(function) + ": null particle handle", ErrorCode::StaleId);
     }
     if (handle.world != tag.value()) {
         throw Error(std::string(function) + ": particle handle " + describe(handle) +
-                    " belongs to another world (world " + std::to_string(handle.world) +
-                    "; this is world " + std::to_string(tag.value()) +
-                    "; a handle saved with a snapshot needs World::adopt)");
+                        " belongs to another world (world " + std::to_string(handle.world) +
+                        "; this is world " + std::to_string(tag.value()) +
+                        "; a handle saved with a snapshot needs World::adopt)",
+                    ErrorCode::StaleId);
     }
     const std::optional<uint32_t> index = findIndex(handle);
     if (!index) {
         throw Error(std::string(function) + ": stale particle handle " + describe(handle) +
-                    ": that particle was removed");
+                        ": that particle was removed",
+                    ErrorCode::StaleId);
     }
     return *index;
 }
@@ -425,7 +430,7 @@ void checkSolverTakes(const WorldDef& def, const Material& material, const char*
           << " Pa, consistency = " << material.consistency
           << " Pa*s^n), which the explicit solver does not step; use Solver::PositionBased, "
              "or set yieldStress and consistency to 0";
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::BadArgument);
     }
 }
 
@@ -441,7 +446,7 @@ void checkSpacing(const WorldDef& def, const Material& material, const char* fun
           << " kg, restDensity = " << material.restDensity << " kg/m^3 and depth = " << def.depth
           << " m give a particle spacing of sqrt(mass / (restDensity depth)) = " << spacing
           << " m; expected [" << kMinSpacing << ", " << kMaxSpacing << "] m";
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::OutOfRange);
     }
     const double support = double(material.smoothingDistance) / spacing;
     if (!(support >= double(kMinSupportSpacings) * (1.0 - 1e-6) &&
@@ -451,7 +456,7 @@ void checkSpacing(const WorldDef& def, const Material& material, const char* fun
           << "': smoothingDistance = " << material.smoothingDistance << " m is " << support
           << " particle spacings (" << spacing << " m, from mass, restDensity and depth); expected "
           << kMinSupportSpacings << " to " << kMaxSupportSpacings << " spacings";
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::OutOfRange);
     }
 }
 } // namespace
@@ -474,7 +479,7 @@ MaterialId World::addMaterial(const Material& material) {
     checkSolverTakes(m_state->def, material, "World::addMaterial");
     checkSpacing(m_state->def, material, "World::addMaterial");
     if (m_state->materials.size() >= 65535) {
-        throw Error("World::addMaterial: the world already has 65535 materials");
+        throw Error("World::addMaterial: the world already has 65535 materials", ErrorCode::Full);
     }
     m_state->materials.push_back(material);
     m_state->sensorReadings.assign(m_state->sensors.size() * m_state->materials.size(), {});
@@ -519,7 +524,8 @@ const Material& World::material(MaterialId id) const {
     checkTag(id, "material", m_state->tag.value());
     if (id.index >= m_state->materials.size()) {
         throw Error("unknown material id " + std::to_string(id.index) + "; the world has " +
-                    std::to_string(m_state->materials.size()) + " materials");
+                        std::to_string(m_state->materials.size()) + " materials",
+                    ErrorCode::StaleId);
     }
     return m_state->materials[id.index];
 }
@@ -537,7 +543,8 @@ ParticleHandle World::addParticle(glm::vec2 position, glm::vec2 velocity, Materi
     s.checkInRange("World::addParticle", "position", position);
     if (s.particles.size() >= s.def.maxParticles) {
         throw Error("World::addParticle: particle cap exceeded: the world holds maxParticles = " +
-                    std::to_string(s.def.maxParticles) + " particles");
+                        std::to_string(s.def.maxParticles) + " particles",
+                    ErrorCode::Full);
     }
     return s.append(position, velocity, materialId.index, std::numeric_limits<double>::infinity());
 }
@@ -564,7 +571,7 @@ uint32_t World::spawnBlob(const BlobDef& blob, uint32_t* insideSolids) {
         std::ostringstream s;
         s << "spawnBlob: particle cap exceeded: the blob needs about " << cols * rows
           << " particles; maxParticles = " << m_state->def.maxParticles;
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::Full);
     }
     try {
         return placeBlob(blob, lo, hi, spacing, cols, rows, insideSolids);
@@ -574,7 +581,8 @@ uint32_t World::spawnBlob(const BlobDef& blob, uint32_t* insideSolids) {
              << uint64_t(cols * rows) << " particles beside the world's "
              << m_state->particles.size()
              << "; make the blob smaller or lower WorldDef::maxParticles";
-        std::throw_with_nested(Error(text.str())); // the std::bad_alloc rides along, nested
+        std::throw_with_nested(
+            Error(text.str(), ErrorCode::OutOfMemory)); // the std::bad_alloc rides along, nested
     }
 }
 
@@ -612,8 +620,9 @@ uint32_t World::placeBlob(const BlobDef& blob, glm::vec2 lo, glm::vec2 hi, float
     }
     if (m_state->particles.size() + points.size() > m_state->def.maxParticles) {
         throw Error("spawnBlob: particle cap exceeded: " + std::to_string(points.size()) +
-                    " more particles would pass maxParticles = " +
-                    std::to_string(m_state->def.maxParticles));
+                        " more particles would pass maxParticles = " +
+                        std::to_string(m_state->def.maxParticles),
+                    ErrorCode::Full);
     }
     const double expiry = detail::expiryTime(m_state->time, blob.lifetime);
     // The blob's group: the one named, or a new one (made only once the blob fits).
@@ -672,8 +681,9 @@ std::optional<uint32_t> World::indexOf(ParticleHandle handle) const {
 ParticleHandle World::handleAt(uint32_t index) const {
     if (index >= particleCount()) {
         throw Error("World::handleAt: index " + std::to_string(index) +
-                    " is out of range; the world has " + std::to_string(particleCount()) +
-                    " particles");
+                        " is out of range; the world has " + std::to_string(particleCount()) +
+                        " particles",
+                    ErrorCode::OutOfRange);
     }
     const uint32_t slot = m_state->particles.slot[index];
     return m_state->handleOf(slot);
@@ -702,7 +712,7 @@ void World::setVelocity(ParticleHandle handle, glm::vec2 velocity) {
 ForcePlugin& World::addForce(std::unique_ptr<ForcePlugin> plugin) {
     m_state->changing("World::addForce");
     if (!plugin) {
-        throw Error("World::addForce: null plugin");
+        throw Error("World::addForce: null plugin", ErrorCode::BadArgument);
     }
     m_state->forces.push_back(std::move(plugin));
     return *m_state->forces.back();
@@ -711,7 +721,7 @@ ForcePlugin& World::addForce(std::unique_ptr<ForcePlugin> plugin) {
 BoundaryPlugin& World::addBoundary(std::unique_ptr<BoundaryPlugin> plugin) {
     m_state->changing("World::addBoundary");
     if (!plugin) {
-        throw Error("World::addBoundary: null plugin");
+        throw Error("World::addBoundary: null plugin", ErrorCode::BadArgument);
     }
     m_state->boundaries.push_back(std::move(plugin));
     return *m_state->boundaries.back();
@@ -732,16 +742,19 @@ void World::step(float frameDt) {
     m_state->changing("World::step");
     checkFrameDt("World::step", frameDt);
     if (m_state->materials.empty()) {
-        throw Error("World::step: the world has no material; call addMaterial first");
+        throw Error("World::step: the world has no material; call addMaterial first",
+                    ErrorCode::WrongState);
     }
     // A plugin that carries another engine's bodies has its host step the world with them.
     for (std::size_t k = 0; k < m_state->boundaries.size(); ++k) {
         const char* host = m_state->boundaries[k]->steppedBy();
         if (host != nullptr) {
-            throw Error("World::step: boundary plugin " + std::to_string(k) + " (" +
-                        internal::quoted(m_state->boundaries[k]->type()) +
-                        ") carries another engine's bodies: step the world with " + host +
-                        ", which moves them with it; a bare World::step would leave them behind");
+            throw Error(
+                "World::step: boundary plugin " + std::to_string(k) + " (" +
+                    internal::quoted(m_state->boundaries[k]->type()) +
+                    ") carries another engine's bodies: step the world with " + host +
+                    ", which moves them with it; a bare World::step would leave them behind",
+                ErrorCode::WrongState);
         }
     }
     detail::WorldState& s = *m_state;
@@ -845,8 +858,9 @@ uint32_t checkedId(Id id, size_t count, const char* function, const char* what, 
     checkTag(id, (std::string(function) + ": " + what).c_str(), tag);
     if (id.index >= count) {
         throw Error(std::string(function) + ": unknown " + what + " id " +
-                    std::to_string(id.index) + "; the world has " + std::to_string(count) + " " +
-                    what + "s");
+                        std::to_string(id.index) + "; the world has " + std::to_string(count) +
+                        " " + what + "s",
+                    ErrorCode::StaleId);
     }
     return id.index;
 }
@@ -861,7 +875,7 @@ void World::validateEmitter(const EmitterDef& def, const char* function) const {
         std::ostringstream s;
         s << prefix << "direction = (" << def.direction.x << ", " << def.direction.y
           << ") has no direction; expected a non-zero vector";
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::BadArgument);
     }
     checkFields<EmitterDef>(def, kEmitterFields, prefix);
     const Material& mat = material(def.material);
@@ -872,7 +886,7 @@ void World::validateEmitter(const EmitterDef& def, const char* function) const {
         std::ostringstream s;
         s << prefix << "width = " << def.width << " m is " << lanes << " lanes at " << spacing
           << " m spacing; at most " << kMaxEmitterLanes;
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::OutOfRange);
     }
     // Rows closer than one spacing would overlap: the jet would start compressed.
     const auto limit = float(lanes * def.speed / spacing);
@@ -882,7 +896,7 @@ void World::validateEmitter(const EmitterDef& def, const char* function) const {
           << " m wide (" << lanes << " lanes at " << spacing << " m spacing) at speed " << def.speed
           << " m/s emits at most " << limit
           << " particles/s; lower the rate, or widen or speed up the jet";
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::OutOfRange);
     }
 }
 

@@ -80,7 +80,8 @@ void loadFunctions() {
     // half-float field needs float colour buffers (EXT_color_buffer_float; WebGL2 names it
     // the same), checked where the field is made.
     if (glGetString(GL_VERSION) == nullptr) {
-        throw Error("fluid::gl: loadFunctions: no current OpenGL ES context");
+        throw Error("fluid::gl: loadFunctions: no current OpenGL ES context",
+                    ErrorCode::WrongState);
     }
     GLint major = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
@@ -88,7 +89,8 @@ void loadFunctions() {
     if (major < 3) {
         throw Error("fluid::gl: loadFunctions: OpenGL ES 3.0 or later is needed, the current "
                     "context is " +
-                    describeContext());
+                        describeContext(),
+                    ErrorCode::WrongState);
     }
 #else
     // Core profiles have no GL_EXTENSIONS string: without glewExperimental GLEW would leave
@@ -97,8 +99,9 @@ void loadFunctions() {
     const GLenum status = glewInit();
     if (status != GLEW_OK) {
         throw Error(std::string("fluid::gl: loadFunctions: glewInit failed: ") +
-                    reinterpret_cast<const char*>(glewGetErrorString(status)) + " (" +
-                    describeContext() + ")");
+                        reinterpret_cast<const char*>(glewGetErrorString(status)) + " (" +
+                        describeContext() + ")",
+                    ErrorCode::WrongState);
     }
     // GLEW 1.x asks for glGetString(GL_EXTENSIONS), which a core context rejects with
     // GL_INVALID_ENUM; clear it so the host's first error check does not blame itself.
@@ -113,8 +116,9 @@ void loadFunctions() {
     if (major < 3 || (major == 3 && minor < 3)) {
         throw Error("fluid::gl: loadFunctions: OpenGL 3.3 core or later is needed, the current "
                     "context is " +
-                    describeContext() + " (version " + std::to_string(major) + "." +
-                    std::to_string(minor) + ")");
+                        describeContext() + " (version " + std::to_string(major) + "." +
+                        std::to_string(minor) + ")",
+                    ErrorCode::WrongState);
     }
 #endif
     g_loaded.store(true);

@@ -52,12 +52,14 @@ std::string programLog(GLuint program) {
 GLuint compile(GLenum stage, std::string_view name) {
     const std::string_view source = shaderSource(name);
     if (source.empty()) {
-        throw Error("fluid::gl: shader '" + std::string(name) + "' is not embedded");
+        throw Error("fluid::gl: shader '" + std::string(name) + "' is not embedded",
+                    ErrorCode::BadArgument);
     }
     const GLuint shader = glCreateShader(stage);
     if (shader == 0) {
         throw Error("fluid::gl: shader '" + std::string(name) +
-                    "': glCreateShader failed (no current context?)");
+                        "': glCreateShader failed (no current context?)",
+                    ErrorCode::WrongState);
     }
     const GLchar* text = source.data();
     const GLint length = static_cast<GLint>(source.size());
@@ -68,7 +70,8 @@ GLuint compile(GLenum stage, std::string_view name) {
     if (ok != GL_TRUE) {
         const std::string log = shaderLog(shader);
         glDeleteShader(shader);
-        throw Error("fluid::gl: shader '" + std::string(name) + "' does not compile: " + log);
+        throw Error("fluid::gl: shader '" + std::string(name) + "' does not compile: " + log,
+                    ErrorCode::WrongState);
     }
     return shader;
 }
@@ -100,7 +103,8 @@ Program::Program(std::string_view vertexName, std::string_view fragmentName) {
         glDeleteProgram(m_id);
         m_id = 0;
         throw Error("fluid::gl: program '" + std::string(vertexName) + "' + '" +
-                    std::string(fragmentName) + "' does not link: " + log);
+                        std::string(fragmentName) + "' does not link: " + log,
+                    ErrorCode::WrongState);
     }
 }
 

@@ -220,12 +220,14 @@ namespace {
 void checkSize(glm::ivec2 size, GLint maxTextureSize, const char* function) {
     if (size.x < 1 || size.y < 1 || size.x > kMaxSize || size.y > kMaxSize) {
         throw Error(std::string("fluid::gl: ") + function + ": size " + sizeText(size) +
-                    " is out of range [1, " + std::to_string(kMaxSize) + "] (unit: px)");
+                        " is out of range [1, " + std::to_string(kMaxSize) + "] (unit: px)",
+                    ErrorCode::OutOfRange);
     }
     if (maxTextureSize > 0 && (size.x > maxTextureSize || size.y > maxTextureSize)) {
         throw Error(std::string("fluid::gl: ") + function + ": size " + sizeText(size) +
-                    " exceeds this context's GL_MAX_TEXTURE_SIZE " +
-                    std::to_string(maxTextureSize) + " (unit: px)");
+                        " exceeds this context's GL_MAX_TEXTURE_SIZE " +
+                        std::to_string(maxTextureSize) + " (unit: px)",
+                    ErrorCode::OutOfRange);
     }
 }
 
@@ -245,7 +247,8 @@ Renderer::Impl::Impl(glm::ivec2 targetSize) {
     if (glCreateShader == nullptr || glGenVertexArrays == nullptr ||
         glDrawArraysInstanced == nullptr) {
         throw Error("fluid::gl: Renderer: OpenGL entry points are not loaded; call "
-                    "fluid::gl::loadFunctions() with the context current first");
+                    "fluid::gl::loadFunctions() with the context current first",
+                    ErrorCode::WrongState);
     }
 #endif
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
@@ -375,7 +378,8 @@ void Renderer::Impl::allocateComposite() {
         char hex[16];
         std::snprintf(hex, sizeof hex, "0x%04X", static_cast<unsigned>(status));
         throw Error("fluid::gl: Renderer: the GL_RGBA8 framebuffer of size " + sizeText(size) +
-                    " is incomplete (status " + hex + ")");
+                        " is incomplete (status " + hex + ")",
+                    ErrorCode::WrongState);
     }
     // The field follows the composite's size at the next render.
     fieldSize = {0, 0};
@@ -413,7 +417,8 @@ void Renderer::Impl::allocateField(glm::ivec2 newFieldSize) {
         fieldSize = {0, 0};
         throw Error("fluid::gl: Renderer: no float framebuffer is complete for the metaball "
                     "field (tried GL_RGBA16F + GL_R16F and GL_RGBA32F + GL_R32F at " +
-                    sizeText(newFieldSize) + "; last status " + hex + ")");
+                        sizeText(newFieldSize) + "; last status " + hex + ")",
+                    ErrorCode::WrongState);
     }
     static constexpr GLenum kDrawBuffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glDrawBuffers(2, kDrawBuffers);
@@ -442,7 +447,7 @@ void Renderer::Impl::allocateField(glm::ivec2 newFieldSize) {
                           mask ? "mask (GL_R8)" : "distance (one-channel float)", solidSize.x,
                           solidSize.y, static_cast<unsigned>(solidStatus));
             fieldSize = {0, 0};
-            throw Error(text);
+            throw Error(text, ErrorCode::WrongState);
         }
     }
     glBindTexture(GL_TEXTURE_2D, 0);
@@ -641,7 +646,8 @@ namespace {
 template <class T> T& checked(const std::unique_ptr<T>& impl, const char* function) {
     if (!impl) {
         throw Error(std::string("fluid::gl: Renderer::") + function +
-                    ": the renderer was moved from");
+                        ": the renderer was moved from",
+                    ErrorCode::WrongState);
     }
     return *impl;
 }
@@ -665,19 +671,22 @@ void Renderer::setMaterials(std::span<const MaterialStyle> styles) {
     Impl& m = checked(m_impl, "setMaterials");
     if (styles.size() > kMaxMaterials) {
         throw Error("fluid::gl: Renderer::setMaterials: " + std::to_string(styles.size()) +
-                    " styles is out of range [0, " + std::to_string(kMaxMaterials) + "]");
+                        " styles is out of range [0, " + std::to_string(kMaxMaterials) + "]",
+                    ErrorCode::OutOfRange);
     }
     for (size_t i = 0; i < styles.size(); ++i) {
         const MaterialStyle& style = styles[i];
         if (!(style.spacing > 0.0f) || !std::isfinite(style.spacing)) {
             throw Error("fluid::gl: Renderer::setMaterials: style " + std::to_string(i) +
-                        ": spacing = " + std::to_string(style.spacing) +
-                        " is out of range (0, inf) (unit: m)");
+                            ": spacing = " + std::to_string(style.spacing) +
+                            " is out of range (0, inf) (unit: m)",
+                        ErrorCode::OutOfRange);
         }
         if (!std::isfinite(style.colour.r) || !std::isfinite(style.colour.g) ||
             !std::isfinite(style.colour.b)) {
             throw Error("fluid::gl: Renderer::setMaterials: style " + std::to_string(i) +
-                        ": colour is not finite");
+                            ": colour is not finite",
+                        ErrorCode::BadArgument);
         }
     }
     m.setStyles(styles);
@@ -693,7 +702,8 @@ RenderStats Renderer::render(const Camera& camera, const ParticleSpans& particle
     auto checkSpan = [n](size_t count, const char* name, bool mayBeEmpty) {
         if (count != n && !(mayBeEmpty && count == 0)) {
             throw Error(std::string("fluid::gl: Renderer: particle spans disagree: x has ") +
-                        std::to_string(n) + " entries, " + name + " " + std::to_string(count));
+                            std::to_string(n) + " entries, " + name + " " + std::to_string(count),
+                        ErrorCode::BadArgument);
         }
     };
     checkSpan(particles.y.size(), "y", false);
@@ -706,23 +716,27 @@ RenderStats Renderer::render(const Camera& camera, const ParticleSpans& particle
     checkSpan(particles.previousY.size(), "previousY", particles.previousX.empty());
     if (!(particles.factor >= 0.0f && particles.factor <= 1.0f)) {
         throw Error("fluid::gl: Renderer: particle spans' factor = " +
-                    std::to_string(particles.factor) + " is out of range [0, 1]");
+                        std::to_string(particles.factor) + " is out of range [0, 1]",
+                    ErrorCode::OutOfRange);
     }
     if (n > size_t(1) << 30) {
         throw Error("fluid::gl: Renderer: " + std::to_string(n) +
-                    " particles is out of range [0, 2^30]");
+                        " particles is out of range [0, 2^30]",
+                    ErrorCode::OutOfRange);
     }
     if (!(camera.pixelsPerMetre > 0.0f) || !std::isfinite(camera.pixelsPerMetre) ||
         !std::isfinite(camera.center.x) || !std::isfinite(camera.center.y)) {
         throw Error("fluid::gl: Renderer: camera.pixelsPerMetre = " +
-                    std::to_string(camera.pixelsPerMetre) +
-                    " is out of range (0, inf) (unit: px/m), or its center is not finite");
+                        std::to_string(camera.pixelsPerMetre) +
+                        " is out of range (0, inf) (unit: px/m), or its center is not finite",
+                    ErrorCode::OutOfRange);
     }
     const size_t underCount = under.vertices().size();
     const size_t overCount = over.vertices().size();
     if (underCount + overCount > size_t(1) << 30) {
         throw Error("fluid::gl: Renderer: " + std::to_string(underCount + overCount) +
-                    " shape vertices is out of range [0, 2^30]");
+                        " shape vertices is out of range [0, 2^30]",
+                    ErrorCode::OutOfRange);
     }
 
     // ---- settings, clamped to their documented ranges ----

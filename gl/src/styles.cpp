@@ -6,15 +6,8 @@
 namespace fluid::gl {
 
 std::string_view viewName(View view) {
-    switch (view) {
-    case View::Metaballs:
-        return "metaballs";
-    case View::Pressure:
-        return "pressure";
-    case View::Particles:
-        return "particles";
-    }
-    return "unknown";
+    const std::string_view name = nameIn(kViewNames, view);
+    return name.empty() ? "unknown" : name;
 }
 
 glm::vec3 defaultColour(std::string_view materialName, uint32_t index) {

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -26,6 +27,13 @@
 namespace fluid::detail {
 
 namespace {
+
+// The Box2D body types' names, as a body's "type" writes them: the one table of them.
+constexpr EnumName<b2BodyType> kBodyTypeNames[] = {
+    {b2_staticBody, "static"},
+    {b2_kinematicBody, "kinematic"},
+    {b2_dynamicBody, "dynamic"},
+};
 
 // Ranges of the format (docs/levels.md lists them). Body-local coordinates are bounded tighter
 // than world positions: Box2D stores them in float, and a shape far from its body's origin
@@ -232,16 +240,16 @@ private:
         const std::string name = named ? requiredName(b, "body") : "body" + str(index);
         m_bodyNames.add(m_doc, name, named ? b.pointer("name") : at, m_level.bodies.size());
 
-        const std::string typeName = b.string("type", "dynamic");
-        b2BodyType type = b2_dynamicBody;
-        if (typeName == "static") {
-            type = b2_staticBody;
-        } else if (typeName == "kinematic") {
-            type = b2_kinematicBody;
-        } else if (typeName != "dynamic") {
-            b.failAt("type", "unknown body type " + internal::quoted(typeName) +
-                                 "; known: static, kinematic, dynamic");
+        const std::string typeName =
+            b.string("type", std::string(nameIn(kBodyTypeNames, b2_dynamicBody)));
+        const std::optional<b2BodyType> typeNamed = valueIn(kBodyTypeNames, typeName);
+        if (!typeNamed) {
+            b.failAt("type",
+                     "unknown body type " + internal::quoted(typeName) +
+                         "; known: " + namesIn(kBodyTypeNames, ", "),
+                     ErrorCode::UnknownName);
         }
+        const b2BodyType type = *typeNamed;
         b2BodyDef def;
         def.position = toB2(b.point("position", kPosition, {0.0f, 0.0f}));
         def.angle = float(b.number("angle", kAngle, 0.0));
@@ -392,8 +400,10 @@ private:
         } else if (shape == "chain") {
             allowed.insert(allowed.end(), {"points", "loop"});
         } else {
-            f.failAt("shape", "unknown shape " + internal::quoted(shape) +
-                                  "; known: box, circle, polygon, edge, chain");
+            f.failAt("shape",
+                     "unknown shape " + internal::quoted(shape) +
+                         "; known: box, circle, polygon, edge, chain",
+                     ErrorCode::UnknownName);
         }
         const bool hasArea = shape == "box" || shape == "circle" || shape == "polygon";
         if (!hasArea) {
@@ -502,7 +512,8 @@ private:
         const ObjectReader j(m_doc, value, at, "a joint");
         const std::string type = j.requiredString("type", "a joint type: revolute");
         if (type != "revolute") {
-            j.failAt("type", "unknown joint type " + internal::quoted(type) + "; known: revolute");
+            j.failAt("type", "unknown joint type " + internal::quoted(type) + "; known: revolute",
+                     ErrorCode::UnknownName);
         }
         j.allowOnly({"type", "name", "bodyA", "bodyB", "anchor", "collideConnected", "enableMotor",
                      "motorSpeed", "maxMotorTorque", "enableLimit", "lowerAngle", "upperAngle"});

@@ -568,13 +568,15 @@ JsonDocument::JsonDocument(std::string_view text, std::string_view file)
     }
 }
 
-void JsonDocument::fail(std::string_view pointer, const std::string& message) const {
-    throw errorAt(pointer, message);
+void JsonDocument::fail(std::string_view pointer, const std::string& message,
+                        ErrorCode code) const {
+    throw errorAt(pointer, message, code);
 }
 
-LevelError JsonDocument::errorAt(std::string_view pointer, const std::string& message) const {
+LevelError JsonDocument::errorAt(std::string_view pointer, const std::string& message,
+                                 ErrorCode code) const {
     const TextPosition pos = positionOf(m_text, locate(m_text, pointer, false));
-    return LevelError(m_file, pos.line, pos.column, std::string(pointer), message);
+    return LevelError(m_file, pos.line, pos.column, std::string(pointer), message, code);
 }
 
 std::string JsonDocument::locatedText(std::string_view pointer, const std::string& message) const {
@@ -582,9 +584,10 @@ std::string JsonDocument::locatedText(std::string_view pointer, const std::strin
     return LevelError(m_file, pos.line, pos.column, std::string(pointer), message).what();
 }
 
-void JsonDocument::failAtKey(std::string_view pointer, const std::string& message) const {
+void JsonDocument::failAtKey(std::string_view pointer, const std::string& message,
+                             ErrorCode code) const {
     const TextPosition pos = positionOf(m_text, locate(m_text, pointer, true));
-    throw LevelError(m_file, pos.line, pos.column, std::string(pointer), message);
+    throw LevelError(m_file, pos.line, pos.column, std::string(pointer), message, code);
 }
 
 std::vector<std::string> JsonDocument::memberNames(std::string_view pointer) const {

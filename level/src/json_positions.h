@@ -103,15 +103,19 @@ public:
     /// The file name used in errors.
     const std::string& file() const { return m_file; }
 
-    /// Throws LevelError at the value at `pointer`.
-    [[noreturn]] void fail(std::string_view pointer, const std::string& message) const;
-    /// The LevelError at the value at `pointer`, to throw (`std::throw_with_nested` keeps
-    /// what caused it: memory that ran out).
-    LevelError errorAt(std::string_view pointer, const std::string& message) const;
+    /// Throws LevelError at the value at `pointer`, with `code` (ErrorCode::UnknownName for a
+    /// name nothing is registered under; ErrorCode::BadFile, the default, for the rest).
+    [[noreturn]] void fail(std::string_view pointer, const std::string& message,
+                           ErrorCode code = ErrorCode::BadFile) const;
+    /// The LevelError at the value at `pointer` with `code`, to throw (`std::throw_with_nested`
+    /// keeps what caused it: memory that ran out).
+    LevelError errorAt(std::string_view pointer, const std::string& message,
+                       ErrorCode code = ErrorCode::BadFile) const;
     /// The text a LevelError at the value at `pointer` would carry, for a warning.
     std::string locatedText(std::string_view pointer, const std::string& message) const;
-    /// Throws LevelError at the member name that leads to `pointer`.
-    [[noreturn]] void failAtKey(std::string_view pointer, const std::string& message) const;
+    /// Throws LevelError at the member name that leads to `pointer`, with `code`.
+    [[noreturn]] void failAtKey(std::string_view pointer, const std::string& message,
+                                ErrorCode code = ErrorCode::BadFile) const;
     /// Member names of the object at `pointer`, in text order.
     std::vector<std::string> memberNames(std::string_view pointer) const;
     /// Byte offset of the member name that leads to `pointer` (to order members by position).
@@ -152,11 +156,14 @@ public:
     const std::string& pointer() const { return m_pointer; }
     /// The document (for errors).
     const JsonDocument& document() const { return m_doc; }
-    /// Throws LevelError at this object ("missing key 'x'; expected ...").
-    [[noreturn]] void fail(const std::string& message) const { m_doc.fail(m_pointer, message); }
-    /// Throws LevelError at member `key`.
-    [[noreturn]] void failAt(std::string_view key, const std::string& message) const {
-        m_doc.fail(pointer(key), message);
+    /// Throws LevelError at this object ("missing key 'x'; expected ..."), with `code`.
+    [[noreturn]] void fail(const std::string& message, ErrorCode code = ErrorCode::BadFile) const {
+        m_doc.fail(m_pointer, message, code);
+    }
+    /// Throws LevelError at member `key`, with `code`.
+    [[noreturn]] void failAt(std::string_view key, const std::string& message,
+                             ErrorCode code = ErrorCode::BadFile) const {
+        m_doc.fail(pointer(key), message, code);
     }
     /// The member; throws "missing key" (with `expected`) when absent.
     const Json& required(std::string_view key, std::string_view expected) const;

@@ -43,11 +43,19 @@ std::string composeLevelMessage(const std::string& file, uint32_t line, uint32_t
 } // namespace
 
 LevelError::LevelError(std::string file, uint32_t line, uint32_t column, std::string path,
-                       std::string message)
-    : Error(composeLevelMessage(file, line, column, path, message)), m_file(std::move(file)),
+                       std::string message, ErrorCode code)
+    : Error(composeLevelMessage(file, line, column, path, message), code), m_file(std::move(file)),
       m_line(line), m_column(column), m_path(printable(path)), m_message(printable(message)) {}
 
 namespace {
+
+// The goal's amounts, as a goal names them ("fraction": 0.8): the one table of them, in the
+// order messages list them.
+constexpr EnumName<GoalMeasure> kGoalMeasureNames[] = {
+    {GoalMeasure::Fraction, "fraction"},
+    {GoalMeasure::Count, "count"},
+    {GoalMeasure::Volume, "volume"},
+};
 
 using detail::childPointer;
 using detail::formatNumber;
@@ -154,31 +162,36 @@ private:
                 gravity = readGravity(w);
             }
             m_level.frameRate = float(w.number("frameRate", kFrameRate, 60.0));
-            const std::string solver = w.string("solver", "position_based");
-            if (solver == "explicit") {
-                def.solver = Solver::Explicit;
-            } else if (solver != "position_based") {
-                w.failAt("solver", "unknown solver " + internal::quoted(solver) +
-                                       "; known: position_based, explicit");
+            const std::string solver = w.string("solver", std::string(solverName(def.solver)));
+            if (const std::optional<Solver> named = solverFromName(solver)) {
+                def.solver = *named;
+            } else {
+                w.failAt("solver",
+                         "unknown solver " + internal::quoted(solver) +
+                             "; known: " + namesIn(kSolverNames, ", "),
+                         ErrorCode::UnknownName);
             }
             // A named preset first; explicit substeps, iterations and viscosityInterval
             // override its fields.
             const std::string quality = w.string("quality", "");
-            if (quality == "game") {
-                def.positionBased = positionBasedPreset(Quality::Game);
-            } else if (quality == "precise") {
-                def.positionBased = positionBasedPreset(Quality::Precise);
+            if (const std::optional<Quality> named = qualityFromName(quality)) {
+                def.positionBased = positionBasedPreset(*named);
             } else if (!quality.empty()) {
                 w.failAt("quality",
-                         "unknown quality " + internal::quoted(quality) + "; known: game, precise");
+                         "unknown quality " + internal::quoted(quality) +
+                             "; known: " + namesIn(kQualityNames, ", "),
+                         ErrorCode::UnknownName);
             }
             readFields(w, positionBasedFields(), def.positionBased);
-            const std::string eos = w.string("equationOfState", "tait");
-            if (eos == "linear") {
-                def.equationOfState = EquationOfState::Linear;
-            } else if (eos != "tait") {
-                w.failAt("equationOfState", "unknown equation of state " + internal::quoted(eos) +
-                                                "; known: tait, linear");
+            const std::string eos = w.string(
+                "equationOfState", std::string(equationOfStateName(EquationOfState::Tait)));
+            if (const std::optional<EquationOfState> named = equationOfStateFromName(eos)) {
+                def.equationOfState = *named;
+            } else {
+                w.failAt("equationOfState",
+                         "unknown equation of state " + internal::quoted(eos) +
+                             "; known: " + namesIn(kEquationOfStateNames, ", "),
+                         ErrorCode::UnknownName);
             }
             const double c = w.number("soundSpeed", {0, 1e4, "m/s"}, 0.0);
             if (c > 0.0 && c < 0.1) {
@@ -259,8 +272,10 @@ private:
             } else if (preset == "seed_yoghurt") {
                 material = seedYoghurt();
             } else {
-                m.failAt("preset", "unknown preset " + internal::quoted(preset) +
-                                       "; known: water, yoghurt, seed_yoghurt");
+                m.failAt("preset",
+                         "unknown preset " + internal::quoted(preset) +
+                             "; known: water, yoghurt, seed_yoghurt",
+                         ErrorCode::UnknownName);
             }
             material.name = name;
             readFields(m, materialFields(), material);
@@ -285,8 +300,10 @@ private:
                 for (const PluginInfo& k : m_registry.types()) {
                     known.push_back(k.type);
                 }
-                p.failAt("type", "unknown plugin type " + internal::quoted(type) +
-                                     "; known: " + joined(known));
+                p.failAt("type",
+                         "unknown plugin type " + internal::quoted(type) +
+                             "; known: " + joined(known),
+                         ErrorCode::UnknownName);
             }
             const bool named = p.has("name");
             const std::string name = named ? requiredName(p, "plugin") : type;
@@ -355,7 +372,8 @@ private:
             }
             m_doc.failAtKey(params.pointer(*unknown),
                             "unknown parameter " + internal::quoted(*unknown) + " of plugin '" +
-                                info.type + "'; known: " + (list.empty() ? "(none)" : list));
+                                info.type + "'; known: " + (list.empty() ? "(none)" : list),
+                            ErrorCode::UnknownName);
         }
         for (const ParamDecl& decl : info.params) {
             const Json* value = params.find(decl.name);
@@ -438,18 +456,16 @@ private:
                 Shape::polygon(o.requiredPoints("vertices", kCoordinate, 3, kMaxPolygonVertices));
         } else {
             o.failAt("shape",
-                     "unknown shape " + internal::quoted(type) + "; known: box, circle, polygon");
+                     "unknown shape " + internal::quoted(type) + "; known: box, circle, polygon",
+                     ErrorCode::UnknownName);
         }
         // Crossing edges, zero area, sizes lost in the float conversion: the core's check,
         // re-located at the field that holds the geometry.
         const std::string_view field = shape.type == ShapeType::Polygon  ? "vertices"
                                        : shape.type == ShapeType::Circle ? "radius"
                                                                          : "max";
-        try {
-            validate(shape, "shape");
-        } catch (const Error& e) {
-            const std::string what = e.what();
-            o.failAt(field, what.rfind("shape: ", 0) == 0 ? what.substr(7) : what);
+        if (const std::string problem = shapeProblem(shape); !problem.empty()) {
+            o.failAt(field, problem);
         }
         return shape;
     }
@@ -514,7 +530,8 @@ private:
                 added = located(m_doc, at, [&] { return m_level.world.spawnBlob(blob, &inside); });
             } catch (const std::bad_alloc&) {
                 std::throw_with_nested(
-                    m_doc.errorAt(at, detail::outOfMemoryText("the blob's", lattice, first)));
+                    m_doc.errorAt(at, detail::outOfMemoryText("the blob's", lattice, first),
+                                  ErrorCode::OutOfMemory));
             }
             if (added == 0 && inside > 0) {
                 b.fail("the blob holds no particle: all of its " + std::to_string(inside) +
@@ -717,8 +734,12 @@ private:
             return;
         }
         const ObjectReader g(m_doc, *value, root.pointer("goal"), "a goal");
-        g.allowOnly(
-            {"sensor", "material", "fraction", "count", "volume", "timeLimit", "description"});
+        std::vector<std::string_view> allowed{"sensor", "material"};
+        for (const EnumName<GoalMeasure>& row : kGoalMeasureNames) {
+            allowed.push_back(row.name);
+        }
+        allowed.insert(allowed.end(), {"timeLimit", "description"});
+        g.allowOnly(allowed);
         LevelGoal& goal = m_level.goal;
         goal.sensorName = g.requiredString("sensor", "the name of a sensor");
         goal.sensor = m_sensorNames.find(m_doc, goal.sensorName, g.pointer("sensor"));
@@ -726,32 +747,35 @@ private:
         goal.material = m_materials.find(m_doc, goal.materialName, g.pointer("material"));
 
         // Exactly one amount; a second one is reported at its key.
+        std::string known;
         std::vector<std::string_view> given;
-        for (const std::string_view key : {"fraction", "count", "volume"}) {
-            if (g.has(key)) {
-                given.push_back(key);
+        for (const EnumName<GoalMeasure>& row : kGoalMeasureNames) {
+            known += (known.empty() ? "'" : ", '") + std::string(row.name) + "'";
+            if (g.has(row.name)) {
+                given.push_back(row.name);
             }
         }
         if (given.empty()) {
-            g.fail("missing the amount; expected one of 'fraction', 'count', 'volume'");
+            g.fail("missing the amount; expected one of " + known);
         }
         if (given.size() > 1) {
             std::sort(given.begin(), given.end(), [&](std::string_view a, std::string_view b) {
                 return m_doc.keyOffset(g.pointer(a)) < m_doc.keyOffset(g.pointer(b));
             });
-            m_doc.failAtKey(g.pointer(given[1]), "expected only one of 'fraction', 'count', "
-                                                 "'volume'; '" +
+            m_doc.failAtKey(g.pointer(given[1]), "expected only one of " + known + "; '" +
                                                      std::string(given[0]) + "' is given too");
         }
-        if (given[0] == "fraction") {
-            goal.measure = GoalMeasure::Fraction;
-            goal.amount = g.number("fraction", {0, 1, "1", true}, 0.0);
-        } else if (given[0] == "count") {
-            goal.measure = GoalMeasure::Count;
-            goal.amount = double(g.integer("count", {1, double(1u << 26), "count"}, 0));
-        } else {
-            goal.measure = GoalMeasure::Volume;
-            goal.amount = g.number("volume", {0, 1e6, "m^3", true}, 0.0);
+        goal.measure = *valueIn(kGoalMeasureNames, given[0]);
+        switch (goal.measure) {
+        case GoalMeasure::Fraction:
+            goal.amount = g.number(given[0], {0, 1, "1", true}, 0.0);
+            break;
+        case GoalMeasure::Count:
+            goal.amount = double(g.integer(given[0], {1, double(1u << 26), "count"}, 0));
+            break;
+        case GoalMeasure::Volume:
+            goal.amount = g.number(given[0], {0, 1e6, "m^3", true}, 0.0);
+            break;
         }
         goal.timeLimit = g.number("timeLimit", kLifetime, 0.0);
         goal.description = g.string("description", "");
@@ -873,7 +897,8 @@ void Level::destroyBody(b2Body* body) {
         }
     }
     if (!found) {
-        throw Error("Level::destroyBody: the body is not in this level's Box2D world");
+        throw Error("Level::destroyBody: the body is not in this level's Box2D world",
+                    ErrorCode::StaleId);
     }
     // Box2D destroys the joints attached to the body with it: drop their names first.
     std::erase_if(joints, [&](const std::pair<std::string, b2Joint*>& j) {
@@ -902,7 +927,8 @@ Level loadLevel(const std::string& path, const Registry& registry, const LevelOp
     std::FILE* f = std::fopen(path.c_str(), "rb");
     if (f == nullptr) {
         throw Error("loadLevel: cannot open '" + path +
-                    "': " + std::generic_category().message(errno));
+                        "': " + std::generic_category().message(errno),
+                    ErrorCode::Io);
     }
     std::string text;
     char buffer[65536];
@@ -915,7 +941,8 @@ Level loadLevel(const std::string& path, const Registry& registry, const LevelOp
     std::fclose(f);
     if (failed) {
         throw Error("loadLevel: cannot read '" + path +
-                    "': " + std::generic_category().message(error));
+                        "': " + std::generic_category().message(error),
+                    ErrorCode::Io);
     }
     return parseLevel(text, path, registry, options);
 }

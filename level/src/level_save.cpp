@@ -67,7 +67,8 @@ void Level::save(std::ostream& out) const {
     w.put(internal::fnv1a(w.bytes));
     out.write(w.bytes.data(), std::streamsize(w.bytes.size()));
     if (!out) {
-        throw Error("Level::save: the stream failed while writing the save of '" + file + "'");
+        throw Error("Level::save: the stream failed while writing the save of '" + file + "'",
+                    ErrorCode::Io);
     }
 }
 
@@ -76,13 +77,13 @@ void Level::saveFile(const std::string& path) const {
     save(bytes);
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     if (!out) {
-        throw Error("Level::saveFile: cannot open '" + path + "' for writing");
+        throw Error("Level::saveFile: cannot open '" + path + "' for writing", ErrorCode::Io);
     }
     const std::string data = bytes.str();
     out.write(data.data(), std::streamsize(data.size()));
     out.close();
     if (!out) {
-        throw Error("Level::saveFile: writing '" + path + "' failed");
+        throw Error("Level::saveFile: writing '" + path + "' failed", ErrorCode::Io);
     }
 }
 
@@ -218,7 +219,13 @@ Level readLevelSave(std::istream& in, std::string_view file, const Registry& reg
         try {
             return load();
         } catch (const Error& e) {
-            parts.fail(std::string(part) + ": " + e.what());
+            // The part's contents are the save's fault, unless memory ran out or a name is
+            // unknown (a plugin type not registered).
+            const ErrorCode code = e.code();
+            parts.fail(std::string(part) + ": " + e.what(),
+                       code == ErrorCode::OutOfMemory || code == ErrorCode::UnknownName
+                           ? code
+                           : ErrorCode::BadFile);
         }
     };
     // Everything but the state comes from the level file, as the game loaded it.
@@ -325,7 +332,7 @@ Level loadLevelSave(const std::string& path, const Registry& registry,
                     const LevelOptions& options) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-        throw Error("loadLevelSave: cannot open '" + path + "'");
+        throw Error("loadLevelSave: cannot open '" + path + "'", ErrorCode::Io);
     }
     return readLevelSave(in, path, registry, options);
 }

@@ -71,8 +71,10 @@ public:
         for (const Entry& e : m_entries) {
             known.push_back(e.name);
         }
-        doc.fail(pointer, "unknown " + std::string(m_what) + " " + internal::quoted(name) +
-                              "; known: " + joined(known));
+        doc.fail(pointer,
+                 "unknown " + std::string(m_what) + " " + internal::quoted(name) +
+                     "; known: " + joined(known),
+                 ErrorCode::UnknownName);
     }
 
 private:
@@ -106,14 +108,18 @@ inline std::string outOfMemoryText(std::string_view whose, double particles, uin
 }
 
 // A fluid::Error from the world, re-thrown at the block of the file that caused it, with the
-// world's error nested in it (so that memory that ran out stays visible: the C API's status).
+// world's error nested in it; its code is ErrorCode::BadFile (the file gave the world a value it
+// refuses), or ErrorCode::OutOfMemory for memory that ran out.
 template <class F> auto located(const JsonDocument& doc, const std::string& pointer, F&& f) {
     try {
         return f();
     } catch (const LevelError&) {
         throw;
     } catch (const Error& e) {
-        std::throw_with_nested(doc.errorAt(pointer, e.what()));
+        // The world refused a value the file gave it: the file's fault, unless memory ran out.
+        std::throw_with_nested(doc.errorAt(
+            pointer, e.what(),
+            e.code() == ErrorCode::OutOfMemory ? ErrorCode::OutOfMemory : ErrorCode::BadFile));
     }
 }
 

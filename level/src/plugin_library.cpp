@@ -80,19 +80,21 @@ void checkDetails(const std::string& path, const uint32_t* details) {
     const uint32_t count = details[0];
     if (count != kHostDetails[0]) {
         throw Error("'" + path + "' was built for plugin ABI " + std::to_string(kPluginAbiVersion) +
-                    " but does not match this fluid: it reports " + std::to_string(count) +
-                    " ABI details, this fluid " + std::to_string(kHostDetails[0]) +
-                    ": rebuild the plugin against this fluid");
+                        " but does not match this fluid: it reports " + std::to_string(count) +
+                        " ABI details, this fluid " + std::to_string(kHostDetails[0]) +
+                        ": rebuild the plugin against this fluid",
+                    ErrorCode::BadFile);
     }
     for (std::size_t i = 1; i < kHostDetails.size(); ++i) {
         if (details[i] != kHostDetails[i]) {
-            throw Error("'" + path + "' was built for plugin ABI " +
-                        std::to_string(kPluginAbiVersion) +
-                        " but does not match this fluid: " + std::string(kPluginAbiDetailNames[i]) +
-                        " is " + describeDetail(i, details[i]) + " in the plugin, " +
-                        describeDetail(i, kHostDetails[i]) +
-                        " here: rebuild the plugin against this fluid's headers with the same "
-                        "compiler and settings");
+            throw Error(
+                "'" + path + "' was built for plugin ABI " + std::to_string(kPluginAbiVersion) +
+                    " but does not match this fluid: " + std::string(kPluginAbiDetailNames[i]) +
+                    " is " + describeDetail(i, details[i]) + " in the plugin, " +
+                    describeDetail(i, kHostDetails[i]) +
+                    " here: rebuild the plugin against this fluid's headers with the same "
+                    "compiler and settings",
+                ErrorCode::BadFile);
         }
     }
 }
@@ -106,28 +108,31 @@ PluginLibrary loadPluginLibrary(const std::string& path, Registry& registry) {
     dlerror(); // clear a stale message
     OpenLibrary library(dlopen(openPath.c_str(), RTLD_NOW | RTLD_LOCAL));
     if (library.get() == nullptr) {
-        throw Error("cannot load plugin library '" + path + "': " + lastDlError());
+        throw Error("cannot load plugin library '" + path + "': " + lastDlError(), ErrorCode::Io);
     }
 
     const auto version = findEntry<PluginAbiVersionFn>(library.get(), kPluginAbiVersionSymbol);
     const auto registerPlugins = findEntry<PluginRegisterFn>(library.get(), kPluginRegisterSymbol);
     if (version == nullptr || registerPlugins == nullptr) {
         throw Error("'" + path + "' is not a fluid plugin library: it has no " +
-                    kPluginAbiVersionSymbol + " / " + kPluginRegisterSymbol + " entry point");
+                        kPluginAbiVersionSymbol + " / " + kPluginRegisterSymbol + " entry point",
+                    ErrorCode::BadFile);
     }
     // The version entry point's signature is frozen, so calling it is safe whatever the
     // library was built against; nothing else is called until the version and details match.
     const uint32_t libraryVersion = version();
     if (libraryVersion != kPluginAbiVersion) {
         throw Error("'" + path + "' was built for plugin ABI " + std::to_string(libraryVersion) +
-                    "; this fluid has ABI " + std::to_string(kPluginAbiVersion) +
-                    ": rebuild the plugin against this fluid");
+                        "; this fluid has ABI " + std::to_string(kPluginAbiVersion) +
+                        ": rebuild the plugin against this fluid",
+                    ErrorCode::BadFile);
     }
     const auto details = findEntry<PluginAbiDetailsFn>(library.get(), kPluginAbiDetailsSymbol);
     if (details == nullptr) {
         throw Error("'" + path + "' is not a fluid plugin library: it has no " +
-                    kPluginAbiDetailsSymbol + " entry point (define the entry points with " +
-                    "FLUID_PLUGIN_ENTRY from <fluid/plugin_abi.h>)");
+                        kPluginAbiDetailsSymbol + " entry point (define the entry points with " +
+                        "FLUID_PLUGIN_ENTRY from <fluid/plugin_abi.h>)",
+                    ErrorCode::BadFile);
     }
     checkDetails(path, details());
 
@@ -141,10 +146,13 @@ PluginLibrary loadPluginLibrary(const std::string& path, Registry& registry) {
         registerPlugins(&scratch);
     } catch (const std::exception& e) {
         throw Error("plugin library '" + path + "': " + kPluginRegisterSymbol +
-                    " failed: " + e.what());
+                        " failed: " + e.what(),
+                    dynamic_cast<const Error*>(&e) != nullptr ? static_cast<const Error&>(e).code()
+                                                              : ErrorCode::BadArgument);
     } catch (...) {
         throw Error("plugin library '" + path + "': " + kPluginRegisterSymbol +
-                    " threw an exception that is not a std::exception");
+                        " threw an exception that is not a std::exception",
+                    ErrorCode::BadArgument);
     }
     Registry merged = registry;
     PluginLibrary loaded{path, {}};
@@ -152,7 +160,7 @@ PluginLibrary loadPluginLibrary(const std::string& path, Registry& registry) {
         try {
             merged.add(info);
         } catch (const Error& e) {
-            throw Error("plugin library '" + path + "': " + e.what());
+            throw Error("plugin library '" + path + "': " + e.what(), e.code());
         }
         loaded.types.push_back(info.type);
     }

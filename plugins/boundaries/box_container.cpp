@@ -26,7 +26,7 @@ void BoxContainer::checkParams() const {
         std::ostringstream s;
         s << "plugin 'boundary.box': the inner rectangle [" << x0 << ", " << x1 << "] x [" << y0
           << ", " << y1 << "] is empty; expected minX < maxX and minY < maxY";
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::BadArgument);
     }
 }
 

@@ -35,9 +35,10 @@ void ChainBoundary::checkShape() const {
     const bool closed = value(kClosed) >= 0.5;
     if (n < 2 || (closed && n < 3)) {
         throw Error("plugin 'boundary.chain': parameter 'points' has " + std::to_string(n) +
-                    " points; set " + (closed ? "3" : "2") +
-                    " to 4096 with setPoints before the first step" +
-                    (closed ? " (a closed chain needs 3)" : ""));
+                        " points; set " + (closed ? "3" : "2") +
+                        " to 4096 with setPoints before the first step" +
+                        (closed ? " (a closed chain needs 3)" : ""),
+                    ErrorCode::OutOfRange);
     }
     checkCoordinates(kPoints);
     const std::size_t count = closed ? n : n - 1;
@@ -48,7 +49,7 @@ void ChainBoundary::checkShape() const {
             s << "plugin 'boundary.chain': parameter 'points' repeats point " << i << " = (" << a.x
               << ", " << a.y << ") as point " << (i + 1) % n
               << "; expected distinct consecutive points (unit: m)";
-            throw Error(s.str());
+            throw Error(s.str(), ErrorCode::BadArgument);
         }
     }
 }

@@ -59,7 +59,7 @@ void KinematicShape::checkCoordinates(std::size_t index) const {
         s << "plugin '" << type() << "': parameter '" << decl.name << "' point " << k << " = ("
           << p.x << ", " << p.y << ") is outside [" << -kMaxCoordinate << ", " << kMaxCoordinate
           << "] (unit: " << decl.unit << ")";
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::OutOfRange);
     }
 }
 
@@ -75,7 +75,7 @@ void KinematicShape::checkSampleCount(double estimate, std::string_view what,
     s << "plugin '" << type() << "': " << what << " needs about " << std::fixed
       << std::setprecision(0) << rounded << std::defaultfloat << std::setprecision(6)
       << " boundary samples at spacing " << spacing << " m; at most " << kMaxSamples;
-    throw Error(s.str());
+    throw Error(s.str(), ErrorCode::OutOfRange);
 }
 
 double KinematicShape::layerCount(double spacing, double support) {
@@ -130,8 +130,9 @@ void KinematicShape::restoreState(StateReader& in) {
     }
     const auto flag = in.read<uint8_t>();
     if (flag > 1) {
-        throw Error("snapshot: plugin '" + std::string(type()) + "': contact events flag = " +
-                    std::to_string(flag) + " is not 0 or 1");
+        throw Error("snapshot: plugin '" + std::string(type()) +
+                        "': contact events flag = " + std::to_string(flag) + " is not 0 or 1",
+                    ErrorCode::BadFile);
     }
     m_contacts = flag == 1;
 }

@@ -29,7 +29,7 @@ PolygonBoundary::~PolygonBoundary() = default;
 namespace {
 
 [[noreturn]] void fail(const std::string& what) {
-    throw Error("plugin 'boundary.polygon': parameter 'vertices' " + what);
+    throw Error("plugin 'boundary.polygon': parameter 'vertices' " + what, ErrorCode::BadArgument);
 }
 
 // Orientation of c against a -> b: +1 left, -1 right, 0 on the line.

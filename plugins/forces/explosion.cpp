@@ -65,8 +65,9 @@ void ExplosionForce::restoreState(StateReader& in) {
     if (armed > 1 || !std::isfinite(start) || !(core >= 0.0 && core <= 1e4)) {
         throw Error(
             "plugin 'force.explosion': bad snapshot state (armed = " + std::to_string(armed) +
-            ", step start = " + std::to_string(start) + " s, core = " + std::to_string(core) +
-            " m; expected armed 0 or 1, a finite time and a core in [0, 10000] m)");
+                ", step start = " + std::to_string(start) + " s, core = " + std::to_string(core) +
+                " m; expected armed 0 or 1, a finite time and a core in [0, 10000] m)",
+            ErrorCode::BadFile);
     }
     m_armed = armed == 1;
     m_stepStart = start;

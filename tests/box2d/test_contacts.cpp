@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -228,6 +229,17 @@ TEST_CASE("contacts: the coupling refuses a body of another world, forgets destr
     CHECK_THROWS_WITH(s->coupling->contactParticles(0),
                       "fluid::box2d::Coupling::contactParticles: contact = 0 is out of range: the "
                       "last step reported 0 contacts");
+    // With their codes (docs/errors.md): a body not in the coupling's world is a stale id.
+    const auto codeOf = [](const auto& call) {
+        try {
+            call();
+        } catch (const Error& e) {
+            return std::optional<ErrorCode>(e.code());
+        }
+        return std::optional<ErrorCode>();
+    };
+    CHECK(codeOf([&] { s->coupling->setContactEvents(stranger, true); }) == ErrorCode::StaleId);
+    CHECK(codeOf([&] { (void)s->coupling->contactParticles(0); }) == ErrorCode::OutOfRange);
 
     // The same scene without asking: bodies and particles bit for bit the same.
     std::unique_ptr<Scene> plain = crateScene(1);

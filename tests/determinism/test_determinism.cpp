@@ -79,8 +79,8 @@ uint64_t runDam(const WorldDef& def, uint32_t* substeps = nullptr) {
 TEST_CASE("bit-identical state for 1, 2 and 4 workers and a host task hook",
           "[slow][long][determinism]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
-    Stopwatch sw(std::string("determinism, 4 runs, ") + solverName(solver));
+    CAPTURE(solverLabel(solver));
+    Stopwatch sw(std::string("determinism, 4 runs, ") + solverLabel(solver));
     WorldDef def;
     def.solver = solver;
     def.workerCount = 1;
@@ -104,7 +104,7 @@ TEST_CASE("bit-identical state for 1, 2 and 4 workers and a host task hook",
                            << ", reverse hook " << host);
     std::printf("[measure] %s determinism: %u sub-steps; hashes %016" PRIx64 " %016" PRIx64
                 " %016" PRIx64 " %016" PRIx64 "\n",
-                solverName(solver), substeps, serial, two, four, host);
+                solverLabel(solver), substeps, serial, two, four, host);
     CHECK(two == serial);
     CHECK(four == serial);
     CHECK(host == serial);

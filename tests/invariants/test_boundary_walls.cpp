@@ -247,13 +247,13 @@ double slideSpeed(Solver solver, double friction) {
 TEST_CASE("walls: fluid slides down a slanted polygon slower with friction", "[slow][walls]") {
     const double free = 9.81 * 0.5 * 0.4; // g sin(30 deg) t, the frictionless limit
     for (const Solver solver : {Solver::PositionBased, Solver::Explicit}) {
-        Stopwatch watch(std::string("friction ramp, ") + solverName(solver));
+        Stopwatch watch(std::string("friction ramp, ") + solverLabel(solver));
         const double slip = slideSpeed(solver, 0.0);
         const double one = slideSpeed(solver, 1.0);
         const double sticky = slideSpeed(solver, 10.0);
         std::printf("[measure] block sliding 0.4 s down a 30 deg polygon ramp (%s): mean speed "
                     "%.3f m/s at friction 0, %.3f at 1, %.3f at 10 (frictionless limit %.3f)\n",
-                    solverName(solver), slip, one, sticky, free);
+                    solverLabel(solver), slip, one, sticky, free);
         CHECK(slip > 0.8 * free);
         CHECK(slip <= free * 1.02);
         CHECK(one < slip);

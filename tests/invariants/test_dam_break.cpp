@@ -10,8 +10,8 @@ using namespace fluid::test;
 TEST_CASE("dam break: 2,000 particles, 3 s, no NaN, no leak, no explosion",
           "[slow][sweep][invariants][dam]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
-    Stopwatch sw(std::string("dam break 3 s, ") + solverName(solver));
+    CAPTURE(solverLabel(solver));
+    Stopwatch sw(std::string("dam break 3 s, ") + solverLabel(solver));
     World world(physicsDef(solver));
     const MaterialId w = world.addMaterial(water());
     const float s = world.spacing(w);
@@ -52,7 +52,7 @@ TEST_CASE("dam break: 2,000 particles, 3 s, no NaN, no leak, no explosion",
     std::printf("[measure] %s dam break: n %u, H0 %.3f m, max speed %.3f m/s (limit %.3f), "
                 "substeps/frame max %u, speed-capped %u, NaN frames %u, leak frames %u, reach "
                 "%.3f of %.3f m\n",
-                solverName(solver), n, h0, worstSpeed, speedLimit, maxSubsteps, clamped, nanFrames,
+                solverLabel(solver), n, h0, worstSpeed, speedLimit, maxSubsteps, clamped, nanFrames,
                 leakFrames, reach, boxW);
     CHECK(nanFrames == 0);
     CHECK(leakFrames == 0);

@@ -54,8 +54,8 @@ MaterialStats stats(const World& world, uint16_t material) {
 TEST_CASE("a yoghurt blob dropped into water: both materials interact",
           "[slow][invariants][materials]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
-    Stopwatch sw(std::string("yoghurt into water 1.2 s, ") + solverName(solver));
+    CAPTURE(solverLabel(solver));
+    Stopwatch sw(std::string("yoghurt into water 1.2 s, ") + solverLabel(solver));
     // The precise preset: the game preset's single sweep lets the two materials' particles come
     // closer than asked at the impact (docs/position_based.md, "Presets").
     World world(preciseDef(solver));
@@ -108,7 +108,7 @@ TEST_CASE("a yoghurt blob dropped into water: both materials interact",
     std::printf("[measure] %s mixing: %u water + %u yoghurt, closest pair %.5f m (%.3f spacing), "
                 "yoghurt com y %.4f -> %.4f (water surface %.4f), yoghurt min y %.4f, end vy "
                 "%.4f, peak water rms speed %.3f m/s\n",
-                solverName(solver), n - ny, ny, closest, closest / spacing, y0.comY, ye.comY,
+                solverLabel(solver), n - ny, ny, closest, closest / spacing, y0.comY, ye.comY,
                 we.maxY, ye.minY, ye.vy, std::sqrt(peakWaterSpeed2));
 
     // No leaks, nothing created or lost.

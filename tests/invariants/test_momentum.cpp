@@ -71,8 +71,8 @@ uint32_t spawnPair(World& world, MaterialId a, MaterialId b, float x, float y, f
 TEST_CASE("zero-g blob launched at 1 m/s keeps its momentum over 1,000 steps",
           "[slow][long][invariants][momentum]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
-    Stopwatch sw(std::string("momentum, one material, ") + solverName(solver));
+    CAPTURE(solverLabel(solver));
+    Stopwatch sw(std::string("momentum, one material, ") + solverLabel(solver));
     World world(physicsDef(solver));
     const MaterialId w = world.addMaterial(water());
     BlobDef blob;
@@ -93,7 +93,7 @@ TEST_CASE("zero-g blob launched at 1 m/s keeps its momentum over 1,000 steps",
     const glm::dvec2 p = momentum(world);
     CAPTURE(n, p0.x, p0.y, p.x, p.y, d.worst, d.atEnd, world.lastSubsteps());
     std::printf("[measure] %s momentum one material: n %u, relative drift max %.3g, end %.3g\n",
-                solverName(solver), n, d.worst, d.atEnd);
+                solverLabel(solver), n, d.worst, d.atEnd);
     CHECK(d.worst <= 1e-5);
     CHECK(world.particleCount() == n);
     CHECK(totalMass(world) == mass0);
@@ -106,8 +106,8 @@ TEST_CASE("zero-g blob launched at 1 m/s keeps its momentum over 1,000 steps",
 TEST_CASE("zero-g water and yoghurt blobs collide and keep their momentum over 1,000 steps",
           "[slow][long][invariants][momentum]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
-    Stopwatch sw(std::string("momentum, two materials, ") + solverName(solver));
+    CAPTURE(solverLabel(solver));
+    Stopwatch sw(std::string("momentum, two materials, ") + solverLabel(solver));
     World world(physicsDef(solver));
     const MaterialId w = world.addMaterial(water());
     const MaterialId y = world.addMaterial(forSolver(yoghurt(), solver));
@@ -135,7 +135,7 @@ TEST_CASE("zero-g water and yoghurt blobs collide and keep their momentum over 1
     const glm::dvec2 p = momentum(world);
     CAPTURE(n, p0.x, p0.y, p.x, p.y, scale, d.worst, d.atEnd);
     std::printf("[measure] %s momentum two materials: n %u, relative drift max %.3g, end %.3g\n",
-                solverName(solver), n, d.worst, d.atEnd);
+                solverLabel(solver), n, d.worst, d.atEnd);
     CHECK(d.worst <= 1e-5);
     CHECK(world.particleCount() == n);
     CHECK(totalMass(world) == mass0);

@@ -12,10 +12,10 @@ using namespace fluid::test;
 TEST_CASE("a block resting 1 s in zero gravity still reads its rest density",
           "[slow][invariants][density]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
+    CAPTURE(solverLabel(solver));
     for (const Material& preset : {water(), yoghurt()}) {
         CAPTURE(preset.name);
-        Stopwatch sw("rest density 1 s " + preset.name + ", " + solverName(solver));
+        Stopwatch sw("rest density 1 s " + preset.name + ", " + solverLabel(solver));
         World world(physicsDef(solver));
         const MaterialId id = world.addMaterial(forSolver(preset, solver));
         world.spawnBlob(latticeBlock(world, id, -0.12f, -0.12f, 24, 24));

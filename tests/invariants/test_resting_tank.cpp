@@ -10,8 +10,8 @@ using namespace fluid::test;
 
 TEST_CASE("a resting water tank 0.5 m deep settles", "[slow][sweep][invariants][tank]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
-    Stopwatch sw(std::string("resting tank 5 s, ") + solverName(solver));
+    CAPTURE(solverLabel(solver));
+    Stopwatch sw(std::string("resting tank 5 s, ") + solverLabel(solver));
     // This test checks precision (3% / 1%, the depth within 5%): the position-based solver runs
     // the precise preset, which is what those figures are for (the game preset's own test is in
     // tests/invariants/test_presets.cpp).
@@ -88,7 +88,7 @@ TEST_CASE("a resting water tank 0.5 m deep settles", "[slow][sweep][invariants][
     std::printf("[measure] %s tank: n %u, substeps/frame max %u, c %.2f m/s, compression max "
                 "%.4f mean %.4f, max |interior error| %.4f, KE/m %.3g J/kg, wall/interior density "
                 "%+.4f, gaps floor %.4f left %.4f right %.4f m (spacing %.4f), surface %.4f m\n",
-                solverName(solver), n, maxSubsteps, world.profile().soundSpeed, maxCompression,
+                solverLabel(solver), n, maxSubsteps, world.profile().soundSpeed, maxCompression,
                 meanCompression, maxInteriorError, kinetic, wallRatio, floorGap, leftGap, rightGap,
                 s, surface);
 

@@ -59,8 +59,8 @@ DamRun runDam(Solver solver, const Material& preset, float boxW, int maxFrames) 
 TEST_CASE("yoghurt's dam-break front lags water's and reaches the far wall later",
           "[slow][invariants][viscosity]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
-    Stopwatch sw(std::string("yoghurt vs water dam break, ") + solverName(solver));
+    CAPTURE(solverLabel(solver));
+    Stopwatch sw(std::string("yoghurt vs water dam break, ") + solverLabel(solver));
     const float boxW = 1.0f; // four block widths
     const DamRun w = runDam(solver, water(), boxW, 90);
     // Yoghurt gets up to 1.5 s; if it has not arrived by then it is later anyway.
@@ -69,7 +69,7 @@ TEST_CASE("yoghurt's dam-break front lags water's and reaches the far wall later
     std::printf(
         "[measure] %s dam break fronts at 0.3 s: water %.3f m (%u particles), yoghurt %.3f m "
         "(%u); far wall reached at frame: water %d, yoghurt %d\n",
-        solverName(solver), w.frontAt03, w.particles, y.frontAt03, y.particles, w.wallFrame,
+        solverLabel(solver), w.frontAt03, w.particles, y.frontAt03, y.particles, w.wallFrame,
         y.wallFrame);
     CHECK(y.frontAt03 < w.frontAt03);
     REQUIRE(w.wallFrame > 0); // water arrives within 1.5 s

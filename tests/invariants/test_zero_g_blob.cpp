@@ -9,8 +9,8 @@ using namespace fluid::test;
 TEST_CASE("zero-g square blob of 2,000 particles pulls round in 3 s",
           "[slow][invariants][surface-tension]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
-    Stopwatch sw(std::string("zero-g square blob 3 s, ") + solverName(solver));
+    CAPTURE(solverLabel(solver));
+    Stopwatch sw(std::string("zero-g square blob 3 s, ") + solverLabel(solver));
     World world(physicsDef(solver)); // no gravity, no walls; Tait with the scene's sound speed
     const MaterialId w = world.addMaterial(water());
     const float s = world.spacing(w);
@@ -54,7 +54,7 @@ TEST_CASE("zero-g square blob of 2,000 particles pulls round in 3 s",
     CAPTURE(c0, c1, c3, f3, radius, f3 / radius, world.lastSubsteps());
     std::printf("[measure] %s zero-g blob: circularity %.4f -> %.4f (1 s) -> %.4f (3 s), farthest "
                 "%.3f R, substeps/frame %u\n",
-                solverName(solver), c0, c1, c3, f3 / radius, world.lastSubsteps());
+                solverLabel(solver), c0, c1, c3, f3 / radius, world.lastSubsteps());
     CHECK(c3 >= 0.95);
     CHECK(f3 <= 1.5 * radius);
     // Momentum of a blob at rest stays zero: it does not drift off.

@@ -6,6 +6,7 @@
 #include <fluid/plugins/builtin.h>
 
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -40,6 +41,16 @@ inline std::string errorOf(std::string_view text, const LevelOptions& options = 
         return e.what();
     }
     return "no error";
+}
+
+/// The code of the LevelError loading `text` throws (nothing when it loads).
+inline std::optional<ErrorCode> codeOf(std::string_view text, const LevelOptions& options = {}) {
+    try {
+        parseLevel(text, "t.json", builtins(), options);
+    } catch (const LevelError& e) {
+        return e.code();
+    }
+    return std::nullopt;
 }
 
 /// The level's body named `name`, nullptr when there is none.

@@ -225,6 +225,7 @@ TEST_CASE("level abuse child: load a blob larger than memory", "[.abuse3_child]"
         std::printf("loaded %u particles\n", lvl.world.particleCount());
     } catch (const LevelError& e) {
         std::printf("LevelError: %s\n", e.what());
+        std::printf("code: %s\n", std::string(errorCodeName(e.code())).c_str());
     } catch (const std::exception& e) {
         std::printf("other exception: %s\n", e.what());
     }
@@ -246,6 +247,7 @@ TEST_CASE("level abuse: a blob larger than memory is a load error, not std::bad_
     CHECK(output.find("LevelError: t.json:1:97: at /blobs/0: spawnBlob: memory ran out making "
                       "room for the blob's about 63648484 particles beside the world's 0; make "
                       "the blob smaller or lower WorldDef::maxParticles\n") != std::string::npos);
+    CHECK(output.find("code: out of memory\n") != std::string::npos);
 #else
     WARN("skipped: needs /proc/self/exe and ulimit -v, and no sanitizer");
 #endif

@@ -55,6 +55,8 @@ TEST_CASE("level bodies: errors in a body name the key, value and range", "[leve
     CHECK(errorOf(withBodies(R"({"type": "ghost", "fixtures": []})")) ==
           "t.json:1:70: at /bodies/0/type: unknown body type 'ghost'; known: static, kinematic, "
           "dynamic");
+    CHECK(codeOf(withBodies(R"({"type": "ghost", "fixtures": []})")) == ErrorCode::UnknownName);
+    CHECK(codeOf(withBodies(R"({"fixtures": [], "mass": 1})")) == ErrorCode::BadFile);
     CHECK(errorOf(withBodies(R"({"position": "here", "fixtures": []})")) ==
           "t.json:1:74: at /bodies/0/position: expected a point [x, y] of two numbers in [-100000, "
           "100000] (unit: m), got a string");
@@ -557,4 +559,18 @@ TEST_CASE("level bodies: Level::step runs the coupling, a level with bodies move
     c.step();
     CHECK(ball->GetPosition().y != y);
     CHECK(c.world.time() == Approx(11.0 / 60.0));
+}
+
+TEST_CASE("level bodies: every body type name loads as its Box2D type", "[level][bodies]") {
+    const std::pair<const char*, b2BodyType> types[] = {
+        {"static", b2_staticBody}, {"kinematic", b2_kinematicBody}, {"dynamic", b2_dynamicBody}};
+    for (const auto& [name, type] : types) {
+        const Level level = parseLevel(
+            withBodies(R"({"name": "b", "type": ")" + std::string(name) +
+                       R"(", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 9}]})"),
+            "t.json", builtins());
+        INFO(name);
+        REQUIRE(bodyNamed(level, "b") != nullptr);
+        CHECK(bodyNamed(level, "b")->GetType() == type);
+    }
 }

@@ -200,6 +200,65 @@ TEST_CASE("level errors: unknown plugin types, presets, solvers and shapes list 
           "t.json:1:80: at /world/coarseCorrection: 1.5 is out of range [0, 1] (unit: 1)");
     CHECK(errorOf(level(R"(, "sensors": [{"name": "s", "shape": "star"}])")) ==
           "t.json:1:85: at /sensors/0/shape: unknown shape 'star'; known: box, circle, polygon");
+    // Each with ErrorCode::UnknownName (docs/errors.md); a value out of range is a bad file.
+    CHECK(codeOf(R"({"version": 1, "materials": [{"name": "m", "preset": "milk"}]})") ==
+          ErrorCode::UnknownName);
+    CHECK(codeOf(level(R"(, "plugins": [{"type": "force.vortx"}])")) == ErrorCode::UnknownName);
+    CHECK(codeOf(level(R"(, "world": {"solver": "pbd"})")) == ErrorCode::UnknownName);
+    CHECK(codeOf(level(R"(, "world": {"quality": "fast"})")) == ErrorCode::UnknownName);
+    CHECK(codeOf(level(R"(, "world": {"equationOfState": "ideal"})")) == ErrorCode::UnknownName);
+    CHECK(errorOf(level(R"(, "world": {"equationOfState": "ideal"})")) ==
+          "t.json:1:79: at /world/equationOfState: unknown equation of state 'ideal'; known: "
+          "tait, linear");
+    CHECK(codeOf(level(R"(, "sensors": [{"name": "s", "shape": "star"}])")) ==
+          ErrorCode::UnknownName);
+    CHECK(codeOf(level(R"(, "world": {"viscosityInterval": 0})")) == ErrorCode::BadFile);
+}
+
+TEST_CASE("level errors: every name of the solver, quality and equation-of-state tables loads",
+          "[level][errors]") {
+    for (const EnumName<Solver>& row : kSolverNames) {
+        const std::string text = level(R"(, "world": {"solver": ")" + std::string(row.name) +
+                                       R"(", "equationOfState": "tait"})");
+        INFO(text);
+        CHECK(parseLevel(text, "t.json", builtins()).world.def().solver == row.value);
+    }
+    for (const EnumName<EquationOfState>& row : kEquationOfStateNames) {
+        const std::string text =
+            level(R"(, "world": {"equationOfState": ")" + std::string(row.name) + R"("})");
+        CHECK(parseLevel(text, "t.json", builtins()).world.def().equationOfState == row.value);
+    }
+    for (const EnumName<Quality>& row : kQualityNames) {
+        const std::string text =
+            level(R"(, "world": {"quality": ")" + std::string(row.name) + R"("})");
+        CHECK(parseLevel(text, "t.json", builtins()).world.def().positionBased.iterations ==
+              positionBasedPreset(row.value).iterations);
+    }
+}
+
+TEST_CASE("level errors: the kinds of failure carry their codes", "[level][errors]") {
+    // Malformed contents: a bad file.
+    CHECK(codeOf("{\"version\": 1,\n  \"name\": x}") == ErrorCode::BadFile);
+    CHECK(codeOf(level(R"(, "bogus": 1)")) == ErrorCode::BadFile);
+    // A value the world refuses, re-located at the file's block: the file's fault.
+    CHECK(
+        codeOf(level(
+            R"(, "blobs": [{"material": "water", "shape": "box", "min": [0, 0], "max": [80, 80]}])")) ==
+        ErrorCode::BadFile);
+    // A name the file refers to but does not declare.
+    CHECK(
+        codeOf(level(
+            R"(, "blobs": [{"material": "milk", "shape": "box", "min": [0, 0], "max": [1, 1]}])")) ==
+        ErrorCode::UnknownName);
+    // A file that cannot be opened.
+    try {
+        (void)loadLevel("/nonexistent/level.json", builtins());
+        FAIL("no error");
+    } catch (const Error& e) {
+        CHECK(e.code() == ErrorCode::Io);
+        CHECK_THAT(std::string(e.what()),
+                   Catch::StartsWith("loadLevel: cannot open '/nonexistent/level.json'"));
+    }
 }
 
 TEST_CASE("level errors: unknown plugin parameters list the declared ones", "[level][errors]") {
@@ -324,6 +383,20 @@ TEST_CASE("level errors: references must name an existing entry", "[level][error
     CHECK(errorOf(level(sensor +
                         R"(, "goal": {"sensor": "cup", "material": "water", "fraction": 1.5})")) ==
           "t.json:1:185: at /goal/fraction: 1.5 is out of range (0, 1] (unit: 1)");
+    // Every amount's name loads as its measure; a reference to nothing is an unknown name.
+    const std::pair<const char*, GoalMeasure> measures[] = {{"fraction", GoalMeasure::Fraction},
+                                                            {"count", GoalMeasure::Count},
+                                                            {"volume", GoalMeasure::Volume}};
+    for (const auto& [name, measure] : measures) {
+        const Level lvl = parseLevel(level(sensor +
+                                           R"(, "goal": {"sensor": "cup", "material": )"
+                                           R"("water", ")" +
+                                           std::string(name) + R"(": 1})"),
+                                     "t.json", builtins());
+        CHECK(lvl.goal.measure == measure);
+    }
+    CHECK(codeOf(level(R"(, "goal": {"sensor": "cup", "material": "water", "fraction": 0.5})")) ==
+          ErrorCode::UnknownName);
 }
 
 TEST_CASE("level errors: world, material and plugin errors come back located at their block",

@@ -48,7 +48,7 @@ TEST_CASE("built-in boundaries say which points lie in their solid", "[boundarie
 TEST_CASE("spawnBlob leaves out the lattice points inside solids and outside the container",
           "[boundaries][blobs]") {
     for (const Solver solver : {Solver::PositionBased, Solver::Explicit}) {
-        INFO(solverName(solver));
+        INFO(solverLabel(solver));
         World world(physicsDef(solver));
         const MaterialId water = world.addMaterial(fluid::water());
         auto box = std::make_unique<BoxContainer>();

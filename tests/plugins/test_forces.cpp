@@ -196,7 +196,7 @@ TEST_CASE("point gravity points at the centre and falls off as 1/r^n", "[unit][f
 TEST_CASE("point gravity: a circular orbit keeps its radius and angular momentum",
           "[unit][forces]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
+    CAPTURE(solverLabel(solver));
     Scene s(solver);
     // Newton, 2 m/s^2 at 0.5 m: the circular speed at 0.5 m is sqrt(g r) = 1 m/s, period pi s.
     s.add(std::make_unique<PointGravityForce>(glm::vec2{0.0f, 0.0f}, 2.0f, 0.5f, 2.0f))
@@ -220,7 +220,7 @@ TEST_CASE("point gravity: a circular orbit keeps its radius and angular momentum
     }
     std::printf("[measure] point gravity orbit (%s): radius %.5f..%.5f m (0.5), energy drift "
                 "%.2e, angular momentum drift %.2e\n",
-                solverName(solver), rMin, rMax, eWorst, lWorst);
+                solverLabel(solver), rMin, rMax, eWorst, lWorst);
     CHECK(rMin > 0.49);
     CHECK(rMax < 0.51);
     CHECK(eWorst < 0.01);
@@ -443,7 +443,7 @@ TEST_CASE("wind: exact exponential drag towards the wind, region only", "[unit][
 TEST_CASE("wind: velocities relax to the wind as exp(-k t), terminal velocity under gravity",
           "[unit][forces]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
+    CAPTURE(solverLabel(solver));
     SECTION("relaxation, and nothing outside the region") {
         Scene s(solver);
         auto& w = s.add(std::make_unique<WindForce>(glm::vec2{1.5f, 0.5f}, 2.0f));
@@ -462,7 +462,7 @@ TEST_CASE("wind: velocities relax to the wind as exp(-k t), terminal velocity un
             const double ratio = length(s.v(size_t(k)) - wind) / length(glm::dvec2(v0[k]) - wind);
             std::printf("[measure] wind (%s): |v - w| / |v0 - w| = %.6f after 0.5 s "
                         "(exp(-k t) = %.6f)\n",
-                        solverName(solver), ratio, expected);
+                        solverLabel(solver), ratio, expected);
             CHECK(ratio == Approx(expected).epsilon(1e-3));
             // The error shrinks along its own direction (the drag is linear).
             CHECK(std::fabs(cross(s.v(size_t(k)) - wind, glm::dvec2(v0[k]) - wind)) <
@@ -484,7 +484,7 @@ TEST_CASE("wind: velocities relax to the wind as exp(-k t), terminal velocity un
         const double terminal = -9.81 / lambdaOf(5.0, h);
         std::printf("[measure] wind + gravity (%s): terminal vy %.5f m/s, discrete w + g / "
                     "lambda %.5f, continuous w + g / k %.5f\n",
-                    solverName(solver), s.v(0).y, terminal, -9.81 / 5.0);
+                    solverLabel(solver), s.v(0).y, terminal, -9.81 / 5.0);
         CHECK(s.v(0).x == Approx(1.0).epsilon(1e-4));
         CHECK(s.v(0).y == Approx(terminal).epsilon(1e-3));
         CHECK(s.v(0).y == Approx(-9.81 / 5.0).epsilon(0.015));
@@ -651,7 +651,7 @@ TEST_CASE("explosion: fires once, radially, in the first sub-step only", "[unit]
 TEST_CASE("explosion in a world: one kick of the chosen falloff, zero net momentum",
           "[unit][forces]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
+    CAPTURE(solverLabel(solver));
     const glm::vec2 c{0.3f, 0.1f};
     Scene s(solver);
     auto& e = s.add(std::make_unique<ExplosionForce>(c, 0.5f, 2.0f));
@@ -678,7 +678,7 @@ TEST_CASE("explosion in a world: one kick of the chosen falloff, zero net moment
     const double scale = 24 * s.mass() * expected[0];
     std::printf("[measure] explosion (%s): ring speeds %.5f and %.5f m/s (expected %.5f, %.5f), "
                 "|P| / sum m|v| = %.2e\n",
-                solverName(solver), length(s.v(0)), length(s.v(12)), expected[0], expected[1],
+                solverLabel(solver), length(s.v(0)), length(s.v(12)), expected[0], expected[1],
                 length(momentum(s.world)) / scale);
     CHECK(length(momentum(s.world)) < 1e-5 * scale);
     // The next step adds nothing: lone particles coast.
@@ -736,7 +736,7 @@ TEST_CASE("damping zone: exact exponential decay inside, nothing outside", "[uni
 
 TEST_CASE("damping zone: kinetic energy inside decays as exp(-2 c t)", "[unit][forces]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
+    CAPTURE(solverLabel(solver));
     Scene s(solver);
     s.add(std::make_unique<DampingZoneForce>(1.5f, glm::vec2{-2.0f, -2.0f}, glm::vec2{2.0f, 2.0f}));
     const std::array<glm::vec2, 4> v0{{{0.5f, 0.0f}, {-0.3f, 0.4f}, {0.0f, -0.6f}, {0.2f, 0.2f}}};
@@ -755,7 +755,7 @@ TEST_CASE("damping zone: kinetic energy inside decays as exp(-2 c t)", "[unit][f
     }
     const double expected = std::exp(-2.0 * 1.5 * 0.5);
     std::printf("[measure] damping (%s): KE ratio %.6f after 0.5 s (exp(-2 c t) = %.6f)\n",
-                solverName(solver), ke / ke0, expected);
+                solverLabel(solver), ke / ke0, expected);
     CHECK(ke / ke0 == Approx(expected).epsilon(1e-3));
     CHECK(s.world.velocity(outside) == glm::vec2{0.0f, 0.1f}); // untouched
 }

@@ -592,8 +592,9 @@ inline WorldDef defFor(Setting setting, uint32_t workers) {
     return def;
 }
 
-inline const char* solverName(Solver solver) {
-    return solver == Solver::PositionBased ? "position-based" : "explicit";
+// The solver's name for test output: fluid::solverName's (a NUL-terminated literal).
+inline const char* solverLabel(Solver solver) {
+    return fluid::solverName(solver).data();
 }
 
 } // namespace fluid::test

@@ -262,7 +262,7 @@ TEST_CASE("an empty box container is reported when the world steps", "[unit][bad
 
 TEST_CASE("a force plugin writing NaN or infinity does not spread it", "[unit][bad-input]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
+    CAPTURE(solverLabel(solver));
     float bad = kNaN;
     SECTION("NaN") {
         bad = kNaN;

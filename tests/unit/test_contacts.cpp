@@ -181,7 +181,7 @@ TEST_CASE("contacts: a dry disc and a disc that does not ask report nothing, and
           "nothing of the step",
           "[unit][contacts]") {
     for (const Solver solver : {Solver::PositionBased, Solver::Explicit}) {
-        INFO(solverName(solver));
+        INFO(solverLabel(solver));
         const int frames = solver == Solver::Explicit ? 10 : 30;
         Tank dry = discTank({0.0f, 0.7f}, true, def(1, solver));    // 0.25 m above the water
         Tank quiet = discTank({0.0f, 0.2f}, false, def(1, solver)); // in it, not asking
@@ -237,7 +237,7 @@ TEST_CASE("contacts: a disc moving through the water reads its speed as the appr
 TEST_CASE("contacts: the same events for 1, 2 and 4 workers and after a save and load",
           "[unit][contacts]") {
     for (const Solver solver : {Solver::PositionBased, Solver::Explicit}) {
-        INFO(solverName(solver));
+        INFO(solverLabel(solver));
         const int frames = solver == Solver::Explicit ? 6 : 20;
         std::vector<std::vector<uint8_t>> runs;
         for (const uint32_t workers : {1u, 2u, 4u}) {
@@ -309,7 +309,7 @@ TEST_CASE("contacts: reading the events during the world's own step is refused",
           "[unit][contacts]") {
     Tank t = discTank({0.0f, 0.2f}, true, def());
     std::string message;
-    ErrorCode code = ErrorCode::BadInput;
+    ErrorCode code = ErrorCode::BadArgument;
     t.world.addForce(std::make_unique<HookForce>([&] {
         try {
             (void)bodyContacts(t.world);

@@ -69,7 +69,7 @@ TEST_CASE("add and remove particles, handles go stale", "[unit][handles]") {
 
 TEST_CASE("handles follow their particles through steps", "[unit][handles]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
+    CAPTURE(solverLabel(solver));
     // The precise preset: with no wall in reach the game preset's coarse correction keeps the
     // momentum by taking its moves' mean off every particle, the lone one too
     // (docs/position_based.md, "Presets").

@@ -83,7 +83,7 @@ TEST_CASE("interpolation over whole steps: fixed 60 Hz ticks drawn at 144 Hz and
           "[interpolation]") {
     const float hz = GENERATE(144.0f, 480.0f);
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(hz, solverName(solver));
+    CAPTURE(hz, solverLabel(solver));
     WorldDef def;
     def.solver = solver;
     World world(def);

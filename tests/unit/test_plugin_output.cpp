@@ -140,7 +140,7 @@ TEST_CASE("a boundary plugin's non-finite sample refuses the step and names the 
           "[unit][bad-input][plugins]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
     const uint32_t workers = GENERATE(1u, 2u);
-    CAPTURE(solverName(solver), workers);
+    CAPTURE(solverLabel(solver), workers);
     Fault fault = Fault::SampleX;
     std::string message;
     SECTION("a sample at x = NaN") {
@@ -186,7 +186,7 @@ TEST_CASE("a boundary plugin's project writing NaN or infinity keeps the particl
     const uint32_t workers = 2;
     const Fault fault =
         GENERATE(Fault::ProjectOneX, Fault::ProjectOneV, Fault::ProjectAll, Fault::ProjectInf);
-    CAPTURE(solverName(solver), workers, int(fault));
+    CAPTURE(solverLabel(solver), workers, int(fault));
     World world = tank(solver, workers, fault);
     const uint32_t count = world.particleCount();
     uint32_t dropped = 0;
@@ -226,7 +226,7 @@ TEST_CASE("a force plugin's huge finite acceleration moves the particle at the s
     // the tank's wall stops them.
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
     const float huge = GENERATE(1e30f, -1e30f, std::numeric_limits<float>::max());
-    CAPTURE(solverName(solver), huge);
+    CAPTURE(solverLabel(solver), huge);
     WorldDef def;
     def.solver = solver;
     World world(def);

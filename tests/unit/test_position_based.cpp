@@ -285,7 +285,7 @@ TEST_CASE("particles stacked on one point are parted, by either solver, the same
     // terms have no direction between particles at one point: without separateStacked they
     // stay stacked for good (the 16k dam's front stacked 52 particles in a wall corner).
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
+    CAPTURE(solverLabel(solver));
     std::vector<glm::vec2> last;
     for (const uint32_t workers : {1u, 3u}) {
         WorldDef def;
@@ -362,7 +362,7 @@ TEST_CASE("the profile names each solver's stages in the order a step runs them"
                                                   "forces",   "integrate", "boundaries",
                                                   "finish"};
     for (const Solver solver : {Solver::PositionBased, Solver::Explicit}) {
-        INFO(solverName(solver));
+        INFO(solverLabel(solver));
         WorldDef def;
         def.solver = solver;
         World world = tank(10, def);

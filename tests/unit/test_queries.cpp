@@ -101,7 +101,7 @@ public:
     }
     void apply(const ForceContext&, uint32_t, uint32_t) override {}
     std::string message;
-    ErrorCode code = ErrorCode::BadInput;
+    ErrorCode code = ErrorCode::BadArgument;
 
 private:
     const World& m_world;
@@ -112,7 +112,7 @@ private:
 TEST_CASE("queries: the particles in a shape are exactly those a scan finds, in index order",
           "[unit][queries]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
+    CAPTURE(solverLabel(solver));
     const World world = mixedTank(solver, 1);
     std::mt19937 rng(7);
     uint32_t nonEmpty = 0;

@@ -11,7 +11,7 @@ using namespace fluid::test;
 
 TEST_CASE("a fresh resting block of each preset reads its rest density", "[unit][density]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    CAPTURE(solverName(solver));
+    CAPTURE(solverLabel(solver));
     for (const Material& preset : {water(), yoghurt()}) {
         CAPTURE(preset.name);
         // The precise preset: the density constraint alone. The game preset's coarse grid reads

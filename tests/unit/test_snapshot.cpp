@@ -108,7 +108,7 @@ World restored(const std::string& bytes, const Registry& registry, uint32_t work
 
 TEST_CASE("snapshot: a restored world continues bit-identically", "[snapshot]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    INFO(fluid::test::solverName(solver));
+    INFO(fluid::test::solverLabel(solver));
     const Registry registry = builtins();
     World original = scene(solver, 1);
     const int before = solver == Solver::Explicit ? 8 : 30;
@@ -136,7 +136,7 @@ TEST_CASE("snapshot: a restored world continues bit-identically", "[snapshot]") 
 TEST_CASE("snapshot: the same state saves to the same bytes, without wall-clock times",
           "[snapshot]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
-    INFO(fluid::test::solverName(solver));
+    INFO(fluid::test::solverLabel(solver));
     // Two worlds stepped alike reach the same state in different wall-clock times.
     World first = scene(solver, 1);
     World second = scene(solver, 1);

@@ -53,29 +53,35 @@ extern "C" {
 /// major version must not use the rest of the library. Any thread.
 FLUID_C_API uint32_t fluid_version(void);
 
-/// What a call did.
+/// What a call did. A failure of the C++ API comes with the status of its fluid::ErrorCode
+/// (docs/errors.md); the message is the C++ one.
 typedef enum fluid_status {
     /// Done.
     FLUID_OK = 0,
-    /// An argument is out of its range, NaN or inconsistent (the message names it).
+    /// An argument is out of its range, NaN or inconsistent (the message names it). C++:
+    /// ErrorCode::BadArgument, ErrorCode::OutOfRange.
     FLUID_ERROR_INVALID_ARGUMENT = 1,
     /// A required pointer argument is NULL.
     FLUID_ERROR_NULL_ARGUMENT = 2,
-    /// An id or particle handle that no longer exists, or belongs to another world.
+    /// An id or particle handle that no longer exists, or belongs to another world. C++:
+    /// ErrorCode::StaleId.
     FLUID_ERROR_STALE_ID = 3,
-    /// A name the library does not know: a preset, a plugin type, a field, a parameter.
+    /// A name the library does not know: a preset, a plugin type, a field, a parameter. C++:
+    /// ErrorCode::UnknownName.
     FLUID_ERROR_UNKNOWN_NAME = 4,
     /// A level file, save or snapshot that cannot be read (the message has file, line, key).
+    /// C++: ErrorCode::BadFile.
     FLUID_ERROR_BAD_FILE = 5,
-    /// A file that cannot be opened or written.
+    /// A file that cannot be opened or written. C++: ErrorCode::Io.
     FLUID_ERROR_IO = 6,
-    /// A limit reached: the world's maxParticles, 65535 materials.
+    /// A limit reached: the world's maxParticles, 65535 materials. C++: ErrorCode::Full.
     FLUID_ERROR_LIMIT = 7,
     /// Memory ran out, in any call (a blob too large for memory, in a world or a level file:
-    /// the message says how many particles it asked for).
+    /// the message says how many particles it asked for). C++: ErrorCode::OutOfMemory.
     FLUID_ERROR_OUT_OF_MEMORY = 8,
     /// The world refused a step or call in its state (a plugin that threw, a host that must step
-    /// it); the message says why.
+    /// it); the message says why. C++: ErrorCode::WrongState, and any error from inside a
+    /// step whose frame time is good (fluid_world_step, fluid_level_step).
     FLUID_ERROR_REFUSED = 9
 } fluid_status;
 
@@ -1030,8 +1036,10 @@ typedef struct fluid_level_options {
 FLUID_C_API fluid_level_options fluid_default_level_options(void);
 
 /// Loads a level file (JSON). FLUID_ERROR_BAD_FILE with "FILE:LINE:COLUMN: at /json/path:
-/// message" for a malformed one, FLUID_ERROR_IO for one that cannot be read. `options` may be
-/// NULL. Destroy the level with fluid_level_destroy.
+/// message" for a malformed one, FLUID_ERROR_UNKNOWN_NAME (same form) for a name nothing is
+/// registered or declared under (a plugin type, a preset, a material the file does not
+/// declare), FLUID_ERROR_IO for one that cannot be read. `options` may be NULL. Destroy the
+/// level with fluid_level_destroy.
 FLUID_C_API fluid_status fluid_level_load(const char* path, const fluid_level_options* options,
                                           fluid_level** level);
 

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -68,12 +69,18 @@ struct Shape {
     }
 };
 
-/// Throws `fluid::Error` if `shape` is not usable (non-finite or non-positive sizes, fewer than
-/// three vertices or more than `kMaxPolygonVertices`, zero area, crossing edges); the message
-/// starts with `who` (e.g. "World::addSensor") and names the field. Time: quadratic in the
-/// vertex count, so at most about 0.13 ms; a longer polygon is refused before any work.
+/// Throws `fluid::Error` (`ErrorCode::BadArgument`) if `shape` is not usable (non-finite or
+/// non-positive sizes, fewer than three vertices or more than `kMaxPolygonVertices`, zero area,
+/// crossing edges): "<who>: <shapeProblem(shape)>", e.g. who = "World::addSensor". Time: quadratic
+/// in the vertex count, so at most about 0.13 ms; a longer polygon is refused before any work.
 /// Thread rule: any thread.
 void validate(const Shape& shape, std::string_view who);
+
+/// What `validate` would refuse in `shape`, without the caller's name ("polygon has zero area",
+/// "radius = -1 must be finite and > 0 (unit: m)"), or "" for a usable shape: for a caller
+/// that reports the problem at its own place (a level file's field). Time and thread rule: as
+/// `validate`.
+std::string shapeProblem(const Shape& shape);
 
 /// True when `point` (unit: m) lies inside `shape` (boundary points of a rectangle or circle
 /// count as inside; polygons use the even-odd rule). Thread rule: any thread.

@@ -1,6 +1,7 @@
 // fluid — 2D SPH liquid for games.
 #pragma once
 
+#include <fluid/error.h>
 #include <fluid/gameplay.h>
 #include <fluid/handle.h>
 #include <fluid/material.h>
@@ -108,6 +109,61 @@ enum class Quality : uint8_t {
 
 /// The position-based settings of a named preset (pure function; any thread).
 PositionBasedDef positionBasedPreset(Quality quality);
+
+/// The solvers' names, as level files ("solver": "explicit") and messages write them: the one
+/// table of them.
+inline constexpr EnumName<Solver> kSolverNames[] = {
+    {Solver::PositionBased, "position_based"},
+    {Solver::Explicit, "explicit"},
+};
+
+/// The name of `solver` ("position_based", "explicit"); "" for a value not listed. Pure
+/// function; any thread.
+constexpr std::string_view solverName(Solver solver) {
+    return nameIn(kSolverNames, solver);
+}
+
+/// The solver named `name` (exact, as `solverName` writes it), nothing for an unknown name.
+/// Pure function; any thread.
+constexpr std::optional<Solver> solverFromName(std::string_view name) {
+    return valueIn(kSolverNames, name);
+}
+
+/// The equations of state's names, as level files ("equationOfState": "linear") and tools
+/// write them: the one table of them.
+inline constexpr EnumName<EquationOfState> kEquationOfStateNames[] = {
+    {EquationOfState::Tait, "tait"},
+    {EquationOfState::Linear, "linear"},
+};
+
+/// The name of `eos` ("tait", "linear"); "" for a value not listed. Pure function; any thread.
+constexpr std::string_view equationOfStateName(EquationOfState eos) {
+    return nameIn(kEquationOfStateNames, eos);
+}
+
+/// The equation of state named `name`, nothing for an unknown name. Pure function; any thread.
+constexpr std::optional<EquationOfState> equationOfStateFromName(std::string_view name) {
+    return valueIn(kEquationOfStateNames, name);
+}
+
+/// The presets' names, as level files ("quality": "precise"), the C API
+/// (fluid_world_def_set_quality) and the tools' --quality write them: the one table of them.
+inline constexpr EnumName<Quality> kQualityNames[] = {
+    {Quality::Game, "game"},
+    {Quality::Precise, "precise"},
+};
+
+/// The name of `quality` ("game", "precise"); "" for a value not listed. Pure function; any
+/// thread.
+constexpr std::string_view qualityName(Quality quality) {
+    return nameIn(kQualityNames, quality);
+}
+
+/// The preset named `name` (exact, as `qualityName` writes it), nothing for an unknown name.
+/// Pure function; any thread.
+constexpr std::optional<Quality> qualityFromName(std::string_view name) {
+    return valueIn(kQualityNames, name);
+}
 
 /// The long-frame rule: how many equal sub-steps a frame of `frameDt` takes when a 1/60 s
 /// frame takes `perFrame` (unit: count). `perFrame` for a frame up to a tenth longer than
@@ -413,9 +469,10 @@ public:
     /// snapshot format. A world loaded from it continues bit-identically. Not saved: the task
     /// hook, the last step's `removedEvents` and the profile's stage times (wall-clock
     /// readings: a loaded world reads 0 for them), so two saves of the same state give the same
-    /// bytes. Throws `fluid::Error` if the stream fails.
+    /// bytes. Throws `fluid::Error` (`ErrorCode::Io`) if the stream fails.
     void save(std::ostream& out) const;
-    /// `save` into the file `path` (replaced); throws `fluid::Error` naming the file.
+    /// `save` into the file `path` (replaced); throws `fluid::Error` (`ErrorCode::Io`) naming
+    /// the file.
     void saveFile(const std::string& path) const;
     /// Reads a snapshot written by `save`. Plugins are re-created by type from `registry`
     /// (load your own plugin libraries into it first). `workerCount` 0 keeps the saved count;
@@ -426,11 +483,14 @@ public:
     /// or plugin type, or a value out of range (naming it: "particle 3 vx = inf is not
     /// finite"); a plugin's parameters pass its own checks, each value and then all together
     /// (`Plugin::checkParams`): "snapshot: boundary plugin 0: plugin 'boundary.box': the inner
-    /// rectangle [0, 1] x [0, -0] is empty; ...". Thread rule: any thread (the new world is the
-    /// caller's).
+    /// rectangle [0, 1] x [0, -0] is empty; ...". The code is `ErrorCode::UnknownName` for a
+    /// plugin type not in `registry`, `ErrorCode::BadFile` for anything else the bytes hold
+    /// (values the API's checks refuse included), `ErrorCode::OutOfMemory` for memory that ran
+    /// out. Thread rule: any thread (the new world is the caller's).
     static World load(std::istream& in, const Registry& registry, uint32_t workerCount = 0,
                       const TaskHook& tasks = {});
-    /// `load` from the file `path`; errors name the file.
+    /// `load` from the file `path`; errors name the file (`ErrorCode::Io` for one that cannot be
+    /// opened).
     static World loadFile(const std::string& path, const Registry& registry,
                           uint32_t workerCount = 0, const TaskHook& tasks = {});
 

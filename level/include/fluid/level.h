@@ -28,12 +28,18 @@ namespace fluid {
 /// JSON pointer, e.g. "/plugins/1/params/radius"); for the whole document (syntax errors, a
 /// missing top-level key) the path is empty and `what()` reads "FILE:LINE:COLUMN: MESSAGE".
 /// LINE:COLUMN point at the offending value, or at the key for an unknown or repeated key.
+/// `code()` is `ErrorCode::BadFile` for malformed contents (syntax, keys, types, ranges,
+/// shapes, repeated names), `ErrorCode::UnknownName` for a name nothing is registered or
+/// declared under (a plugin type or parameter, a preset, a quality, a solver, a material or
+/// another object the file names but does not declare) and `ErrorCode::OutOfMemory` for memory
+/// that ran out making the level's particles (the `std::bad_alloc` nested).
 /// Thread rule: as `fluid::Error`.
 class LevelError : public Error {
 public:
-    /// Builds the message from its parts (line and column start at 1; 0 when unknown).
+    /// Builds the message from its parts (line and column start at 1; 0 when unknown); `code`
+    /// is the kind of failure (`ErrorCode`).
     LevelError(std::string file, uint32_t line, uint32_t column, std::string path,
-               std::string message);
+               std::string message, ErrorCode code = ErrorCode::BadFile);
     /// The file name given to the loader.
     const std::string& file() const { return m_file; }
     /// Line of the offending value (unit: 1-based line number; 0 when unknown).

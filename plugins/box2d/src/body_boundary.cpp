@@ -235,7 +235,8 @@ uint32_t BodyBoundary::findOrBuild(b2Fixture& fixture, const glm::dvec2& localCe
     }
     default:
         throw Error(where(bodyIndex, fixtureIndex) + "unknown Box2D shape type " +
-                    std::to_string(int(shape->GetType())));
+                        std::to_string(int(shape->GetType())),
+                    ErrorCode::BadArgument);
     }
     for (const glm::dvec2 p : points) {
         signature.push_back(float(p.x));
@@ -274,7 +275,7 @@ uint32_t BodyBoundary::findOrBuild(b2Fixture& fixture, const glm::dvec2& localCe
             entry.shape = std::move(chain);
         }
     } catch (const Error& e) {
-        throw Error(where(bodyIndex, fixtureIndex) + e.what());
+        throw Error(where(bodyIndex, fixtureIndex) + e.what(), e.code());
     }
     entry.outline = std::move(points);
     entry.radius = radius;
@@ -414,7 +415,7 @@ void BodyBoundary::prepare(const StepContext& context) {
                 entry.shape->setVelocity(glm::vec2(clampSpeed(v.x), clampSpeed(v.y)), float(omega));
                 entry.shape->prepare(context);
             } catch (const Error& e) {
-                throw Error(where(bodyIndex, fixtureIndex) + e.what());
+                throw Error(where(bodyIndex, fixtureIndex) + e.what(), e.code());
             }
             Collider collider;
             collider.entry = index;

@@ -227,7 +227,8 @@ void Coupling::checkWorld(const World& world, const char* function) const {
         }
     }
     throw Error(std::string("fluid::box2d::Coupling::") + function +
-                ": the world is not the one this coupling was made with");
+                    ": the world is not the one this coupling was made with",
+                ErrorCode::BadArgument);
 }
 
 // Box2D divides by a dynamic body's mass and by its rotational inertia about its centre of mass
@@ -255,7 +256,7 @@ void Coupling::checkBodies(const World& world, const char* function) const {
                   << " kg m^2 about its centre of mass, less than kMinBodyInertia ("
                   << kMinBodyInertia << " kg m^2)";
             }
-            throw Error(s.str());
+            throw Error(s.str(), ErrorCode::OutOfRange);
         }
         // What the fluid throws (shapes.h): pointed polygons thinner than a spacing, bodies
         // lighter than kMinDensityRatio of the densest material, over their coupled fixtures.
@@ -287,7 +288,7 @@ void Coupling::checkBodies(const World& world, const char* function) const {
             std::ostringstream s;
             s << "fluid::box2d::Coupling::" << function << ": dynamic body " << index
               << " (in GetBodyList() order): " << problem.message;
-            throw Error(s.str());
+            throw Error(s.str(), ErrorCode::OutOfRange);
         }
     }
 }
@@ -792,7 +793,7 @@ void Coupling::save(std::ostream& out) const {
         w.put(k);
     }
     if (!out) {
-        throw Error("fluid::box2d::Coupling::save: the stream failed while writing");
+        throw Error("fluid::box2d::Coupling::save: the stream failed while writing", ErrorCode::Io);
     }
 }
 

@@ -24,7 +24,8 @@ void Coupling::setContactEvents(const b2Body* body, bool on) {
     }
     if (!found) {
         throw Error("fluid::box2d::Coupling::setContactEvents: the body is not one of the "
-                    "coupling's b2World (a null, destroyed or another world's body)");
+                    "coupling's b2World (a null, destroyed or another world's body)",
+                    ErrorCode::StaleId);
     }
     if (on) {
         m_contactBodies.insert(body);
@@ -44,8 +45,9 @@ std::span<const ParticleContact> Coupling::particleContacts() const {
 std::span<const ParticleHandle> Coupling::contactParticles(uint32_t contact) const {
     if (contact >= m_particleContacts.size()) {
         throw Error("fluid::box2d::Coupling::contactParticles: contact = " +
-                    std::to_string(contact) + " is out of range: the last step reported " +
-                    std::to_string(m_particleContacts.size()) + " contacts");
+                        std::to_string(contact) + " is out of range: the last step reported " +
+                        std::to_string(m_particleContacts.size()) + " contacts",
+                    ErrorCode::OutOfRange);
     }
     const uint32_t b = m_contactBegin[contact], e = m_contactBegin[contact + 1];
     return std::span<const ParticleHandle>(m_contactHandles).subspan(b, e - b);

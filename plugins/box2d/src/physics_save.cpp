@@ -134,7 +134,8 @@ void putFixture(internal::StreamWriter& w, const b2Fixture& f) {
     }
     default:
         throw Error("fluid::box2d::savePhysics: a fixture has an unknown shape type " +
-                    std::to_string(int(shape->GetType())));
+                        std::to_string(int(shape->GetType())),
+                    ErrorCode::BadArgument);
     }
     w.put(f.GetDensity());
     w.put(f.GetFriction());
@@ -1060,7 +1061,8 @@ void savePhysics(const b2World& physics, std::ostream& out) {
     for (const b2Joint* j = physics.GetJointList(); j != nullptr; j = j->GetNext()) {
         if (j->GetType() != e_revoluteJoint) {
             throw Error("fluid::box2d::savePhysics: joint type " + std::to_string(j->GetType()) +
-                        " (b2JointType) cannot be saved; only revolute joints can");
+                            " (b2JointType) cannot be saved; only revolute joints can",
+                        ErrorCode::BadArgument);
         }
         const auto& r = static_cast<const b2RevoluteJoint&>(*j);
         // GetBodyA and GetBodyB are not const in Box2D 2.4; they only read.
@@ -1080,7 +1082,7 @@ void savePhysics(const b2World& physics, std::ostream& out) {
     }
     putSolverState(w, physics);
     if (!out) {
-        throw Error("fluid::box2d::savePhysics: the stream failed while writing");
+        throw Error("fluid::box2d::savePhysics: the stream failed while writing", ErrorCode::Io);
     }
 }
 

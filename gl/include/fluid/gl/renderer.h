@@ -8,12 +8,13 @@
 #include <fluid/error.h>
 #include <fluid/gl/camera.h>
 #include <fluid/gl/shapes.h>
-#include <fluid/surface_field.h>
 #include <fluid/groups.h>
+#include <fluid/surface_field.h>
 #include <fluid/world.h>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -106,8 +107,22 @@ enum class View : uint8_t {
     Particles,
 };
 
-/// Name of a view: "metaballs", "pressure", "particles".
+/// The views' names, as the demo's --view and screenshots write them: the one table of them.
+inline constexpr EnumName<View> kViewNames[] = {
+    {View::Metaballs, "metaballs"},
+    {View::Pressure, "pressure"},
+    {View::Particles, "particles"},
+};
+
+/// Name of a view: "metaballs", "pressure", "particles" (`kViewNames`); "unknown" for a value not
+/// listed. Pure function; any thread.
 std::string_view viewName(View view);
+
+/// The view named `name` (as `viewName` writes it), nothing for an unknown name. Pure function;
+/// any thread.
+constexpr std::optional<View> viewFromName(std::string_view name) {
+    return valueIn(kViewNames, name);
+}
 
 /// How one material is drawn.
 struct MaterialStyle {

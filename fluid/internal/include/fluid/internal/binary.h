@@ -61,8 +61,8 @@ public:
 };
 
 /// Reads what `ByteWriter` wrote from memory, without copying what it hands out as views.
-/// Every error throws `fluid::Error` "<what>: <message>", naming the field. One thread at a
-/// time; the bytes outlive the reader.
+/// Every error throws `fluid::Error` (`ErrorCode::BadFile`) "<what>: <message>", naming the field.
+/// One thread at a time; the bytes outlive the reader.
 class ByteReader {
 public:
     /// Reads `bytes`; `what` opens every error ("snapshot: corrupt", "level save 'a.sav'").
@@ -113,9 +113,10 @@ public:
     std::size_t remaining() const { return m_data.size() - m_at; }
     /// True when every byte was read.
     bool done() const { return m_at == m_data.size(); }
-    /// Throws `fluid::Error` "<what>: <message>".
-    [[noreturn]] void fail(const std::string& message) const {
-        throw Error(m_what + ": " + message);
+    /// Throws `fluid::Error` "<what>: <message>" with `code` (`ErrorCode::BadFile` unless the
+    /// caller knows better: memory that ran out reading a part).
+    [[noreturn]] void fail(const std::string& message, ErrorCode code = ErrorCode::BadFile) const {
+        throw Error(m_what + ": " + message, code);
     }
 
 private:
@@ -149,7 +150,8 @@ private:
 };
 
 /// Reads what `StreamWriter` wrote, no further than its own fields (a stream may hold more
-/// after them). Every error throws `fluid::Error` "<what>: <message>". One thread at a time.
+/// after them). Every error throws `fluid::Error` (`ErrorCode::BadFile`) "<what>: <message>". One
+/// thread at a time.
 class StreamReader {
 public:
     /// Reads `in`; `what` opens every error ("box2d save").
@@ -207,9 +209,9 @@ public:
         m_in.seekg(at);
         return end >= at ? uint64_t(end - at) : 0;
     }
-    /// Throws `fluid::Error` "<what>: <message>".
+    /// Throws `fluid::Error` (`ErrorCode::BadFile`) "<what>: <message>".
     [[noreturn]] void fail(const std::string& message) const {
-        throw Error(m_what + ": " + message);
+        throw Error(m_what + ": " + message, ErrorCode::BadFile);
     }
 
 private:

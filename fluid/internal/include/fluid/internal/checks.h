@@ -45,8 +45,9 @@ template <class T> std::string formatValue(T value) {
     return s.str();
 }
 
-/// Throws `fluid::Error` "<prefix><field> = <value> is out of range [<lo>, <hi>] (unit:
-/// <unit>)" unless `value` lies in [lo, hi] (a NaN or an infinity never does). Any thread.
+/// Throws `fluid::Error` (`ErrorCode::OutOfRange`) "<prefix><field> = <value> is out of range
+/// [<lo>, <hi>] (unit: <unit>)" unless `value` lies in [lo, hi] (a NaN or an infinity never does).
+/// Any thread.
 template <class T>
 void checkRange(std::string_view prefix, std::string_view field, T value, T lo, T hi,
                 std::string_view unit) {
@@ -58,7 +59,7 @@ void checkRange(std::string_view prefix, std::string_view field, T value, T lo, 
         std::ostringstream s;
         s << prefix << field << " = " << formatValue(value) << " is out of range [" << lo << ", "
           << hi << "] (unit: " << unit << ")";
-        throw Error(s.str());
+        throw Error(s.str(), ErrorCode::OutOfRange);
     }
 }
 
@@ -108,13 +109,14 @@ inline std::string nameProblem(std::string_view name) {
     return {};
 }
 
-/// Throws `fluid::Error` "<what> '<name>': <problem>" (the name `quoted`, the problem
-/// `nameProblem`'s) unless `name` is a good name, e.g. "Registry::add: plugin type 'a\x07':
-/// the name holds a control character (byte 0x07 at offset 1); names are printable text". Any
-/// thread.
+/// Throws `fluid::Error` (`ErrorCode::BadArgument`) "<what> '<name>': <problem>" (the name
+/// `quoted`, the problem `nameProblem`'s) unless `name` is a good name, e.g. "Registry::add: plugin
+/// type 'a\x07': the name holds a control character (byte 0x07 at offset 1); names are printable
+/// text". Any thread.
 inline void checkName(std::string_view what, std::string_view name) {
     if (const std::string problem = nameProblem(name); !problem.empty()) {
-        throw Error(std::string(what) + " " + quoted(name) + ": " + problem);
+        throw Error(std::string(what) + " " + quoted(name) + ": " + problem,
+                    ErrorCode::BadArgument);
     }
 }
 
