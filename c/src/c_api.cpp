@@ -403,19 +403,13 @@ fluid_status fluid_world_set_position_based(fluid_world* world, const fluid_worl
 }
 
 fluid_status fluid_world_time(const fluid_world* world, double* time) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_time");
-        need(time, "fluid_world_time", "time");
-        *time = w.time();
-    });
+    return readWorld(world, "fluid_world_time", time, "time",
+                     [&](const World& w) { return w.time(); });
 }
 
 fluid_status fluid_world_particle_count(const fluid_world* world, uint32_t* count) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_particle_count");
-        need(count, "fluid_world_particle_count", "count");
-        *count = w.particleCount();
-    });
+    return readWorld(world, "fluid_world_particle_count", count, "count",
+                     [&](const World& w) { return w.particleCount(); });
 }
 
 fluid_status fluid_world_positions(const fluid_world* world, const float** x, const float** y,
@@ -593,11 +587,8 @@ fluid_status fluid_world_spacing(const fluid_world* world, fluid_material_id id,
 }
 
 fluid_status fluid_world_material_count(const fluid_world* world, uint32_t* count) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_material_count");
-        need(count, "fluid_world_material_count", "count");
-        *count = w.materialCount();
-    });
+    return readWorld(world, "fluid_world_material_count", count, "count",
+                     [&](const World& w) { return w.materialCount(); });
 }
 
 // ---- Particles and blobs ------------------------------------------------------------------
@@ -684,11 +675,8 @@ fluid_status fluid_world_remove_particle(fluid_world* world, fluid_particle_id i
 
 fluid_status fluid_world_particle_valid(const fluid_world* world, fluid_particle_id id,
                                         bool* valid) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_particle_valid");
-        need(valid, "fluid_world_particle_valid", "valid");
-        *valid = w.isValid(toCpp(id));
-    });
+    return readWorld(world, "fluid_world_particle_valid", valid, "valid",
+                     [&](const World& w) { return w.isValid(toCpp(id)); });
 }
 
 fluid_status fluid_world_particle_position(const fluid_world* world, fluid_particle_id id,
@@ -725,11 +713,8 @@ fluid_status fluid_world_set_particle_velocity(fluid_world* world, fluid_particl
 
 fluid_status fluid_world_particle_at(const fluid_world* world, uint32_t index,
                                      fluid_particle_id* id) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_particle_at");
-        need(id, "fluid_world_particle_at", "id");
-        *id = fluid::c::toC(w.handleAt(index));
-    });
+    return readWorld(world, "fluid_world_particle_at", id, "id",
+                     [&](const World& w) { return fluid::c::toC(w.handleAt(index)); });
 }
 
 // ---- Emitters, drains, sensors, events ----------------------------------------------------
@@ -775,11 +760,8 @@ fluid_status fluid_world_set_emitter(fluid_world* world, fluid_emitter_id id,
 
 fluid_status fluid_world_emitted_count(const fluid_world* world, fluid_emitter_id id,
                                        uint32_t* count) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_emitted_count");
-        need(count, "fluid_world_emitted_count", "count");
-        *count = w.emittedCount(toCpp(id));
-    });
+    return readWorld(world, "fluid_world_emitted_count", count, "count",
+                     [&](const World& w) { return w.emittedCount(toCpp(id)); });
 }
 
 fluid_status fluid_world_add_drain(fluid_world* world, const fluid_drain_def* def,

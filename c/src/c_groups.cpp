@@ -72,20 +72,14 @@ fluid_status fluid_world_spawn_group(fluid_world* world, const fluid_blob_def* b
 }
 
 fluid_status fluid_world_group_valid(const fluid_world* world, fluid_group_id group, bool* valid) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_group_valid");
-        need(valid, "fluid_world_group_valid", "valid");
-        *valid = live(w, group);
-    });
+    return readWorld(world, "fluid_world_group_valid", valid, "valid",
+                     [&](const World& w) { return live(w, group); });
 }
 
 fluid_status fluid_world_particle_group(const fluid_world* world, fluid_particle_id particle,
                                         fluid_group_id* group) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_particle_group");
-        need(group, "fluid_world_particle_group", "group");
-        *group = toC(groupOf(w, fluid::c::toCpp(particle)));
-    });
+    return readWorld(world, "fluid_world_particle_group", group, "group",
+                     [&](const World& w) { return toC(groupOf(w, fluid::c::toCpp(particle))); });
 }
 
 fluid_status fluid_world_set_particle_group(fluid_world* world, fluid_particle_id particle,
@@ -98,10 +92,8 @@ fluid_status fluid_world_set_particle_group(fluid_world* world, fluid_particle_i
 
 fluid_status fluid_world_emitter_group(const fluid_world* world, fluid_emitter_id emitter,
                                        fluid_group_id* group) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_emitter_group");
-        need(group, "fluid_world_emitter_group", "group");
-        *group = toC(emitterGroup(w, fluid::c::toCpp(emitter)));
+    return readWorld(world, "fluid_world_emitter_group", group, "group", [&](const World& w) {
+        return toC(emitterGroup(w, fluid::c::toCpp(emitter)));
     });
 }
 
@@ -124,11 +116,8 @@ fluid_status fluid_world_set_group_def(fluid_world* world, fluid_group_id group,
 
 fluid_status fluid_world_group_count(const fluid_world* world, fluid_group_id group,
                                      uint32_t* count) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_group_count");
-        need(count, "fluid_world_group_count", "count");
-        *count = groupCount(w, toCpp(group));
-    });
+    return readWorld(world, "fluid_world_group_count", count, "count",
+                     [&](const World& w) { return groupCount(w, toCpp(group)); });
 }
 
 fluid_status fluid_world_group_particles(const fluid_world* world, fluid_group_id group,
@@ -154,20 +143,14 @@ fluid_status fluid_world_group_particles(const fluid_world* world, fluid_group_i
 
 fluid_status fluid_world_group_centre(const fluid_world* world, fluid_group_id group,
                                       fluid_vec2* centre) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_group_centre");
-        need(centre, "fluid_world_group_centre", "centre");
-        *centre = fluid::c::toC(groupCentre(w, toCpp(group)));
-    });
+    return readWorld(world, "fluid_world_group_centre", centre, "centre",
+                     [&](const World& w) { return fluid::c::toC(groupCentre(w, toCpp(group))); });
 }
 
 fluid_status fluid_world_group_velocity(const fluid_world* world, fluid_group_id group,
                                         fluid_vec2* velocity) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_group_velocity");
-        need(velocity, "fluid_world_group_velocity", "velocity");
-        *velocity = fluid::c::toC(groupVelocity(w, toCpp(group)));
-    });
+    return readWorld(world, "fluid_world_group_velocity", velocity, "velocity",
+                     [&](const World& w) { return fluid::c::toC(groupVelocity(w, toCpp(group))); });
 }
 
 fluid_status fluid_world_move_group(fluid_world* world, fluid_group_id group, fluid_vec2 offset) {
@@ -203,11 +186,8 @@ fluid_status fluid_world_merge_groups(fluid_world* world, fluid_group_id into,
 
 fluid_status fluid_world_particle_user_data(const fluid_world* world, fluid_particle_id particle,
                                             uint32_t* value) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_particle_user_data");
-        need(value, "fluid_world_particle_user_data", "value");
-        *value = userData(w, fluid::c::toCpp(particle));
-    });
+    return readWorld(world, "fluid_world_particle_user_data", value, "value",
+                     [&](const World& w) { return userData(w, fluid::c::toCpp(particle)); });
 }
 
 fluid_status fluid_world_set_particle_user_data(fluid_world* world, fluid_particle_id particle,
@@ -242,10 +222,8 @@ fluid_status fluid_world_user_data(const fluid_world* world, uint32_t* values, u
 
 fluid_status fluid_world_particle_colour(const fluid_world* world, fluid_particle_id particle,
                                          fluid_colour* colour) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_particle_colour");
-        need(colour, "fluid_world_particle_colour", "colour");
-        *colour = toC(fluid::colour(w, fluid::c::toCpp(particle)));
+    return readWorld(world, "fluid_world_particle_colour", colour, "colour", [&](const World& w) {
+        return toC(fluid::colour(w, fluid::c::toCpp(particle)));
     });
 }
 
@@ -303,11 +281,8 @@ fluid_status fluid_world_set_interpolation_mode(fluid_world* world, uint32_t mod
 }
 
 fluid_status fluid_world_interpolation_factor(const fluid_world* world, float* factor) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const World& w = worldOf(world, "fluid_world_interpolation_factor");
-        need(factor, "fluid_world_interpolation_factor", "factor");
-        *factor = interpolationFactor(w);
-    });
+    return readWorld(world, "fluid_world_interpolation_factor", factor, "factor",
+                     [&](const World& w) { return interpolationFactor(w); });
 }
 
 fluid_status fluid_world_interpolated_positions(const fluid_world* world, float* x, float* y,

@@ -140,4 +140,17 @@ template <class Body> fluid_status guard(fluid_status status, Body&& body) noexc
     }
 }
 
+/// A call that reads one value of a world: checks `world` and `out` (NULL:
+/// FLUID_ERROR_NULL_ARGUMENT naming `what` in `function`), then writes `read(world)` to `*out`;
+/// failures as `guard` turns them into statuses (FLUID_ERROR_INVALID_ARGUMENT for the rest).
+template <class Out, class Read>
+fluid_status readWorld(const fluid_world* world, const char* function, Out* out, const char* what,
+                       Read&& read) noexcept {
+    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
+        const World& w = worldOf(world, function);
+        need(out, function, what);
+        *out = read(w);
+    });
+}
+
 } // namespace fluid::c
