@@ -8,7 +8,8 @@
 #
 # A case is NAME:YIELD:SETTINGS[|MATERIAL], SETTINGS a JSON fragment for the level's "world"
 # object and MATERIAL one for the yoghurt's (after its yield stress); without cases, the set in
-# docs/position_based.md ("Why heaps creep" and "The shear constraint"). One thread, one case
+# docs/notes/stress_pass.md ("Why heaps creep") and docs/yield_stress.md ("The shear
+# constraint"). One thread, one case
 # after the other; about two minutes in all.
 set -euo pipefail
 

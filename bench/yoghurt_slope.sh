@@ -3,7 +3,7 @@
 # rested 4.3 cm layer on a kinematic plank tilted 23 degrees), played 30 s by fluid-run with the
 # level's world settings replaced by each case's. Prints, per case: ms per frame, how far the
 # layer's centroid moved along x from 1 s to 30 s (down the plank is +x) and its lowest point at
-# 30 s (the plank's low end is at 0.39 m). docs/position_based.md, "More sweeps hold less".
+# 30 s (the plank's low end is at 0.39 m). docs/yield_stress.md, "The hold over many sweeps".
 #
 #   bash bench/yoghurt_slope.sh build/release/bench/fluid-run [CASE...]
 #

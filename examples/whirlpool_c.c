@@ -1,5 +1,5 @@
-/* whirlpool_c: a force plugin written in C (fluid/c.h, docs/c_api.md "Plugins written in C"):
- * examples/custom_force.cpp's whirlpool, in C99. A round blob of water in zero gravity, the
+/* whirlpool_c: a force plugin written in C (fluid/c.h; docs/c_api_plugins.md, "Plugins written
+ * in C"): examples/custom_force.cpp's whirlpool, in C99. A round blob of water in zero gravity, the
  * whirlpool at its centre; the blob's angular momentum about the centre every 0.2 s. */
 #include <fluid/c.h>
 

@@ -668,7 +668,8 @@ bool touchesWall(const CoarseGrid& cg, bool bodies) {
 // Where no wall is in reach, the coarse moves keep the momentum: the particles' moves (mass
 // times move) and the bodies' (`bodies`, kg m) sum to zero once the mass-weighted mean is taken
 // off every particle's move. The moves are a bilinear gradient read at the particles, which near
-// a free surface does not sum to zero by itself (docs/position_based.md, "Coarse correction").
+// a free surface does not sum to zero by itself (docs/position_based_method.md, "Coarse
+// correction").
 void keepMomentum(WorldState& s, const double bodies[2]) {
     Particles& p = s.particles;
     PositionBasedScratch& x = s.pbfScratch;

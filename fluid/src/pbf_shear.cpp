@@ -20,7 +20,7 @@
 // dissipates in the return. The structure is what yoghurt's thixotropy is: broken by plastic
 // flow (r = 0), rebuilt at rest over kStructureTime, so a heap that has stopped holds up to
 // (1 + kStructureGain) tau_y and is not set creeping again by the solver's noise
-// (docs/position_based.md, "Yield stress").
+// (docs/yield_stress.md, "Yield stress").
 //
 // Only yielding particles take part, only with yielding neighbours and the walls (boundary
 // samples, as material moving with the wall, weighted by their friction, at most 1). Within a
@@ -276,7 +276,7 @@ std::vector<YieldLaw> shearLaws(const WorldState& s, float dt) {
         // is read explicitly (the stress is read at the positions a sweep leaves): the modulus
         // of a material that asks for none (0), and where a stiffer one's sweeps start to scale
         // their update (jacobiScale). Softer than that cap, a paste's strain stays above the
-        // game preset's noise (docs/position_based.md, "The shear constraint").
+        // game preset's noise (docs/yield_stress.md, "The shear constraint").
         const float speed = tuning::kShearWave * mc.support / dt;
         const float stiffest = mc.restDensity * speed * speed;
         const float g = mc.shearModulus > 0.0f ? mc.shearModulus : stiffest;

@@ -1,6 +1,6 @@
 // fluid — every tuning constant of the position-based solver, each with its reason in one line.
-// The measurements that chose them are in docs/position_based.md, "Tuning constants", under the
-// constant's name; change one only with a measurement there. Only <cstdint> (types, no
+// The measurements that chose them are in docs/notes/pbf_tuning_constants.md, "Tuning constants",
+// under the constant's name; change one only with a measurement there. Only <cstdint> (types, no
 // functions), so the per-instruction-set pair passes may include it (simd/pair_view.h).
 #pragma once
 
@@ -47,10 +47,11 @@ inline constexpr float kViscosityFactor = 0.5f;
 // Longest run (unit: s) over which vorticity confinement gives back its full share (both
 // presets' runs: the game preset's 1/120 s, the precise one's 1/240 s); longer runs (fewer
 // sub-steps, a longer viscosityInterval) give back proportionally less: at full share the
-// confinement outgrows the damping (docs/position_based.md, Velocity, viscosity, surface).
+// confinement outgrows the damping (docs/position_based_method.md, "Velocity, viscosity, surface").
 inline constexpr float kVorticityRun = 1.0f / 120.0f;
 // Most viscosity passes per run: beyond them each pass stays at kViscosityFactor, and the
-// viscosity the run applies is capped (docs/position_based.md, Velocity, viscosity, surface).
+// viscosity the run applies is capped (docs/position_based_method.md, "Velocity, viscosity,
+// surface").
 inline constexpr uint32_t kMaxViscosityPasses = 32;
 /// Share of the support a shear wave may cross per viscosity run: the cap on a yielding
 /// material's shear modulus, G <= rho0 (kShearWave h / dt)^2.
@@ -62,7 +63,7 @@ inline constexpr float kAdhesion = 0.5f;
 inline constexpr float kCarriedStrain = 1.0f;
 /// The shear constraint (pbf_shear.cpp): how much a rebuilt structure raises the yield stress
 /// at rest (tau_y (1 + this r)), so the solver's noise does not set a resting heap creeping
-/// again (the figures for 0, 0.5 and 1: docs/position_based.md, "The shear constraint").
+/// again (the figures for 0, 0.5 and 1: docs/yield_stress.md, "The shear constraint").
 inline constexpr float kStructureGain = 1.0f;
 /// Time over which a structure rebuilds at rest (s): r += (1 - r) dt / this per sub-step.
 inline constexpr float kStructureTime = 0.5f;
@@ -70,7 +71,7 @@ inline constexpr float kStructureTime = 0.5f;
 /// sub-step, from moving away from the walls within its support, and along them, in units of
 /// dt^2 2 tau |S_w| / rho0 (what its yield stress carries across the walls' band, S_w the walls'
 /// kernel gradient sum: the stress pass's adhesion). Along the walls times r^4 of its structure
-/// r, so only paste that has rested there sticks (the figures: docs/position_based.md, "The
+/// r, so only paste that has rested there sticks (the figures: docs/yield_stress.md, "The
 /// shear constraint").
 inline constexpr float kWallHoldAcross = 3.0f;
 inline constexpr float kWallHoldAlong = 1.5f;
@@ -81,7 +82,7 @@ inline constexpr float kLeastCorrection = 0.25f;
 /// Material::shearModulus): each sweep's stress update is scaled by 1 / (1 + q), q this times
 /// 2 G over the particle's own compliance (a Jacobi step whose diagonal stands for its
 /// neighbours' too), times the share of G above the cap. Below the cap q is 0: the explicit
-/// update (docs/position_based.md, "The shear constraint": *Stiff pastes*).
+/// update (docs/yield_stress.md, "The shear constraint": *Stiff pastes*).
 inline constexpr float kShearJacobi = 20.0f;
 
 // ---- the coarse correction (pbf_coarse.cpp) -------------------------------------------------
@@ -105,11 +106,11 @@ inline constexpr float kCoarseFrame = 0.9f;
 inline constexpr float kCoarseMaxMove = 0.25f;
 /// Longest coarse move of a rigid body per sub-step, in coarse cells: the body's plugin projects
 /// the particles out of it without this move, which reaches it only after the step
-/// (docs/position_based.md, "Tuning constants").
+/// (docs/notes/pbf_tuning_constants.md, "Tuning constants").
 inline constexpr float kCoarseBodyMaxMove = 0.05f;
 /// Nearest a fluid node's zero of the potential may lie to it, in cells (the free surface,
 /// placed where the fill crosses 1/2 between the node and its air neighbour): the operator's
-/// diagonal grows by 1/theta, so this bounds it at 10 (docs/position_based.md, "Tuning
+/// diagonal grows by 1/theta, so this bounds it at 10 (docs/notes/pbf_tuning_constants.md, "Tuning
 /// constants").
 inline constexpr float kCoarseSurfaceMin = 0.1f;
 

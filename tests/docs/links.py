@@ -6,7 +6,6 @@ in the text (`docs/<name>.md`, `bench/<name>.md`); each must name a file of the 
 (anchors and web addresses are not checked). Every page of docs/ is in the README's docs index
 and in docs/README.md, and every study of docs/notes/ in docs/README.md. Fails naming the file,
 line and missing target or page.
-docs/errors.md is written on another branch (the error codes); until it lands it may be missing.
 Usage: python3 tests/docs/links.py [project root]   (ctest: docs.links)
 """
 import pathlib
@@ -15,7 +14,6 @@ import sys
 
 root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parents[2])
 me = "tests/docs/links.py"
-pending = {"docs/errors.md"}
 
 link = re.compile(r"\]\(([^)\s#]+)(?:#[^)]*)?\)")
 named = re.compile(r"(?<![\w/.-])((?:docs|bench)/[A-Za-z0-9_/.-]+\.md)")
@@ -39,7 +37,7 @@ for page in [root / "README.md"] + sorted((root / "docs").rglob("*.md")):
         for path, text in targets:
             checked += 1
             relative = path.relative_to(root) if path.is_relative_to(root) else path
-            if not path.exists() and str(relative) not in pending:
+            if not path.exists():
                 failures.append(f"{page.relative_to(root)}:{number}: {text}: no such file")
 
 # The indexes: the README's "## Docs" list and docs/README.md.

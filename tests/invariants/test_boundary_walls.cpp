@@ -130,7 +130,7 @@ TEST_CASE("walls: next to a concave polygon and a circle the fluid reads the int
           "[slow][walls]") {
     Stopwatch watch("near-wall density, position-based");
     // The precise preset: the game preset presses the water onto curved walls and leaves a gap
-    // at the post (docs/position_based.md, "Presets").
+    // at the post (docs/position_based.md, "Which preset").
     World world(preciseDef());
     const MaterialId water = world.addMaterial(fluid::water());
     const float s = world.spacing(water);

@@ -57,7 +57,7 @@ TEST_CASE("a yoghurt blob dropped into water: both materials interact",
     CAPTURE(solverLabel(solver));
     Stopwatch sw(std::string("yoghurt into water 1.2 s, ") + solverLabel(solver));
     // The precise preset: the game preset's single sweep lets the two materials' particles come
-    // closer than asked at the impact (docs/position_based.md, "Presets").
+    // closer than asked at the impact (docs/position_based.md, "Which preset").
     World world(preciseDef(solver));
     const MaterialId w = world.addMaterial(water()); // first: the walls are sampled at its spacing
     const MaterialId y = world.addMaterial(forSolver(yoghurt(), solver));

@@ -157,7 +157,7 @@ TEST_CASE("zero-g water and yoghurt blobs collide and keep their momentum over 1
 // the viscosity act in pairs and the coarse solve's moves sum to zero where no wall is in reach,
 // so the total momentum stays within 1e-3 of the sum of |m v| over 2 s, with both presets, water
 // against water and against yoghurt. The precise preset with yoghurt is held to 1.1e-3: the
-// yoghurt's stress pass loses a little at the impact (docs/position_based.md, "Coarse
+// yoghurt's stress pass loses a little at the impact (docs/position_based_method.md, "Coarse
 // correction").
 TEST_CASE("zero-g blobs meeting at 10 m/s keep their momentum, game and precise presets",
           "[slow][invariants][momentum]") {

@@ -123,7 +123,7 @@ TEST_CASE("each preset holds the 0.5 m resting tank to its stated accuracy",
         CHECK(r.end.mean <= 0.05);
         CHECK(r.end.max <= 0.10);
         // The game preset's surface target, as decided for bodies in its coarse solve: within
-        // 3%, averaged over the last second (docs/position_based.md, "Presets").
+        // 3%, averaged over the last second (docs/position_based.md, "Which preset").
         CHECK(std::fabs(r.surfaceLastSecond) <= 0.03);
         CHECK(r.thrown == 0);
         // One sweep per sub-step leaves the tank moving a little (7e-4 J/kg, 4 cm/s rms; the
@@ -152,7 +152,7 @@ TEST_CASE("fewer sweeps trade compression, not coherence: resting tanks at every
     // second sub-step) down to 3 x 1 (viscosity once a frame), 1 x 4 and 2 x 2, and the precise
     // preset. Not yet here: 1 x 1
     // (the 0.6 m water tank ends 2.3% above its start) and 2 x 1 (particles thrown while the
-    // water tank settles); docs/position_based.md, "Coarse correction".
+    // water tank settles); docs/position_based_method.md, "Coarse correction".
     struct Setting {
         uint32_t substeps, iterations, interval;
         float coarse;

@@ -33,7 +33,7 @@ WorldDef gameDef(uint32_t workers = 0) {
 }
 
 /// The yoghurt preset at `tauY` (Pa), by default without surface tension: the heap law has
-/// none (the preset's 0.1 holds heaps taller; docs/position_based.md "The shear constraint").
+/// none (the preset's 0.1 holds heaps taller; docs/yield_stress.md "The shear constraint").
 Material paste(float tauY, float surfaceTension = 0.0f) {
     Material m = yoghurt();
     m.yieldStress = tauY;
@@ -67,7 +67,7 @@ World blockOnFloor(const WorldDef& def, float tauY, uint32_t cols, uint32_t rows
 // 10 to 40 s, and every one must be at rest at 40 s within the heap law's width; without
 // surface tension and with the preset's (0.1: the heap rests taller, and without the walls'
 // hold it crept 71-95 mm). The figures per start, and the stress pass's creep on the same
-// block: docs/position_based.md, "The shear constraint".
+// block: docs/yield_stress.md, "The shear constraint".
 TEST_CASE("with the shear constraint a yoghurt block slumps into a heap that comes to rest at "
           "the game preset",
           "[slow][sweep][invariants][yield][shear]") {
@@ -107,7 +107,7 @@ TEST_CASE("with the shear constraint a yoghurt block slumps into a heap that com
 // and nine tenths of the half width, at five starts 2.5 mm apart with the game preset and three
 // with the precise preset (chaotic, as the block above). The issue's average target (within
 // 10%) is asked; its column-by-column one (20%) is missed, so the median heap's farthest column
-// is held where it is measured (docs/position_based.md, "The shear constraint" and "The hold
+// is held where it is measured (docs/yield_stress.md, "The shear constraint" and "The hold
 // over many sweeps").
 TEST_CASE("with the shear constraint a heap follows h^2 = 2 tau_y d / (rho g)",
           "[slow][invariants][yield][shear]") {
@@ -196,7 +196,7 @@ TEST_CASE("with the shear constraint a layer of thick yoghurt hangs on a wall, a
 
 // The same layer of the preset (400 Pa) spawned with a rested structure (BlobDef::structure 1)
 // grips the wall from the first step; spawned freshly sheared (0, the default) it slides down
-// until its structure has rebuilt (the figures: docs/position_based.md, "The starting
+// until its structure has rebuilt (the figures: docs/yield_stress.md, "The starting
 // structure").
 TEST_CASE("with the shear constraint a rested layer grips a wall from the first step, a fresh one "
           "slides first",

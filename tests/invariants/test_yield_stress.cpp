@@ -34,7 +34,7 @@ TEST_CASE("a yield-stress block slumps into a heap that follows h^2 = 2 tau_y d 
     Stopwatch sw("yield heap, tau_y " + std::to_string(int(tauY)));
     // The stress pass's heap (the figures above are its own); the shear constraint's, the
     // default, is test_shear_constraint.cpp's. The precise preset: at the game preset the
-    // stress pass's heaps creep (docs/position_based.md, "Presets" and "Yield stress").
+    // stress pass's heaps creep (docs/position_based.md, "Which preset" and "Yield stress").
     WorldDef def = preciseDef();
     def.positionBased.shearConstraint = 0;
     World world(def);
@@ -138,7 +138,7 @@ TEST_CASE("thick yoghurt thrown at a wall sticks to it, water runs down",
     const bool yielding = GENERATE(true, false);
     CAPTURE(yielding);
     // The precise preset: the game preset holds less of the paste on the wall
-    // (docs/position_based.md, "Presets").
+    // (docs/position_based.md, "Which preset").
     World world(preciseDef());
     Material thick = yoghurt();
     thick.yieldStress = 300.0f;
@@ -257,11 +257,11 @@ TEST_CASE("yoghurt keeps momentum in zero gravity and gives bit-identical states
 // A 0.15 x 0.3 m block released in a closed box, at the corners of every yielding field's
 // documented range, thrown sideways at 3 m/s or let go: a stiff material must not give back
 // more energy than it lost, since the step stores no stress above a strain of 1 (kCarriedStrain;
-// the figures before and after: docs/position_based.md, "No stress above a strain of 1"). The
+// the figures before and after: docs/yield_stress.md, "No stress above a strain of 1"). The
 // same with the shear constraint (PositionBasedDef::shearConstraint): at the precise preset a
 // 1e5 Pa block of its own shear modulus stands as the stress pass's does; with the modulus the
 // solver picks, and at the game preset with either model, it sags, so those tops are printed,
-// not asked (the figures: docs/position_based.md, "The shear constraint": *Stiff pastes*).
+// not asked (the figures: docs/yield_stress.md, "The shear constraint": *Stiff pastes*).
 TEST_CASE("a block at the corners of the yield-stress ranges never gains energy, and a stiff "
           "block stands",
           "[slow][invariants][yield]") {

@@ -394,7 +394,7 @@ TEST_CASE("big_tank.json: the stress level's particles stay in the tank, sanely 
     // Compression from the positions alone (bench/compression.h, as the preset tests read it):
     // the solver's own reading (Profile::densityErrorMax) is taken before the game preset's
     // coarse correction and single sweep are done with a sub-step, so it reads about twice
-    // the positions' figure at rest (docs/position_based.md, "Presets").
+    // the positions' figure at rest (docs/position_based.md, "Which preset").
     bench::CompressionMeter meter(level.world.spacing(MaterialId{0}));
     for (int f = 0; f < frames; ++f) {
         ms += play(level, 1);

@@ -72,7 +72,7 @@ TEST_CASE("handles follow their particles through steps", "[unit][handles]") {
     CAPTURE(solverLabel(solver));
     // The precise preset: with no wall in reach the game preset's coarse correction keeps the
     // momentum by taking its moves' mean off every particle, the lone one too
-    // (docs/position_based.md, "Presets").
+    // (docs/position_based.md, "Which preset").
     WorldDef def;
     def.positionBased = positionBasedPreset(Quality::Precise);
     def.solver = solver;

@@ -16,7 +16,7 @@ TEST_CASE("a fresh resting block of each preset reads its rest density", "[unit]
         CAPTURE(preset.name);
         // The precise preset: the density constraint alone. The game preset's coarse grid reads
         // a lattice's bilinear fill past its dead band and moves the block
-        // (docs/position_based.md, "Presets").
+        // (docs/position_based.md, "Which preset").
         WorldDef def;
         def.positionBased = positionBasedPreset(Quality::Precise);
         def.solver = solver;

@@ -1369,7 +1369,7 @@ FLUID_C_API fluid_status fluid_world_interpolated_positions(const fluid_world* w
                                                             float factor, uint32_t* count);
 
 /* ------------------------------------------------------------------------------------------ */
-/* Contact events (C++ fluid/contacts.h; docs/c_api.md, "Contact events")                      */
+/* Contact events (C++ fluid/contacts.h; docs/c_api_levels.md, "Contact events")                  */
 /* ------------------------------------------------------------------------------------------ */
 
 /// What the liquid did to one body that asked for contact events during the last step (C++

@@ -58,8 +58,8 @@ struct PositionBasedDef {
     /// 8 iterations). Fewer are faster and
     /// more compressible; a particle moves at most two support radii per sub-step (faster ones
     /// are slowed and counted in `Profile::speedClamped`). Without the coarse correction, below
-    /// 3 x 3, 6 x 2 or 8 x 1 a deep tank boils (docs/position_based.md, "Settings"). Above 12
-    /// the game preset gains energy and the precise one costs over 38 ms per 2,000-particle
+    /// 3 x 3, 6 x 2 or 8 x 1 a deep tank boils (docs/position_based_method.md, "Settings"). Above
+    /// 12 the game preset gains energy and the precise one costs over 38 ms per 2,000-particle
     /// frame (docs/levels.md, Corners).
     uint32_t substeps = 4;
     /// Density-constraint iterations (Jacobi sweeps) per sub-step (unit: count; range
@@ -76,31 +76,31 @@ struct PositionBasedDef {
     /// (unit: 1; range [0, 1]; 0 turns it off). The sweeps carry pressure about one support
     /// radius each, so a deep tank needs many of them; the coarse correction removes the
     /// large-scale compression (above 5%) in one grid solve, which lets few sweeps hold deep
-    /// water (docs/position_based.md, "Coarse correction"). Default 0.4 (`Quality::Game`;
+    /// water (docs/position_based_method.md, "Coarse correction"). Default 0.4 (`Quality::Game`;
     /// `Quality::Precise`: 0).
     float coarseCorrection = 0.4f;
     /// Vorticity confinement strength epsilon (unit: 1; range [0, 1]): the share of a vortex's
     /// rotation speed at one support radius given back per radian turned, when the surface
     /// pass runs every 1/120 s or more often (both presets); longer runs give back
     /// proportionally less (the confinement feeds
-    /// the spin it reads; docs/position_based.md, Velocity, viscosity, surface).
+    /// the spin it reads; docs/position_based_method.md, "Velocity, viscosity, surface").
     /// 0 turns it off.
     float vorticity = 0.0f;
     /// How materials with a yield stress step (unit: switch; range [0, 1]): 1 with the
     /// elastoplastic shear constraint inside the sweeps, an elastic state and a structure per
     /// particle returned to the Herschel-Bulkley surface after every sweep, heaps that come to
     /// rest at the game preset; 0 with the stress pass after the solve (heaps creep at the game
-    /// preset; docs/position_based.md, "Yield stress"). Newtonian materials step the same
+    /// preset; docs/yield_stress.md, "Yield stress"). Newtonian materials step the same
     /// either way, bit for bit. Default 1 (both presets). Stepping thread, between steps.
     uint32_t shearConstraint = 1;
 };
 
 /// Named accuracy presets of the position-based solver (`positionBasedPreset`;
-/// docs/position_based.md, "Presets", has their measured compression and cost).
+/// docs/position_based.md, "Which preset", has their measured compression and cost).
 enum class Quality : uint8_t {
     /// The default (`PositionBasedDef{}`): 4 sub-steps x 1 iteration with the coarse correction
     /// (0.4), viscosity and surface tension every second sub-step: about a quarter of
-    /// `Precise`'s cost for a few times its compression (docs/position_based.md, "Presets").
+    /// `Precise`'s cost for a few times its compression (docs/position_based.md, "Which preset").
     Game,
     /// 4 sub-steps x 8 iterations, no coarse correction, viscosity every sub-step: the least
     /// compression and the calmest floating Box2D bodies (docs/box2d.md, "Which preset").
@@ -247,7 +247,7 @@ struct BlobDef {
     /// an emitter pours it, which holds its yield stress at once but grips walls only as its
     /// structure rebuilds (about 0.5 s: a layer put on a wall first sags 1.5-11 cm); 1 is paste
     /// that has rested, which grips walls and holds up to twice its yield stress from the
-    /// first step (docs/position_based.md, "The shear constraint"). Unused for other
+    /// first step (docs/yield_stress.md, "The shear constraint"). Unused for other
     /// materials.
     float structure = 0.0f;
     // ---- Groups (groups.h) ----

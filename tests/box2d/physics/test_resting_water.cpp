@@ -3,7 +3,7 @@
 // own `boundary.box`, and with the Box2D tank's static walls coupled too (the floor and walls
 // twice, as a user gets who builds Box2D walls where the fluid's box is and does not filter them
 // out). `fluid-float --no-body [--doubled]` measures the same tanks (and 0.6 m deep ones);
-// docs/position_based.md, "Resting water", has every variant's figures.
+// docs/notes/pbf_resting_water.md, "Resting water", has every variant's figures.
 #include "box2d_support.h"
 
 #include <fluid/box2d/coupling.h>
@@ -61,7 +61,7 @@ TEST_CASE("resting water: a 0.2 m tank comes to rest, its floor and walls single
     // The precise preset meets the target: under 0.5 cm/s on average and 3 cm/s at most.
     const Rest precise = settle(Quality::Precise, doubled);
     // The game preset (the default) does not yet: held against getting worse than its shipped
-    // figures by more than a quarter until a fix lands (docs/position_based.md, "Resting
+    // figures by more than a quarter until a fix lands (docs/notes/pbf_resting_water.md, "Resting
     // water", has both presets' figures).
     const Rest game = settle(Quality::Game, doubled);
     std::printf("[measure] resting water 0.2 m%s, seconds 8-10: precise mean %.4f largest %.4f "
