@@ -3,10 +3,12 @@
 #pragma once
 
 #include <fluid/error.h>
+#include <fluid/world.h>
 
 #include <CLI/CLI.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -35,6 +37,24 @@ std::vector<std::string> namesOf(const EnumName<Enum> (&table)[N]) {
         names.emplace_back(row.name);
     }
     return names;
+}
+
+/// The --quality option of the tools that step a world of their own: `quality` is set to
+/// "game" and takes one of the presets' names (`fluid::kQualityNames`). Main thread.
+inline CLI::Option* addQualityOption(CLI::App& app, std::string& quality,
+                                     const std::string& description) {
+    quality = std::string(qualityName(Quality::Game));
+    return app.add_option("--quality", quality, description)
+        ->check(CLI::IsMember(namesOf(kQualityNames)));
+}
+
+/// A world definition with the position-based preset named `quality` (as --quality checked it)
+/// and `threads` workers (unit: count; [1, 256]). Any thread.
+inline WorldDef presetWorldDef(const std::string& quality, uint32_t threads) {
+    WorldDef def;
+    def.positionBased = positionBasedPreset(qualityFromName(quality).value_or(Quality::Game));
+    def.workerCount = threads;
+    return def;
 }
 
 } // namespace fluid::tools

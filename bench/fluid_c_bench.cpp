@@ -57,22 +57,18 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 int main(int argc, char** argv) {
     CLI::App app{"fluid-c-bench: the C API's cost over the C++ API on the dam"};
     uint32_t particles = 4000, frames = 120, rounds = 6, threads = 1;
-    std::string quality{fluid::qualityName(fluid::Quality::Game)};
+    std::string quality;
     app.add_option("--particles", particles, "Particles, about")->check(CLI::Range(100u, 1000000u));
     app.add_option("--frames", frames, "Frames per round and side")->check(CLI::Range(1u, 100000u));
     app.add_option("--rounds", rounds, "Rounds, each side in turn")->check(CLI::Range(1u, 1000u));
     app.add_option("--threads", threads, "Workers of each world")->check(CLI::Range(1u, 256u));
-    app.add_option("--quality", quality, "game or precise")
-        ->check(CLI::IsMember(fluid::tools::namesOf(fluid::kQualityNames)));
+    fluid::tools::addQualityOption(app, quality, "game or precise");
     if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
         return status;
     }
 
     // The C++ side.
-    fluid::WorldDef def;
-    def.positionBased =
-        fluid::positionBasedPreset(fluid::qualityFromName(quality).value_or(fluid::Quality::Game));
-    def.workerCount = threads;
+    fluid::WorldDef def = fluid::tools::presetWorldDef(quality, threads);
     fluid::World cpp(def);
     const fluid::MaterialId water = cpp.addMaterial(fluid::water());
     const Dam dam = damFor(particles, cpp.spacing(water));

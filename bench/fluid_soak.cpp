@@ -128,17 +128,13 @@ int main(int argc, char** argv) {
                    "Before this frame's step, save the world, the Box2D world and the coupling "
                    "to PREFIX.world, PREFIX.b2d and PREFIX.coupling (to replay a failure)");
     app.add_option("--dump", dumpPrefix, "PREFIX for --dump-frame");
-    std::string quality{fluid::qualityName(fluid::Quality::Game)};
-    app.add_option("--quality", quality, "The position-based preset: game (the default) or precise")
-        ->check(CLI::IsMember(fluid::tools::namesOf(fluid::kQualityNames)));
+    std::string quality;
+    fluid::tools::addQualityOption(app, quality, "The position-based preset: game (the default) or precise");
     if (const int status = fluid::tools::parseCommandLine(app, argc, argv); status >= 0) {
         return status;
     }
 
-    fluid::WorldDef def;
-    def.positionBased =
-        fluid::positionBasedPreset(fluid::qualityFromName(quality).value_or(fluid::Quality::Game));
-    def.workerCount = threads;
+    fluid::WorldDef def = fluid::tools::presetWorldDef(quality, threads);
     def.maxParticles = 40000;
     fluid::World world(def);
     const fluid::MaterialId water = world.addMaterial(fluid::water());

@@ -84,10 +84,8 @@ fluid_status fluid_world_particle_group(const fluid_world* world, fluid_particle
 
 fluid_status fluid_world_set_particle_group(fluid_world* world, fluid_particle_id particle,
                                             fluid_group_id group) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        World& w = worldOf(world, "fluid_world_set_particle_group");
-        setGroup(w, fluid::c::toCpp(particle), toCpp(group));
-    });
+    return changeWorld(world, "fluid_world_set_particle_group",
+                       [&](World& w) { setGroup(w, fluid::c::toCpp(particle), toCpp(group)); });
 }
 
 fluid_status fluid_world_emitter_group(const fluid_world* world, fluid_emitter_id emitter,
@@ -99,8 +97,7 @@ fluid_status fluid_world_emitter_group(const fluid_world* world, fluid_emitter_i
 
 fluid_status fluid_world_set_emitter_group(fluid_world* world, fluid_emitter_id emitter,
                                            fluid_group_id group) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        World& w = worldOf(world, "fluid_world_set_emitter_group");
+    return changeWorld(world, "fluid_world_set_emitter_group", [&](World& w) {
         setEmitterGroup(w, fluid::c::toCpp(emitter), toCpp(group));
     });
 }
@@ -154,34 +151,26 @@ fluid_status fluid_world_group_velocity(const fluid_world* world, fluid_group_id
 }
 
 fluid_status fluid_world_move_group(fluid_world* world, fluid_group_id group, fluid_vec2 offset) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        World& w = worldOf(world, "fluid_world_move_group");
-        moveGroup(w, toCpp(group), toVec(offset));
-    });
+    return changeWorld(world, "fluid_world_move_group",
+                       [&](World& w) { moveGroup(w, toCpp(group), toVec(offset)); });
 }
 
 fluid_status fluid_world_set_group_velocity(fluid_world* world, fluid_group_id group,
                                             fluid_vec2 velocity) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        World& w = worldOf(world, "fluid_world_set_group_velocity");
-        setGroupVelocity(w, toCpp(group), toVec(velocity));
-    });
+    return changeWorld(world, "fluid_world_set_group_velocity",
+                       [&](World& w) { setGroupVelocity(w, toCpp(group), toVec(velocity)); });
 }
 
 fluid_status fluid_world_destroy_group(fluid_world* world, fluid_group_id group,
                                        bool with_particles) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        World& w = worldOf(world, "fluid_world_destroy_group");
-        destroyGroup(w, toCpp(group), with_particles);
-    });
+    return changeWorld(world, "fluid_world_destroy_group",
+                       [&](World& w) { destroyGroup(w, toCpp(group), with_particles); });
 }
 
 fluid_status fluid_world_merge_groups(fluid_world* world, fluid_group_id into,
                                       fluid_group_id from) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        World& w = worldOf(world, "fluid_world_merge_groups");
-        mergeGroups(w, toCpp(into), toCpp(from));
-    });
+    return changeWorld(world, "fluid_world_merge_groups",
+                       [&](World& w) { mergeGroups(w, toCpp(into), toCpp(from)); });
 }
 
 fluid_status fluid_world_particle_user_data(const fluid_world* world, fluid_particle_id particle,
@@ -192,18 +181,14 @@ fluid_status fluid_world_particle_user_data(const fluid_world* world, fluid_part
 
 fluid_status fluid_world_set_particle_user_data(fluid_world* world, fluid_particle_id particle,
                                                 uint32_t value) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        World& w = worldOf(world, "fluid_world_set_particle_user_data");
-        setUserData(w, fluid::c::toCpp(particle), value);
-    });
+    return changeWorld(world, "fluid_world_set_particle_user_data",
+                       [&](World& w) { setUserData(w, fluid::c::toCpp(particle), value); });
 }
 
 fluid_status fluid_world_set_group_user_data(fluid_world* world, fluid_group_id group,
                                              uint32_t value) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        World& w = worldOf(world, "fluid_world_set_group_user_data");
-        setGroupUserData(w, toCpp(group), value);
-    });
+    return changeWorld(world, "fluid_world_set_group_user_data",
+                       [&](World& w) { setGroupUserData(w, toCpp(group), value); });
 }
 
 fluid_status fluid_world_user_data(const fluid_world* world, uint32_t* values, uint32_t capacity,
@@ -229,18 +214,14 @@ fluid_status fluid_world_particle_colour(const fluid_world* world, fluid_particl
 
 fluid_status fluid_world_set_particle_colour(fluid_world* world, fluid_particle_id particle,
                                              fluid_colour colour) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        World& w = worldOf(world, "fluid_world_set_particle_colour");
-        setColour(w, fluid::c::toCpp(particle), toCpp(colour));
-    });
+    return changeWorld(world, "fluid_world_set_particle_colour",
+                       [&](World& w) { setColour(w, fluid::c::toCpp(particle), toCpp(colour)); });
 }
 
 fluid_status fluid_world_set_group_colour(fluid_world* world, fluid_group_id group,
                                           fluid_colour colour) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        World& w = worldOf(world, "fluid_world_set_group_colour");
-        setGroupColour(w, toCpp(group), toCpp(colour));
-    });
+    return changeWorld(world, "fluid_world_set_group_colour",
+                       [&](World& w) { setGroupColour(w, toCpp(group), toCpp(colour)); });
 }
 
 fluid_status fluid_world_colours(const fluid_world* world, const fluid_colour** colours,

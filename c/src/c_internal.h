@@ -153,4 +153,11 @@ fluid_status readWorld(const fluid_world* world, const char* function, Out* out,
     });
 }
 
+/// A call that changes a world: checks `world`, then runs `change(world)`; failures as `guard`
+/// turns them into statuses (FLUID_ERROR_INVALID_ARGUMENT for the rest).
+template <class Change>
+fluid_status changeWorld(fluid_world* world, const char* function, Change&& change) noexcept {
+    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] { change(worldOf(world, function)); });
+}
+
 } // namespace fluid::c

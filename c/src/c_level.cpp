@@ -60,6 +60,19 @@ Id findNamed(const std::vector<std::pair<std::string, Id>>& entries, const char*
                                                 " named " + internal::quoted(name)};
 }
 
+// fluid_level_find_material, _emitter, _drain, _sensor: the id of the object named `name` in
+// the level's list `entries`, written to `*id` as `toId` converts it.
+template <class CId, class Id, class ToId>
+fluid_status findInLevel(const fluid_level* level, const char* name, CId* id,
+                         std::vector<std::pair<std::string, Id>> Level::*entries, const char* what,
+                         const char* function, ToId&& toId) {
+    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
+        const Level& l = levelOf(level, function);
+        need(id, function, "id");
+        *id = toId(findNamed(l.*entries, name, what, function));
+    });
+}
+
 // Body `index` of fluid_level_body's list: the file's bodies, then the added ones.
 b2Body* bodyAt(const fluid_level& level, uint32_t index, const char* function,
                const char** name = nullptr) {
@@ -206,41 +219,26 @@ fluid_status fluid_level_goal(const fluid_level* level, fluid_goal_state* state,
 
 fluid_status fluid_level_find_material(const fluid_level* level, const char* name,
                                        fluid_material_id* id) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const Level& l = levelOf(level, "fluid_level_find_material");
-        need(id, "fluid_level_find_material", "id");
-        *id = fluid::c::toC(findNamed(l.materials, name, "material", "fluid_level_find_material"));
-    });
+    return findInLevel(level, name, id, &Level::materials, "material", "fluid_level_find_material",
+                       [](MaterialId m) { return fluid::c::toC(m); });
 }
 
 fluid_status fluid_level_find_emitter(const fluid_level* level, const char* name,
                                       fluid_emitter_id* id) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const Level& l = levelOf(level, "fluid_level_find_emitter");
-        need(id, "fluid_level_find_emitter", "id");
-        const EmitterId e = findNamed(l.emitters, name, "emitter", "fluid_level_find_emitter");
-        *id = {e.index, e.world};
-    });
+    return findInLevel(level, name, id, &Level::emitters, "emitter", "fluid_level_find_emitter",
+                       [](EmitterId e) { return fluid_emitter_id{e.index, e.world}; });
 }
 
 fluid_status fluid_level_find_drain(const fluid_level* level, const char* name,
                                     fluid_drain_id* id) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const Level& l = levelOf(level, "fluid_level_find_drain");
-        need(id, "fluid_level_find_drain", "id");
-        const DrainId d = findNamed(l.drains, name, "drain", "fluid_level_find_drain");
-        *id = {d.index, d.world};
-    });
+    return findInLevel(level, name, id, &Level::drains, "drain", "fluid_level_find_drain",
+                       [](DrainId d) { return fluid_drain_id{d.index, d.world}; });
 }
 
 fluid_status fluid_level_find_sensor(const fluid_level* level, const char* name,
                                      fluid_sensor_id* id) {
-    return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        const Level& l = levelOf(level, "fluid_level_find_sensor");
-        need(id, "fluid_level_find_sensor", "id");
-        const SensorId s = findNamed(l.sensors, name, "sensor", "fluid_level_find_sensor");
-        *id = {s.index, s.world};
-    });
+    return findInLevel(level, name, id, &Level::sensors, "sensor", "fluid_level_find_sensor",
+                       [](SensorId d) { return fluid_sensor_id{d.index, d.world}; });
 }
 
 fluid_status fluid_level_find_plugin(const fluid_level* level, const char* name,
