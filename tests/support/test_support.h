@@ -24,8 +24,10 @@
 
 // FLUID_TEST_SANITIZED: 1 in a build with a sanitizer, which reserves terabytes of shadow
 // memory, so a test that runs under a memory limit (ulimit -v) needs a build without one (GCC
-// says so with __SANITIZE_*__, clang with __has_feature).
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+// says so with __SANITIZE_*__, clang with __has_feature; tests/CMakeLists.txt defines it for
+// the asan preset, whose test files are compiled without the sanitizers).
+#if defined(FLUID_TEST_SANITIZED)
+#elif defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 #define FLUID_TEST_SANITIZED 1
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) ||                         \
