@@ -238,7 +238,7 @@ fluid_status fluid_level_find_drain(const fluid_level* level, const char* name,
 fluid_status fluid_level_find_sensor(const fluid_level* level, const char* name,
                                      fluid_sensor_id* id) {
     return findInLevel(level, name, id, &Level::sensors, "sensor", "fluid_level_find_sensor",
-                       [](SensorId d) { return fluid_sensor_id{d.index, d.world}; });
+                       [](SensorId s) { return fluid_sensor_id{s.index, s.world}; });
 }
 
 fluid_status fluid_level_find_plugin(const fluid_level* level, const char* name,
