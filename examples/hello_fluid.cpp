@@ -11,10 +11,10 @@
 #include <cstdio>
 
 int main() {
-    // Every WorldDef field has a usable default: the position-based solver with 4 sub-steps of
-    // 8 constraint iterations per frame, one thread (set workerCount for more; the result is
-    // bit-identical whatever the count). WorldDef::solver = fluid::Solver::Explicit selects the
-    // seed's explicit SPH loop instead.
+    // Every WorldDef field has a usable default: the position-based solver's game preset (4
+    // sub-steps per frame, each one constraint sweep and the coarse pressure correction), one
+    // thread (set workerCount for more; the result is bit-identical whatever the count).
+    // WorldDef::solver = fluid::Solver::Explicit selects the seed's explicit SPH loop instead.
     fluid::World world{fluid::WorldDef{}};
 
     // Materials are plain values (tweak any field before adding); the world answers with an id.
