@@ -553,28 +553,27 @@ RayParticleHit particleHit(const WorldState& s, uint32_t index, glm::vec2 p1, do
     return hit;
 }
 
-} // namespace
+// A particle cast's line: from p1 towards p2 (its length 0 when not finite), each particle a
+// circle of `radius`.
+struct CastLine {
+    const detail::Particles& p;
+    glm::vec2 p1;
+    double length = 0.0, ux = 0.0, uy = 0.0, r2 = 0.0;
 
-uint32_t rayCastParticles(const World& world, glm::vec2 p1, glm::vec2 p2, float radius,
-                          const RayVisitor& visit) {
-    const WorldState& s = checkParticleCast(world, p1, p2, radius, visit);
-    const uint32_t count = s.particles.size();
-    if (count == 0) {
-        return 0;
+    CastLine(const detail::Particles& particles, glm::vec2 from, glm::vec2 to, float radius)
+        : p(particles), p1(from), r2(double(radius) * double(radius)) {
+        const double dx = double(to.x) - double(from.x), dy = double(to.y) - double(from.y);
+        length = std::hypot(dx, dy);
+        if (!std::isfinite(length)) {
+            length = 0.0;
+        }
+        ux = length > 0.0 ? dx / length : 0.0;
+        uy = length > 0.0 ? dy / length : 0.0;
     }
-    const Setup S(s, SurfaceField{});
-    const detail::Particles& p = s.particles;
-    const double dx = double(p2.x) - double(p1.x), dy = double(p2.y) - double(p1.y);
-    double length = std::hypot(dx, dy);
-    if (!std::isfinite(length)) {
-        length = 0.0;
-    }
-    const double ux = length > 0.0 ? dx / length : 0.0, uy = length > 0.0 ? dy / length : 0.0;
-    const double r2 = double(radius) * double(radius);
 
     // Where the ray enters particle i's circle (t from p1, unit: m; 0 when it starts inside),
     // or -1 when it misses it.
-    const auto entry = [&](uint32_t i) {
+    double entry(uint32_t i) const {
         const double qx = double(p.px[i]) - p1.x, qy = double(p.py[i]) - p1.y;
         if (qx * qx + qy * qy <= r2) {
             return 0.0;
@@ -589,7 +588,26 @@ uint32_t rayCastParticles(const World& world, glm::vec2 p1, glm::vec2 p2, float 
         }
         const double t = tc - std::sqrt(r2 - across * across);
         return t >= 0.0 && t <= length ? t : -1.0;
-    };
+    }
+
+    // t as the fraction of the ray the visitor sees, in [0, 1].
+    float fraction(double t) const {
+        return length > 0.0 ? float(std::clamp(t / length, 0.0, 1.0)) : 0.0f;
+    }
+};
+
+} // namespace
+
+uint32_t rayCastParticles(const World& world, glm::vec2 p1, glm::vec2 p2, float radius,
+                          const RayVisitor& visit) {
+    const WorldState& s = checkParticleCast(world, p1, p2, radius, visit);
+    const uint32_t count = s.particles.size();
+    if (count == 0) {
+        return 0;
+    }
+    const Setup S(s, SurfaceField{});
+    const CastLine line(s.particles, p1, p2, radius);
+    const double length = line.length, ux = line.ux, uy = line.uy;
 
     struct Visit {
         double t;
@@ -598,9 +616,6 @@ uint32_t rayCastParticles(const World& world, glm::vec2 p1, glm::vec2 p2, float 
     // The ray's clip as a fraction: a particle at a fraction above it is not reported (compared
     // as the visitor sees fractions, so returning a hit's own fraction keeps its ties).
     float clipAt = 1.0f;
-    const auto fractionOf = [&](double t) {
-        return length > 0.0 ? float(std::clamp(t / length, 0.0, 1.0)) : 0.0f;
-    };
     uint32_t visited = 0;
     bool stopped = false;
     // Reports `visits` in increasing t (ties: index), as the visitor steers.
@@ -609,12 +624,12 @@ uint32_t rayCastParticles(const World& world, glm::vec2 p1, glm::vec2 p2, float 
             return a.t < b.t || (a.t == b.t && a.index < b.index);
         });
         for (const Visit& v : visits) {
-            if (fractionOf(v.t) > clipAt) {
+            if (line.fraction(v.t) > clipAt) {
                 stopped = true;
                 return;
             }
             const RayParticleHit hit =
-                particleHit(s, v.index, p1, ux, uy, v.t, fractionOf(v.t));
+                particleHit(s, v.index, p1, ux, uy, v.t, line.fraction(v.t));
             ++visited;
             const float f = visit(hit);
             if (std::isnan(f)) {
@@ -640,7 +655,7 @@ uint32_t rayCastParticles(const World& world, glm::vec2 p1, glm::vec2 p2, float 
     if (length == 0.0 || band * 8.0 >= double(count)) {
         // A point, or a radius wider than the grid helps with: every particle.
         for (uint32_t i = 0; i < count; ++i) {
-            const double t = entry(i);
+            const double t = line.entry(i);
             if (t >= 0.0) {
                 visits.push_back({t, i});
             }
@@ -656,7 +671,7 @@ uint32_t rayCastParticles(const World& world, glm::vec2 p1, glm::vec2 p2, float 
     std::vector<uint32_t> buckets;
     bool first = true;
     walk(S, path, [&](int64_t cx, int64_t cy, double ta, double tb, bool last) {
-        if (fractionOf(enter + ta) > clipAt) {
+        if (line.fraction(enter + ta) > clipAt) {
             return true;
         }
         // Each particle once: in the cell where the ray enters its circle.
@@ -665,7 +680,7 @@ uint32_t rayCastParticles(const World& world, glm::vec2 p1, glm::vec2 p2, float 
         S.forCells(cx, cy, reach, buckets, [&](uint32_t b, uint32_t e) {
             for (uint32_t k = b; k < e; ++k) {
                 const uint32_t i = S.order[k];
-                const double t = entry(i);
+                const double t = line.entry(i);
                 if (t >= 0.0 && (first || t >= lo) && (last || t < hi)) {
                     visits.push_back({t, i});
                 }
