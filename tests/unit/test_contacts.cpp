@@ -182,8 +182,7 @@ TEST_CASE("contacts: a dry disc and a disc that does not ask report nothing, and
           "[unit][contacts]") {
     for (const Solver solver : {Solver::PositionBased, Solver::Explicit}) {
         INFO(solverLabel(solver));
-        // A few frames each (the explicit solver's take a hundred sub-steps): under ASan this
-        // test took 100 s at 10 and 30 frames.
+        // A few frames each: the explicit solver's take a hundred sub-steps (CI time under ASan).
         const int frames = solver == Solver::Explicit ? 2 : 8;
         Tank dry = discTank({0.0f, 0.7f}, true, def(1, solver));    // 0.25 m above the water
         Tank quiet = discTank({0.0f, 0.2f}, false, def(1, solver)); // in it, not asking
@@ -240,7 +239,7 @@ TEST_CASE("contacts: the same events for 1, 2 and 4 workers and after a save and
           "[unit][contacts]") {
     for (const Solver solver : {Solver::PositionBased, Solver::Explicit}) {
         INFO(solverLabel(solver));
-        // Saved after half of them; under ASan this test took 87 s at 6 and 20 frames.
+        // Saved after half of them; few, as above (CI time under ASan).
         const int frames = solver == Solver::Explicit ? 2 : 10;
         std::vector<std::vector<uint8_t>> runs;
         for (const uint32_t workers : {1u, 2u, 4u}) {
