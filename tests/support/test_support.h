@@ -16,8 +16,9 @@
 #include <ctime>
 #include <functional>
 #include <map>
-#include <span>
 #include <memory>
+#include <span>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,6 +38,16 @@
 #endif
 
 namespace fluid::test {
+
+/// `world` saved and loaded again with the built-in plugins, on `workers` workers (0: the
+/// saved count).
+inline World reloaded(const World& world, uint32_t workers = 0) {
+    std::stringstream bytes;
+    world.save(bytes);
+    Registry registry;
+    registerBuiltinPlugins(registry);
+    return World::load(bytes, registry, workers);
+}
 
 /// A level whose one blob asks for about 63.6 million particles (about 12.7 GB): loading it
 /// runs out of memory under a memory limit.

@@ -263,11 +263,7 @@ TEST_CASE("contacts: the same events for 1, 2 and 4 workers and after a save and
         for (int f = 0; f < frames / 2; ++f) {
             t.world.step(kFrame);
         }
-        std::stringstream snapshot;
-        t.world.save(snapshot);
-        Registry registry;
-        registerBuiltinPlugins(registry);
-        World loaded = World::load(snapshot, registry);
+        World loaded = reloaded(t.world);
         CHECK(bodyContacts(loaded).empty()); // events are not state
         auto* shape = dynamic_cast<const KinematicShape*>(loaded.boundaries()[1].get());
         REQUIRE(shape != nullptr);

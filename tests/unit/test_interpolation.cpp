@@ -126,12 +126,7 @@ TEST_CASE("interpolation over whole steps: fixed 60 Hz ticks drawn at 144 Hz and
     }
     CHECK(idleFrames > uint32_t(hz / 3.0f)); // frames that step no tick, where positions repeat
     // The mode is saved; a loaded world's previous positions are its current ones.
-    std::ostringstream out;
-    world.save(out);
-    Registry registry;
-    registerBuiltinPlugins(registry);
-    std::istringstream in(out.str());
-    World loaded = World::load(in, registry);
+    World loaded = reloaded(world);
     CHECK(interpolation(loaded) == Interpolation::Step);
     CHECK(std::equal(previousPositionX(loaded).begin(), previousPositionX(loaded).end(),
                      loaded.positionX().begin(), loaded.positionX().end()));
@@ -202,12 +197,7 @@ TEST_CASE("interpolation: new, moved and loaded particles do not streak", "[inte
         world.step(1.0f / 144.0f);
     }
     REQUIRE(previousPositionX(world).size() == world.particleCount());
-    std::ostringstream out;
-    world.save(out);
-    Registry registry;
-    registerBuiltinPlugins(registry);
-    std::istringstream in(out.str());
-    World loaded = World::load(in, registry);
+    World loaded = reloaded(world);
     CHECK(interpolating(loaded));
     CHECK(std::equal(previousPositionX(loaded).begin(), previousPositionX(loaded).end(),
                      loaded.positionX().begin(), loaded.positionX().end()));

@@ -569,11 +569,7 @@ TEST_CASE("rays: the same results for 1, 2 and 4 workers and after a save and lo
         const World world = randomWorld(setting, 31, workers);
         results.push_back(fingerprint(world));
         if (workers == 4) {
-            std::stringstream bytes;
-            world.save(bytes);
-            Registry registry;
-            registerBuiltinPlugins(registry);
-            const World loaded = World::load(bytes, registry, 1);
+            const World loaded = reloaded(world, 1);
             CHECK(fingerprint(loaded) == results.back());
         }
     }
