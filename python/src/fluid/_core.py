@@ -381,6 +381,7 @@ class World:
             self._generation.bump()
             self._raw = None
             self._finalizer()
+            self._py_plugins = []
 
     @property
     def closed(self):

@@ -87,6 +87,7 @@ class Level:
             self._world._changed()
             self._raw = None
             self._finalizer()
+            self._world._py_plugins = []
 
     @property
     def closed(self):
