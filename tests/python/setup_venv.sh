@@ -11,7 +11,8 @@ python=$1 venv=$2 source=$3 build=$4
 if ! "$python" -c "import cffi, numpy, pygame, pytest, setuptools" 2>/dev/null; then
     echo "setup_venv.sh: $python lacks cffi, numpy, pygame, pytest or setuptools:" >&2
     echo "    run: sudo bash scripts/deps.sh" >&2
-    PYGAME_HIDE_SUPPORT_PROMPT=1 "$python" -c "import cffi, numpy, pygame, pytest, setuptools" >&2 || true
+    PYGAME_HIDE_SUPPORT_PROMPT=1 "$python" -c "import cffi, numpy, pygame, pytest, setuptools" \
+        >&2 || true
     exit 1
 fi
 if [[ ! -x "$venv/bin/python" ]]; then
@@ -25,5 +26,5 @@ cp -r "$source/python" "$copy"
 rm -rf "$copy/build" "$copy"/*.egg-info "$copy"/src/*.egg-info
 FLUID_BUILD_DIR="$build" FLUID_SOURCE_DIR="$source" PIP_DISABLE_PIP_VERSION_CHECK=1 \
     "$venv/bin/python" -m pip install --quiet --no-build-isolation --no-index "$copy"
-PYGAME_HIDE_SUPPORT_PROMPT=1 "$venv/bin/python" -c "import fluid; print('setup_venv.sh: fluid', fluid.__version__, \
-'(C API', fluid.C_API_VERSION, ') installed in', '$venv')"
+PYGAME_HIDE_SUPPORT_PROMPT=1 "$venv/bin/python" -c "import fluid; \
+print('setup_venv.sh: fluid', fluid.__version__, 'C API', fluid.C_API_VERSION, 'in', '$venv')"
