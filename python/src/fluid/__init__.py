@@ -20,7 +20,7 @@ from different threads at once.
 """
 from ._core import (FRAME, Drain, Emitter, Material, Particles, Plugin, Sensor, Shape, World,
                     box, circle, polygon)
-from ._fluid_c import ffi as _ffi
+from ._fluid_c import ffi as _ffi  # noqa: F401 (the C layer, for tests and tools)
 from ._fluid_c import lib as _lib
 from ._level import Body, Level
 from ._plugins import ForceContext, ForcePlugin, Param, StepContext

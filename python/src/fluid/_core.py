@@ -373,8 +373,8 @@ class World:
 
     def close(self):
         """Frees the world now (its plugins' destroy callbacks run). Its arrays and ids are
-        invalid after. Idempotent. A level's world closes with its level: close() refuses
-        (RefusedError) there. Not from inside the world's own step."""
+        invalid after. Idempotent. A level's world closes with its level: close() raises
+        ClosedError there. Not from inside the world's own step."""
         if self._owner is not None:
             raise ClosedError("a level's world closes with its level: close the level")
         if self._raw is not None:
