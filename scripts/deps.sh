@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Install the Debian 12 packages fluid needs (library, tests, bench, examples, demo, CI under Xvfb;
-# python3 drives libfluid_c.so through ctypes in a test).
+# python3 drives libfluid_c.so through ctypes in a test; the Python package python/ is built with
+# python3-cffi against it and tested in a venv of Debian's python3 with numpy, pygame and pytest).
 # Idempotent: does nothing when every package is already installed. Needs root only to install.
 # Works without a terminal or standard input. The list follows shared docs/PLATFORM.md.
 #
@@ -15,7 +16,8 @@ PACKAGES=(
     xvfb xauth x11-utils mesa-utils
     clang-14 libclang-rt-14-dev
     glslang-tools
-    python3
+    python3 python3-dev python3-venv python3-setuptools
+    python3-cffi python3-numpy python3-pygame python3-pytest
 )
 if [[ $# -gt 0 ]]; then
     PACKAGES=("$@")
