@@ -165,9 +165,10 @@ set(_subdir_level_build "${WORK_DIR}/consumer-subdirectory-level")
 set(_c_build "${WORK_DIR}/consumer-c")
 set(_c_pkgconfig_build "${WORK_DIR}/consumer-c-pkgconfig")
 set(_subdir_c_build "${WORK_DIR}/consumer-subdirectory-c")
+set(_moved_prefix "${WORK_DIR}/prefix-moved")
 file(REMOVE_RECURSE "${_prefix}" "${_core_build}" "${_package_build}" "${_failing_build}"
     "${_subdir_build}" "${_subdir_level_build}" "${_c_build}" "${_c_pkgconfig_build}"
-    "${_subdir_c_build}")
+    "${_subdir_c_build}" "${_moved_prefix}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 
 # The components the parent tree installs, and the targets file of each.
@@ -435,6 +436,24 @@ if("c" IN_LIST _components)
 '${_consumer_c_src}/main.c' $('${_pkg_config}' --cflags --libs fluid-c-static) -o consumer_c_cc")
     run_c_consumer("run the C consumer built by gcc with pkg-config fluid-c-static"
         "${_c_pkgconfig_build}/consumer_c_cc")
+    # The same with the install tree moved: the .pc files find their prefix from their own
+    # directory. (Moved back after: the consumers above have run paths into it.)
+    file(RENAME "${_prefix}" "${_moved_prefix}")
+    string(REPLACE "${_prefix}/" "${_moved_prefix}/" _moved_pc_dir "${_pc_dir}/")
+    run("gcc with pkg-config fluid-c-static, the install tree moved to ${_moved_prefix}"
+        "${CMAKE_COMMAND}" -E env "PKG_CONFIG_PATH=${_moved_pc_dir}:$ENV{PKG_CONFIG_PATH}"
+        sh -c "cd '${_c_pkgconfig_build}' && '${_gcc}' -std=c99 '${_consumer_c_src}/main.c' \
+$('${_pkg_config}' --cflags --libs fluid-c-static) -o consumer_c_moved \
+&& '${_pkg_config}' --variable=prefix fluid-c-static")
+    string(STRIP "${RUN_OUTPUT}" _moved_pc_prefix)
+    file(REAL_PATH "${_moved_pc_prefix}" _real_moved_pc_prefix)
+    file(REAL_PATH "${_moved_prefix}" _real_moved_prefix)
+    if(NOT _real_moved_pc_prefix STREQUAL _real_moved_prefix)
+        fail("moved to '${_moved_prefix}', fluid-c-static.pc's prefix is '${_moved_pc_prefix}'")
+    endif()
+    run_c_consumer("run the C consumer built against the moved install tree"
+        "${_c_pkgconfig_build}/consumer_c_moved")
+    file(RENAME "${_moved_prefix}" "${_prefix}")
     # The C++ libraries' files: consumer/ calling into the core, box2d, level (and gl).
     set(_cxx_pcs fluid-level)
     set(_cxx_defs -DFLUID_CONSUMER_WITH_BOX2D -DFLUID_CONSUMER_WITH_LEVEL)
