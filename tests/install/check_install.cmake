@@ -10,7 +10,8 @@
 #         - a C-only CMake project (no C++ enabled), linking fluid::c and fluid::c_shared;
 #         - pkg-config: the installed .pc files and what they list, consumer_c/Makefile with
 #           make and CC=gcc (fluid-c-static and fluid-c), gcc with pkg-config on its command
-#           line; and consumer/ compiled by the C++ compiler with fluid-level and fluid-gl;
+#           line, again with the install tree moved; and consumer/ compiled by the C++
+#           compiler with fluid-level and fluid-gl;
 #         each program run, and consumer_c/main.c checks its results;
 #   (b) vendored:  add_subdirectory(<fluid source> fluid-build), with no tests/bench/examples,
 #       and none of the optional libraries unless the game turns them on; the C consumer with
