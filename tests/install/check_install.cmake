@@ -6,8 +6,16 @@
 #       - consumer/ with COMPONENTS naming every installed component, calling into each;
 #       - requests that must fail, naming the component and what is missing: gl without GLEW,
 #         level without nlohmann_json, an unknown component, a component not installed;
+#       - with the C API installed, consumer_c/, a game written in C:
+#         - a C-only CMake project (no C++ enabled), linking fluid::c and fluid::c_shared;
+#         - pkg-config: the installed .pc files and what they list, consumer_c/Makefile with
+#           make and CC=gcc (fluid-c-static and fluid-c), gcc with pkg-config on its command
+#           line, again with the install tree moved; and consumer/ compiled by the C++
+#           compiler with fluid-level and fluid-gl;
+#         each program run, and consumer_c/main.c checks its results;
 #   (b) vendored:  add_subdirectory(<fluid source> fluid-build), with no tests/bench/examples,
-#       and none of the optional libraries unless the game turns them on.
+#       and none of the optional libraries unless the game turns them on; the C consumer with
+#       FLUID_BUILD_LEVEL and FLUID_BUILD_C, configured and its link line checked.
 #
 # Usage:
 #   cmake -DSOURCE_DIR=<fluid source> -DBINARY_DIR=<built fluid tree> -DWORK_DIR=<scratch dir>
@@ -37,7 +45,8 @@ endif()
 # Build the consumer the way the parent tree was built.
 load_cache("${BINARY_DIR}" READ_WITH_PREFIX PARENT_
     CMAKE_GENERATOR CMAKE_MAKE_PROGRAM CMAKE_BUILD_TYPE CMAKE_CXX_COMPILER CMAKE_CXX_FLAGS
-    CMAKE_EXE_LINKER_FLAGS FLUID_INSTALL FLUID_CCACHE FLUID_CCACHE_PROGRAM
+    CMAKE_C_COMPILER CMAKE_C_FLAGS CMAKE_EXE_LINKER_FLAGS FLUID_INSTALL FLUID_CCACHE
+    FLUID_CCACHE_PROGRAM
     FLUID_BUILD_BOX2D FLUID_BUILD_LEVEL FLUID_BUILD_GL FLUID_BUILD_C)
 if(NOT DEFINED GENERATOR OR GENERATOR STREQUAL "")
     set(GENERATOR "${PARENT_CMAKE_GENERATOR}")
@@ -56,6 +65,14 @@ endif()
 foreach(_var IN ITEMS CMAKE_MAKE_PROGRAM CMAKE_CXX_COMPILER CMAKE_CXX_FLAGS CMAKE_EXE_LINKER_FLAGS)
     if(NOT "${PARENT_${_var}}" STREQUAL "")
         list(APPEND _common_args "-D${_var}=${PARENT_${_var}}")
+    endif()
+endforeach()
+# The C consumer's compiler (a C-only project: the C++ compiler above is for fluid itself, in
+# subdirectory mode).
+set(_c_args)
+foreach(_var IN ITEMS CMAKE_C_COMPILER CMAKE_C_FLAGS)
+    if(NOT "${PARENT_${_var}}" STREQUAL "")
+        list(APPEND _c_args "-D${_var}=${PARENT_${_var}}")
     endif()
 endforeach()
 
@@ -138,6 +155,7 @@ function(check_found_in_prefix build_dir)
 endfunction()
 
 set(_consumer_src "${CMAKE_CURRENT_LIST_DIR}/consumer")
+set(_consumer_c_src "${CMAKE_CURRENT_LIST_DIR}/consumer_c")
 set(_consumer_core_src "${CMAKE_CURRENT_LIST_DIR}/consumer_core")
 set(_prefix "${WORK_DIR}/prefix")
 set(_core_build "${WORK_DIR}/consumer-core")
@@ -145,8 +163,13 @@ set(_package_build "${WORK_DIR}/consumer-package")
 set(_failing_build "${WORK_DIR}/consumer-failing")
 set(_subdir_build "${WORK_DIR}/consumer-subdirectory")
 set(_subdir_level_build "${WORK_DIR}/consumer-subdirectory-level")
+set(_c_build "${WORK_DIR}/consumer-c")
+set(_c_pkgconfig_build "${WORK_DIR}/consumer-c-pkgconfig")
+set(_subdir_c_build "${WORK_DIR}/consumer-subdirectory-c")
+set(_moved_prefix "${WORK_DIR}/prefix-moved")
 file(REMOVE_RECURSE "${_prefix}" "${_core_build}" "${_package_build}" "${_failing_build}"
-    "${_subdir_build}" "${_subdir_level_build}")
+    "${_subdir_build}" "${_subdir_level_build}" "${_c_build}" "${_c_pkgconfig_build}"
+    "${_subdir_c_build}" "${_moved_prefix}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 
 # The components the parent tree installs, and the targets file of each.
@@ -278,6 +301,181 @@ failing_request("an unknown component must fail naming it" core,physics
     PATTERNS "component 'physics' is unknown")
 file(REMOVE_RECURSE "${_failing_build}")
 
+# run_c_consumer(<description> <executable>): run a build of consumer_c/main.c, which must
+# succeed and say it checked its results.
+function(run_c_consumer description exe)
+    run("${description}" ${ARGN} "${exe}")
+    if(NOT RUN_OUTPUT MATCHES "consumer_c: ok: [0-9]+ particles")
+        fail("${description}: the program exited 0 without its 'consumer_c: ok' line\n"
+             "--- output ---\n${RUN_OUTPUT}--- end of output ---")
+    endif()
+endfunction()
+
+# check_needed(<executable> <regex> <TRUE|FALSE>): whether the executable's dynamic section
+# names a needed library matching <regex> is <TRUE|FALSE> (the static build must not need
+# libfluid_c.so, the shared one must).
+function(check_needed exe regex expected)
+    run("read the dynamic section of ${exe}" "${_readelf}" -d "${exe}")
+    if(RUN_OUTPUT MATCHES "\\(NEEDED\\)[^\n]*${regex}")
+        set(_has TRUE)
+    else()
+        set(_has FALSE)
+    endif()
+    if(NOT _has STREQUAL expected)
+        if(expected)
+            fail("${exe} does not need a library matching '${regex}' but must\n${RUN_OUTPUT}")
+        else()
+            fail("${exe} needs a library matching '${regex}' but must not\n${RUN_OUTPUT}")
+        endif()
+    endif()
+endfunction()
+
+# match_in_order(<description> <text> <regex>...): <text>'s words include, in this order, one
+# matching each regex whole (each after the previous one's).
+function(match_in_order description text)
+    separate_arguments(_words UNIX_COMMAND "${text}")
+    set(_word_list ${_words})
+    foreach(_regex IN LISTS ARGN)
+        set(_found FALSE)
+        while(_word_list)
+            list(POP_FRONT _word_list _word)
+            if(_word MATCHES "^${_regex}$")
+                set(_found TRUE)
+                break()
+            endif()
+        endwhile()
+        if(NOT _found)
+            string(JOIN "  " _items ${ARGN})
+            fail("${description}: '${text}' does not list, in this order: ${_items}")
+        endif()
+    endforeach()
+endfunction()
+
+if("c" IN_LIST _components)
+    find_program(_readelf NAMES readelf)
+    find_program(_pkg_config NAMES pkg-config pkgconf)
+    find_program(_make NAMES make gmake)
+    find_program(_gcc NAMES gcc)
+    foreach(_tool IN ITEMS readelf pkg_config make gcc)
+        if(NOT _${_tool})
+            fail("the C consumers need ${_tool} (scripts/deps.sh installs it), not found")
+        endif()
+    endforeach()
+
+    # (a4) A game written in C, in a C-only CMake project.
+    run("configure the C consumer (a C-only CMake project, find_package(fluid COMPONENTS c))"
+        "${CMAKE_COMMAND}" -S "${_consumer_c_src}" -B "${_c_build}" ${_common_args} ${_c_args}
+        ${_package_args})
+    check_found_in_prefix("${_c_build}")
+    run("build the C consumer (fluid::c and fluid::c_shared)"
+        "${CMAKE_COMMAND}" --build "${_c_build}" ${_config_args})
+    find_exe("${_c_build}" fluid_consumer_c_static _exe)
+    check_needed("${_exe}" "libfluid_c" FALSE)
+    run_c_consumer("run the C consumer linked with fluid::c" "${_exe}")
+    find_exe("${_c_build}" fluid_consumer_c_shared _exe)
+    check_needed("${_exe}" "libfluid_c\\.so\\.1" TRUE)
+    run_c_consumer("run the C consumer linked with fluid::c_shared" "${_exe}")
+
+    # (a5) pkg-config, in front of the machine's own directories (Box2D's and glm's files).
+    file(GLOB_RECURSE _pc_files "${_prefix}/*/pkgconfig/fluid.pc")
+    if(NOT _pc_files)
+        fail("the install has no pkgconfig/fluid.pc (under ${_prefix})")
+    endif()
+    list(GET _pc_files 0 _pc_file)
+    get_filename_component(_pc_dir "${_pc_file}" DIRECTORY)
+    foreach(_pc IN ITEMS fluid-box2d fluid-level fluid-c fluid-c-static)
+        if(NOT EXISTS "${_pc_dir}/${_pc}.pc")
+            fail("the install has no ${_pc_dir}/${_pc}.pc")
+        endif()
+    endforeach()
+    if("gl" IN_LIST _components AND NOT EXISTS "${_pc_dir}/fluid-gl.pc")
+        fail("component 'gl' was built but the install has no ${_pc_dir}/fluid-gl.pc")
+    endif()
+    set(_pc_env "${CMAKE_COMMAND}" -E env "PKG_CONFIG_PATH=${_pc_dir}:$ENV{PKG_CONFIG_PATH}")
+
+    # Where the files say the library is: the prefix it was installed into.
+    run("pkg-config --variable=libdir fluid-c"
+        ${_pc_env} "${_pkg_config}" --variable=libdir fluid-c)
+    string(STRIP "${RUN_OUTPUT}" _libdir)
+    file(REAL_PATH "${_libdir}" _real_libdir)
+    file(REAL_PATH "${_pc_dir}/.." _real_expected_libdir)
+    if(NOT _real_libdir STREQUAL _real_expected_libdir)
+        fail("fluid-c.pc's libdir is '${_libdir}', not the install's '${_real_expected_libdir}'")
+    endif()
+    # What each lists, in link order.
+    run("pkg-config --libs fluid-c" ${_pc_env} "${_pkg_config}" --libs fluid-c)
+    string(STRIP "${RUN_OUTPUT}" _libs)
+    if(NOT _libs MATCHES "^-L[^ ]+ -lfluid_c$")
+        fail("pkg-config --libs fluid-c gives '${_libs}', not '-L<libdir> -lfluid_c'")
+    endif()
+    run("pkg-config --static --libs fluid-c"
+        ${_pc_env} "${_pkg_config}" --static --libs fluid-c)
+    string(STRIP "${RUN_OUTPUT}" _libs)
+    match_in_order("pkg-config --static --libs fluid-c" "${_libs}"
+        -lfluid_c -lfluid_level -lfluid_box2d -lfluid "-lstdc\\+\\+" -lm)
+    match_in_order("pkg-config --static --libs fluid-c" "${_libs}" -lfluid_box2d -lbox2d)
+    run("pkg-config --libs fluid-c-static"
+        ${_pc_env} "${_pkg_config}" --libs fluid-c-static)
+    string(STRIP "${RUN_OUTPUT}" _libs)
+    match_in_order("pkg-config --libs fluid-c-static" "${_libs}" ".*/libfluid_c\\.a"
+        ".*/libfluid_level\\.a" ".*/libfluid_box2d\\.a" ".*/libfluid\\.a" "-lstdc\\+\\+" -lm)
+    match_in_order("pkg-config --libs fluid-c-static" "${_libs}" ".*/libfluid_box2d\\.a" -lbox2d)
+
+    # make with CC=gcc, then gcc with pkg-config on its command line, as docs/c_api.md shows.
+    file(MAKE_DIRECTORY "${_c_pkgconfig_build}")
+    run("make consumer_c/Makefile with CC=gcc (pkg-config fluid-c-static and fluid-c)"
+        ${_pc_env} "${_make}" -C "${_c_pkgconfig_build}" -f "${_consumer_c_src}/Makefile"
+        "SRC=${_consumer_c_src}" "CC=${_gcc}")
+    check_needed("${_c_pkgconfig_build}/consumer_c_static" "libfluid_c" FALSE)
+    run_c_consumer("run the C consumer made with pkg-config fluid-c-static"
+        "${_c_pkgconfig_build}/consumer_c_static")
+    check_needed("${_c_pkgconfig_build}/consumer_c_shared" "libfluid_c\\.so\\.1" TRUE)
+    run_c_consumer("run the C consumer made with pkg-config fluid-c"
+        "${_c_pkgconfig_build}/consumer_c_shared")
+    run("gcc -std=c99 main.c $(pkg-config --cflags --libs fluid-c-static)"
+        ${_pc_env} sh -c "cd '${_c_pkgconfig_build}' && '${_gcc}' -std=c99 \
+'${_consumer_c_src}/main.c' $('${_pkg_config}' --cflags --libs fluid-c-static) -o consumer_c_cc")
+    run_c_consumer("run the C consumer built by gcc with pkg-config fluid-c-static"
+        "${_c_pkgconfig_build}/consumer_c_cc")
+    # The same with the install tree moved: the .pc files find their prefix from their own
+    # directory. (Moved back after: the consumers above have run paths into it.)
+    file(RENAME "${_prefix}" "${_moved_prefix}")
+    string(REPLACE "${_prefix}/" "${_moved_prefix}/" _moved_pc_dir "${_pc_dir}/")
+    run("gcc with pkg-config fluid-c-static, the install tree moved to ${_moved_prefix}"
+        "${CMAKE_COMMAND}" -E env "PKG_CONFIG_PATH=${_moved_pc_dir}:$ENV{PKG_CONFIG_PATH}"
+        sh -c "cd '${_c_pkgconfig_build}' && '${_gcc}' -std=c99 '${_consumer_c_src}/main.c' \
+$('${_pkg_config}' --cflags --libs fluid-c-static) -o consumer_c_moved \
+&& '${_pkg_config}' --variable=prefix fluid-c-static")
+    string(STRIP "${RUN_OUTPUT}" _moved_pc_prefix)
+    file(REAL_PATH "${_moved_pc_prefix}" _real_moved_pc_prefix)
+    file(REAL_PATH "${_moved_prefix}" _real_moved_prefix)
+    if(NOT _real_moved_pc_prefix STREQUAL _real_moved_prefix)
+        fail("moved to '${_moved_prefix}', fluid-c-static.pc's prefix is '${_moved_pc_prefix}'")
+    endif()
+    run_c_consumer("run the C consumer built against the moved install tree"
+        "${_c_pkgconfig_build}/consumer_c_moved")
+    file(RENAME "${_moved_prefix}" "${_prefix}")
+    # The C++ libraries' files: consumer/ calling into the core, box2d, level (and gl).
+    set(_cxx_pcs fluid-level)
+    set(_cxx_defs -DFLUID_CONSUMER_WITH_BOX2D -DFLUID_CONSUMER_WITH_LEVEL)
+    if("gl" IN_LIST _components)
+        list(APPEND _cxx_pcs fluid-gl)
+        list(APPEND _cxx_defs -DFLUID_CONSUMER_WITH_GL)
+    endif()
+    set(_cxx "${PARENT_CMAKE_CXX_COMPILER}")
+    if(PARENT_FLUID_CCACHE AND PARENT_FLUID_CCACHE_PROGRAM)
+        set(_cxx "${PARENT_FLUID_CCACHE_PROGRAM} ${_cxx}")
+    endif()
+    string(JOIN " " _cxx_defs_text ${_cxx_defs})
+    string(JOIN " " _cxx_pcs_text ${_cxx_pcs})
+    run("c++ -std=c++20 consumer/main.cpp $(pkg-config --cflags --libs ${_cxx_pcs_text})"
+        ${_pc_env} sh -c "cd '${_c_pkgconfig_build}' && ${_cxx} -std=c++20 ${_cxx_defs_text} \
+'${_consumer_src}/main.cpp' $('${_pkg_config}' --cflags --libs ${_cxx_pcs_text}) \
+-o consumer_cxx")
+    run("run the C++ consumer built with pkg-config ${_cxx_pcs_text}"
+        "${_c_pkgconfig_build}/consumer_cxx")
+endif()
+
 # ---- (b) add_subdirectory -----------------------------------------------------------------------
 run("configure the consumer (subdirectory mode)"
     "${CMAKE_COMMAND}" -S "${_consumer_src}" -B "${_subdir_build}" ${_common_args}
@@ -300,5 +498,45 @@ if("level" IN_LIST _components)
         "-DFLUID_SOURCE_DIR=${SOURCE_DIR}")
 endif()
 
-message(STATUS "check_install: core-only, all-component, failing-request and subdirectory "
-               "consumers passed")
+# A game written in C that adds fluid's source tree, with the C API turned on. Configured, not
+# built: building would compile fluid::level, fluid::box2d and the C API a second time (a
+# minute and a half on 2 cores with a cold compiler cache), and the package mode above links
+# and runs the same targets. What this mode adds is the link line, read from the generated
+# build files: the C compiler's driver, the C++ runtime after the last of fluid's archives.
+# check_c_link(<build dir> <target>): that check, for Ninja and Makefile generators.
+function(check_c_link build_dir target)
+    if(EXISTS "${build_dir}/CMakeFiles/${target}.dir/link.txt")
+        file(READ "${build_dir}/CMakeFiles/${target}.dir/link.txt" _link)
+        separate_arguments(_words UNIX_COMMAND "${_link}")
+        list(GET _words 0 _driver)
+        set(_libraries "${_link}")
+    elseif(EXISTS "${build_dir}/build.ninja")
+        file(READ "${build_dir}/build.ninja" _ninja)
+        # The statement and its indented variables; its rule names the linker's language.
+        set(_statement "\nbuild ${target}: ([A-Za-z]+)_EXECUTABLE_LINKER[^\n]*\n(  [^\n]*\n)*")
+        if(NOT _ninja MATCHES "${_statement}")
+            fail("${build_dir}/build.ninja has no link statement for ${target}")
+        endif()
+        set(_driver "${CMAKE_MATCH_1}")
+        string(REGEX MATCH "LINK_LIBRARIES = [^\n]*" _libraries "${CMAKE_MATCH_0}")
+    else()
+        fail("no link.txt or build.ninja for ${target} in ${build_dir} (generator '${GENERATOR}')")
+    endif()
+    if(_driver MATCHES "\\+\\+|CXX")
+        fail("${target} links with the C++ compiler's driver ('${_driver}'), not the C one")
+    endif()
+    match_in_order("the link of ${target} in ${build_dir}" "${_libraries}"
+        "(.*/)?libfluid_c\\.a" "(.*/)?libfluid\\.a" "-lstdc\\+\\+" -lm)
+endfunction()
+
+if("c" IN_LIST _components)
+    run("configure the C consumer (subdirectory mode, FLUID_BUILD_C)"
+        "${CMAKE_COMMAND}" -S "${_consumer_c_src}" -B "${_subdir_c_build}" ${_common_args}
+        ${_c_args}
+        -DFLUID_CONSUMER_MODE=subdirectory
+        "-DFLUID_SOURCE_DIR=${SOURCE_DIR}")
+    check_c_link("${_subdir_c_build}" fluid_consumer_c_static)
+endif()
+
+message(STATUS "check_install: core-only, all-component, failing-request, C (CMake and "
+               "pkg-config) and subdirectory consumers passed")
