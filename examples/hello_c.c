@@ -1,7 +1,8 @@
 /* hello_c: fluid from C99 (fluid/c.h, docs/c_api.md). A tank with a block of water and a blob
  * of yoghurt; two seconds of simulation; where the liquid ended up.
  *
- *   cc -std=c99 hello_c.c $(...fluid::c's flags...)    or the CMake target hello_c
+ *   cc -std=c99 hello_c.c $(pkg-config --cflags --libs fluid-c-static)   (an installed fluid:
+ *   docs/c_api.md), or the CMake target hello_c
  */
 #include <fluid/c.h>
 
