@@ -23,8 +23,6 @@ using fluid::box2d::CouplingDef;
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
 // A pool: water 0.15 m deep (60 x 15 particles) in a 0.6 x 0.5 m box, gravity on both sides.
 struct Pool {
     World world;

@@ -1,10 +1,15 @@
 // fluid tests — what the C API's tests share: a status check that fails with the message, a
-// world that destroys itself, and a tank of water made through C.
+// world that destroys itself, a tank of water made through C, and a plugin's view of a call
+// made from inside the step.
 #pragma once
+
+#include "test_support.h"
 
 #include <fluid/c.h>
 
 #include <catch2/catch.hpp>
+
+#include <string>
 
 // Fails the test with the call's message unless it returned FLUID_OK.
 #define C_OK(call)                                                                                 \
@@ -46,5 +51,16 @@ inline fluid_material_id waterTank(fluid_world* world, fluid_vec2 lo, fluid_vec2
     C_OK(fluid_world_spawn_blob(world, &blob, nullptr));
     return id;
 }
+
+/// What a call made from inside a world's step (a plugin's prepare callback) returned; the
+/// callback's user pointer.
+struct CallFromStep {
+    fluid_world* world = nullptr;
+    fluid_status status = FLUID_OK;
+    std::string message; // fluid_last_error() right after the call
+};
+
+/// A force plugin's apply that does nothing (for plugins that only watch the step).
+inline void noForce(void*, const fluid_force_context*, uint32_t, uint32_t) {}
 
 } // namespace fluid::test

@@ -15,7 +15,7 @@
 
 namespace {
 
-constexpr float kFrame = 1.0f / 60.0f;
+using fluid::test::kFrame; // unit: s
 
 // A 0.6 m tank of water with gravity.
 fluid_world* tank() {

@@ -32,7 +32,7 @@ using fluid::test::CWorld;
 
 namespace {
 
-constexpr float kFrame = 1.0f / 60.0f;
+using fluid::test::kFrame; // unit: s
 
 // The C++ API's message for `body`, which must throw fluid::Error.
 template <class Body> std::string cppMessage(Body&& body) {

@@ -93,33 +93,25 @@ TEST_CASE("C: region queries find what a scan of the positions finds", "[c][quer
 
 namespace {
 
-struct Inside {
-    fluid_world* world = nullptr;
-    fluid_status status = FLUID_OK;
-    std::string message;
-};
-
 void queryFromPrepare(void* user, const fluid_step_context*) {
-    auto& in = *static_cast<Inside*>(user);
+    auto& in = *static_cast<fluid::test::CallFromStep*>(user);
     const fluid_shape circle = fluid_circle_shape({0.15f, 0.1f}, 0.08f);
     uint32_t total = 0;
     in.status = fluid_world_count_in(in.world, &circle, nullptr, 0, &total);
     in.message = fluid_last_error();
 }
 
-void nothing(void*, const fluid_force_context*, uint32_t, uint32_t) {}
-
 } // namespace
 
 TEST_CASE("C: a query from inside the world's step is refused", "[c][queries]") {
     fluid_world* world = dam();
-    Inside inside;
+    fluid::test::CallFromStep inside;
     inside.world = world;
     fluid_force_plugin_def def = fluid_default_force_plugin_def();
     def.type = "force.test-query";
     def.user = &inside;
     def.prepare = queryFromPrepare;
-    def.apply = nothing;
+    def.apply = fluid::test::noForce;
     fluid_plugin_id id{};
     C_OK(fluid_world_add_force(world, &def, &id));
     C_OK(fluid_world_step(world, 1.0f / 60.0f));

@@ -152,20 +152,12 @@ TEST_CASE("C: a particle cast reports what a scan finds, in order, as its visito
 
 namespace {
 
-struct Inside {
-    fluid_world* world = nullptr;
-    fluid_status status = FLUID_OK;
-    std::string message;
-};
-
 void castFromPrepare(void* user, const fluid_step_context*) {
-    auto& in = *static_cast<Inside*>(user);
+    auto& in = *static_cast<fluid::test::CallFromStep*>(user);
     fluid_ray_hit hit{};
     in.status = fluid_world_ray_cast(in.world, {0.1f, 0.9f}, {0.1f, 0.0f}, nullptr, &hit);
     in.message = fluid_last_error();
 }
-
-void nothing(void*, const fluid_force_context*, uint32_t, uint32_t) {}
 
 float nanVisitor(void*, const fluid_ray_particle_hit*) {
     return std::numeric_limits<float>::quiet_NaN();
@@ -225,13 +217,13 @@ TEST_CASE("C: bad rays, points, fields and visitors, and casts from inside the s
                                          nullptr, &visited) == FLUID_ERROR_NULL_ARGUMENT);
     CHECK(std::string(fluid_last_error()) == "fluid_world_ray_cast_particles: visit is NULL");
     // From a plugin's prepare callback: refused.
-    Inside inside;
+    fluid::test::CallFromStep inside;
     inside.world = w.world;
     fluid_force_plugin_def def = fluid_default_force_plugin_def();
     def.type = "force.test-ray";
     def.user = &inside;
     def.prepare = castFromPrepare;
-    def.apply = nothing;
+    def.apply = fluid::test::noForce;
     fluid_plugin_id id{};
     C_OK(fluid_world_add_force(w.world, &def, &id));
     C_OK(fluid_world_step(w.world, 1.0f / 60.0f));

@@ -53,7 +53,7 @@ struct ReverseHook {
 // sub-steps each; 0.3 s: the column is collapsing and its front running, particles change
 // cells, the walls project). Position-based: 90 frames of 1/60 s (4 sub-steps each; 1.5 s: the
 // front hits the far wall and climbs it).
-uint64_t runDam(const WorldDef& def, uint32_t* substeps = nullptr) {
+uint64_t damBits(const WorldDef& def, uint32_t* substeps = nullptr) {
     World world(def);
     const MaterialId w = world.addMaterial(water());
     const float s = world.spacing(w);
@@ -85,20 +85,20 @@ TEST_CASE("bit-identical state for 1, 2 and 4 workers and a host task hook",
     def.solver = solver;
     def.workerCount = 1;
     uint32_t substeps = 0;
-    const uint64_t serial = runDam(def, &substeps);
+    const uint64_t serial = damBits(def, &substeps);
     CAPTURE(substeps);
     CHECK(substeps >= (solver == Solver::Explicit ? 1200u : 360u)); // several sub-steps per step
 
     def.workerCount = 2;
-    const uint64_t two = runDam(def);
+    const uint64_t two = damBits(def);
     def.workerCount = 4;
-    const uint64_t four = runDam(def);
+    const uint64_t four = damBits(def);
 
     ReverseHook reverse;
     WorldDef hooked;
     hooked.solver = solver;
     hooked.tasks = reverse.hook();
-    const uint64_t host = runDam(hooked);
+    const uint64_t host = damBits(hooked);
 
     INFO("hashes: serial " << std::hex << serial << ", 2 workers " << two << ", 4 workers " << four
                            << ", reverse hook " << host);
@@ -168,11 +168,11 @@ TEST_CASE("the game preset (coarse correction) is bit-identical for 1, 2 and 4 w
     WorldDef def;
     def.positionBased = positionBasedPreset(Quality::Game);
     def.workerCount = 1;
-    const uint64_t serial = runDam(def);
+    const uint64_t serial = damBits(def);
     def.workerCount = 2;
-    const uint64_t two = runDam(def);
+    const uint64_t two = damBits(def);
     def.workerCount = 4;
-    const uint64_t four = runDam(def);
+    const uint64_t four = damBits(def);
     INFO("hashes: serial " << std::hex << serial << ", 2 workers " << two << ", 4 workers "
                            << four);
     CHECK(two == serial);

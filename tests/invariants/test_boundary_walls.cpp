@@ -16,14 +16,6 @@ using namespace fluid::test;
 
 namespace {
 
-double segmentDistance(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
-    const glm::dvec2 e = b - a;
-    const double u =
-        std::clamp(((p.x - a.x) * e.x + (p.y - a.y) * e.y) / (e.x * e.x + e.y * e.y), 0.0, 1.0);
-    const glm::dvec2 d = p - (a + u * e);
-    return std::sqrt(d.x * d.x + d.y * d.y);
-}
-
 double polygonDistance(const std::vector<glm::vec2>& poly, glm::dvec2 p) {
     double d = INFINITY;
     for (size_t k = 0; k < poly.size(); ++k) {

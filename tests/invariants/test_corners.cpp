@@ -26,7 +26,7 @@ using namespace fluid::test;
 
 namespace {
 
-constexpr double kG = 9.81;
+constexpr double kGravity = 9.81; // unit: m/s^2, in double for the energies
 // Frames of 1/60 s each dam runs: FLUID_CORNER_FRAMES, else `fallback`.
 int frameCount(int fallback) {
     const char* env = std::getenv("FLUID_CORNER_FRAMES");
@@ -55,7 +55,7 @@ bool budgetSpent(std::chrono::steady_clock::time_point start) {
 
 // Kinetic + gravitational potential energy, potential from the box's floor (unit: J).
 double totalEnergy(const World& world) {
-    const Energy e = energy(world, kG);
+    const Energy e = energy(world, kGravity);
     return e.kinetic + e.potential;
 }
 
@@ -70,7 +70,7 @@ Corner runCorner(const std::string& name, const WorldDef& def, const Material& m
         const MaterialId w = world.addMaterial(material);
         const float s = world.spacing(w);
         const uint32_t cols = 50, rows = 40;
-        world.addForce(std::make_unique<GravityForce>(0.0f, -float(kG)));
+        world.addForce(std::make_unique<GravityForce>(0.0f, -float(kGravity)));
         world.addBoundary(
             std::make_unique<BoxContainer>(0.0f, 0.0f, 4.0f * cols * s, 2.0f * rows * s));
         world.spawnBlob(latticeBlock(world, w, 0.0f, 0.0f, cols, rows));

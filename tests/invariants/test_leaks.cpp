@@ -42,14 +42,6 @@ double splitterX(double y) {
     return kSplitter.back().x;
 }
 
-double segmentDistance(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
-    const glm::dvec2 e = b - a;
-    const double u =
-        std::clamp(((p.x - a.x) * e.x + (p.y - a.y) * e.y) / (e.x * e.x + e.y * e.y), 0.0, 1.0);
-    const glm::dvec2 d = p - (a + u * e);
-    return std::sqrt(d.x * d.x + d.y * d.y);
-}
-
 struct ChainRun {
     uint32_t crossedMax = 0;   // most particles beyond the splitter at any frame
     uint32_t outsideMax = 0;   // most particles outside the tank at any frame

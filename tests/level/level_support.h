@@ -1,10 +1,14 @@
-// fluid tests — helpers the level tests share: the built-in registry, the message a level text
+// fluid tests — helpers the level tests share: the message a level text
 // fails with, a body by its level name.
 #pragma once
+
+#include "test_support.h"
 
 #include <fluid/level.h>
 #include <fluid/plugins/builtin.h>
 
+#include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -15,14 +19,20 @@ class b2Body;
 
 namespace fluid::test {
 
-/// The registry with every built-in plugin, made once.
-inline const Registry& builtins() {
-    static const Registry registry = [] {
-        Registry r;
-        registerBuiltinPlugins(r);
-        return r;
-    }();
-    return registry;
+/// A valid level with one material, `extra` spliced in after it (starting with ", ").
+inline std::string levelWith(const std::string& extra) {
+    return R"({"version": 1, "materials": [{"name": "water"}])" + extra + "}";
+}
+
+/// Plays `frames` frames of `level`; returns the wall time per frame (unit: ms).
+inline double playFrames(Level& level, int frames) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int f = 0; f < frames; ++f) {
+        level.step();
+    }
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+               .count() /
+           std::max(frames, 1);
 }
 
 /// The text of the shipped level `name` (a file in levels/); empty if it cannot be read.

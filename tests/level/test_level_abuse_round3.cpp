@@ -21,11 +21,6 @@ using namespace fluid::test;
 
 namespace {
 
-// A valid level with one material, `extra` spliced in after it (starting with ", ").
-std::string level(const std::string& extra) {
-    return R"({"version": 1, "materials": [{"name": "water"}])" + extra + "}";
-}
-
 // `value` as a JSON number (the tables' bounds print exactly with 6 digits).
 std::string json(double value) {
     std::ostringstream s;
@@ -82,7 +77,7 @@ TEST_CASE("level abuse: a float field at its documented bounds loads", "[level][
           "t.json:1:65: at /materials/0/smoothingDistance: 0.00299 is out of range [0.003, 0.4] "
           "(unit: m)");
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "emitters": [{"name": "f", "material": "water", "position": [0, 0], "speed": 0.01, "rate": 1}])")) ==
         "no error");
 }
@@ -123,30 +118,30 @@ TEST_CASE("level abuse: names are printable text", "[level][abuse3]") {
     CHECK(errorOf(R"({"version": 1, "name": "line\nbreak", "materials": [{"name": "water"}]})") ==
           "t.json:1:24: at /name: the name holds a control character (byte 0x0a at offset 4); "
           "names are printable text");
-    CHECK(errorOf(level(R"(, "plugins": [{"type": "force.gravity", "name": "g\u0000"}])")) ==
+    CHECK(errorOf(levelWith(R"(, "plugins": [{"type": "force.gravity", "name": "g\u0000"}])")) ==
           "t.json:1:96: at /plugins/0/name: the name holds a control character (byte 0x00 at "
           "offset 1); names are printable text");
-    CHECK(errorOf(level(
+    CHECK(errorOf(levelWith(
               R"(, "emitters": [{"name": "e\u0000", "material": "water", "position": [0, 0]}])")) ==
           "t.json:1:72: at /emitters/0/name: the name holds a control character (byte 0x00 at "
           "offset 1); names are printable text");
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "drains": [{"name": "d\u0001", "shape": "circle", "center": [0, 0], "radius": 1}])")) ==
         "t.json:1:70: at /drains/0/name: the name holds a control character (byte 0x01 at "
         "offset 1); names are printable text");
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "sensors": [{"name": "s\u0000", "shape": "circle", "center": [0, 0], "radius": 1}])")) ==
         "t.json:1:71: at /sensors/0/name: the name holds a control character (byte 0x00 at "
         "offset 1); names are printable text");
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "bodies": [{"name": "b\u0000", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 9}]}])")) ==
         "t.json:1:70: at /bodies/0/name: the name holds a control character (byte 0x00 at "
         "offset 1); names are printable text");
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "bodies": [{"name": "a", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 9}]}, {"name": "b", "fixtures": [{"shape": "circle", "radius": 0.1, "density": 9}]}], "joints": [{"type": "revolute", "name": "j\u001b", "bodyA": "a", "bodyB": "b", "anchor": [0, 0]}])")) ==
         "t.json:1:260: at /joints/0/name: the name holds a control character (byte 0x1b at "
         "offset 1); names are printable text");
@@ -154,22 +149,22 @@ TEST_CASE("level abuse: names are printable text", "[level][abuse3]") {
     CHECK(errorOf(R"({"version": 1, "materials": [{"name": "Wasser \u00e4\u20ac"}]})") ==
           "no error");
     // A reference that quotes a name is not cut at its NUL.
-    CHECK(errorOf(level(
+    CHECK(errorOf(levelWith(
               R"(, "emitters": [{"name": "e", "material": "wa\u0000ter", "position": [0, 0]}])")) ==
           "t.json:1:89: at /emitters/0/material: unknown material 'wa\\x00ter'; known: water");
     // Nor is any other quoted string, and no escape sequence reaches the text.
-    const std::string unknown = errorOf(level(R"(, "plugins": [{"type": "x\u0000\u001b[2J"}])"));
+    const std::string unknown = errorOf(levelWith(R"(, "plugins": [{"type": "x\u0000\u001b[2J"}])"));
     CHECK(unknown == "t.json:1:71: at /plugins/0/type: unknown plugin type 'x\\x00\\x1b[2J'; "
                      "known: force.gravity, force.point_gravity, force.vortex, force.wind, "
                      "force.pointer, force.explosion, force.damping, boundary.box, "
                      "boundary.polygon, boundary.chain, boundary.circle");
     CHECK(unknown.find('\x1b') == std::string::npos);
-    CHECK(errorOf(level(R"(, "x\u0000y": 1)")) ==
+    CHECK(errorOf(levelWith(R"(, "x\u0000y": 1)")) ==
           "t.json:1:50: at /x\\x00y: unknown key 'x\\x00y'; allowed: version, name, description, "
           "world, materials, blobs, plugins, emitters, drains, sensors, goal, bodies, joints, "
           "coupling");
     try {
-        parseLevel(level(R"(, "materials2": {"\u0007": 1})"), "t.json", builtins());
+        parseLevel(levelWith(R"(, "materials2": {"\u0007": 1})"), "t.json", builtins());
         FAIL("no error");
     } catch (const LevelError& e) {
         CHECK(e.message().find('\x07') == std::string::npos);
@@ -177,25 +172,25 @@ TEST_CASE("level abuse: names are printable text", "[level][abuse3]") {
 }
 
 TEST_CASE("level abuse: an empty box plugin is a load error at its parameters", "[level][abuse3]") {
-    CHECK(errorOf(level(
+    CHECK(errorOf(levelWith(
               R"(, "plugins": [{"type": "boundary.box", "params": {"minX": 1, "maxX": 0}}])")) ==
           "t.json:1:97: at /plugins/0/params: plugin 'boundary.box': the inner rectangle [1, 0] x "
           "[0, 2] is empty; expected minX < maxX and minY < maxY");
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "plugins": [{"type": "boundary.box", "params": {"maxY": -0}}], "blobs": [{"shape": "box", "min": [0, 0], "max": [0.1, 0.1], "material": "water"}])")) ==
         "t.json:1:97: at /plugins/0/params: plugin 'boundary.box': the inner rectangle [-1, 1] x "
         "[0, 0] is empty; expected minX < maxX and minY < maxY");
     // Values that only fit together load, whatever order the file gives them in.
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "plugins": [{"type": "boundary.box", "params": {"maxX": 6, "minX": 5, "maxY": 1}}])")) ==
         "no error");
 }
 
 TEST_CASE("level abuse: a seed past 2^53 is refused", "[level][abuse3]") {
     const auto emitter = [](const std::string& seed) {
-        return errorOf(level(
+        return errorOf(levelWith(
             R"(, "emitters": [{"name": "e", "material": "water", "position": [0, 0], "seed": )" +
             seed + "}]"));
     };
@@ -207,7 +202,7 @@ TEST_CASE("level abuse: a seed past 2^53 is refused", "[level][abuse3]") {
           "t.json:1:126: at /emitters/0/seed: 18446744073709551615 is out of range [0, "
           "9007199254740992] (unit: 1)");
     const Level lvl = parseLevel(
-        level(
+        levelWith(
             R"(, "emitters": [{"name": "e", "material": "water", "position": [0, 0], "seed": 9007199254740992}])"),
         "t.json", builtins());
     CHECK(lvl.world.emitter(lvl.emitters[0].second).seed == 9007199254740992ull);
@@ -255,14 +250,14 @@ TEST_CASE("level abuse: a blob larger than memory is a load error, not std::bad_
 
 TEST_CASE("level abuse: a blob or an emitter outside the position range is a located error",
           "[level][abuse3]") {
-    const std::string blob = errorOf(level(
+    const std::string blob = errorOf(levelWith(
         R"(, "blobs": [{"material": "water", "shape": "box", "min": [10000, 0], "max": [10001, 1]}])"));
     CHECK_THAT(blob, Catch::StartsWith("t.json:1:"));
     CHECK_THAT(blob, Catch::Contains(
                          " at /blobs/0: spawnBlob: the shape's lower corner = (10000, 0) is "
                          "outside the position range [-2628.39, 2628.39] (unit: m; 2^18 spacings "
                          "of the finest material, 'water' at 0.0100265 m;"));
-    const std::string emitter = errorOf(level(
+    const std::string emitter = errorOf(levelWith(
         R"(, "emitters": [{"name": "f", "material": "water", "position": [0, -1e5], "speed": 1, "rate": 1}])"));
     CHECK_THAT(emitter, Catch::Contains(" at /emitters/0: "));
     CHECK_THAT(emitter, Catch::Contains("position = (0, -100000) is outside the position range"));

@@ -20,8 +20,8 @@ namespace {
 
 // Water 0.2 m deep in a 1 m Box2D tank (static walls, "fluid": false), one dynamic body `b`
 // with `fixture` at `position`.
-std::string tank(const std::string& fixture, const std::string& position = "[0.45, 0.25]",
-                 const std::string& quality = "game") {
+std::string bodyTank(const std::string& fixture, const std::string& position = "[0.45, 0.25]",
+                     const std::string& quality = "game") {
     return R"({"version": 1, "world": {"gravity": [0, -9.81], "maxParticles": 20000, "quality": ")" +
            quality + R"("},
  "materials": [{"name": "water", "preset": "water"}],
@@ -47,7 +47,7 @@ std::string triangle(double base, double height, double ratio) {
 TEST_CASE("level bodies: a pointed polygon thinner than the fluid's spacing is refused",
           "[level][bodies][abuse]") {
     // The wedge that spun up to Box2D's limits in 30 frames (480 m/s, 377 rad/s).
-    CHECK(errorOf(tank(triangle(0.1, 0.005, 0.5))) ==
+    CHECK(errorOf(bodyTank(triangle(0.1, 0.005, 0.5))) ==
           "t.json:9:90: at /bodies/1/fixtures/0/vertices/0: the corner at vertex 0 is 5.71 "
           "degrees and the polygon holds a circle of radius 0.00249 m at most; a dynamic body's "
           "polygon with a corner under 90 degrees must hold one of the fluid's spacing, 0.01 m, "
@@ -64,7 +64,7 @@ TEST_CASE("level bodies: a pointed polygon thinner than the fluid's spacing is r
                          Case{0.05, 0.0144, true}, Case{0.05, 0.021, true}, Case{0.03, 0.015, true},
                          Case{0.05, 0.025, false}, Case{0.1, 0.05, false}, Case{0.3, 0.1, false}}) {
         CAPTURE(c.base, c.height);
-        const std::string error = errorOf(tank(triangle(c.base, c.height, 0.5)));
+        const std::string error = errorOf(bodyTank(triangle(c.base, c.height, 0.5)));
         CHECK((error.find("must hold one of the fluid's spacing") != std::string::npos) ==
               c.refused);
         if (!c.refused) {
@@ -72,16 +72,16 @@ TEST_CASE("level bodies: a pointed polygon thinner than the fluid's spacing is r
         }
     }
     // Right angles are not pointed: a box 5 mm thin steps calmly, and so does a 5 mm circle.
-    CHECK(
-        errorOf(tank(R"({"shape": "box", "width": 0.1, "height": 0.005, "densityRatio": 0.5})")) ==
-        "no error");
-    CHECK(errorOf(tank(R"({"shape": "circle", "radius": 0.005, "densityRatio": 0.5})")) ==
+    CHECK(errorOf(bodyTank(
+              R"({"shape": "box", "width": 0.1, "height": 0.005, "densityRatio": 0.5})")) ==
+          "no error");
+    CHECK(errorOf(bodyTank(R"({"shape": "circle", "radius": 0.005, "densityRatio": 0.5})")) ==
           "no error");
     // Static and kinematic bodies, and dry ones, may be pointed: the fluid does not move them.
     for (const char* kind :
          {R"("type": "static", )", R"("type": "kinematic", )", R"("fluid": false, )"}) {
         CAPTURE(kind);
-        std::string text = tank(triangle(0.1, 0.005, 0.5));
+        std::string text = bodyTank(triangle(0.1, 0.005, 0.5));
         text.replace(text.find(R"({"name": "b", )"), 14, std::string(R"({"name": "b", )") + kind);
         CHECK(errorOf(text) == "no error");
     }
@@ -102,14 +102,15 @@ TEST_CASE("level bodies: a body lighter than kMinDensityRatio of the liquid is r
         std::ostringstream fixture;
         fixture << R"({"shape": "box", "width": 0.02, "height": 0.02, "densityRatio": )" << ratio
                 << "}";
-        CHECK_THAT(errorOf(tank(fixture.str(), "[0.5, 0.21]")),
+        CHECK_THAT(errorOf(bodyTank(fixture.str(), "[0.5, 0.21]")),
                    Catch::StartsWith("t.json:9:54: at /bodies/1/fixtures: the fixtures weigh ") &&
                        Catch::Contains("a dynamic body needs at least 0.05 of it "
                                        "(kMinDensityRatio), or the fluid throws it: raise their "
                                        "density to 6.47 kg/m^2 or more"));
     }
-    CHECK(errorOf(tank(R"({"shape": "box", "width": 0.02, "height": 0.02, "densityRatio": 0.05})",
-                       "[0.5, 0.21]")) == "no error");
+    CHECK(
+        errorOf(bodyTank(R"({"shape": "box", "width": 0.02, "height": 0.02, "densityRatio": 0.05})",
+                         "[0.5, 0.21]")) == "no error");
 }
 
 TEST_CASE("level bodies: the lightest and the most pointed bodies allowed ride the water calmly",
@@ -129,7 +130,8 @@ TEST_CASE("level bodies: the lightest and the most pointed bodies allowed ride t
     for (const char* quality : {"game", "precise"}) {
         for (const Case& c : cases) {
             CAPTURE(quality, c.fixture);
-            Level level = parseLevel(tank(c.fixture, c.position, quality), "t.json", builtins());
+            Level level =
+                parseLevel(bodyTank(c.fixture, c.position, quality), "t.json", builtins());
             b2Body* body = level.bodies.back().second;
             double fastest = 0.0, spin = 0.0, energy = 0.0;
             const float mass = level.world.material(level.materials[0].second).mass;

@@ -38,17 +38,6 @@ bool finite(const b2Body* body) {
            std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(body->GetAngularVelocity());
 }
 
-// Plays `frames` frames; returns the wall time per frame (unit: ms).
-double play(Level& level, int frames) {
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int f = 0; f < frames; ++f) {
-        level.step();
-    }
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-               .count() /
-           frames;
-}
-
 } // namespace
 
 TEST_CASE("paddle_wheel.json: the stream turns the wheel the way of the side it falls on",
@@ -69,10 +58,10 @@ TEST_CASE("paddle_wheel.json: the stream turns the wheel the way of the side it 
         CHECK(wheel->GetType() == b2_dynamicBody);
         CHECK(requireBody(level, "axle")->GetType() == b2_staticBody);
         // A balanced wheel: it stays put until the water arrives (about 10 frames).
-        play(level, 6);
+        playFrames(level, 6);
         CHECK(std::abs(wheel->GetAngle()) < 1e-3f);
         // 3 s of simulated time in all.
-        const double ms = play(level, 174);
+        const double ms = playFrames(level, 174);
         const float angle = wheel->GetAngle(), omega = wheel->GetAngularVelocity();
         INFO("side " << side << ": angle " << angle << " rad, omega " << omega << " rad/s");
         // More than one full turn, clockwise (negative) when the stream falls on the right.
@@ -107,7 +96,7 @@ TEST_CASE("crates.json: bodies as written, light crates float, heavy ones sink",
           Approx(0.4 * areal * 0.5 * 0.14 * 0.08).epsilon(1e-5));
     CHECK(level.world.particleCount() < 3000);
 
-    const double ms = play(level, 120);
+    const double ms = playFrames(level, 120);
     CHECK(test::allFinite(level.world));
     for (const auto& [name, body] : level.bodies) {
         INFO(name);

@@ -15,7 +15,7 @@ using namespace fluid::test;
 
 namespace {
 
-std::string level(const std::string& world, const std::string& colour) {
+std::string colourLevel(const std::string& world, const std::string& colour) {
     return R"({"version": 1, "world": {)" + world +
            R"(}, "materials": [{"name": "water"}], "blobs": [{"material": "water", )" +
            R"("shape": "box", "min": [0, 0], "max": [0.1, 0.1])" + colour + "}]}";
@@ -24,7 +24,7 @@ std::string level(const std::string& world, const std::string& colour) {
 } // namespace
 
 TEST_CASE("level colours: a blob's colour and the world's mixing rate", "[level][groups]") {
-    const Level lvl = parseLevel(level(R"("colourMixing": 2.5)", R"(, "colour": "#e0302A")"),
+    const Level lvl = parseLevel(colourLevel(R"("colourMixing": 2.5)", R"(, "colour": "#e0302A")"),
                                  "t.json", builtins());
     CHECK(colourMixing(lvl.world) == 2.5f);
     REQUIRE(lvl.world.particleCount() > 0);
@@ -34,28 +34,28 @@ TEST_CASE("level colours: a blob's colour and the world's mixing rate", "[level]
         CHECK(colour(lvl.world, lvl.world.handleAt(i)) == (Colour{0xe0, 0x30, 0x2a, 255}));
     }
     const Level translucent =
-        parseLevel(level("", R"(, "colour": "#10203080")"), "t.json", builtins());
+        parseLevel(colourLevel("", R"(, "colour": "#10203080")"), "t.json", builtins());
     CHECK(colour(translucent.world, translucent.world.handleAt(0)) == (Colour{16, 32, 48, 128}));
     CHECK(colourMixing(translucent.world) == 0.0f);
     // Without a colour: a group all the same, and no colour channel.
-    const Level plain = parseLevel(level("", ""), "t.json", builtins());
+    const Level plain = parseLevel(colourLevel("", ""), "t.json", builtins());
     CHECK(colours(plain.world).empty());
     CHECK_FALSE(groupOf(plain.world, plain.world.handleAt(0)).isNull());
 }
 
 TEST_CASE("level colours: bad colours and rates name the file, line and key",
           "[level][groups][errors]") {
-    CHECK(errorOf(level("", R"(, "colour": "red")")) ==
+    CHECK(errorOf(colourLevel("", R"(, "colour": "red")")) ==
           "t.json:1:155: at /blobs/0/colour: expected \"#rrggbb\" or \"#rrggbbaa\" "
           "(hexadecimal sRGB, alpha not 00), got 'red'");
-    CHECK(errorOf(level("", R"(, "colour": "#12345g")"))
+    CHECK(errorOf(colourLevel("", R"(, "colour": "#12345g")"))
               .find("at /blobs/0/colour: expected \"#rrggbb\" or \"#rrggbbaa\"") !=
           std::string::npos);
-    CHECK(errorOf(level("", R"(, "colour": "#11223300")")).find("got '#11223300'") !=
+    CHECK(errorOf(colourLevel("", R"(, "colour": "#11223300")")).find("got '#11223300'") !=
           std::string::npos);
-    CHECK(errorOf(level("", R"(, "colour": 255)")).find("at /blobs/0/colour: expected a string") !=
-          std::string::npos);
-    CHECK(errorOf(level(R"("colourMixing": -1)", "")) ==
+    CHECK(errorOf(colourLevel("", R"(, "colour": 255)"))
+              .find("at /blobs/0/colour: expected a string") != std::string::npos);
+    CHECK(errorOf(colourLevel(R"("colourMixing": -1)", "")) ==
           "t.json:1:42: at /world/colourMixing: -1 is out of range [0, 1000] (unit: 1/s)");
 }
 

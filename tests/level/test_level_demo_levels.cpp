@@ -33,24 +33,8 @@ using namespace fluid::test;
 
 namespace {
 
-std::string levelPath(const std::string& stem) {
+std::string shippedLevel(const std::string& stem) {
     return std::string(FLUID_LEVELS_DIR) + "/" + stem + ".json";
-}
-
-// Plays `frames` frames; returns the wall time per frame (unit: ms).
-double play(Level& level, int frames) {
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int f = 0; f < frames; ++f) {
-        level.step();
-    }
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-               .count() /
-           std::max(frames, 1);
-}
-
-uint32_t countOf(const World& world, MaterialId material) {
-    const auto mat = world.materialIndex();
-    return uint32_t(std::count(mat.begin(), mat.end(), material.index));
 }
 
 // The level's material named `name`; fails the test when there is none.
@@ -144,9 +128,9 @@ TEST_CASE("playlist.txt: the demo's levels exist, none twice, the first seven in
     for (const std::string& stem : stems) {
         INFO(stem);
         CHECK(stem.find_first_of(" \t/.") == std::string::npos);
-        REQUIRE(std::filesystem::is_regular_file(levelPath(stem)));
+        REQUIRE(std::filesystem::is_regular_file(shippedLevel(stem)));
         // The demo shows the title and the text: each level has both.
-        const Level level = loadLevel(levelPath(stem), builtins());
+        const Level level = loadLevel(shippedLevel(stem), builtins());
         CHECK_FALSE(level.name.empty());
         CHECK_FALSE(level.description.empty());
     }
@@ -155,7 +139,7 @@ TEST_CASE("playlist.txt: the demo's levels exist, none twice, the first seven in
 
 TEST_CASE("yoghurt_vs_water.json: the water front runs ahead of the yoghurt's, each in its tank",
           "[level][demo][slow]") {
-    Level level = loadLevel(levelPath("yoghurt_vs_water"), builtins());
+    Level level = loadLevel(shippedLevel("yoghurt_vs_water"), builtins());
     const MaterialId water = requireMaterial(level, "water");
     const MaterialId yog = requireMaterial(level, "yoghurt");
     CHECK(level.world.material(yog).viscosity > 5.0f * level.world.material(water).viscosity);
@@ -181,7 +165,7 @@ TEST_CASE("yoghurt_vs_water.json: the water front runs ahead of the yoghurt's, e
     };
     double ms = 0.0;
     for (int f = 0; f < 30; ++f) {
-        ms += play(level, 1);
+        ms += playFrames(level, 1);
         REQUIRE(contained());
     }
     const Bounds w = bounds(level.world, water.index), y = bounds(level.world, yog.index);
@@ -194,7 +178,7 @@ TEST_CASE("yoghurt_vs_water.json: the water front runs ahead of the yoghurt's, e
     CHECK(w.x1 > waterWall - 0.05f); // water reached its far wall
     CHECK(y.x1 < yogWall - 0.1f);    // yoghurt is still on its way
     for (int f = 30; f < 120; ++f) {
-        play(level, 1);
+        playFrames(level, 1);
         REQUIRE(contained());
     }
     CHECK(test::allFinite(level.world));
@@ -204,7 +188,7 @@ TEST_CASE("yoghurt_vs_water.json: the water front runs ahead of the yoghurt's, e
 
 TEST_CASE("zero_g_arena.json: blobs meet without gravity, none leaves, gravity pulls them down",
           "[level][demo][slow]") {
-    Level level = loadLevel(levelPath("zero_g_arena"), builtins());
+    Level level = loadLevel(shippedLevel("zero_g_arena"), builtins());
     const MaterialId water = requireMaterial(level, "water");
     const MaterialId yog = requireMaterial(level, "yoghurt");
     // world.gravity [0, 0]: the force.gravity plugin is there for the demo to turn on.
@@ -228,7 +212,7 @@ TEST_CASE("zero_g_arena.json: blobs meet without gravity, none leaves, gravity p
     double ms = 0.0;
     const int frames = 150; // 2 s
     for (int f = 1; f <= frames; ++f) {
-        ms += play(level, 1);
+        ms += playFrames(level, 1);
         REQUIRE(countOutside(level.world, x0, y0, x1, y1) == 0);
         if (contactFrame < 0 && closestPair(level.world, water, yog) < 1.5 * s) {
             contactFrame = f;
@@ -260,7 +244,7 @@ TEST_CASE("zero_g_arena.json: blobs meet without gravity, none leaves, gravity p
     // The demo's G key: gravity on pulls the centre of mass down, the walls still hold.
     const double cy = centreOfMass(level.world).y;
     g.setParam("gy", -9.81);
-    play(level, 30);
+    playFrames(level, 30);
     const double fall = cy - centreOfMass(level.world).y;
     std::printf("[measure] zero_g_arena with gravity on: centre of mass fell %.3f m in 0.5 s\n",
                 fall);
@@ -305,7 +289,7 @@ TEST_CASE("cup_and_planks.json: lost with the planks where they hang, won with a
     const char* planks[] = {"plank1", "plank2", "plank3"};
 
     SECTION("as loaded: the stream misses the cup, the minute runs out, the level is lost") {
-        Level level = loadLevel(levelPath("cup_and_planks"), registry);
+        Level level = loadLevel(shippedLevel("cup_and_planks"), registry);
         REQUIRE(level.goal.present);
         CHECK(level.goal.amount == 0.8);
         CHECK(level.goal.timeLimit == 60.0);
@@ -353,7 +337,7 @@ TEST_CASE("cup_and_planks.json: lost with the planks where they hang, won with a
     }
 
     SECTION("the planks moved into a staircase slide: the cup fills before the time limit") {
-        Level level = loadLevel(levelPath("cup_and_planks"), registry);
+        Level level = loadLevel(shippedLevel("cup_and_planks"), registry);
         // The slide a player would build: plank1 under the faucet (x = 0.1), each plank's low
         // end over the next one's high end, plank3's low end over the cup (inner x in
         // [0.77, 0.93]). The planks keep the file's tilt (-0.35 rad): the demo drags, it does
@@ -381,7 +365,7 @@ TEST_CASE("big_tank.json: the stress level's particles stay in the tank, sanely 
           "[level][demo][slow]") {
     LevelOptions options;
     options.workerCount = physicsWorkers(); // results do not depend on it
-    Level level = loadLevel(levelPath("big_tank"), builtins(), options);
+    Level level = loadLevel(shippedLevel("big_tank"), builtins(), options);
     const uint32_t count = level.world.particleCount();
     // The count is what keeps 60 fps in the demo (docs/demo.md), measured, not a target here:
     // at least the seed's 900, at most the fuzz target's cap.
@@ -397,7 +381,7 @@ TEST_CASE("big_tank.json: the stress level's particles stay in the tank, sanely 
     // the positions' figure at rest (docs/position_based.md, "Which preset").
     bench::CompressionMeter meter(level.world.spacing(MaterialId{0}));
     for (int f = 0; f < frames; ++f) {
-        ms += play(level, 1);
+        ms += playFrames(level, 1);
         REQUIRE(countOutside(level.world, -1e-3f, -1e-3f, 2.401f, 1.201f) == 0);
         worst =
             std::max(worst, meter.measure(level.world.positionX(), level.world.positionY()).max);
@@ -447,7 +431,7 @@ TEST_CASE("yoghurt_dollop.json: poured beside their tables, water and yoghurt mi
           "pushed onto its table the yoghurt heaps there",
           "[level][demo][yield][slow]") {
     const Registry& registry = builtins();
-    Level level = loadLevel(levelPath("yoghurt_dollop"), registry);
+    Level level = loadLevel(shippedLevel("yoghurt_dollop"), registry);
     const MaterialId water = requireMaterial(level, "water");
     const MaterialId yog = requireMaterial(level, "yoghurt");
     CHECK(level.world.material(yog).yieldStress == 400.0f); // the preset
@@ -461,7 +445,7 @@ TEST_CASE("yoghurt_dollop.json: poured beside their tables, water and yoghurt mi
     const auto yogOn = [&] { return countIn(level.world, yog, 0.995f, 0.12f, 1.295f, 0.17f); };
 
     SECTION("left alone, both land on the floor: the water spreads flat, the yoghurt heaps") {
-        play(level, 60 * 21);
+        playFrames(level, 60 * 21);
         const Bounds w = bounds(level.world, water.index), y = bounds(level.world, yog.index);
         std::printf("[measure] yoghurt_dollop left alone, 21 s: %u water and %u yoghurt "
                     "particles on the tables; tops %.3f m (water) and %.3f m (yoghurt); spread "
@@ -527,7 +511,7 @@ TEST_CASE("sticky_plank.json: the yoghurt clings to the tilted plank, carried an
           "falls into the bowl",
           "[level][demo][bodies][yield][slow]") {
     const Registry& registry = builtins();
-    Level level = loadLevel(levelPath("sticky_plank"), registry);
+    Level level = loadLevel(shippedLevel("sticky_plank"), registry);
     const MaterialId yog = requireMaterial(level, "yoghurt");
     CHECK(level.world.material(yog).yieldStress == 400.0f); // the preset
     b2Body* plank = bodyNamed(level, "plank");
@@ -567,7 +551,7 @@ TEST_CASE("sticky_plank.json: the yoghurt clings to the tilted plank, carried an
     };
 
     SECTION("left alone, the layer settles and stays on the plank") {
-        play(level, 60 * 61);
+        playFrames(level, 60 * 61);
         const Bounds b = bounds(level.world, yog.index);
         std::printf("[measure] sticky_plank left alone: lowest yoghurt at %.3f m after 61 s (the "
                     "plank's low end at 0.39 m), %u in the bowl, goal %s\n",
@@ -643,7 +627,7 @@ TEST_CASE("yoghurt_or_water.json: the water runs down its chute into its cup, th
           "stays on its own until pushed",
           "[level][demo][yield][slow]") {
     const Registry& registry = builtins();
-    Level level = loadLevel(levelPath("yoghurt_or_water"), registry);
+    Level level = loadLevel(shippedLevel("yoghurt_or_water"), registry);
     const MaterialId water = requireMaterial(level, "water");
     const MaterialId yog = requireMaterial(level, "yoghurt");
     CHECK(level.world.material(yog).yieldStress == 400.0f); // the preset
@@ -658,10 +642,10 @@ TEST_CASE("yoghurt_or_water.json: the water runs down its chute into its cup, th
     const auto yogCup = [&] { return countIn(level.world, yog, 1.08f, 0.02f, 1.24f, 0.16f); };
 
     SECTION("left alone: the water fills its cup, the yoghurt never leaves its chute") {
-        play(level, 300);
+        playFrames(level, 300);
         CHECK(waterCup() == nWater);
         const Bounds y5 = bounds(level.world, yog.index);
-        play(level, 60 * 61 - 300);
+        playFrames(level, 60 * 61 - 300);
         const Bounds y = bounds(level.world, yog.index);
         std::printf("[measure] yoghurt_or_water left alone: %u of %u water particles in its cup "
                     "after 5 s; the yoghurt's lowest point %.4f m at 5 s, %.4f m at 61 s; goal "

@@ -14,18 +14,11 @@
 using namespace fluid;
 using namespace fluid::test;
 
-namespace {
-
-// A valid level with one material, `extra` spliced in after it (starting with ", ").
-std::string level(const std::string& extra) {
-    return R"({"version": 1, "materials": [{"name": "water"}])" + extra + "}";
-}
-
-} // namespace
+namespace {} // namespace
 
 TEST_CASE("level errors: the smallest valid level loads", "[level][errors]") {
-    CHECK(errorOf(level("")) == "no error");
-    const Level lvl = parseLevel(level(""), "t.json", builtins());
+    CHECK(errorOf(levelWith("")) == "no error");
+    const Level lvl = parseLevel(levelWith(""), "t.json", builtins());
     CHECK(lvl.version == 1);
     CHECK(lvl.world.forces().empty());
     CHECK(lvl.world.particleCount() == 0);
@@ -68,79 +61,79 @@ TEST_CASE("level errors: the document must be an object with a supported version
 }
 
 TEST_CASE("level errors: unknown keys are named with the allowed ones", "[level][errors]") {
-    CHECK(errorOf(level(R"(, "wrld": {})")) ==
+    CHECK(errorOf(levelWith(R"(, "wrld": {})")) ==
           "t.json:1:50: at /wrld: unknown key 'wrld'; allowed: version, name, description, "
           "world, materials, blobs, plugins, emitters, drains, sensors, goal, bodies, joints, "
           "coupling");
     // The first unknown key in text order (nlohmann keeps members sorted by name).
-    CHECK(errorOf(level(R"(, "world": {"zz": 1, "frameRate": 60, "aa": 2})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"zz": 1, "frameRate": 60, "aa": 2})")) ==
           "t.json:1:60: at /world/zz: unknown key 'zz'; allowed: gravity, frameRate, solver, "
           "quality, substeps, iterations, viscosityInterval, coarseCorrection, vorticity, "
           "shearConstraint, equationOfState, soundSpeed, workers, colourMixing, depth, "
           "courant, maxSubsteps, maxParticles");
     // Keys that belong to another shape are unknown too.
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "blobs": [{"material": "water", "shape": "box", "min": [0, 0], "max": [1, 1], "radius": 1}])")) ==
         "t.json:1:128: at /blobs/0/radius: unknown key 'radius'; allowed: material, velocity, "
         "lifetime, structure, colour, shape, min, max");
     // A blob's starting structure is a share in [0, 1].
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "blobs": [{"material": "water", "shape": "box", "min": [0, 0], "max": [1, 1], "structure": 1.5}])")) ==
         "t.json:1:141: at /blobs/0/structure: 1.5 is out of range [0, 1] (unit: 1)");
     // Pointers escape '/' and '~' (RFC 6901).
-    CHECK(errorOf(level(R"(, "a/b~": 1)")) ==
+    CHECK(errorOf(levelWith(R"(, "a/b~": 1)")) ==
           "t.json:1:50: at /a~1b~0: unknown key 'a/b~'; allowed: version, name, description, "
           "world, materials, blobs, plugins, emitters, drains, sensors, goal, bodies, joints, "
           "coupling");
 }
 
 TEST_CASE("level errors: a repeated key is an error, not a silent overwrite", "[level][errors]") {
-    CHECK(errorOf(level(R"(, "world": {"frameRate": 30, "frameRate": 60})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"frameRate": 30, "frameRate": 60})")) ==
           "t.json:1:77: at /world/frameRate: duplicate key 'frameRate'; each key may appear "
           "once per object");
 }
 
 TEST_CASE("level errors: wrong types say what was expected and what was found", "[level][errors]") {
-    CHECK(errorOf(level(R"(, "world": {"frameRate": "60"})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"frameRate": "60"})")) ==
           "t.json:1:73: at /world/frameRate: expected a number in [1, 1000] (unit: Hz), got a "
           "string");
-    CHECK(errorOf(level(R"(, "world": {"gravity": 9.81})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"gravity": 9.81})")) ==
           "t.json:1:71: at /world/gravity: expected a vector [gx, gy] of two numbers (unit: "
           "m/s^2), got a number");
-    CHECK(errorOf(level(R"(, "world": {"solver": true})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"solver": true})")) ==
           "t.json:1:70: at /world/solver: expected a string, got a boolean");
-    CHECK(errorOf(level(R"(, "world": {"substeps": 2.5})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"substeps": 2.5})")) ==
           "t.json:1:72: at /world/substeps: expected a whole number in [1, 12] (unit: count), "
           "got 2.5");
-    CHECK(errorOf(level(R"(, "blobs": {})")) ==
+    CHECK(errorOf(levelWith(R"(, "blobs": {})")) ==
           "t.json:1:59: at /blobs: expected an array of blobs, got an object");
-    CHECK(errorOf(level(R"(, "blobs": [null])")) ==
+    CHECK(errorOf(levelWith(R"(, "blobs": [null])")) ==
           "t.json:1:60: at /blobs/0: expected a blob (an object), got null");
     CHECK(errorOf(R"({"version": 1, "materials": [{"name": 7}]})") ==
           "t.json:1:39: at /materials/0/name: expected the material's name (a string), got a "
           "number");
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "blobs": [{"material": "water", "shape": "circle", "center": [0, "0"], "radius": 0.1}])")) ==
         "t.json:1:115: at /blobs/0/center/1: expected a number in [-100000, 100000] (unit: m), "
         "got a string");
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "blobs": [{"material": "water", "shape": "circle", "center": [0, 0, 0], "radius": 0.1}])")) ==
         "t.json:1:111: at /blobs/0/center: expected a point [x, y] of two numbers in "
         "[-100000, 100000] (unit: m), got an array of 3");
 }
 
 TEST_CASE("level errors: out-of-range values give the range and unit", "[level][errors]") {
-    CHECK(errorOf(level(R"(, "world": {"frameRate": 5000})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"frameRate": 5000})")) ==
           "t.json:1:73: at /world/frameRate: 5000 is out of range [1, 1000] (unit: Hz)");
-    CHECK(errorOf(level(R"(, "world": {"maxSubsteps": 10000})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"maxSubsteps": 10000})")) ==
           "t.json:1:75: at /world/maxSubsteps: 10000 is out of range [1, 1000] (unit: count)");
-    CHECK(errorOf(level(R"(, "world": {"workers": 0})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"workers": 0})")) ==
           "t.json:1:71: at /world/workers: 0 is out of range [1, 256] (unit: count)");
-    CHECK(errorOf(level(R"(, "world": {"soundSpeed": 0.05})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"soundSpeed": 0.05})")) ==
           "t.json:1:74: at /world/soundSpeed: 0.05 is out of range: 0 (derive from the scene) or "
           "[0.1, 10000] (unit: m/s)");
     CHECK(errorOf(R"({"version": 1, "materials": [{"name": "w", "viscosity": -1}]})") ==
@@ -156,16 +149,16 @@ TEST_CASE("level errors: out-of-range values give the range and unit", "[level][
           "flow law (yieldStress = 400 Pa, consistency = 2 Pa*s^n), which the explicit solver "
           "does not step; use Solver::PositionBased, or set yieldStress and consistency to 0");
     // Plugin parameters: the registry's declared range.
-    CHECK(
-        errorOf(level(R"(, "plugins": [{"type": "boundary.box", "params": {"friction": 11}}])")) ==
-        "t.json:1:110: at /plugins/0/params/friction: 11 is out of range [0, 10] (unit: 1)");
-    CHECK(errorOf(level(R"(, "world": {"gravity": [0, -2000]})")) ==
+    CHECK(errorOf(levelWith(
+              R"(, "plugins": [{"type": "boundary.box", "params": {"friction": 11}}])")) ==
+          "t.json:1:110: at /plugins/0/params/friction: 11 is out of range [0, 10] (unit: 1)");
+    CHECK(errorOf(levelWith(R"(, "world": {"gravity": [0, -2000]})")) ==
           "t.json:1:75: at /world/gravity/1: -2000 is out of range [-1000, 1000] (unit: m/s^2)");
 }
 
 TEST_CASE("level errors: non-finite numbers are rejected", "[level][errors]") {
     // JSON has no NaN or infinity, but 1e999 overflows a double.
-    CHECK(errorOf(level(R"(, "world": {"gravity": [0, -1e999]})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"gravity": [0, -1e999]})")) ==
           "t.json:1:75: at /world/gravity/1: -1e999 is not finite (it overflows a double); "
           "expected a finite number");
     CHECK(errorOf("{\"version\": 1,\n \"materials\": [{\"name\": \"w\", \"mass\": 1e400}]}") ==
@@ -181,7 +174,7 @@ TEST_CASE("level errors: unknown plugin types, presets, solvers and shapes list 
     Registry small;
     small.add<GravityForce>("test");
     try {
-        parseLevel(level(R"(, "plugins": [{"type": "force.vortx"}])"), "t.json", small);
+        parseLevel(levelWith(R"(, "plugins": [{"type": "force.vortx"}])"), "t.json", small);
         FAIL("no error");
     } catch (const LevelError& e) {
         CHECK(std::string(e.what()) == "t.json:1:71: at /plugins/0/type: unknown plugin type "
@@ -190,47 +183,48 @@ TEST_CASE("level errors: unknown plugin types, presets, solvers and shapes list 
     CHECK(errorOf(R"({"version": 1, "materials": [{"name": "m", "preset": "milk"}]})") ==
           "t.json:1:54: at /materials/0/preset: unknown preset 'milk'; known: water, yoghurt, "
           "seed_yoghurt");
-    CHECK(errorOf(level(R"(, "world": {"solver": "pbd"})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"solver": "pbd"})")) ==
           "t.json:1:70: at /world/solver: unknown solver 'pbd'; known: position_based, explicit");
-    CHECK(errorOf(level(R"(, "world": {"quality": "fast"})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"quality": "fast"})")) ==
           "t.json:1:71: at /world/quality: unknown quality 'fast'; known: game, precise");
-    CHECK(errorOf(level(R"(, "world": {"viscosityInterval": 0})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"viscosityInterval": 0})")) ==
           "t.json:1:81: at /world/viscosityInterval: 0 is out of range [1, 64] (unit: count)");
-    CHECK(errorOf(level(R"(, "world": {"coarseCorrection": 1.5})")) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"coarseCorrection": 1.5})")) ==
           "t.json:1:80: at /world/coarseCorrection: 1.5 is out of range [0, 1] (unit: 1)");
-    CHECK(errorOf(level(R"(, "sensors": [{"name": "s", "shape": "star"}])")) ==
+    CHECK(errorOf(levelWith(R"(, "sensors": [{"name": "s", "shape": "star"}])")) ==
           "t.json:1:85: at /sensors/0/shape: unknown shape 'star'; known: box, circle, polygon");
     // Each with ErrorCode::UnknownName (docs/errors.md); a value out of range is a bad file.
     CHECK(codeOf(R"({"version": 1, "materials": [{"name": "m", "preset": "milk"}]})") ==
           ErrorCode::UnknownName);
-    CHECK(codeOf(level(R"(, "plugins": [{"type": "force.vortx"}])")) == ErrorCode::UnknownName);
-    CHECK(codeOf(level(R"(, "world": {"solver": "pbd"})")) == ErrorCode::UnknownName);
-    CHECK(codeOf(level(R"(, "world": {"quality": "fast"})")) == ErrorCode::UnknownName);
-    CHECK(codeOf(level(R"(, "world": {"equationOfState": "ideal"})")) == ErrorCode::UnknownName);
-    CHECK(errorOf(level(R"(, "world": {"equationOfState": "ideal"})")) ==
+    CHECK(codeOf(levelWith(R"(, "plugins": [{"type": "force.vortx"}])")) == ErrorCode::UnknownName);
+    CHECK(codeOf(levelWith(R"(, "world": {"solver": "pbd"})")) == ErrorCode::UnknownName);
+    CHECK(codeOf(levelWith(R"(, "world": {"quality": "fast"})")) == ErrorCode::UnknownName);
+    CHECK(codeOf(levelWith(R"(, "world": {"equationOfState": "ideal"})")) ==
+          ErrorCode::UnknownName);
+    CHECK(errorOf(levelWith(R"(, "world": {"equationOfState": "ideal"})")) ==
           "t.json:1:79: at /world/equationOfState: unknown equation of state 'ideal'; known: "
           "tait, linear");
-    CHECK(codeOf(level(R"(, "sensors": [{"name": "s", "shape": "star"}])")) ==
+    CHECK(codeOf(levelWith(R"(, "sensors": [{"name": "s", "shape": "star"}])")) ==
           ErrorCode::UnknownName);
-    CHECK(codeOf(level(R"(, "world": {"viscosityInterval": 0})")) == ErrorCode::BadFile);
+    CHECK(codeOf(levelWith(R"(, "world": {"viscosityInterval": 0})")) == ErrorCode::BadFile);
 }
 
 TEST_CASE("level errors: every name of the solver, quality and equation-of-state tables loads",
           "[level][errors]") {
     for (const EnumName<Solver>& row : kSolverNames) {
-        const std::string text = level(R"(, "world": {"solver": ")" + std::string(row.name) +
-                                       R"(", "equationOfState": "tait"})");
+        const std::string text = levelWith(R"(, "world": {"solver": ")" + std::string(row.name) +
+                                           R"(", "equationOfState": "tait"})");
         INFO(text);
         CHECK(parseLevel(text, "t.json", builtins()).world.def().solver == row.value);
     }
     for (const EnumName<EquationOfState>& row : kEquationOfStateNames) {
         const std::string text =
-            level(R"(, "world": {"equationOfState": ")" + std::string(row.name) + R"("})");
+            levelWith(R"(, "world": {"equationOfState": ")" + std::string(row.name) + R"("})");
         CHECK(parseLevel(text, "t.json", builtins()).world.def().equationOfState == row.value);
     }
     for (const EnumName<Quality>& row : kQualityNames) {
         const std::string text =
-            level(R"(, "world": {"quality": ")" + std::string(row.name) + R"("})");
+            levelWith(R"(, "world": {"quality": ")" + std::string(row.name) + R"("})");
         CHECK(parseLevel(text, "t.json", builtins()).world.def().positionBased.iterations ==
               positionBasedPreset(row.value).iterations);
     }
@@ -239,15 +233,15 @@ TEST_CASE("level errors: every name of the solver, quality and equation-of-state
 TEST_CASE("level errors: the kinds of failure carry their codes", "[level][errors]") {
     // Malformed contents: a bad file.
     CHECK(codeOf("{\"version\": 1,\n  \"name\": x}") == ErrorCode::BadFile);
-    CHECK(codeOf(level(R"(, "bogus": 1)")) == ErrorCode::BadFile);
+    CHECK(codeOf(levelWith(R"(, "bogus": 1)")) == ErrorCode::BadFile);
     // A value the world refuses, re-located at the file's block: the file's fault.
     CHECK(
-        codeOf(level(
+        codeOf(levelWith(
             R"(, "blobs": [{"material": "water", "shape": "box", "min": [0, 0], "max": [80, 80]}])")) ==
         ErrorCode::BadFile);
     // A name the file refers to but does not declare.
     CHECK(
-        codeOf(level(
+        codeOf(levelWith(
             R"(, "blobs": [{"material": "milk", "shape": "box", "min": [0, 0], "max": [1, 1]}])")) ==
         ErrorCode::UnknownName);
     // A file that cannot be opened.
@@ -262,41 +256,42 @@ TEST_CASE("level errors: the kinds of failure carry their codes", "[level][error
 }
 
 TEST_CASE("level errors: unknown plugin parameters list the declared ones", "[level][errors]") {
-    CHECK(errorOf(level(
+    CHECK(errorOf(levelWith(
               R"(, "plugins": [{"type": "boundary.box", "params": {"minX": 0, "width": 2}}])")) ==
           "t.json:1:109: at /plugins/0/params/width: unknown parameter 'width' of plugin "
           "'boundary.box'; known: minX, minY, maxX, maxY, friction, openTop");
-    CHECK(errorOf(level(R"(, "plugins": [{"type": "force.gravity", "params": {"g": 1}}])")) ==
+    CHECK(errorOf(levelWith(R"(, "plugins": [{"type": "force.gravity", "params": {"g": 1}}])")) ==
           "t.json:1:99: at /plugins/0/params/g: unknown parameter 'g' of plugin "
           "'force.gravity'; known: gx, gy");
 }
 
 TEST_CASE("level errors: point-list parameters need [[x, y], ...]", "[level][errors]") {
-    CHECK(errorOf(
-              level(R"(, "plugins": [{"type": "boundary.polygon", "params": {"vertices": 5}}])")) ==
+    CHECK(errorOf(levelWith(
+              R"(, "plugins": [{"type": "boundary.polygon", "params": {"vertices": 5}}])")) ==
           "t.json:1:114: at /plugins/0/params/vertices: expected a list of 3 to 4096 points "
           "[[x, y], ...] (unit: m), got a number");
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "plugins": [{"type": "boundary.polygon", "params": {"vertices": [[0, 0], [1, 0]]}}])")) ==
         "t.json:1:114: at /plugins/0/params/vertices: expected a list of 3 to 4096 points "
         "[[x, y], ...] (unit: m), got 2 points");
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "plugins": [{"type": "boundary.polygon", "params": {"vertices": [[0, 0], [1, 0], 1]}}])")) ==
         "t.json:1:131: at /plugins/0/params/vertices/2: expected a point [x, y] of two numbers "
         "(unit: m), got a number");
     // A number parameter given points.
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "plugins": [{"type": "boundary.polygon", "params": {"x": [0, 0], "vertices": [[0, 0], [1, 0], [0, 1]]}}])")) ==
         "t.json:1:107: at /plugins/0/params/x: expected a number in [-100000, 100000] (unit: "
         "m), got an array");
     // A plugin starts with no points: required point lists must be given.
-    CHECK(errorOf(level(R"(, "plugins": [{"type": "boundary.polygon", "params": {"x": 1}}])")) ==
-          "t.json:1:101: at /plugins/0/params: missing parameter 'vertices' of plugin "
-          "'boundary.polygon'; expected a list of 3 to 4096 points [[x, y], ...] (unit: m)");
-    CHECK(errorOf(level(R"(, "plugins": [{"type": "boundary.chain"}])")) ==
+    CHECK(
+        errorOf(levelWith(R"(, "plugins": [{"type": "boundary.polygon", "params": {"x": 1}}])")) ==
+        "t.json:1:101: at /plugins/0/params: missing parameter 'vertices' of plugin "
+        "'boundary.polygon'; expected a list of 3 to 4096 points [[x, y], ...] (unit: m)");
+    CHECK(errorOf(levelWith(R"(, "plugins": [{"type": "boundary.chain"}])")) ==
           "t.json:1:62: at /plugins/0: missing parameter 'points' of plugin 'boundary.chain'; "
           "expected a list of 2 to 4096 points [[x, y], ...] (unit: m)");
 }
@@ -304,35 +299,36 @@ TEST_CASE("level errors: point-list parameters need [[x, y], ...]", "[level][err
 TEST_CASE("level errors: bad shapes", "[level][errors]") {
     const std::string blob =
         R"(, "blobs": [{"material": "water", "shape": "polygon", "vertices": )";
-    CHECK(errorOf(level(blob + "[[0, 0], [1, 0]]}]")) ==
+    CHECK(errorOf(levelWith(blob + "[[0, 0], [1, 0]]}]")) ==
           "t.json:1:114: at /blobs/0/vertices: expected a list of 3 to 256 points [[x, y], ...] "
           "(unit: m), got 2 points");
     // A bow tie: edges 0 and 2 cross.
-    CHECK(errorOf(level(blob + "[[0, 0], [0.3, 0.2], [0.3, 0], [0, 0.1]]}]")) ==
+    CHECK(errorOf(levelWith(blob + "[[0, 0], [0.3, 0.2], [0.3, 0], [0, 0.1]]}]")) ==
           "t.json:1:114: at /blobs/0/vertices: polygon edges 0 and 2 cross; expected a simple "
           "polygon");
-    CHECK(errorOf(level(blob + "[[0, 0], [1, 1], [2, 2]]}]")) ==
+    CHECK(errorOf(levelWith(blob + "[[0, 0], [1, 1], [2, 2]]}]")) ==
           "t.json:1:114: at /blobs/0/vertices: polygon has zero area");
-    CHECK(errorOf(level(
+    CHECK(errorOf(levelWith(
               R"(, "sensors": [{"name": "s", "shape": "box", "min": [0, 0], "max": [1, 0]}])")) ==
           "t.json:1:114: at /sensors/0/max: expected max > min on both axes, got min [0, 0], max "
           "[1, 0]");
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "drains": [{"name": "d", "shape": "circle", "center": [0, 0], "radius": 0}])")) ==
         "t.json:1:122: at /drains/0/radius: 0 is out of range (0, 100000] (unit: m)");
-    CHECK(errorOf(level(R"(, "sensors": [{"name": "s", "shape": "circle", "center": [0, 0]}])")) ==
+    CHECK(errorOf(
+              levelWith(R"(, "sensors": [{"name": "s", "shape": "circle", "center": [0, 0]}])")) ==
           "t.json:1:62: at /sensors/0: missing key 'radius'; expected a number in (0, 100000] "
           "(unit: m)");
     // Smaller than one lattice spacing: no particle, which is an error, not a silent no-op.
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "blobs": [{"material": "water", "shape": "circle", "center": [0, 0], "radius": 0.001}])")) ==
         "t.json:1:60: at /blobs/0: the blob holds no particle: it is smaller than the "
         "material's lattice spacing 0.010026513 m");
     // Larger than the world may hold.
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "world": {"maxParticles": 100}, "blobs": [{"material": "water", "shape": "box", "min": [0, 0], "max": [1, 1]}])")) ==
         "t.json:1:92: at /blobs/0: the blob spans about 9801 lattice points (spacing "
         "0.010026513 m); the world holds at most 100 particles (world.maxParticles)");
@@ -345,18 +341,18 @@ TEST_CASE("level errors: names are unique within their list", "[level][errors]")
         "t.json:1:54: at /materials/1/name: duplicate material name 'w' (first used at "
         "/materials/0/name); names must be unique");
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "sensors": [{"name": "s", "shape": "circle", "center": [0, 0], "radius": 1}, {"name": "s", "shape": "circle", "center": [1, 0], "radius": 1}])")) ==
         "t.json:1:136: at /sensors/1/name: duplicate sensor name 's' (first used at "
         "/sensors/0/name); names must be unique");
     // world.gravity takes the plugin name "gravity".
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "world": {"gravity": [0, -1]}, "plugins": [{"type": "force.gravity", "name": "gravity"}])")) ==
         "t.json:1:127: at /plugins/0/name: duplicate plugin name 'gravity' (first used at "
         "/world/gravity); names must be unique");
-    CHECK(errorOf(
-              level(R"(, "emitters": [{"name": "", "material": "water", "position": [0, 0]}])")) ==
+    CHECK(errorOf(levelWith(
+              R"(, "emitters": [{"name": "", "material": "water", "position": [0, 0]}])")) ==
           "t.json:1:72: at /emitters/0/name: expected a non-empty name");
 }
 
@@ -365,38 +361,40 @@ TEST_CASE("level errors: references must name an existing entry", "[level][error
         errorOf(
             R"({"version": 1, "materials": [{"name": "water"}, {"name": "yoghurt", "preset": "yoghurt"}], "blobs": [{"material": "milk", "shape": "circle", "center": [0, 0], "radius": 0.1}]})") ==
         "t.json:1:115: at /blobs/0/material: unknown material 'milk'; known: water, yoghurt");
-    CHECK(errorOf(level(R"(, "goal": {"sensor": "cup", "material": "water", "fraction": 0.5})")) ==
+    CHECK(errorOf(
+              levelWith(R"(, "goal": {"sensor": "cup", "material": "water", "fraction": 0.5})")) ==
           "t.json:1:69: at /goal/sensor: unknown sensor 'cup'; known: (none)");
     const std::string sensor =
         R"(, "sensors": [{"name": "cup", "shape": "box", "min": [0, 0], "max": [1, 1]}])";
-    CHECK(
-        errorOf(level(sensor + R"(, "goal": {"sensor": "cup", "material": "oil", "count": 5})")) ==
-        "t.json:1:164: at /goal/material: unknown material 'oil'; known: water");
-    CHECK(errorOf(level(sensor + R"(, "goal": {"sensor": "cup", "material": "water"})")) ==
+    CHECK(errorOf(levelWith(sensor +
+                            R"(, "goal": {"sensor": "cup", "material": "oil", "count": 5})")) ==
+          "t.json:1:164: at /goal/material: unknown material 'oil'; known: water");
+    CHECK(errorOf(levelWith(sensor + R"(, "goal": {"sensor": "cup", "material": "water"})")) ==
           "t.json:1:134: at /goal: missing the amount; expected one of 'fraction', 'count', "
           "'volume'");
-    CHECK(errorOf(level(
+    CHECK(errorOf(levelWith(
               sensor +
               R"(, "goal": {"sensor": "cup", "material": "water", "volume": 1, "count": 5})")) ==
           "t.json:1:186: at /goal/count: expected only one of 'fraction', 'count', 'volume'; "
           "'volume' is given too");
-    CHECK(errorOf(level(sensor +
-                        R"(, "goal": {"sensor": "cup", "material": "water", "fraction": 1.5})")) ==
+    CHECK(errorOf(levelWith(
+              sensor + R"(, "goal": {"sensor": "cup", "material": "water", "fraction": 1.5})")) ==
           "t.json:1:185: at /goal/fraction: 1.5 is out of range (0, 1] (unit: 1)");
     // Every amount's name loads as its measure; a reference to nothing is an unknown name.
     const std::pair<const char*, GoalMeasure> measures[] = {{"fraction", GoalMeasure::Fraction},
                                                             {"count", GoalMeasure::Count},
                                                             {"volume", GoalMeasure::Volume}};
     for (const auto& [name, measure] : measures) {
-        const Level lvl = parseLevel(level(sensor +
-                                           R"(, "goal": {"sensor": "cup", "material": )"
-                                           R"("water", ")" +
-                                           std::string(name) + R"(": 1})"),
+        const Level lvl = parseLevel(levelWith(sensor +
+                                               R"(, "goal": {"sensor": "cup", "material": )"
+                                               R"("water", ")" +
+                                               std::string(name) + R"(": 1})"),
                                      "t.json", builtins());
         CHECK(lvl.goal.measure == measure);
     }
-    CHECK(codeOf(level(R"(, "goal": {"sensor": "cup", "material": "water", "fraction": 0.5})")) ==
-          ErrorCode::UnknownName);
+    CHECK(
+        codeOf(levelWith(R"(, "goal": {"sensor": "cup", "material": "water", "fraction": 0.5})")) ==
+        ErrorCode::UnknownName);
 }
 
 TEST_CASE("level errors: world, material and plugin errors come back located at their block",
@@ -416,7 +414,7 @@ TEST_CASE("level errors: world, material and plugin errors come back located at 
     }
     REQUIRE_FALSE(worldMessage.empty());
     CHECK(
-        errorOf(level(
+        errorOf(levelWith(
             R"(, "emitters": [{"name": "f", "material": "water", "position": [0, 0], "width": 0, "rate": 10000}])")) ==
         "t.json:1:63: at /emitters/0: " + worldMessage);
 
@@ -428,7 +426,7 @@ TEST_CASE("level errors: world, material and plugin errors come back located at 
     // The WorldDef from the file and the options together: the world's message at /world.
     LevelOptions options;
     options.workerCount = 1000;
-    CHECK(errorOf(level(R"(, "world": {"frameRate": 60})"), options) ==
+    CHECK(errorOf(levelWith(R"(, "world": {"frameRate": 60})"), options) ==
           "t.json:1:59: at /world: WorldDef: workerCount = 1000 is out of range [1, 256] (unit: "
           "count)");
 }

@@ -82,7 +82,7 @@ double reach(const b2Body& body) {
 }
 
 // Plays `seconds` of the level at its rate; the tank is [0, 2] x [0, 1] (open top).
-Played play(Level& level, double seconds) {
+Played playSeconds(Level& level, double seconds) {
     Played r;
     const int frames = int(std::lround(seconds * level.frameRate));
     uint64_t substeps = 0;
@@ -130,7 +130,7 @@ void sweep(bool explicitSolver, double seconds) {
         Level level = parseLevel(cratesAt(hz, explicitSolver), "crates.json", builtins());
         REQUIRE(level.frameRate == float(hz));
         REQUIRE(level.coupling != nullptr);
-        const Played r = play(level, seconds);
+        const Played r = playSeconds(level, seconds);
         std::printf("[measure] crates.json, %s solver at %d Hz, %.0f s: %.0f sub-steps per s; "
                     "water x %.4f..%.4f m, top %.3f m, %u particles out at worst (first at "
                     "frame %d); bodies at most %.2f m/s, %.1f rad/s, a point at %.2f m/s, "

@@ -18,14 +18,10 @@
 #include <vector>
 
 using namespace fluid;
+using fluid::test::builtins;
+using fluid::test::countOf;
 
 namespace {
-
-Registry builtins() {
-    Registry registry;
-    registerBuiltinPlugins(registry);
-    return registry;
-}
 
 std::string levelPath(const char* name) {
     return std::string(FLUID_LEVELS_DIR) + "/" + name;
@@ -46,11 +42,6 @@ double run(Level& level, int frames) {
     }
     const auto t1 = std::chrono::steady_clock::now();
     return std::chrono::duration<double, std::milli>(t1 - t0).count() / frames;
-}
-
-uint32_t countOf(const World& world, MaterialId material) {
-    const auto mat = world.materialIndex();
-    return uint32_t(std::count(mat.begin(), mat.end(), material.index));
 }
 
 const Level::PluginEntry* plugin(const Level& level, std::string_view name) {
@@ -76,7 +67,7 @@ constexpr std::string_view kLevelsWithOwnTest[] = {
 
 TEST_CASE("every shipped level loads, and levels without a test of their own run 120 frames",
           "[level]") {
-    const Registry registry = builtins();
+    const Registry& registry = builtins();
     std::vector<std::filesystem::path> files;
     for (const auto& entry : std::filesystem::directory_iterator(FLUID_LEVELS_DIR)) {
         if (entry.path().extension() == ".json") {
@@ -186,7 +177,7 @@ TEST_CASE("zero_g_blobs.json: two materials in free fall keep their momentum", "
 }
 
 TEST_CASE("fill_the_cup.json: the faucet fills the cup, the goal is won and stays won", "[level]") {
-    const Registry registry = builtins();
+    const Registry& registry = builtins();
     Level level = loadLevel(levelPath("fill_the_cup.json"), registry);
     REQUIRE(level.emitters.size() == 1);
     CHECK(level.emitters[0].first == "faucet");
@@ -260,7 +251,7 @@ TEST_CASE("fill_the_cup.json with a short time limit is lost, and stays lost", "
 }
 
 TEST_CASE("planetoid.json: fluid falls onto the planet and stays outside it", "[level]") {
-    const Registry registry = builtins();
+    const Registry& registry = builtins();
     if (registry.find("force.point_gravity") == nullptr ||
         registry.find("boundary.circle") == nullptr) {
         FAIL("planetoid.json needs force.point_gravity and boundary.circle");
@@ -346,7 +337,7 @@ TEST_CASE("the fuzz seed with every key of the format loads as written", "[level
 }
 
 TEST_CASE("LevelOptions override the file's workers and cap its particles", "[level]") {
-    const Registry registry = builtins();
+    const Registry& registry = builtins();
     LevelOptions options;
     options.workerCount = 2;
     options.maxParticles = 50000; // more than the file's 20000: the file's value stays

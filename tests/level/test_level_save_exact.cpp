@@ -30,7 +30,7 @@ Level restore(const std::string& bytes, uint32_t workers) {
 
 // Every body's pose and velocities (Box2D's list order) and every particle's position and
 // velocity (slot order), as bits.
-std::vector<float> state(const Level& level) {
+std::vector<float> levelBits(const Level& level) {
     std::vector<float> out;
     for (const b2Body* b = level.physics->GetBodyList(); b != nullptr; b = b->GetNext()) {
         const b2Vec2 p = b->GetPosition(), c = b->GetWorldCenter(), v = b->GetLinearVelocity();
@@ -65,7 +65,7 @@ void continuesExactly(const std::string& name, uint32_t workers, const std::vect
             level.step();
             copy.step();
         }
-        CHECK(state(copy) == state(level));
+        CHECK(levelBits(copy) == levelBits(level));
         CHECK(saveOf(copy) == saveOf(level));
     }
 }

@@ -53,15 +53,6 @@ struct Moves {
     }
 };
 
-// Distance from p to the segment a-b.
-double segmentDistance(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
-    const glm::dvec2 e = b - a;
-    const double u =
-        std::clamp(((p.x - a.x) * e.x + (p.y - a.y) * e.y) / (e.x * e.x + e.y * e.y), 0.0, 1.0);
-    const glm::dvec2 d = p - (a + u * e);
-    return std::sqrt(d.x * d.x + d.y * d.y);
-}
-
 // Signed side of p against the line a -> b (> 0 left).
 double side(glm::vec2 p, glm::vec2 a, glm::vec2 b) {
     return double(b.x - a.x) * double(p.y - a.y) - double(b.y - a.y) * double(p.x - a.x);

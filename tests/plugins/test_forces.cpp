@@ -22,7 +22,6 @@ using namespace fluid::test;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Particles for calling `apply` directly: plain vectors, one context over them.
 struct Bench {

@@ -15,6 +15,7 @@
 #include <cstring>
 #include <ctime>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <span>
@@ -39,14 +40,62 @@
 
 namespace fluid::test {
 
+/// The registry with every built-in plugin, made once (read-only: safe from any thread).
+inline const Registry& builtins() {
+    static const Registry registry = [] {
+        Registry r;
+        registerBuiltinPlugins(r);
+        return r;
+    }();
+    return registry;
+}
+
+/// The bytes of `world`'s save.
+inline std::string saved(const World& world) {
+    std::ostringstream out;
+    world.save(out);
+    return out.str();
+}
+
+/// A world loaded from saved `bytes` with `registry`'s plugins, on `workers` workers (0: the
+/// saved count).
+inline World restored(const std::string& bytes, const Registry& registry, uint32_t workers = 0) {
+    std::istringstream in(bytes);
+    return World::load(in, registry, workers);
+}
+
+/// A world loaded from saved `bytes` with the built-in plugins, on `workers` workers (0: the
+/// saved count).
+inline World restored(const std::string& bytes, uint32_t workers = 0) {
+    return restored(bytes, builtins(), workers);
+}
+
 /// `world` saved and loaded again with the built-in plugins, on `workers` workers (0: the
 /// saved count).
 inline World reloaded(const World& world, uint32_t workers = 0) {
-    std::stringstream bytes;
-    world.save(bytes);
-    Registry registry;
-    registerBuiltinPlugins(registry);
-    return World::load(bytes, registry, workers);
+    return restored(saved(world), workers);
+}
+
+/// Not-a-number and infinity, for bad input.
+inline constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+inline constexpr float kInf = std::numeric_limits<float>::infinity();
+
+/// Pi, in double.
+inline constexpr double kPi = 3.14159265358979323846;
+
+/// Distance from `p` to the segment from `a` to `b` (unit: m).
+inline double segmentDistance(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
+    const glm::dvec2 e = b - a;
+    const double u =
+        std::clamp(((p.x - a.x) * e.x + (p.y - a.y) * e.y) / (e.x * e.x + e.y * e.y), 0.0, 1.0);
+    const glm::dvec2 d = p - (a + u * e);
+    return std::sqrt(d.x * d.x + d.y * d.y);
+}
+
+/// Particles of `material` in `world` (unit: count).
+inline uint32_t countOf(const World& world, MaterialId material) {
+    const auto mat = world.materialIndex();
+    return uint32_t(std::count(mat.begin(), mat.end(), material.index));
 }
 
 /// A level whose one blob asks for about 63.6 million particles (about 12.7 GB): loading it

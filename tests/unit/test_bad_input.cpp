@@ -10,9 +10,6 @@ using namespace fluid::test;
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
-
 struct Snapshot {
     std::vector<float> px, py, vx, vy, rho;
     double time = 0.0;

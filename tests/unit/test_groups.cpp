@@ -18,36 +18,18 @@ using namespace fluid::test;
 
 namespace {
 
-Registry builtins() {
-    Registry registry;
-    registerBuiltinPlugins(registry);
-    return registry;
-}
-
-std::string saved(const World& world) {
-    std::ostringstream out;
-    world.save(out);
-    return out.str();
-}
-
-World restored(const std::string& bytes, uint32_t workers = 0) {
-    const Registry registry = builtins();
-    std::istringstream in(bytes);
-    return World::load(in, registry, workers);
-}
-
 // Two coloured blobs side by side in a closed tank, an emitter pouring a third colour, all
 // three groups: the liquid sloshes, so the sort reorders the arrays every sub-step.
-struct Scene {
+struct GroupScene {
     World world;
     GroupHandle left, right, poured;
     EmitterId emitter;
 };
 
-Scene colouredTank(uint32_t workers, float mixing = 0.0f) {
+GroupScene colouredTank(uint32_t workers, float mixing = 0.0f) {
     WorldDef def;
     def.workerCount = workers;
-    Scene sc{World(def), {}, {}, {}, {}};
+    GroupScene sc{World(def), {}, {}, {}, {}};
     World& world = sc.world;
     const MaterialId w = world.addMaterial(water());
     world.addForce(std::make_unique<GravityForce>());
@@ -99,7 +81,7 @@ uint64_t channelSum(const World& world, int channel) {
 TEST_CASE("groups: blobs and emitters are groups whose particles keep group, user data and "
           "colour by handle across many steps",
           "[groups]") {
-    Scene sc = colouredTank(2);
+    GroupScene sc = colouredTank(2);
     World& world = sc.world;
     const uint32_t blob = 20 * 24;
     CHECK(groupCount(world, sc.left) == blob);
@@ -165,7 +147,7 @@ TEST_CASE("groups: blobs and emitters are groups whose particles keep group, use
 }
 
 TEST_CASE("groups: centre of mass and velocity equal a brute-force sum", "[groups]") {
-    Scene sc = colouredTank(1);
+    GroupScene sc = colouredTank(1);
     World& world = sc.world;
     for (int frame = 0; frame < 40; ++frame) {
         world.step(kFrame);
@@ -194,7 +176,7 @@ TEST_CASE("groups: centre of mass and velocity equal a brute-force sum", "[group
 
 TEST_CASE("groups: move, velocity, destroy and merge act on exactly the group's particles",
           "[groups]") {
-    Scene sc = colouredTank(1);
+    GroupScene sc = colouredTank(1);
     World& world = sc.world;
     setInterpolation(world, true);
     for (int frame = 0; frame < 20; ++frame) {
@@ -275,7 +257,7 @@ TEST_CASE("groups: move, velocity, destroy and merge act on exactly the group's 
 
 TEST_CASE("groups: stale, null and foreign handles and bad values are refused by name",
           "[groups]") {
-    Scene sc = colouredTank(1);
+    GroupScene sc = colouredTank(1);
     World& world = sc.world;
     destroyGroup(world, sc.right);
     CHECK_THROWS_WITH(groupCount(world, sc.right),
@@ -290,7 +272,7 @@ TEST_CASE("groups: stale, null and foreign handles and bad values are refused by
     CHECK(reused.generation == sc.right.generation + 1);
     CHECK_FALSE(isValid(world, sc.right));
     CHECK_THROWS_WITH(groupCentre(world, GroupHandle{}), "groupCentre: null group handle");
-    Scene other = colouredTank(1);
+    GroupScene other = colouredTank(1);
     CHECK_THROWS_WITH(
         groupCount(world, other.left),
         "groupCount: group handle {index 0, generation 1} belongs to another world (world " +
@@ -325,7 +307,7 @@ TEST_CASE("groups: stale, null and foreign handles and bad values are refused by
 }
 
 TEST_CASE("groups: calls during the world's step are refused with WrongState", "[groups]") {
-    Scene sc = colouredTank(1);
+    GroupScene sc = colouredTank(1);
     World& world = sc.world;
     bool called = false;
     world.addForce(std::make_unique<HookForce>([&] {
@@ -347,7 +329,7 @@ TEST_CASE("groups: calls during the world's step are refused with WrongState", "
 
 TEST_CASE("groups: groups, user data and colours survive a save and restore bit for bit",
           "[groups][snapshot]") {
-    Scene sc = colouredTank(2, 4.0f);
+    GroupScene sc = colouredTank(2, 4.0f);
     World& world = sc.world;
     setInterpolation(world, true);
     for (int frame = 0; frame < 30; ++frame) {
@@ -432,7 +414,7 @@ TEST_CASE("groups: colour mixing keeps each channel's sum and is the same on 1, 
     std::vector<uint32_t> reference;
     uint64_t referenceHash = 0;
     for (const uint32_t workers : {1u, 2u, 4u}) {
-        Scene sc = colouredTank(workers, 3.0f);
+        GroupScene sc = colouredTank(workers, 3.0f);
         World& world = sc.world;
         world.setEmitter(sc.emitter, [&] {
             EmitterDef e = world.emitter(sc.emitter);

@@ -1,15 +1,16 @@
 // Kernels (fluid/src/kernels.h): normalisation over the plane, gradient antisymmetry and
 // consistency, the viscosity Laplacian's 2D constant.
 #include "kernels.h"
+#include "test_support.h"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <random>
 
-namespace {
+using fluid::test::kPi;
 
-constexpr double kPi = 3.14159265358979323846;
+namespace {
 
 // int_0^h 2 pi r f(r) dr by composite Simpson in double (f evaluated in float, as the solver does).
 template <class F> double discIntegral(F&& f, double h, int intervals = 20000) {

@@ -14,9 +14,6 @@ using namespace fluid::test;
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
-
 // A disc-shaped solid at the tank's centre whose output a test breaks in one way.
 enum class Fault {
     None,           // the same samples, project moves nothing
@@ -97,7 +94,7 @@ struct State {
 };
 
 // Water in a 0.6 m tank with gravity, the faulty boundary added after the tank.
-World tank(Solver solver, uint32_t workers, Fault fault) {
+World faultyTank(Solver solver, uint32_t workers, Fault fault) {
     WorldDef def;
     def.solver = solver;
     def.workerCount = workers;
@@ -126,7 +123,7 @@ private:
     float m_ax;
 };
 
-float meanX(const World& world) { // unit: m
+float meanParticleX(const World& world) { // unit: m
     double sum = 0.0;
     for (const float x : world.positionX()) {
         sum += x;
@@ -159,7 +156,7 @@ TEST_CASE("a boundary plugin's non-finite sample refuses the step and names the 
                   "inf) with velocity (0, 0) is not finite; a boundary plugin's prepare must "
                   "lay finite samples";
     }
-    World world = tank(solver, workers, fault);
+    World world = faultyTank(solver, workers, fault);
     const State before(world);
     for (int attempt = 0; attempt < 2; ++attempt) {
         try {
@@ -187,7 +184,7 @@ TEST_CASE("a boundary plugin's project writing NaN or infinity keeps the particl
     const Fault fault =
         GENERATE(Fault::ProjectOneX, Fault::ProjectOneV, Fault::ProjectAll, Fault::ProjectInf);
     CAPTURE(solverLabel(solver), workers, int(fault));
-    World world = tank(solver, workers, fault);
+    World world = faultyTank(solver, workers, fault);
     const uint32_t count = world.particleCount();
     uint32_t dropped = 0;
     for (int frame = 0; frame < 5; ++frame) {
@@ -209,7 +206,7 @@ TEST_CASE("a boundary plugin's project writing NaN or infinity keeps the particl
     // Every move of a plugin that writes NaN or infinity everywhere is undone: the world is
     // bit for bit the one whose plugin lays the same samples and moves nothing.
     if (fault == Fault::ProjectAll || fault == Fault::ProjectInf) {
-        World clean = tank(solver, workers, Fault::None);
+        World clean = faultyTank(solver, workers, Fault::None);
         for (int frame = 0; frame < 5; ++frame) {
             clean.step(kFrame);
         }
@@ -263,5 +260,5 @@ TEST_CASE("a force plugin's huge finite acceleration moves the particle at the s
     }
     REQUIRE(allFinite(world));
     CHECK(countOutside(world, -0.5f, 0.0f, 0.5f, 1.0f) == 0);
-    CHECK((huge > 0 ? meanX(world) > 0.4f : meanX(world) < -0.4f));
+    CHECK((huge > 0 ? meanParticleX(world) > 0.4f : meanParticleX(world) < -0.4f));
 }

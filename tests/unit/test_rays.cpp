@@ -530,7 +530,7 @@ TEST_CASE("rays: bad rays, points, fields and visitors, and casts during a step,
 namespace {
 
 // Every number the casts and samples of a fixed set of rays and points give, as bits.
-std::vector<uint32_t> fingerprint(const World& world) {
+std::vector<uint32_t> castBits(const World& world) {
     std::vector<uint32_t> out;
     const auto put = [&](float v) {
         uint32_t b = 0;
@@ -567,10 +567,10 @@ TEST_CASE("rays: the same results for 1, 2 and 4 workers and after a save and lo
     std::vector<std::vector<uint32_t>> results;
     for (const uint32_t workers : {1u, 2u, 4u}) {
         const World world = randomWorld(setting, 31, workers);
-        results.push_back(fingerprint(world));
+        results.push_back(castBits(world));
         if (workers == 4) {
             const World loaded = reloaded(world, 1);
-            CHECK(fingerprint(loaded) == results.back());
+            CHECK(castBits(loaded) == results.back());
         }
     }
     CHECK(results[0].size() > 600);
@@ -580,18 +580,18 @@ TEST_CASE("rays: the same results for 1, 2 and 4 workers and after a save and lo
 
 TEST_CASE("rays: casts and samples from several threads at once between steps", "[unit][rays]") {
     World world = randomWorld(Setting::Game, 6);
-    const std::vector<uint32_t> expected = fingerprint(world);
+    const std::vector<uint32_t> expected = castBits(world);
     world.step(kFrame); // the grid is stale: the threads race to build it
     const std::vector<uint32_t> after = [&] {
         World copy = randomWorld(Setting::Game, 6);
         copy.step(kFrame);
-        return fingerprint(copy);
+        return castBits(copy);
     }();
     CHECK(after != expected);
     std::vector<uint32_t> wrong(4, 0);
     std::vector<std::thread> threads;
     for (uint32_t t = 0; t < 4; ++t) {
-        threads.emplace_back([&, t] { wrong[t] = fingerprint(world) == after ? 0u : 1u; });
+        threads.emplace_back([&, t] { wrong[t] = castBits(world) == after ? 0u : 1u; });
     }
     for (std::thread& t : threads) {
         t.join();

@@ -10,7 +10,10 @@
 #include <string>
 
 using namespace fluid;
+using fluid::test::builtins;
 using fluid::test::kFrame;
+using fluid::test::restored;
+using fluid::test::saved;
 
 namespace {
 
@@ -55,12 +58,6 @@ World scene(Solver solver, uint32_t workers) {
     return world;
 }
 
-Registry builtins() {
-    Registry registry;
-    registerBuiltinPlugins(registry);
-    return registry;
-}
-
 // Raw bytes of everything a reader sees, in slot order.
 std::string fingerprint(const World& world) {
     std::string out;
@@ -93,23 +90,12 @@ std::string fingerprint(const World& world) {
     return out;
 }
 
-std::string saved(const World& world) {
-    std::ostringstream out;
-    world.save(out);
-    return out.str();
-}
-
-World restored(const std::string& bytes, const Registry& registry, uint32_t workers = 0) {
-    std::istringstream in(bytes);
-    return World::load(in, registry, workers);
-}
-
 } // namespace
 
 TEST_CASE("snapshot: a restored world continues bit-identically", "[snapshot]") {
     const Solver solver = GENERATE(Solver::PositionBased, Solver::Explicit);
     INFO(fluid::test::solverLabel(solver));
-    const Registry registry = builtins();
+    const Registry& registry = builtins();
     World original = scene(solver, 1);
     const int before = solver == Solver::Explicit ? 8 : 30;
     for (int f = 0; f < before; ++f) {
@@ -160,7 +146,7 @@ TEST_CASE("snapshot: the same state saves to the same bytes, without wall-clock 
 }
 
 TEST_CASE("snapshot: files round-trip, a missing file names its path", "[snapshot]") {
-    const Registry registry = builtins();
+    const Registry& registry = builtins();
     World world = scene(Solver::PositionBased, 1);
     world.step(kFrame);
     const std::string path = "fluid_test_snapshot.bin";
@@ -173,7 +159,7 @@ TEST_CASE("snapshot: files round-trip, a missing file names its path", "[snapsho
 }
 
 TEST_CASE("snapshot: truncated, corrupt or foreign data is refused", "[snapshot]") {
-    const Registry registry = builtins();
+    const Registry& registry = builtins();
     World world = scene(Solver::PositionBased, 1);
     world.step(kFrame);
     const std::string bytes = saved(world);
@@ -232,7 +218,7 @@ std::string withCarry(const World& world, std::string bytes, double carry) {
 TEST_CASE("snapshot: a negative carried frame time saves and steps on bit-identically, and one "
           "beyond half the longest sub-step is refused",
           "[snapshot][clock]") {
-    const Registry registry = builtins();
+    const Registry& registry = builtins();
     World original = scene(Solver::PositionBased, 1);
     for (int f = 0; f < 5; ++f) {
         original.step(kFrame);
@@ -265,7 +251,7 @@ TEST_CASE("snapshot: a negative carried frame time saves and steps on bit-identi
 
 TEST_CASE("snapshot: a plugin's parameters pass the plugin's own checks, all together",
           "[snapshot][bad-input]") {
-    const Registry registry = builtins();
+    const Registry& registry = builtins();
     World world = scene(Solver::PositionBased, 1);
     world.step(kFrame);
     const std::string bytes = saved(world);
@@ -305,7 +291,7 @@ TEST_CASE("snapshot: a plugin's parameters pass the plugin's own checks, all tog
 
 TEST_CASE("snapshot: a huge file is refused from its header, before its body is read",
           "[snapshot]") {
-    const Registry registry = builtins();
+    const Registry& registry = builtins();
     const auto header = [](uint32_t version, uint64_t size) {
         std::string head("FLUIDSNP", 8);
         head.append(reinterpret_cast<const char*>(&version), sizeof(version));
