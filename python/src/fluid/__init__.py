@@ -18,8 +18,8 @@ changes; every failing call raises the fluid.errors class of its C status with t
 Thread rule (the C API's): a world or level is used by one thread at a time; different worlds
 from different threads at once.
 """
-from ._core import (FRAME, Drain, Emitter, Material, Particles, Plugin, Sensor, Shape, World,
-                    box, circle, polygon)
+from ._core import (FRAME, Drain, Emitter, LiquidSample, Material, Particles, Plugin, RayHit,
+                    Sensor, Shape, World, box, circle, polygon)
 from ._fluid_c import ffi as _ffi  # noqa: F401 (the C layer, for tests and tools)
 from ._fluid_c import lib as _lib
 from ._level import Body, Level
@@ -40,7 +40,8 @@ __version__ = "1.0.0"
 
 __all__ = [
     "FRAME", "World", "Level", "Body", "Material", "Plugin", "Emitter", "Drain", "Sensor",
-    "Particles", "Shape", "box", "circle", "polygon", "ForcePlugin", "ForceContext",
+    "Particles", "RayHit", "LiquidSample", "Shape", "box", "circle", "polygon", "ForcePlugin",
+    "ForceContext",
     "StepContext", "Param", "GuardedArray", "FluidError", "InvalidArgumentError",
     "NullArgumentError", "StaleIdError", "UnknownNameError", "BadFileError", "FileIOError",
     "LimitError", "OutOfMemoryError", "RefusedError", "PluginError", "ExpiredViewError",

@@ -1,4 +1,5 @@
 """Worlds, materials, blobs, emitters, drains, sensors and plugins by name over fluid/c.h."""
+import collections
 import weakref
 
 from ._fluid_c import ffi, lib
@@ -25,6 +26,26 @@ def _camel(name):
 def _vec(v):
     x, y = v
     return (float(x), float(y))
+
+
+# ---- what queries return --------------------------------------------------------------------
+
+RayHit = collections.namedtuple(
+    "RayHit", "point normal fraction starts_inside material particle index")
+RayHit.__doc__ = """Where a ray first meets the liquid (World.ray_cast): point (m), the surface's
+outward unit normal ((0, 0) when the ray starts inside), fraction (point = p1 + fraction
+(p2 - p1); [0, 1]), starts_inside, the Material and the id (slot, generation, world) of the
+nearest particle the field reaches from, and its index in the particle arrays until the world
+changes."""
+
+LiquidSample = collections.namedtuple(
+    "LiquidSample",
+    "in_liquid field density_ratio pressure velocity depth material neighbours fractions")
+LiquidSample.__doc__ = """The liquid at a point (World.sample): in_liquid (where the renderer
+draws it), the drawn field (1), density over rest density (1), pressure (Pa), velocity (m/s),
+depth below the free surface straight up (m; 0 outside), the Material with the largest share
+(None where no particle reaches), the particles whose kernel reaches the point (count), and
+each material's share (a tuple by material index)."""
 
 
 # ---- shapes ---------------------------------------------------------------------------------
@@ -509,6 +530,50 @@ class World:
         out = ffi.new("uint32_t*")
         check(lib.fluid_world_count_in(self._ptr, s, ffi.NULL, 0, out))
         return out[0]
+
+    # ---- queries, rays, the liquid at a point (docs/queries.md) ----
+
+    def query(self, shape):
+        """The particles whose position lies in `shape`, in increasing index (the same for any
+        number of workers): a list of ids (slot, generation, world), as add_particle returns.
+        Between steps; from any number of threads at once."""
+        keep = []
+        s = ffi.new("fluid_shape*", shape._c(keep))
+        found = ffi.new("uint32_t*")
+        check(lib.fluid_world_query_ids(self._ptr, s, ffi.NULL, 0, found))
+        n = found[0]
+        ids = ffi.new("fluid_particle_id[]", max(n, 1))
+        check(lib.fluid_world_query_ids(self._ptr, s, ids, n, found))
+        return [(ids[k].slot, ids[k].generation, ids[k].world) for k in range(n)]
+
+    def ray_cast(self, p1, p2, field_radius=2.0, threshold=0.6):
+        """Where the segment p1 -> p2 (unit: m; finite) first enters the liquid as the renderer
+        draws it (`field_radius`: a particle's reach over its spacing, [1, 4]; `threshold`:
+        the field's level at the surface, [0.05, 4]; fluid::gl's defaults): a RayHit, or None
+        when the ray misses the liquid. Between steps; from any number of threads at once."""
+        field = ffi.new("fluid_surface_field*", (field_radius, threshold))
+        hit = ffi.new("fluid_ray_hit*")
+        check(lib.fluid_world_ray_cast(self._ptr, _vec(p1), _vec(p2), field, hit))
+        if not hit.hit:
+            return None
+        return RayHit((hit.point.x, hit.point.y), (hit.normal.x, hit.normal.y), hit.fraction,
+                      bool(hit.starts_inside), self.material(hit.material.index),
+                      (hit.particle.slot, hit.particle.generation, hit.particle.world),
+                      hit.index)
+
+    def sample(self, point, field_radius=2.0, threshold=0.6):
+        """The liquid at `point` (unit: m; finite), interpolated from the particles around it:
+        a LiquidSample. `field_radius` and `threshold` as in ray_cast. Between steps; from any
+        number of threads at once."""
+        field = ffi.new("fluid_surface_field*", (field_radius, threshold))
+        n = self.material_count
+        fractions = ffi.new("float[]", max(n, 1))
+        s = ffi.new("fluid_liquid_sample*")
+        check(lib.fluid_world_sample(self._ptr, _vec(point), field, fractions, n, s))
+        return LiquidSample(bool(s.in_liquid), s.field, s.density_ratio, s.pressure,
+                            (s.velocity.x, s.velocity.y), s.depth,
+                            self.material(s.material.index) if s.neighbours else None,
+                            s.neighbours, tuple(fractions[k] for k in range(n)))
 
     # ---- plugins, emitters, drains, sensors ----
 
