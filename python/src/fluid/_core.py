@@ -18,6 +18,25 @@ def check(status):
         raise cls(message, status, name)
 
 
+def call_out(ctype, function, *args):
+    """Calls a C function whose last parameter receives its result (a `ctype` pointer, the C
+    API's convention), checks its status and returns the result."""
+    out = ffi.new(ctype)
+    check(function(*args, out))
+    return out[0]
+
+
+def call_bytes(function, *args):
+    """Calls a C function that hands out a fluid_bytes as its last parameter; returns them as
+    Python bytes and frees the C copy."""
+    b = ffi.new("fluid_bytes*")
+    check(function(*args, b))
+    try:
+        return bytes(ffi.buffer(b.data, b.size))
+    finally:
+        lib.fluid_bytes_free(b)
+
+
 def _camel(name):
     head, *rest = name.split("_")
     return head + "".join(w[:1].upper() + w[1:] for w in rest)
@@ -125,9 +144,7 @@ class Material(_Child):
     @property
     def spacing(self):
         """Its particles' lattice spacing (unit: m)."""
-        out = ffi.new("float*")
-        check(lib.fluid_world_spacing(self.world._ptr, self.id, out))
-        return out[0]
+        return call_out("float*", lib.fluid_world_spacing, self.world._ptr, self.id)
 
     def get(self):
         """Its fields as a dict: mass (kg), rest_density (kg/m^3), viscosity (Pa s),
@@ -181,9 +198,8 @@ class Plugin(_Child):
         return ffi.string(out[0]).decode()
 
     def __getitem__(self, name):
-        out = ffi.new("double*")
-        check(lib.fluid_plugin_get_param(self.world._ptr, self.id, name.encode(), out))
-        return out[0]
+        return call_out("double*", lib.fluid_plugin_get_param, self.world._ptr, self.id,
+                        name.encode())
 
     def __setitem__(self, name, value):
         check(lib.fluid_plugin_set_param(self.world._ptr, self.id, name.encode(),
@@ -210,9 +226,7 @@ class Emitter(_Child):
     @property
     def emitted(self):
         """Particles it has made so far (unit: count)."""
-        out = ffi.new("uint32_t*")
-        check(lib.fluid_world_emitted_count(self.world._ptr, self.id, out))
-        return out[0]
+        return call_out("uint32_t*", lib.fluid_world_emitted_count, self.world._ptr, self.id)
 
 
 class Drain(_Child):
@@ -442,16 +456,12 @@ class World:
     @property
     def time(self):
         """Simulated time (unit: s)."""
-        out = ffi.new("double*")
-        check(lib.fluid_world_time(self._ptr, out))
-        return out[0]
+        return call_out("double*", lib.fluid_world_time, self._ptr)
 
     @property
     def particle_count(self):
         """Particles alive (unit: count)."""
-        out = ffi.new("uint32_t*")
-        check(lib.fluid_world_particle_count(self._ptr, out))
-        return out[0]
+        return call_out("uint32_t*", lib.fluid_world_particle_count, self._ptr)
 
     @property
     def particles(self):
@@ -462,12 +472,7 @@ class World:
 
     def save(self):
         """The whole world as bytes (World.load makes it again and steps on bit for bit)."""
-        b = ffi.new("fluid_bytes*")
-        check(lib.fluid_world_save(self._ptr, b))
-        try:
-            return bytes(ffi.buffer(b.data, b.size))
-        finally:
-            lib.fluid_bytes_free(b)
+        return call_bytes(lib.fluid_world_save, self._ptr)
 
     # ---- materials and particles ----
 
@@ -485,9 +490,7 @@ class World:
     @property
     def material_count(self):
         """Materials in the world (unit: count)."""
-        out = ffi.new("uint32_t*")
-        check(lib.fluid_world_material_count(self._ptr, out))
-        return out[0]
+        return call_out("uint32_t*", lib.fluid_world_material_count, self._ptr)
 
     def material(self, index):
         """The material of index `index` (unit: index < material_count; not checked here)."""
@@ -527,9 +530,7 @@ class World:
         """Particles whose position lies in `shape` (unit: count). Between steps."""
         keep = []
         s = ffi.new("fluid_shape*", shape._c(keep))
-        out = ffi.new("uint32_t*")
-        check(lib.fluid_world_count_in(self._ptr, s, ffi.NULL, 0, out))
-        return out[0]
+        return call_out("uint32_t*", lib.fluid_world_count_in, self._ptr, s, ffi.NULL, 0)
 
     # ---- queries, rays, the liquid at a point (docs/queries.md) ----
 
@@ -585,16 +586,13 @@ class World:
         names = [ffi.new("char[]", k.encode()) for k in params]
         array = ffi.new("fluid_param[]", [(n, float(v)) for n, v in zip(names,
                                                                           params.values())])
-        out = ffi.new("fluid_plugin_id*")
-        check(lib.fluid_world_add_plugin(self._ptr, type.encode(), array, len(names), out))
-        return Plugin(self, out[0])
+        return Plugin(self, call_out("fluid_plugin_id*", lib.fluid_world_add_plugin, self._ptr,
+                                     type.encode(), array, len(names)))
 
     def plugin_count(self, kind="force"):
         """Plugins of one kind ("force" or "boundary") in the world (unit: count)."""
         k = lib.FLUID_PLUGIN_FORCE if kind == "force" else lib.FLUID_PLUGIN_BOUNDARY
-        out = ffi.new("uint32_t*")
-        check(lib.fluid_world_plugin_count(self._ptr, k, out))
-        return out[0]
+        return call_out("uint32_t*", lib.fluid_world_plugin_count, self._ptr, k)
 
     def plugin(self, index, kind="force"):
         """The plugin of `index` among the world's forces or boundaries."""
@@ -622,9 +620,8 @@ class World:
             d.jitter = float(jitter)
         if seed is not None:
             d.seed = int(seed)
-        out = ffi.new("fluid_emitter_id*")
-        check(lib.fluid_world_add_emitter(self._ptr, d, out))
-        return Emitter(self, out[0])
+        return Emitter(self, call_out("fluid_emitter_id*", lib.fluid_world_add_emitter,
+                                      self._ptr, d))
 
     def add_drain(self, shape, material=None):
         """Adds a drain over `shape`: removes the particles entering it (only `material`'s when
@@ -635,16 +632,13 @@ class World:
         if material is not None:
             d.only_material = True
             d.material = material.id
-        out = ffi.new("fluid_drain_id*")
-        check(lib.fluid_world_add_drain(self._ptr, d, out))
-        return Drain(self, out[0])
+        return Drain(self, call_out("fluid_drain_id*", lib.fluid_world_add_drain, self._ptr, d))
 
     def add_sensor(self, shape):
         """Adds a sensor over `shape` (Sensor.readings after each step)."""
         keep = []
-        out = ffi.new("fluid_sensor_id*")
-        check(lib.fluid_world_add_sensor(self._ptr, shape._c(keep), out))
-        return Sensor(self, out[0])
+        return Sensor(self, call_out("fluid_sensor_id*", lib.fluid_world_add_sensor, self._ptr,
+                                     shape._c(keep)))
 
     def removed_events(self):
         """The particles the last step removed, in order: dicts with position (m), velocity

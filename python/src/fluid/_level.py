@@ -3,7 +3,8 @@ import collections
 import os
 import weakref
 
-from ._core import Drain, Emitter, Material, Plugin, Sensor, World, _vec, check
+from ._core import (Drain, Emitter, Material, Plugin, Sensor, World, _vec, call_bytes, call_out,
+                    check)
 from ._fluid_c import ffi, lib
 from .errors import ClosedError
 
@@ -120,9 +121,7 @@ class Level:
     @property
     def frame_rate(self):
         """Frames per second (unit: 1/s)."""
-        out = ffi.new("float*")
-        check(lib.fluid_level_frame_rate(self._ptr, out))
-        return out[0]
+        return call_out("float*", lib.fluid_level_frame_rate, self._ptr)
 
     def save(self, path):
         """Saves the level (its file's text, the world, the bodies) to `path` (load_save reads
@@ -131,12 +130,7 @@ class Level:
 
     def save_bytes(self):
         """The level's save as bytes (read_save reads them)."""
-        b = ffi.new("fluid_bytes*")
-        check(lib.fluid_level_save_bytes(self._ptr, b))
-        try:
-            return bytes(ffi.buffer(b.data, b.size))
-        finally:
-            lib.fluid_bytes_free(b)
+        return call_bytes(lib.fluid_level_save_bytes, self._ptr)
 
     @property
     def goal(self):
@@ -177,9 +171,7 @@ class Level:
     @property
     def body_count(self):
         """Box2D bodies: the file's, then the added ones (unit: count)."""
-        out = ffi.new("uint32_t*")
-        check(lib.fluid_level_body_count(self._ptr, out))
-        return out[0]
+        return call_out("uint32_t*", lib.fluid_level_body_count, self._ptr)
 
     def body(self, index):
         """Body `index` (unit: index < body_count; StaleIdError past it) as a Body."""
@@ -197,9 +189,7 @@ class Level:
     def areal_density(self, material):
         """A material's liquid as Box2D weighs bodies (unit: kg/m^2): a body of half this
         floats half submerged."""
-        out = ffi.new("float*")
-        check(lib.fluid_level_areal_density(self._ptr, material.id, out))
-        return out[0]
+        return call_out("float*", lib.fluid_level_areal_density, self._ptr, material.id)
 
     def add_body(self, shape, type="dynamic", density=0.0, friction=0.4, position=None,
                  angle=0.0, velocity=(0.0, 0.0), angular_velocity=0.0):
@@ -217,9 +207,7 @@ class Level:
             d.position = _vec(position)
         d.angle, d.density, d.friction = float(angle), float(density), float(friction)
         d.velocity, d.angular_velocity = _vec(velocity), float(angular_velocity)
-        out = ffi.new("uint32_t*")
-        check(lib.fluid_level_add_body(self._ptr, d, out))
-        return out[0]
+        return call_out("uint32_t*", lib.fluid_level_add_body, self._ptr, d)
 
     def remove_body(self, index):
         """Removes body `index` with its joints; the later bodies move down one index."""
