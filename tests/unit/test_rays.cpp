@@ -560,8 +560,8 @@ std::vector<uint32_t> castBits(const World& world) {
 
 } // namespace
 
-// [slow]: the worker matrix takes 27 s under ASan, which the casts' other tests cover with one
-// worker; the release and tsan presets run it.
+// [slow]: the worker matrix is too slow for the asan preset (docs/building.md), where the casts'
+// other tests still run on one worker; the release and tsan presets run it.
 TEST_CASE("rays: the same results for 1, 2 and 4 workers and after a save and load",
           "[unit][rays][slow]") {
     const Setting setting = GENERATE(Setting::Explicit, Setting::Game);
