@@ -99,3 +99,15 @@ MESSAGES = {
                 "(unit: Hz), got a string",
     "find": "fluid_level_find_material: the level has no material named 'lava'",
 }
+
+
+def test_every_status_has_its_class():
+    # The classes take their numbers and names from fluid/c.h: each status 1..9 raises its own
+    # class, named as fluid_status_name names it.
+    assert sorted(fluid.errors.BY_STATUS) == list(range(1, 10))
+    for status, cls in fluid.errors.BY_STATUS.items():
+        assert cls.status == status
+        assert cls.status_name.startswith("FLUID_ERROR_")
+        assert issubclass(cls, fluid.FluidError)
+    assert fluid.errors.BY_STATUS[6] is fluid.FileIOError
+    assert fluid.FileIOError.status_name == "FLUID_ERROR_IO"

@@ -6,6 +6,11 @@ Every failing call raises the class of its status; ``str(error)`` is the C API's
 closest built-in exception (ValueError, LookupError, OSError...), so ``except ValueError``
 catches a bad argument too.
 """
+from ._fluid_c import ffi, lib
+
+
+#: The class raised for each fluid_status (filled by FluidError's subclasses below).
+BY_STATUS = {}
 
 
 class FluidError(Exception):
@@ -17,6 +22,15 @@ class FluidError(Exception):
 
     status = -1
     status_name = "unknown status"
+
+    def __init_subclass__(cls, status=None, **kwargs):
+        """``class X(FluidError, status=lib.FLUID_ERROR_...)`` gives X that status and the C
+        API's own name for it (fluid_status_name), and makes X the class raised for it."""
+        super().__init_subclass__(**kwargs)
+        if status is not None:
+            cls.status = status
+            cls.status_name = ffi.string(lib.fluid_status_name(status)).decode()
+            BY_STATUS[status] = cls
 
     def __init__(self, message, status=None, status_name=None):
         super().__init__(message)
@@ -30,58 +44,40 @@ class FluidError(Exception):
         return self.message
 
 
-class InvalidArgumentError(FluidError, ValueError):
+class InvalidArgumentError(FluidError, ValueError, status=lib.FLUID_ERROR_INVALID_ARGUMENT):
     """FLUID_ERROR_INVALID_ARGUMENT (1): a value out of its range, NaN or inconsistent."""
 
-    status, status_name = 1, "FLUID_ERROR_INVALID_ARGUMENT"
 
-
-class NullArgumentError(FluidError, ValueError):
+class NullArgumentError(FluidError, ValueError, status=lib.FLUID_ERROR_NULL_ARGUMENT):
     """FLUID_ERROR_NULL_ARGUMENT (2): a required pointer was NULL (a bug of this package)."""
 
-    status, status_name = 2, "FLUID_ERROR_NULL_ARGUMENT"
 
-
-class StaleIdError(FluidError, LookupError):
+class StaleIdError(FluidError, LookupError, status=lib.FLUID_ERROR_STALE_ID):
     """FLUID_ERROR_STALE_ID (3): an id or particle that no longer exists, or another world's."""
 
-    status, status_name = 3, "FLUID_ERROR_STALE_ID"
 
-
-class UnknownNameError(FluidError, LookupError):
+class UnknownNameError(FluidError, LookupError, status=lib.FLUID_ERROR_UNKNOWN_NAME):
     """FLUID_ERROR_UNKNOWN_NAME (4): a preset, plugin type, field or parameter name."""
 
-    status, status_name = 4, "FLUID_ERROR_UNKNOWN_NAME"
 
-
-class BadFileError(FluidError, ValueError):
+class BadFileError(FluidError, ValueError, status=lib.FLUID_ERROR_BAD_FILE):
     """FLUID_ERROR_BAD_FILE (5): a level file, save or snapshot that cannot be read."""
 
-    status, status_name = 5, "FLUID_ERROR_BAD_FILE"
 
-
-class FileIOError(FluidError, OSError):
+class FileIOError(FluidError, OSError, status=lib.FLUID_ERROR_IO):
     """FLUID_ERROR_IO (6): a file that cannot be opened or written."""
 
-    status, status_name = 6, "FLUID_ERROR_IO"
 
-
-class LimitError(FluidError):
+class LimitError(FluidError, status=lib.FLUID_ERROR_LIMIT):
     """FLUID_ERROR_LIMIT (7): the world's max_particles, 65535 materials."""
 
-    status, status_name = 7, "FLUID_ERROR_LIMIT"
 
-
-class OutOfMemoryError(FluidError, MemoryError):
+class OutOfMemoryError(FluidError, MemoryError, status=lib.FLUID_ERROR_OUT_OF_MEMORY):
     """FLUID_ERROR_OUT_OF_MEMORY (8): memory ran out."""
 
-    status, status_name = 8, "FLUID_ERROR_OUT_OF_MEMORY"
 
-
-class RefusedError(FluidError, RuntimeError):
+class RefusedError(FluidError, RuntimeError, status=lib.FLUID_ERROR_REFUSED):
     """FLUID_ERROR_REFUSED (9): the world refused a call in its state (inside its own step)."""
-
-    status, status_name = 9, "FLUID_ERROR_REFUSED"
 
 
 class PluginError(FluidError, RuntimeError):
@@ -100,8 +96,3 @@ class ExpiredViewError(RuntimeError):
 
 class ClosedError(RuntimeError):
     """A world or level used after close() (or a level's world after the level closed)."""
-
-
-BY_STATUS = {cls.status: cls for cls in (
-    InvalidArgumentError, NullArgumentError, StaleIdError, UnknownNameError, BadFileError,
-    FileIOError, LimitError, OutOfMemoryError, RefusedError)}
