@@ -602,10 +602,15 @@ bool BodyBoundary::bodyContains(uint32_t body, glm::vec2 point, float timeInStep
     // Into the body's centre-of-mass frame at timeInStep, then out at its pose now (the end
     // of the sweep), where Box2D's fixtures stand.
     const double t = timeInStep;
-    const glm::dvec2 com = e.com + t * e.velocity;
-    const double angle = e.angle + t * e.omega;
-    const glm::dvec2 d = glm::dvec2(point) - com;
-    const glm::dvec2 local = rotate(d, detail::cos(angle), -detail::sin(angle));
+    SweepPose& pose = m_sweepPose;
+    if (pose.entry != &e || pose.t != t || pose.com != e.com || pose.velocity != e.velocity ||
+        pose.angle != e.angle || pose.omega != e.omega) {
+        const double angle = e.angle + t * e.omega;
+        pose = {&e, t, e.com, e.velocity, e.angle, e.omega, e.com + t * e.velocity,
+                detail::cos(angle), detail::sin(angle)};
+    }
+    const glm::dvec2 d = glm::dvec2(point) - pose.at;
+    const glm::dvec2 local = rotate(d, pose.c, -pose.s);
     const b2Transform& xf = e.body->GetTransform();
     const glm::dvec2 center = toVec(e.body->GetWorldCenter());
     const glm::dvec2 now = center + rotate(local, double(xf.q.c), double(xf.q.s));

@@ -177,7 +177,8 @@ public:
     /// (the `Coupling` moves the body there).
     void receiveBodyImpulses(std::span<const RigidBodyImpulse> impulses) override;
     /// `b2Fixture::TestPoint` on the body's coupled circles and polygons, the point carried
-    /// from the sweep pose at `timeInStep` to the body's pose now.
+    /// from the sweep pose at `timeInStep` to the body's pose now. Stepping thread only (it
+    /// keeps the last pose it turned).
     bool bodyContains(uint32_t body, glm::vec2 point, float timeInStep) const override;
     /// True when `point` lies in a coupled fixture of a body (`b2Fixture::TestPoint`).
     bool contains(glm::vec2 point) const override;
@@ -258,6 +259,19 @@ private:
     std::vector<Kick> m_kicks;
     std::mutex m_kickMutex;
     std::vector<double> m_masses;
+    // bodyContains's last sweep pose, so that the coarse fill's lattice of points over one body
+    // (a few hundred calls at one time) turns the body once: the same sums as computing it each
+    // call. Kept with the inputs it was computed from, compared exactly. The plugin interface
+    // calls bodyContains from the stepping thread only.
+    struct SweepPose {
+        const BodyEntry* entry = nullptr;
+        double t = 0.0;
+        glm::dvec2 com{0.0, 0.0}, velocity{0.0, 0.0};
+        double angle = 0.0, omega = 0.0;
+        glm::dvec2 at{0.0, 0.0}; // centre of mass at t
+        double c = 1.0, s = 0.0; // cos and sin of the angle at t
+    };
+    mutable SweepPose m_sweepPose;
 };
 
 } // namespace fluid::box2d
