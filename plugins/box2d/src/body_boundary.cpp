@@ -73,16 +73,6 @@ double shoelace(std::span<const glm::dvec2> points) {
 
 // ---- BoxGrid ------------------------------------------------------------------------------
 
-int BoxGrid::cellX(float x) const {
-    const float c = std::floor((x - m_bounds.loX) * m_invCell);
-    return static_cast<int>(std::clamp(c, 0.0f, float(m_cellsX - 1)));
-}
-
-int BoxGrid::cellY(float y) const {
-    const float c = std::floor((y - m_bounds.loY) * m_invCell);
-    return static_cast<int>(std::clamp(c, 0.0f, float(m_cellsY - 1)));
-}
-
 void BoxGrid::build(std::span<const Box> boxes, float cellSize) {
     m_cellsX = m_cellsY = 0;
     m_start.clear();

@@ -8,6 +8,8 @@
 #include <glm/common.hpp>
 #include <glm/vec2.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -69,8 +71,15 @@ public:
     }
 
 private:
-    int cellX(float x) const;
-    int cellY(float y) const;
+    // Inline: every particle asks them once or twice a sub-step.
+    int cellX(float x) const {
+        const float c = std::floor((x - m_bounds.loX) * m_invCell);
+        return static_cast<int>(std::clamp(c, 0.0f, float(m_cellsX - 1)));
+    }
+    int cellY(float y) const {
+        const float c = std::floor((y - m_bounds.loY) * m_invCell);
+        return static_cast<int>(std::clamp(c, 0.0f, float(m_cellsY - 1)));
+    }
 
     Box m_bounds;
     float m_invCell = 1.0f;
