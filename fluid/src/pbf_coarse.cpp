@@ -96,6 +96,11 @@ void moveParticle(Particles& p, PositionBasedScratch& x, const CoarseGrid& cg, c
     const float v01 = value[k + size_t(g.nx)], v11 = value[k + size_t(g.nx) + 1];
     float ux = -share * ((1.0f - fy) * (v10 - v00) + fy * (v11 - v01)) * g.invH;
     float uy = -share * ((1.0f - fx) * (v01 - v00) + fx * (v11 - v10)) * g.invH;
+    if (!cg.moveScale.empty()) {
+        const float scale = cg.moveScale[p.material[i]];
+        ux *= scale;
+        uy *= scale;
+    }
     const float limit = tuning::kCoarseMaxMove * p.h[i];
     const float len2 = ux * ux + uy * uy;
     if (!(len2 <= limit * limit)) {
@@ -364,6 +369,35 @@ double fluidDensity(const WorldState& s) {
         area += v;
     }
     return mass / area;
+}
+
+// cg.moveScale: per material, how far its particles move per unit of the solve's displacement,
+// rho / rho0 with rho the density the solve was made for (fluidDensity): the displacement is
+// -dt^2 grad p / rho0, so a denser particle moves less, as the sweeps move a heavier particle
+// less. Without it the correction held a yoghurt lump (1,050 kg/m^3) in water as if it were
+// water: it sank at 1 mm/s in the game preset, 1.6 cm/s in the precise one (docs/yield_stress.md,
+// "A lump in water"). Empty (every scale exactly 1) when the particles share one rest density.
+void setMoveScale(WorldState& s) {
+    CoarseGrid& cg = s.coarse;
+    cg.moveScale.clear();
+    float first = 0.0f;
+    bool uniform = true;
+    for (size_t m = 0; m < s.materials.size(); ++m) {
+        if (!s.isPresent(m)) {
+            continue;
+        }
+        const float rho0 = s.materials[m].restDensity;
+        uniform = uniform && (first == 0.0f || rho0 == first);
+        first = first == 0.0f ? rho0 : first;
+    }
+    if (uniform) {
+        return;
+    }
+    const double rho = fluidDensity(s);
+    cg.moveScale.resize(s.materials.size());
+    for (size_t m = 0; m < s.materials.size(); ++m) {
+        cg.moveScale[m] = float(rho / double(s.materials[m].restDensity));
+    }
 }
 
 // Each node's type (air, fluid, solid) and right-hand side: a fluid node's compression above
@@ -1108,6 +1142,7 @@ bool pbfCoarseMove(WorldState& s, const CoarseSettings& settings,
     const uint32_t n = p.size();
     const Layout& g = cg.layout;
     const std::vector<float>& value = cg.rhs; // nodeValues' result
+    setMoveScale(s);
     // Each particle's move reads only the node values: the particles split over the workers.
     // The fill kept each particle's cell and fractions at its index then; `order` maps each
     // index now to that one (empty: the same).

@@ -261,6 +261,9 @@ struct CoarseGrid {
     std::vector<float> ownFill;           // scratch: one body's outline fill over its box
     std::vector<float> samplesFill;       // scratch: one body's samples' fill over its box
     std::vector<uint8_t> inside;          // scratch: one body's inside test on a fine lattice
+    // Per material: its particles' share of the solve's move, rho / rho0 (setMoveScale in
+    // pbf_coarse.cpp); empty when every particle has the same rest density.
+    std::vector<float> moveScale;
     // The bodies' Jacobian G: per entry, the flux a body's displacement (x, y) drives out of an
     // unknown's cell (m): from the outlined bodies' gradient weights, or for a body without an
     // inside test per face between an unknown and one of its nodes. G^T psi sums them.
