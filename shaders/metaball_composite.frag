@@ -1,7 +1,8 @@
 #version 330 core
 // metaball_composite.frag — the liquid surface from the summed field: coverage where the
-// field crosses the threshold (anti-aliased over one pixel), the materials' weighted colour, a
-// lighter rim band just inside the surface and a faint highlight on the side facing the light.
+// field crosses the threshold (anti-aliased over one pixel), the materials' colours with a
+// clean edge between materials 0 and 1, a lighter rim band just inside the surface and a faint
+// highlight on the side facing the light.
 // The pressure view uses it with uDark = 1: black liquid with a thin grey rim.
 // Next to solids (opaque shapes) the surface level goes down to uSolidThreshold: particles rest
 // up to about a spacing from a wall or a body, and the liquid must still touch it. The rim
@@ -12,7 +13,9 @@ in vec2 vUv; // texture coordinate of the target
 
 // ---- uniforms ----
 uniform sampler2D uField;     // rgb = sum of colour x w, a = largest single w (bilinear)
-uniform sampler2D uWeight;    // r = sum of w: the field (bilinear)
+uniform sampler2D uWeight;    // r = sum of w: the field; g, b = its parts from materials 0
+                              // and 1 in their own colours (bilinear)
+uniform vec3 uMaterialColour[2]; // materials 0 and 1's colours (linear RGB)
 uniform float uDropletLevel;  // scale of the largest single w: every particle shows as a disc
 uniform float uThreshold; // field level at the surface (1)
 uniform float uRimWidth;  // width of the rim band inside the surface (px of the target)
@@ -27,7 +30,8 @@ out vec4 fragColour; // straight alpha, blended over the background
 
 void main() {
     vec4 field = texture(uField, vUv);
-    float sum = texture(uWeight, vUv).r;
+    vec4 weights = texture(uWeight, vUv);
+    float sum = weights.r;
     // A lone particle's sum peaks below the threshold, and sparse ones (spray, a thin film, a
     // chain) dip below it between them: the largest single kernel, scaled, stands in, so every
     // particle shows at least as a disc of half a spacing (at the default threshold). Inside
@@ -44,6 +48,17 @@ void main() {
     // Derivatives first: they must be taken before any fragment of the quad discards.
     vec2 gradient = vec2(dFdx(a), dFdy(a)); // field change per target pixel (lighting)
     vec2 levelGradient = vec2(dFdx(level), dFdy(level)); // the surface's (coverage, rim)
+    // Three colour classes: material 0 and material 1 in their own colours, and the rest
+    // (other materials, particles with a colour of their own), which mix as the field mixes
+    // them. Each pixel takes the class whose weight leads, anti-aliased over about a pixel
+    // where two meet: a clean edge between water and yoghurt instead of a blur a kernel wide.
+    // The rest's weight is what the two materials leave of the sum; under 1% of it is the
+    // half floats' rounding, not a class.
+    float restWeight = sum - weights.g - weights.b;
+    vec3 classes = vec3(weights.g, weights.b, restWeight > 0.01 * sum ? restWeight : 0.0);
+    vec3 lead = classes - max(classes.yzx, classes.zxy);
+    vec3 leadEdge = 0.7 * fwidth(lead) + 1e-4;
+    vec3 present = step(vec3(1e-7), classes); // an absent class never takes a pixel
     float slope = length(levelGradient);
     float edge = 0.7 * (abs(levelGradient.x) + abs(levelGradient.y)) + 1e-4;
     float coverage = smoothstep(-edge, edge, level);
@@ -61,8 +76,13 @@ void main() {
     if (uDark == 1) {
         colour = vec3(0.42) * rim;
     } else {
-        // The w-weighted mix of the materials' colours.
-        vec3 base = field.rgb / max(sum, 1e-6);
+        // The classes' colours, each where it leads: the rest's is the field's colour sum less
+        // the two materials' parts, over its weight.
+        vec3 own = smoothstep(-leadEdge, leadEdge, lead) * present;
+        own /= max(own.x + own.y + own.z, 1e-6);
+        vec3 rest = max(field.rgb - uMaterialColour[0] * classes.x -
+                        uMaterialColour[1] * classes.y, vec3(0.0)) / max(classes.z, 1e-6);
+        vec3 base = own.x * uMaterialColour[0] + own.y * uMaterialColour[1] + own.z * rest;
         // Rim: lighter towards white, most on the lit side.
         vec3 light = mix(base, vec3(1.0), 0.45);
         colour = mix(base, light, rim * (0.45 + 0.55 * facing));

@@ -20,6 +20,7 @@ uniform float uWeight;          // field normalisation: interior of the liquid s
 // ---- outputs ----
 out vec2 vLocal;                // position in the kernel, in units of R
 flat out vec4 vContribution;    // (colour, 1) x uWeight
+flat out vec2 vClass;           // (1, 0): material 0 in its own colour, (0, 1): material 1
 
 void main() {
     int m = aMaterial < uint(uMaterialCount) ? int(aMaterial) : 0;
@@ -31,4 +32,8 @@ void main() {
     // field mixes them where colours meet as it mixes materials.
     vec3 colour = aColour.a > 0.0 ? pow(aColour.rgb, vec3(2.2)) : uColour[m];
     vContribution = vec4(colour, 1.0) * uWeight;
+    // The composite draws a clean edge between materials 0 and 1 in their own colours (most
+    // levels' water and yoghurt); particles of other materials or with their own colour mix.
+    bool own = aColour.a <= 0.0;
+    vClass = vec2(own && m == 0 ? 1.0 : 0.0, own && m == 1 ? 1.0 : 0.0);
 }

@@ -151,7 +151,9 @@ struct Renderer::Impl {
     // Targets: the composite (what the host sees) and the metaball field.
     GLuint compositeFbo = 0, compositeTexture = 0;
     // The field has two attachments: colour (rgb = sum of colour x w, a = max of w) and weight
-    // (r = sum of w). The max lets a lone droplet show (see SurfaceField::dropletLevel).
+    // (r = sum of w; g, b = its parts from materials 0 and 1 in their own colours, for the
+    // composite's edge between them). The max lets a lone droplet show (see
+    // SurfaceField::dropletLevel).
     GLuint fieldFbo = 0;
     std::array<GLuint, 2> fieldTextures{};
     bool fieldHalfFloat = true;
@@ -178,7 +180,7 @@ struct Renderer::Impl {
     ParticleUniforms fieldUniforms, squareUniforms, discUniforms;
     GLint fieldRadius = -1, fieldWeight = -1;
     GLint compositeThreshold = -1, compositeRimWidth = -1, compositeDark = -1, compositeField = -1,
-          compositeWeight = -1, compositeDropletLevel = -1;
+          compositeWeight = -1, compositeDropletLevel = -1, compositeMaterialColour = -1;
     GLint squareInvScale = -1;
     GLint discPixel = -1, discInvSpeedScale = -1;
 
@@ -275,6 +277,7 @@ Renderer::Impl::Impl(glm::ivec2 targetSize) {
     compositeField = compositeProgram.uniform("uField");
     compositeWeight = compositeProgram.uniform("uWeight");
     compositeDropletLevel = compositeProgram.uniform("uDropletLevel");
+    compositeMaterialColour = compositeProgram.uniform("uMaterialColour");
     compositeSolidDistance = compositeProgram.uniform("uSolidDistance");
     compositeSolidReach = compositeProgram.uniform("uSolidReach");
     compositeSolidThreshold = compositeProgram.uniform("uSolidThreshold");
@@ -394,12 +397,11 @@ void Renderer::Impl::allocateField(glm::ivec2 newFieldSize) {
     // 32-bit floats are the fallback for drivers that cannot render to 16-bit ones.
     GLenum status = GL_FRAMEBUFFER_UNSUPPORTED;
     for (const bool half : {fieldHalfFloat, true, false}) {
-        const std::array<GLenum, 2> formats = half ? std::array<GLenum, 2>{GL_RGBA16F, GL_R16F}
-                                                   : std::array<GLenum, 2>{GL_RGBA32F, GL_R32F};
+        const GLenum format = half ? GL_RGBA16F : GL_RGBA32F;
         for (size_t i = 0; i < 2; ++i) {
             glBindTexture(GL_TEXTURE_2D, fieldTextures[i]);
-            glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(formats[i]), fieldSize.x, fieldSize.y,
-                         0, i == 0 ? GL_RGBA : GL_RED, GL_FLOAT, nullptr);
+            glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(format), fieldSize.x, fieldSize.y,
+                         0, GL_RGBA, GL_FLOAT, nullptr);
             setTextureParameters(GL_LINEAR);
             glFramebufferTexture2D(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + i), GL_TEXTURE_2D,
                                    fieldTextures[i], 0);
@@ -416,7 +418,7 @@ void Renderer::Impl::allocateField(glm::ivec2 newFieldSize) {
         std::snprintf(hex, sizeof hex, "0x%04X", static_cast<unsigned>(status));
         fieldSize = {0, 0};
         throw Error("fluid::gl: Renderer: no float framebuffer is complete for the metaball "
-                    "field (tried GL_RGBA16F + GL_R16F and GL_RGBA32F + GL_R32F at " +
+                    "field (tried GL_RGBA16F and GL_RGBA32F at " +
                         sizeText(newFieldSize) + "; last status " + hex + ")",
                     ErrorCode::WrongState);
     }
@@ -617,6 +619,7 @@ void Renderer::Impl::drawSurface(const SurfacePass& pass) {
     glUniform1f(compositeDropletLevel, surface.dropletLevel());
     glUniform1f(compositeRimWidth, pass.rimWidth);
     glUniform1i(compositeDark, pass.dark ? 1 : 0);
+    glUniform3fv(compositeMaterialColour, 2, colour.data()); // materials 0 and 1
     glUniform1f(compositeSolidReach, solids ? pass.solidReach : 0.0f);
     glUniform1f(compositeSolidThreshold, std::min(pass.solidThreshold, pass.threshold));
     glActiveTexture(GL_TEXTURE2);
