@@ -555,6 +555,7 @@ uint32_t World::spawnBlob(const BlobDef& blob, uint32_t* insideSolids) {
     checkVec("spawnBlob", "velocity", blob.velocity);
     checkLifetime("spawnBlob: ", blob.lifetime);
     checkRange("structure", blob.structure, 0.0f, 1.0f, "1", "spawnBlob: ");
+    checkRange("latticeAngle", blob.latticeAngle, -6.2832f, 6.2832f, "rad", "spawnBlob: ");
     const Shape& shape = blob.shape;
     validate(shape, "spawnBlob");
     glm::vec2 lo{}, hi{};
@@ -595,12 +596,56 @@ uint32_t World::placeBlob(const BlobDef& blob, glm::vec2 lo, glm::vec2 hi, float
     const glm::vec2 origin =
         0.5f * (lo + hi) - 0.5f * spacing * glm::vec2(float(nx) - 1.0f, float(ny) - 1.0f);
     std::vector<glm::vec2> points;
-    for (uint32_t j = 0; j < ny; ++j) {
-        for (uint32_t i = 0; i < nx; ++i) {
-            const glm::vec2 p = origin + spacing * glm::vec2(float(i), float(j));
-            // Every lattice point of a rectangle's bounding box is inside it.
-            if (shape.type == ShapeType::Rectangle || contains(shape, p)) {
-                points.push_back(p);
+    if (blob.latticeAngle == 0.0f) {
+        for (uint32_t j = 0; j < ny; ++j) {
+            for (uint32_t i = 0; i < nx; ++i) {
+                const glm::vec2 p = origin + spacing * glm::vec2(float(i), float(j));
+                // Every lattice point of a rectangle's bounding box is inside it.
+                if (shape.type == ShapeType::Rectangle || contains(shape, p)) {
+                    points.push_back(p);
+                }
+            }
+        }
+    } else {
+        // Rows along (cos a, sin a): the lattice at cell centres, centred in the shape's
+        // bounding box in the turned frame, as the unturned one is in its box (a turned
+        // rectangle along its rows holds the same rows and columns as the unturned one).
+        const glm::vec2 along{std::cos(blob.latticeAngle), std::sin(blob.latticeAngle)};
+        const glm::vec2 across{-along.y, along.x};
+        glm::vec2 turnedLo{INFINITY, INFINITY}, turnedHi{-INFINITY, -INFINITY};
+        const auto extend = [&](glm::vec2 p, float r) {
+            const glm::vec2 q{p.x * along.x + p.y * along.y, p.x * across.x + p.y * across.y};
+            turnedLo = glm::min(turnedLo, q - r);
+            turnedHi = glm::max(turnedHi, q + r);
+        };
+        switch (shape.type) {
+        case ShapeType::Rectangle:
+            for (const glm::vec2 corner : {glm::vec2{-1.0f, -1.0f}, glm::vec2{1.0f, -1.0f},
+                                           glm::vec2{1.0f, 1.0f}, glm::vec2{-1.0f, 1.0f}}) {
+                extend(shape.center + corner * shape.halfExtents, 0.0f);
+            }
+            break;
+        case ShapeType::Circle:
+            extend(shape.center, shape.radius);
+            break;
+        case ShapeType::Polygon:
+            for (const glm::vec2 v : shape.vertices) {
+                extend(v, 0.0f);
+            }
+            break;
+        }
+        const glm::vec2 extent = turnedHi - turnedLo;
+        const auto ni = static_cast<int32_t>(std::floor(extent.x / spacing));
+        const auto nj = static_cast<int32_t>(std::floor(extent.y / spacing));
+        const glm::vec2 first =
+            0.5f * (turnedLo + turnedHi) - 0.5f * spacing * glm::vec2(float(ni - 1), float(nj - 1));
+        for (int32_t j = 0; j < nj; ++j) {
+            for (int32_t i = 0; i < ni; ++i) {
+                const float u = first.x + spacing * float(i), v = first.y + spacing * float(j);
+                const glm::vec2 p = u * along + v * across;
+                if (contains(shape, p)) {
+                    points.push_back(p);
+                }
             }
         }
     }

@@ -77,6 +77,7 @@ constexpr Range kSize{0.0, 1e5, "m", true};
 constexpr Range kVelocity{-1e3, 1e3, "m/s"};
 constexpr Range kLifetime{0.0, 1e6, "s"};
 constexpr Range kStructure{0.0, 1.0, "1"};
+constexpr Range kLatticeAngle{-6.2832, 6.2832, "rad"};
 constexpr Range kFrameRate{1.0, 1000.0, "Hz"};
 // A blob's particle closer than this many lattice spacings to an earlier blob's lies inside
 // that blob (warnOverlaps).
@@ -503,7 +504,8 @@ private:
             const std::string at = childPointer(root.pointer("blobs"), i);
             const ObjectReader b(m_doc, (*list)[i], at, "a blob");
             const Shape shape =
-                readShape(b, {"material", "velocity", "lifetime", "structure", "colour"});
+                readShape(b, {"material", "velocity", "lifetime", "structure", "latticeAngle",
+                              "colour"});
             BlobDef blob;
             blob.shape = shape;
             blob.material =
@@ -512,6 +514,7 @@ private:
             blob.velocity = b.point("velocity", kVelocity, {0.0f, 0.0f});
             blob.lifetime = float(b.number("lifetime", kLifetime, 0.0));
             blob.structure = float(b.number("structure", kStructure, 0.0));
+            blob.latticeAngle = float(b.number("latticeAngle", kLatticeAngle, 0.0));
             // "colour": "#rrggbb" or "#rrggbbaa" (sRGB): the blob is a group of that colour.
             if (b.has("colour")) {
                 const std::string text = b.string("colour", "");

@@ -76,12 +76,17 @@ TEST_CASE("level errors: unknown keys are named with the allowed ones", "[level]
         errorOf(levelWith(
             R"(, "blobs": [{"material": "water", "shape": "box", "min": [0, 0], "max": [1, 1], "radius": 1}])")) ==
         "t.json:1:128: at /blobs/0/radius: unknown key 'radius'; allowed: material, velocity, "
-        "lifetime, structure, colour, shape, min, max");
+        "lifetime, structure, latticeAngle, colour, shape, min, max");
     // A blob's starting structure is a share in [0, 1].
     CHECK(
         errorOf(levelWith(
             R"(, "blobs": [{"material": "water", "shape": "box", "min": [0, 0], "max": [1, 1], "structure": 1.5}])")) ==
         "t.json:1:141: at /blobs/0/structure: 1.5 is out of range [0, 1] (unit: 1)");
+    // The lattice's angle is within a turn either way.
+    CHECK(
+        errorOf(levelWith(
+            R"(, "blobs": [{"material": "water", "shape": "box", "min": [0, 0], "max": [1, 1], "latticeAngle": 7}])")) ==
+        "t.json:1:144: at /blobs/0/latticeAngle: 7 is out of range [-6.2832, 6.2832] (unit: rad)");
     // Pointers escape '/' and '~' (RFC 6901).
     CHECK(errorOf(levelWith(R"(, "a/b~": 1)")) ==
           "t.json:1:50: at /a~1b~0: unknown key 'a/b~'; allowed: version, name, description, "

@@ -185,6 +185,17 @@ TEST_CASE("blob geometry errors", "[unit][blob][bad-input]") {
                                             " is out of range [0, 1] (unit: 1)"));
         CHECK(world.particleCount() == 0);
     }
+    SECTION("a lattice angle outside [-6.2832, 6.2832] or NaN") {
+        b.shape.type = ShapeType::Circle;
+        b.shape.radius = 0.05f;
+        const auto [value, text] = GENERATE(table<float, const char*>(
+            {{-7.0f, "-7"}, {7.0f, "7"}, {std::numeric_limits<float>::quiet_NaN(), "nan"}}));
+        b.latticeAngle = value;
+        CHECK_THROWS_MATCHES(world.spawnBlob(b), Error,
+                             Catch::Message(std::string("spawnBlob: latticeAngle = ") + text +
+                                            " is out of range [-6.2832, 6.2832] (unit: rad)"));
+        CHECK(world.particleCount() == 0);
+    }
     SECTION("degenerate (zero area)") {
         b.shape.vertices = {{0.0f, 0.0f}, {0.1f, 0.1f}, {0.2f, 0.2f}};
         CHECK_THROWS_MATCHES(world.spawnBlob(b), Error,
@@ -216,4 +227,51 @@ TEST_CASE("blob geometry errors", "[unit][blob][bad-input]") {
         CHECK_THROWS_AS(world.spawnBlob(b), Error);
     }
     CHECK(world.particleCount() == 0);
+}
+
+TEST_CASE("a layer on a slope filled along it has a flat top; rows along x leave steps",
+          "[unit][blob]") {
+    // A 0.49 x 0.0425 m layer turned by -0.4 rad (23 degrees, the sticky plank's): filled with
+    // its rows along the slope, every particle's distance to the layer's top edge is one of its
+    // rows' (a flat top); filled with rows along x, the top row's distances spread by most of a
+    // spacing (steps that a yield-stress layer keeps).
+    const float angle = -0.4f;
+    const glm::vec2 along{std::cos(angle), std::sin(angle)}, across{-along.y, along.x};
+    const glm::vec2 base{0.1f, 0.6f};
+    const float length = 0.49f, thickness = 0.0425f;
+    BlobDef b;
+    b.shape.type = ShapeType::Polygon;
+    b.shape.vertices = {base, base + length * along, base + length * along + thickness * across,
+                        base + thickness * across};
+    const auto depths = [&](float latticeAngle) {
+        World world(WorldDef{});
+        b.material = world.addMaterial(yoghurt());
+        b.latticeAngle = latticeAngle;
+        const uint32_t n = world.spawnBlob(b);
+        std::vector<float> d; // each particle's distance below the top edge (m)
+        const auto px = world.positionX(), py = world.positionY();
+        for (uint32_t i = 0; i < n; ++i) {
+            const glm::vec2 r = glm::vec2(px[i], py[i]) - base;
+            d.push_back(thickness - (r.x * across.x + r.y * across.y));
+        }
+        return std::make_pair(d, world.spacing(b.material));
+    };
+    const auto [turned, s] = depths(angle);
+    // 4 rows of 48: the layer's own lattice, centred in it.
+    CHECK(turned.size() == 4 * uint32_t(std::floor(length / s)));
+    for (const float d : turned) {
+        const float row = (d - 0.5f * (thickness - 3.0f * s)) / s; // 0..3 for rows top to bottom
+        CHECK(std::fabs(row - std::round(row)) < 1e-3f);
+    }
+    const auto [upright, s0] = depths(0.0f);
+    // Rows along x: the particles nearest the top edge, one per column of the lattice, stand
+    // at depths spread over most of a spacing.
+    const float top = *std::min_element(upright.begin(), upright.end());
+    float deepestTop = top;
+    for (const float d : upright) {
+        if (d < top + s0) {
+            deepestTop = std::max(deepestTop, d);
+        }
+    }
+    CHECK(deepestTop - top > 0.5f * s0);
 }

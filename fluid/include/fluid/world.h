@@ -250,6 +250,11 @@ struct BlobDef {
     /// first step (docs/yield_stress.md, "The shear constraint"). Unused for other
     /// materials.
     float structure = 0.0f;
+    /// Rotation of the lattice the blob is filled on, counter-clockwise (unit: rad; range
+    /// [-6.2832, 6.2832]): 0, the default, lays rows along x; a layer on a slope filled with
+    /// its rows along the slope has a flat top, where rows along x leave steps a spacing high
+    /// that a yield-stress material keeps (a level file's blob key "latticeAngle").
+    float latticeAngle = 0.0f;
     // ---- Groups (groups.h) ----
     /// The group the particles join (`createGroup`): they take its user data and colour
     /// (`GroupDef`). Null, the default, makes a new group for the blob (`spawnGroup` returns it;
