@@ -229,7 +229,7 @@ TEST_CASE("blob geometry errors", "[unit][blob][bad-input]") {
     CHECK(world.particleCount() == 0);
 }
 
-TEST_CASE("a layer on a slope filled along it has a flat top; rows along x leave steps",
+TEST_CASE("a layer on a slope filled along it has a flat top, rows along x leave steps",
           "[unit][blob]") {
     // A 0.49 x 0.0425 m layer turned by -0.4 rad (23 degrees, the sticky plank's): filled with
     // its rows along the slope, every particle's distance to the layer's top edge is one of its
