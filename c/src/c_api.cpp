@@ -631,24 +631,38 @@ fluid_blob_def fluid_default_blob_def(void) {
     return d;
 }
 
-fluid_status fluid_world_spawn_blob(fluid_world* world, const fluid_blob_def* def,
-                                    uint32_t* spawned) {
+namespace {
+
+fluid_status spawnBlob(fluid_world* world, const fluid_blob_def* def, float latticeAngle,
+                       uint32_t* spawned, const char* function) {
     return guard(FLUID_ERROR_INVALID_ARGUMENT, [&] {
-        World& w = worldOf(world, "fluid_world_spawn_blob");
-        need(def, "fluid_world_spawn_blob", "def");
+        World& w = worldOf(world, function);
+        need(def, function, "def");
         checkMaterial(w, def->material);
         BlobDef blob;
-        blob.shape = toCpp(def->shape, "fluid_world_spawn_blob");
+        blob.shape = toCpp(def->shape, function);
         blob.velocity = toVec(def->velocity);
         blob.material = toCpp(def->material);
         blob.lifetime = def->lifetime;
         blob.structure = def->structure;
-        uint32_t made = 0;
-        made = w.spawnBlob(blob);
+        blob.latticeAngle = latticeAngle;
+        const uint32_t made = w.spawnBlob(blob);
         if (spawned != nullptr) {
             *spawned = made;
         }
     });
+}
+
+} // namespace
+
+fluid_status fluid_world_spawn_blob(fluid_world* world, const fluid_blob_def* def,
+                                    uint32_t* spawned) {
+    return spawnBlob(world, def, 0.0f, spawned, "fluid_world_spawn_blob");
+}
+
+fluid_status fluid_world_spawn_blob_turned(fluid_world* world, const fluid_blob_def* def,
+                                           float lattice_angle, uint32_t* spawned) {
+    return spawnBlob(world, def, lattice_angle, spawned, "fluid_world_spawn_blob_turned");
 }
 
 fluid_status fluid_world_add_particle(fluid_world* world, fluid_vec2 position,

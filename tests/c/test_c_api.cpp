@@ -729,6 +729,33 @@ TEST_CASE("C API: every error path returns its status and the C++ API's own mess
         CHECK(fluid_world_set_particle_velocity(c.world, p, {1.0f, 0.0f}) ==
               FLUID_ERROR_STALE_ID);
     }
+    SECTION("a turned blob: the C++ lattice, and its angle's range") {
+        fluid_blob_def blob = fluid_default_blob_def();
+        const fluid_vec2 layer[4] = {{0.1f, 0.6f}, {0.55f, 0.41f}, {0.566f, 0.45f}, {0.116f, 0.64f}};
+        blob.shape = fluid_polygon_shape(layer, 4);
+        blob.material = water;
+        uint32_t made = 0;
+        C_OK(fluid_world_spawn_blob_turned(c.world, &blob, -0.4f, &made));
+        BlobDef cppBlob;
+        cppBlob.shape = Shape::polygon({{0.1f, 0.6f}, {0.55f, 0.41f}, {0.566f, 0.45f}, {0.116f, 0.64f}});
+        cppBlob.material = cppWater;
+        cppBlob.latticeAngle = -0.4f;
+        REQUIRE(made == cpp.spawnBlob(cppBlob));
+        REQUIRE(made > 0);
+        const float *x = nullptr, *y = nullptr;
+        uint32_t n = 0;
+        C_OK(fluid_world_positions(c.world, &x, &y, &n));
+        CHECK(std::vector<float>(x, x + n) ==
+              std::vector<float>(cpp.positionX().begin(), cpp.positionX().end()));
+        CHECK(std::vector<float>(y, y + n) ==
+              std::vector<float>(cpp.positionY().begin(), cpp.positionY().end()));
+        CHECK(fluid_world_spawn_blob_turned(c.world, &blob, 7.0f, nullptr) ==
+              FLUID_ERROR_INVALID_ARGUMENT);
+        cppBlob.latticeAngle = 7.0f;
+        CHECK(std::string(fluid_last_error()) == cppMessage([&] { cpp.spawnBlob(cppBlob); }));
+        CHECK(std::string(fluid_last_error()) ==
+              "spawnBlob: latticeAngle = 7 is out of range [-6.2832, 6.2832] (unit: rad)");
+    }
     SECTION("NaN arguments") {
         fluid_particle_id p{};
         const float nan = std::numeric_limits<float>::quiet_NaN();

@@ -129,3 +129,29 @@ def test_forgotten_world_is_freed_by_the_collector():
     del world
     gc.collect()
     assert ref() is None and not finalizer.alive
+
+
+def test_turned_blob_lies_along_its_slope():
+    # A layer turned by -0.4 rad, filled on a lattice turned with it: 4 rows of particles, each
+    # row at one distance under the layer's top edge (rows along x would leave steps).
+    import math
+    with fluid.World() as w:
+        yoghurt = w.add_material("yoghurt")
+        a = -0.4
+        along, across = (math.cos(a), math.sin(a)), (-math.sin(a), math.cos(a))
+        base, length, thickness = (0.1, 0.6), 0.49, 0.0425
+        corners = [base,
+                   (base[0] + length * along[0], base[1] + length * along[1]),
+                   (base[0] + length * along[0] + thickness * across[0],
+                    base[1] + length * along[1] + thickness * across[1]),
+                   (base[0] + thickness * across[0], base[1] + thickness * across[1])]
+        n = w.spawn_blob(fluid.polygon(corners), yoghurt, lattice_angle=a)
+        p = w.particles
+        depth = [round((thickness - ((x - base[0]) * across[0] + (y - base[1]) * across[1]))
+                       / 0.001) for x, y in zip(p.x, p.y)]
+        assert len(set(depth)) == 4
+        assert n == 4 * (n // 4)
+        with pytest.raises(fluid.InvalidArgumentError) as error:
+            w.spawn_blob(fluid.polygon(corners), yoghurt, lattice_angle=7.0)
+        assert str(error.value) == ("spawnBlob: latticeAngle = 7 is out of range "
+                                    "[-6.2832, 6.2832] (unit: rad)")

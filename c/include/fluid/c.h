@@ -442,6 +442,14 @@ FLUID_C_API fluid_blob_def fluid_default_blob_def(void);
 FLUID_C_API fluid_status fluid_world_spawn_blob(fluid_world* world, const fluid_blob_def* def,
                                                 uint32_t* spawned);
 
+/// As fluid_world_spawn_blob, on a lattice turned counter-clockwise by `lattice_angle` (unit:
+/// rad; [-6.2832, 6.2832]; C++ BlobDef::latticeAngle): a layer on a slope filled with its rows
+/// along the slope has a flat top, where rows along x leave steps a spacing high that a
+/// yield-stress material keeps. FLUID_ERROR_INVALID_ARGUMENT for an angle out of range.
+FLUID_C_API fluid_status fluid_world_spawn_blob_turned(fluid_world* world,
+                                                       const fluid_blob_def* def,
+                                                       float lattice_angle, uint32_t* spawned);
+
 /// Adds one particle (unit: m, m/s).
 FLUID_C_API fluid_status fluid_world_add_particle(fluid_world* world, fluid_vec2 position,
                                                   fluid_vec2 velocity, fluid_material_id material,

@@ -496,11 +496,14 @@ class World:
         """The material of index `index` (unit: index < material_count; not checked here)."""
         return Material(self, ffi.new("fluid_material_id*", (index, 0))[0])
 
-    def spawn_blob(self, shape, material, velocity=(0.0, 0.0), lifetime=0.0, structure=0.0):
+    def spawn_blob(self, shape, material, velocity=(0.0, 0.0), lifetime=0.0, structure=0.0,
+                   lattice_angle=0.0):
         """Fills `shape` with `material`'s particles on its lattice, moving at `velocity`
         (unit: m/s), each living `lifetime` (unit: s; 0 forever); `structure` for yield-stress
-        materials (unit: 1; [0, 1]). Returns how many it made (unit: count). LimitError past
-        max_particles. Particle arrays handed out so far expire."""
+        materials (unit: 1; [0, 1]); the lattice turned counter-clockwise by `lattice_angle`
+        (unit: rad; [-6.2832, 6.2832]: a layer on a slope filled along it has a flat top).
+        Returns how many it made (unit: count). LimitError past max_particles. Particle arrays
+        handed out so far expire."""
         keep = []
         d = ffi.new("fluid_blob_def*", lib.fluid_default_blob_def())
         d.shape = shape._c(keep)
@@ -510,7 +513,7 @@ class World:
         d.structure = float(structure)
         out = ffi.new("uint32_t*")
         self._changed()
-        check(lib.fluid_world_spawn_blob(self._ptr, d, out))
+        check(lib.fluid_world_spawn_blob_turned(self._ptr, d, float(lattice_angle), out))
         return out[0]
 
     def add_particle(self, position, velocity, material):
