@@ -371,29 +371,33 @@ double fluidDensity(const WorldState& s) {
     return mass / area;
 }
 
-// cg.moveScale: per material, how far its particles move per unit of the solve's displacement,
-// rho / rho0 with rho the density the solve was made for (fluidDensity): the displacement is
-// -dt^2 grad p / rho0, so a denser particle moves less, as the sweeps move a heavier particle
-// less. Without it the correction held a yoghurt lump (1,050 kg/m^3) in water as if it were
-// water: it sank at 1 mm/s in the game preset, 1.6 cm/s in the precise one (docs/yield_stress.md,
-// "A lump in water"). Empty (every scale exactly 1) when the particles share one rest density.
-void setMoveScale(WorldState& s) {
-    CoarseGrid& cg = s.coarse;
-    cg.moveScale.clear();
+// True when every material some particle has shares one rest density.
+bool oneRestDensity(const WorldState& s) {
     float first = 0.0f;
-    bool uniform = true;
     for (size_t m = 0; m < s.materials.size(); ++m) {
         if (!s.isPresent(m)) {
             continue;
         }
         const float rho0 = s.materials[m].restDensity;
-        uniform = uniform && (first == 0.0f || rho0 == first);
-        first = first == 0.0f ? rho0 : first;
+        if (first != 0.0f && rho0 != first) {
+            return false;
+        }
+        first = rho0;
     }
-    if (uniform) {
+    return true;
+}
+
+// cg.moveScale: per material, how far its particles move per unit of the solve's displacement,
+// rho / rho0 with rho the density the solve is made for (fluidDensity): the displacement is
+// -dt^2 grad p / rho0, so a denser particle moves less, as the sweeps move a heavier particle
+// less. Without it the correction held a yoghurt lump (1,050 kg/m^3) in water as if it were
+// water: it sank at 1 mm/s in the game preset, 1.6 cm/s in the precise one (docs/yield_stress.md,
+// "A lump in water"). Empty (every scale exactly 1) when the particles share one rest density.
+void setMoveScale(CoarseGrid& cg, const WorldState& s, bool oneDensity, double rho) {
+    cg.moveScale.clear();
+    if (oneDensity) {
         return;
     }
-    const double rho = fluidDensity(s);
     cg.moveScale.resize(s.materials.size());
     for (size_t m = 0; m < s.materials.size(); ++m) {
         cg.moveScale[m] = float(rho / double(s.materials[m].restDensity));
@@ -623,10 +627,10 @@ void gradientRows(CoarseGrid& cg, const Layout& g) {
     }
 }
 
-// Per body, how far the solve moves it per unit of G^T psi: rho0 depth / mass (1/m^2).
-std::vector<double> bodyMobility(const WorldState& s) {
+// Per body, how far the solve moves it per unit of G^T psi: rho0 depth / mass (1/m^2), rho0
+// the liquid's density (fluidDensity).
+std::vector<double> bodyMobility(const WorldState& s, double rho) {
     std::vector<double> mobility(s.bodies.size());
-    const double rho = fluidDensity(s);
     for (size_t b = 0; b < s.bodies.size(); ++b) {
         mobility[b] = rho * double(s.def.depth) / double(s.bodies[b].mass);
     }
@@ -1097,10 +1101,14 @@ bool pbfCoarseFill(WorldState& s, const PbfConstants& c, const CoarseSettings& s
             splat(cg.solid, g, x, y, c.sampleVolume * invArea);
         }
     }
+    // The liquid's density, read here beside the particles (the solve must not: the sort may be
+    // moving them), and only where bodies or several rest densities need it.
+    const bool oneDensity = oneRestDensity(s);
+    const double rho = oneDensity && s.bodies.empty() ? 0.0 : fluidDensity(s);
+    setMoveScale(cg, s, oneDensity, rho);
     if (!s.bodies.empty()) {
         markOwners(s, g, c.sampleVolume * invArea, settings.endTime);
-        // Read here, beside the particles: the solve must not (the sort may be moving them).
-        cg.mobility = bodyMobility(s);
+        cg.mobility = bodyMobility(s, rho);
     } else {
         cg.mobility.clear();
     }
@@ -1142,7 +1150,6 @@ bool pbfCoarseMove(WorldState& s, const CoarseSettings& settings,
     const uint32_t n = p.size();
     const Layout& g = cg.layout;
     const std::vector<float>& value = cg.rhs; // nodeValues' result
-    setMoveScale(s);
     // Each particle's move reads only the node values: the particles split over the workers.
     // The fill kept each particle's cell and fractions at its index then; `order` maps each
     // index now to that one (empty: the same).

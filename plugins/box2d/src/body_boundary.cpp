@@ -593,10 +593,10 @@ bool BodyBoundary::bodyContains(uint32_t body, glm::vec2 point, float timeInStep
     // of the sweep), where Box2D's fixtures stand.
     const double t = timeInStep;
     SweepPose& pose = m_sweepPose;
-    if (pose.entry != &e || pose.t != t || pose.com != e.com || pose.velocity != e.velocity ||
+    if (pose.t != t || pose.com != e.com || pose.velocity != e.velocity ||
         pose.angle != e.angle || pose.omega != e.omega) {
         const double angle = e.angle + t * e.omega;
-        pose = {&e, t, e.com, e.velocity, e.angle, e.omega, e.com + t * e.velocity,
+        pose = {t, e.com, e.velocity, e.angle, e.omega, e.com + t * e.velocity,
                 detail::cos(angle), detail::sin(angle)};
     }
     const glm::dvec2 d = glm::dvec2(point) - pose.at;

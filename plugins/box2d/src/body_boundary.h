@@ -270,11 +270,10 @@ private:
     std::vector<double> m_masses;
     // bodyContains's last sweep pose, so that the coarse fill's lattice of points over one body
     // (a few hundred calls at one time) turns the body once: the same sums as computing it each
-    // call. Kept with the inputs it was computed from, compared exactly. The plugin interface
-    // calls bodyContains from the stepping thread only.
+    // call. Kept with the inputs it was computed from (which alone decide it), compared
+    // exactly. The plugin interface calls bodyContains from the stepping thread only.
     struct SweepPose {
-        const BodyEntry* entry = nullptr;
-        double t = 0.0;
+        double t = -1.0; // no pose yet: no sweep time is negative
         glm::dvec2 com{0.0, 0.0}, velocity{0.0, 0.0};
         double angle = 0.0, omega = 0.0;
         glm::dvec2 at{0.0, 0.0}; // centre of mass at t
