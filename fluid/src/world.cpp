@@ -216,8 +216,8 @@ void WorldState::checkInRange(const char* function, const char* what, glm::vec2 
         text << "the world has no material yet)";
     } else {
         const size_t finest = finestMaterial();
-        text << "2^18 spacings of the finest material, '" << materials[finest].name
-             << "' at " << particleSpacing(materials[finest], def.depth)
+        text << "2^18 spacings of the finest material, '" << materials[finest].name << "' at "
+             << particleSpacing(materials[finest], def.depth)
              << " m; docs/gameplay.md, Far from the origin)";
     }
     throw Error(text.str(), ErrorCode::OutOfRange);
@@ -587,6 +587,42 @@ uint32_t World::spawnBlob(const BlobDef& blob, uint32_t* insideSolids) {
     }
 }
 
+namespace {
+
+// A circle of radius `radius` filled in rings a spacing apart, from half a spacing inside its
+// outline inwards, each with the whole number of points nearest its length over the spacing
+// (each point then stands for about a spacing squared, as on the lattice), every second ring
+// turned half a step against the one outside it; one point at the centre when the disc the
+// rings leave there has at least half a spacing squared of area. Rings start at `angle` (rad).
+// A yield-stress paste keeps the outline it starts with: on the lattice a circle's outline is
+// a staircase a spacing high, which the paste holds as notches (docs/yield_stress.md, "A
+// round outline").
+void ringFill(glm::vec2 center, float radius, float spacing, float angle,
+              std::vector<glm::vec2>& points) {
+    constexpr double kTwoPi = 6.283185307179586;
+    const double s = spacing;
+    double inner = radius; // radius of the disc the rings leave
+    for (int k = 0;; ++k) {
+        const double r = double(radius) - s * (double(k) + 0.5);
+        if (r < 0.5 * s) {
+            break;
+        }
+        const auto count = std::max<long>(1, std::lround(kTwoPi * r / s));
+        const double phase = double(angle) + (k % 2 == 1 ? 0.5 * kTwoPi / double(count) : 0.0);
+        for (long j = 0; j < count; ++j) {
+            const double a = phase + kTwoPi * double(j) / double(count);
+            points.emplace_back(center.x + float(r * std::cos(a)),
+                                center.y + float(r * std::sin(a)));
+        }
+        inner = r - 0.5 * s;
+    }
+    if (0.5 * kTwoPi * inner * inner >= 0.5 * s * s) {
+        points.push_back(center);
+    }
+}
+
+} // namespace
+
 uint32_t World::placeBlob(const BlobDef& blob, glm::vec2 lo, glm::vec2 hi, float spacing,
                           double cols, double rows, uint32_t* insideSolids) {
     const Shape& shape = blob.shape;
@@ -596,7 +632,9 @@ uint32_t World::placeBlob(const BlobDef& blob, glm::vec2 lo, glm::vec2 hi, float
     const glm::vec2 origin =
         0.5f * (lo + hi) - 0.5f * spacing * glm::vec2(float(nx) - 1.0f, float(ny) - 1.0f);
     std::vector<glm::vec2> points;
-    if (blob.latticeAngle == 0.0f) {
+    if (shape.type == ShapeType::Circle && material(blob.material).yieldStress > 0.0f) {
+        ringFill(shape.center, shape.radius, spacing, blob.latticeAngle, points);
+    } else if (blob.latticeAngle == 0.0f) {
         for (uint32_t j = 0; j < ny; ++j) {
             for (uint32_t i = 0; i < nx; ++i) {
                 const glm::vec2 p = origin + spacing * glm::vec2(float(i), float(j));

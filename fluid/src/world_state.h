@@ -72,11 +72,11 @@ struct Particles {
 /// The explicit solver's scratch (solver_explicit.cpp, sph_loops.cpp): per sub-step channels
 /// in sorted order, sized at the start of each step, never saved.
 struct ExplicitScratch {
-    std::vector<float> ax, ay;     // total acceleration (m/s^2)
-    std::vector<float> ex, ey;     // the force plugins' acceleration (m/s^2)
-    std::vector<float> nx, ny;     // surface normals [Akinci 2013] (1)
-    std::vector<float> pOverRho2;  // the pair term's pressure over rho^2 (m^5/(kg s^2))
-    std::vector<float> qx, qy;     // positions before the last integrate, for the boundaries (m)
+    std::vector<float> ax, ay;    // total acceleration (m/s^2)
+    std::vector<float> ex, ey;    // the force plugins' acceleration (m/s^2)
+    std::vector<float> nx, ny;    // surface normals [Akinci 2013] (1)
+    std::vector<float> pOverRho2; // the pair term's pressure over rho^2 (m^5/(kg s^2))
+    std::vector<float> qx, qy;    // positions before the last integrate, for the boundaries (m)
 };
 
 /// The position-based solver's scratch (solver_position_based.cpp, pbf_loops.cpp,
@@ -98,7 +98,7 @@ struct PositionBasedScratch {
     std::vector<float> coarseP;        // the coarse move's share x potential at the particle (m^2)
     std::vector<float> vorticity;      // the viscosity pass's vorticity, for the surface pass (1/s)
     std::vector<float> normalX, normalY; // its surface normals, for the surface pass (1)
-    std::vector<float> nextVx, nextVy; // a viscosity pass's new velocity (m/s), swapped into v
+    std::vector<float> nextVx, nextVy;   // a viscosity pass's new velocity (m/s), swapped into v
 };
 
 /// The yield model's scratch in a yielding world (position-based: pbf_loops.cpp,
@@ -203,12 +203,12 @@ struct ContactState {
         uint32_t slot = 0;
         uint16_t material = 0;
     };
-    std::vector<Body> bodies;        // gatherSamples; empty: the step pays nothing
-    std::vector<int32_t> bodyOf;     // per concatenated sample: its entry in `bodies`, or -1
-    std::vector<uint32_t> samples;   // sorted indices of the asking bodies' samples
-    std::vector<uint32_t> stamp;     // per particle: the last (sub-step, body) mark that took it
-    uint32_t mark = 0;               // the first mark of the current sub-step
-    float reach = 0.0f;              // kContactReach sample spacings (m)
+    std::vector<Body> bodies;      // gatherSamples; empty: the step pays nothing
+    std::vector<int32_t> bodyOf;   // per concatenated sample: its entry in `bodies`, or -1
+    std::vector<uint32_t> samples; // sorted indices of the asking bodies' samples
+    std::vector<uint32_t> stamp;   // per particle: the last (sub-step, body) mark that took it
+    uint32_t mark = 0;             // the first mark of the current sub-step
+    float reach = 0.0f;            // kContactReach sample spacings (m)
     std::vector<std::vector<Touch>> touches; // per body: (particle, sub-step) contacts
     std::vector<double> sumX, sumY;          // per body: their positions summed (m)
     std::vector<float> approach;             // per body: the largest approach speed (m/s)
@@ -243,24 +243,31 @@ struct CoarseLayout {
 /// The position-based solver's coarse grid (pbf_coarse.cpp), kept between sub-steps so that
 /// its arrays are allocated once.
 struct CoarseGrid {
-    std::vector<float> fluid, solid;      // fill of the node by particles and by samples (1: full)
-    std::vector<uint32_t> cell;           // per particle: its cell's lower-left node
-    std::vector<float> fx, fy;            // per particle: its bilinear fractions in the cell
-    std::vector<uint8_t> type;            // 0 air, 1 fluid, 2 solid
-    std::vector<float> psi, rhs, r, d, q; // potential and conjugate-gradient vectors
+    std::vector<float> fluid, solid;       // fill of the node by particles and by samples (1: full)
+    std::vector<uint32_t> cell;            // per particle: its cell's lower-left node
+    std::vector<float> fx, fy;             // per particle: its bilinear fractions in the cell
+    std::vector<uint8_t> type;             // 0 air, 1 fluid, 2 solid
+    std::vector<float> psi, rhs, r, d, q;  // potential and conjugate-gradient vectors
     std::vector<float> z, precon, micLeft; // preconditioned residual; per unknown the MIC(0)
                                            // factor and its product with its left neighbour's
-    std::vector<uint32_t> active;         // the fluid nodes, in order (the unknowns)
-    std::vector<uint32_t> rowStart;       // first unknown of each node row, then the count
-    std::vector<int32_t> slot;            // per node: its unknown, -1 for air and solid
-    std::vector<float> diagonal;          // per unknown: the operator's diagonal
-    std::vector<int32_t> neighbours;      // per unknown: 4 neighbouring unknowns (the unknowns'
-                                          // count for none: d keeps a 0 there)
-    std::vector<int32_t> owner;           // per node: the body it lies inside, or -1
-    std::vector<float> bodyFill;          // per node: the bodies' fill from their outlines
-    std::vector<float> ownFill;           // scratch: one body's outline fill over its box
-    std::vector<float> samplesFill;       // scratch: one body's samples' fill over its box
-    std::vector<uint8_t> inside;          // scratch: one body's inside test on a fine lattice
+    std::vector<uint32_t> active;          // the fluid nodes, in order (the unknowns)
+    std::vector<uint32_t> rowStart;        // first unknown of each node row, then the count
+    std::vector<int32_t> slot;             // per node: its unknown, -1 for air and solid
+    std::vector<float> diagonal;           // per unknown: the operator's diagonal
+    std::vector<int32_t> neighbours;       // per unknown: 4 neighbouring unknowns (the unknowns'
+                                           // count for none: d keeps a 0 there)
+    std::vector<int32_t> owner;            // per node: the body it lies inside, or -1
+    std::vector<float> bodyFill;           // per node: the bodies' fill from their outlines
+    std::vector<float> ownFill;            // scratch: one body's outline fill over its box
+    std::vector<float> samplesFill;        // scratch: one body's samples' fill over its box
+    std::vector<uint8_t> inside;           // scratch: one body's inside test on a fine lattice
+    // Worlds without bodies: per unknown its region (the connected set of fluid nodes it
+    // belongs to, through their 4 neighbours), per region 1 when a node of it holds a wall's
+    // fill, and per particle the region of its cell's first fluid corner (-1: none, its move is
+    // 0). Each region away from walls keeps its momentum (keepRegionMomentum).
+    std::vector<int32_t> region;
+    std::vector<uint8_t> regionWalled;
+    std::vector<int32_t> particleRegion;
     // Per material: its particles' share of the solve's move, rho / rho0 (setMoveScale in
     // pbf_coarse.cpp); empty when every particle has the same rest density.
     std::vector<float> moveScale;
@@ -467,7 +474,7 @@ struct WorldState {
     bool isPresent(size_t material) const {
         return present.size() != materials.size() || present[material] != 0;
     }
-    float fieldGH = 0.0f;    // g H of the external field, measured in the last step (m^2/s^2)
+    float fieldGH = 0.0f; // g H of the external field, measured in the last step (m^2/s^2)
     bool fieldMeasured = false;
     float lastMaxAccel = 0.0f;
 

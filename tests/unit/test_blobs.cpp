@@ -109,6 +109,69 @@ TEST_CASE("circle blob: count and placement", "[unit][blob]") {
     }
 }
 
+// A yield-stress paste keeps the outline it starts with, so its circles are filled in rings: the
+// outermost ring stands half a spacing inside the circle all the way round, where the lattice's
+// farthest points step in and out by up to a spacing (the notches a resting drop kept).
+TEST_CASE("a yielding material's circle is filled in rings: a round outline, the lattice's "
+          "count, no two points closer than 0.8 spacings",
+          "[unit][blob]") {
+    const float radius = 0.08f;
+    for (const bool yields : {true, false}) {
+        CAPTURE(yields);
+        World world;
+        const MaterialId m = world.addMaterial(yields ? yoghurt() : water());
+        // Per 10-degree bin around the centre, the farthest point's distance (0: none in the bin).
+        const auto outline = [&](uint32_t first, uint32_t count) {
+            std::vector<float> far(36, 0.0f);
+            const auto px = world.positionX(), py = world.positionY();
+            for (uint32_t i = first; i < first + count; ++i) {
+                const float dx = px[i] - 0.3f, dy = py[i] - 0.1f;
+                const auto bin =
+                    size_t((std::atan2(dy, dx) + 3.14159265f) / 6.2831853f * 36.0f) % 36;
+                far[bin] = std::max(far[bin], std::hypot(dx, dy));
+            }
+            return far;
+        };
+        const float s = world.spacing(m);
+        BlobDef b;
+        b.shape = Shape::circle({0.3f, 0.1f}, radius);
+        b.material = m;
+        b.latticeAngle = 0.3f;
+        const uint32_t first = world.particleCount();
+        const uint32_t n = world.spawnBlob(b);
+        checkCount(n, 3.14159265 * radius * radius, 2 * 3.14159265 * radius, s, 0.04);
+        const std::vector<float> far = outline(first, n);
+        const auto [lo, hi] = std::minmax_element(far.begin(), far.end());
+        std::printf("[measure] %s circle of %.2f m: %u particles, the farthest per 10-degree bin "
+                    "%.4f-%.4f m (%.2f-%.2f spacings in from the outline)\n",
+                    yields ? "yoghurt" : "water", double(radius), n, double(*lo), double(*hi),
+                    double((radius - *hi) / s), double((radius - *lo) / s));
+        if (yields) {
+            CHECK(*lo >= radius - 0.5f * s - 1e-5f);
+            CHECK(*hi <= radius - 0.5f * s + 1e-5f);
+        } else {
+            CHECK(*hi - *lo > 0.3f * s); // the lattice's staircase
+        }
+        const auto px = world.positionX(), py = world.positionY();
+        float nearest = INFINITY;
+        for (uint32_t i = first; i < first + n; ++i) {
+            for (uint32_t j = i + 1; j < first + n; ++j) {
+                nearest = std::min(nearest, std::hypot(px[i] - px[j], py[i] - py[j]));
+            }
+        }
+        CHECK(nearest >= 0.8f * s);
+    }
+    // Small circles: one ring of four points, or the centre alone.
+    World world;
+    const MaterialId y = world.addMaterial(yoghurt());
+    BlobDef small;
+    small.shape = Shape::circle({0.0f, 0.0f}, 1.2f * world.spacing(y));
+    small.material = y;
+    CHECK(world.spawnBlob(small) == 4);
+    small.shape = Shape::circle({0.5f, 0.0f}, 0.6f * world.spacing(y));
+    CHECK(world.spawnBlob(small) == 1);
+}
+
 TEST_CASE("polygon blobs: convex and concave", "[unit][blob]") {
     World world;
     const MaterialId w = world.addMaterial(water());

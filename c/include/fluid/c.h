@@ -418,7 +418,8 @@ FLUID_C_API fluid_shape fluid_circle_shape(fluid_vec2 center, float radius);
 /// A polygon of `count` vertices at `vertices` (unit: m; not copied until used). Any thread.
 FLUID_C_API fluid_shape fluid_polygon_shape(const fluid_vec2* vertices, uint32_t count);
 
-/// A block of liquid filled on the material's lattice (C++ fluid::BlobDef).
+/// A block of liquid filled on the material's lattice; a yield-stress material's circle in rings,
+/// for a round outline (C++ fluid::BlobDef).
 typedef struct fluid_blob_def {
     /// Where.
     fluid_shape shape;

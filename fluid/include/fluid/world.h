@@ -234,7 +234,11 @@ std::span<const Field<WorldDef>> worldFields();
 /// A block of liquid to spawn: the shape is filled on a square lattice at the material's spacing
 /// (lattice points whose position lies inside the shape). Plain data.
 struct BlobDef {
-    /// The region filled (see `Shape`; `Shape::box`, `Shape::circle`, `Shape::polygon`).
+    /// The region filled (see `Shape`; `Shape::box`, `Shape::circle`, `Shape::polygon`), on the
+    /// material's lattice; a circle of a yield-stress material (`Material::yieldStress` > 0)
+    /// in rings a spacing apart instead, the outermost half a spacing inside the circle all
+    /// round: a paste keeps the outline it starts with, and the lattice's is a staircase
+    /// (docs/yield_stress.md, "A round outline").
     Shape shape;
     /// Initial velocity of every particle (unit: m/s; finite).
     glm::vec2 velocity{0.0f, 0.0f};
@@ -253,7 +257,8 @@ struct BlobDef {
     /// Rotation of the lattice the blob is filled on, counter-clockwise (unit: rad; range
     /// [-6.2832, 6.2832]): 0, the default, lays rows along x; a layer on a slope filled with
     /// its rows along the slope has a flat top, where rows along x leave steps a spacing high
-    /// that a yield-stress material keeps (a level file's blob key "latticeAngle").
+    /// that a yield-stress material keeps (a level file's blob key "latticeAngle"). A yielding
+    /// circle's rings start at this angle.
     float latticeAngle = 0.0f;
     // ---- Groups (groups.h) ----
     /// The group the particles join (`createGroup`): they take its user data and colour

@@ -501,8 +501,9 @@ class World:
         """Fills `shape` with `material`'s particles on its lattice, moving at `velocity`
         (unit: m/s), each living `lifetime` (unit: s; 0 forever); `structure` for yield-stress
         materials (unit: 1; [0, 1]); the lattice turned counter-clockwise by `lattice_angle`
-        (unit: rad; [-6.2832, 6.2832]: a layer on a slope filled along it has a flat top).
-        Returns how many it made (unit: count). LimitError past max_particles. Particle arrays
+        (unit: rad; [-6.2832, 6.2832]: a layer on a slope filled along it has a flat top). A
+        yield-stress material's circle is filled in rings (a round outline), starting at
+        `lattice_angle`. Returns how many it made (unit: count). LimitError past max_particles. Particle arrays
         handed out so far expire."""
         keep = []
         d = ffi.new("fluid_blob_def*", lib.fluid_default_blob_def())
