@@ -170,7 +170,9 @@ TEST_CASE("a yoghurt lump dropped into water sinks, rests on the floor as one pi
         CAPTURE(sweep, pushed.pieces.size());
         CHECK(pushed.cx > rested.cx + 0.04); // the push moved it
         // It deforms and keeps together: what tears off is a few particles of its skin, not
-        // the lump.
+        // the lump, in at most 5 pieces (issue 67's target; the lump filled on the lattice,
+        // before its circle was filled in rings, came apart in 6 at 0.2 m/s).
         CHECK(double(pushed.pieces[0]) >= 0.9 * double(ny));
+        CHECK(pushed.pieces.size() <= 5);
     }
 }
