@@ -752,7 +752,7 @@ void labelRegions(CoarseGrid& cg) {
     const auto none = int32_t(count);
     cg.region.assign(count, -1);
     cg.regionWalled.clear();
-    std::vector<uint32_t> stack;
+    std::vector<uint32_t>& stack = cg.regionStack;
     for (size_t a = 0; a < count; ++a) {
         if (cg.region[a] >= 0) {
             continue;
@@ -796,15 +796,16 @@ void keepRegionMomentum(WorldState& s, std::span<const uint32_t> order) {
     const uint32_t n = p.size();
     const Layout& g = cg.layout;
     cg.particleRegion.resize(n);
-    struct Run {
-        int32_t region;
-        double mx, my, m;
-    };
+    using Run = CoarseGrid::RegionRun;
     const uint32_t blocks = (n + kReduceBlock - 1) / kReduceBlock;
-    std::vector<std::vector<Run>> runs(blocks);
+    std::vector<std::vector<Run>>& runs = cg.regionRuns;
+    if (runs.size() < blocks) {
+        runs.resize(blocks);
+    }
     parallelFor(s.tasks, blocks, 1, [&](uint32_t b0, uint32_t b1, uint32_t) {
         for (uint32_t b = b0; b < b1; ++b) {
             std::vector<Run>& out = runs[b];
+            out.clear();
             const uint32_t end = std::min(n, (b + 1) * kReduceBlock);
             for (uint32_t i = b * kReduceBlock; i < end; ++i) {
                 const size_t k = cg.cell[order.empty() ? i : order[i]];
@@ -828,16 +829,18 @@ void keepRegionMomentum(WorldState& s, std::span<const uint32_t> order) {
             }
         }
     });
-    std::vector<double> sum(3 * regions, 0.0);
-    for (const std::vector<Run>& block : runs) {
-        for (const Run& run : block) {
+    std::vector<double>& sum = cg.regionSum;
+    sum.assign(3 * regions, 0.0);
+    for (uint32_t b = 0; b < blocks; ++b) {
+        for (const Run& run : runs[b]) {
             sum[3 * size_t(run.region) + 0] += run.mx;
             sum[3 * size_t(run.region) + 1] += run.my;
             sum[3 * size_t(run.region) + 2] += run.m;
         }
     }
     // Per region the mean move (x, y), 0 where none is taken off.
-    std::vector<float> mean(2 * regions, 0.0f);
+    std::vector<float>& mean = cg.regionMean;
+    mean.assign(2 * regions, 0.0f);
     bool any = false;
     for (size_t r = 0; r < regions; ++r) {
         const double m = sum[3 * r + 2];

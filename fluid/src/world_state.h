@@ -268,6 +268,14 @@ struct CoarseGrid {
     std::vector<int32_t> region;
     std::vector<uint8_t> regionWalled;
     std::vector<int32_t> particleRegion;
+    struct RegionRun { // scratch: a block's run of particles of one region, its momentum sums
+        int32_t region = 0;
+        double mx = 0, my = 0, m = 0;
+    };
+    std::vector<std::vector<RegionRun>> regionRuns; // per block of kReduceBlock particles
+    std::vector<uint32_t> regionStack;              // scratch of labelRegions
+    std::vector<double> regionSum;                  // per region: mass times move (x, y), mass
+    std::vector<float> regionMean;                  // per region: the mean move taken off
     // Per material: its particles' share of the solve's move, rho / rho0 (setMoveScale in
     // pbf_coarse.cpp); empty when every particle has the same rest density.
     std::vector<float> moveScale;
