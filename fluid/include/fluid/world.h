@@ -82,7 +82,8 @@ struct PositionBasedDef {
     /// Vorticity confinement strength epsilon (unit: 1; range [0, 1]): the share of a vortex's
     /// rotation speed at one support radius given back per radian turned, when the surface
     /// pass runs every 1/120 s or more often (both presets); longer runs give back
-    /// proportionally less (the confinement feeds
+    /// proportionally less, and a particle spinning faster than a radian per run counts one
+    /// (the confinement feeds
     /// the spin it reads; docs/position_based_method.md, "Velocity, viscosity, surface").
     /// 0 turns it off.
     float vorticity = 0.0f;
