@@ -157,8 +157,9 @@ TEST_CASE("zero-g water and yoghurt blobs collide and keep their momentum over 1
 // the viscosity act in pairs and the coarse solve's moves sum to zero where no wall is in reach,
 // so the total momentum stays within 1e-3 of the sum of |m v| over 2 s, with both presets, water
 // against water and against yoghurt. The precise preset with yoghurt is held to 1.2e-3: the
-// yoghurt's own passes lose a little at the impact (1.06e-3 with the blob on the lattice,
-// 1.17e-3 with it filled in rings; docs/position_based_method.md, "Coarse correction").
+// impact loses a little where neighbours are found from one side and where the correction
+// limit clips (1.06e-3 with the blob on the lattice, 1.17e-3 with it filled in rings;
+// docs/position_based_method.md, "Coarse correction").
 TEST_CASE("zero-g blobs meeting at 10 m/s keep their momentum, game and precise presets",
           "[slow][invariants][momentum]") {
     const Quality quality = GENERATE(Quality::Game, Quality::Precise);
