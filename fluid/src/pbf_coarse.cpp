@@ -691,16 +691,17 @@ bool moveBodies(WorldState& s, const CoarseGrid& cg, const std::vector<double>& 
     return moved;
 }
 
-// True when a fluid node holds some fill of a boundary's samples other than the bodies' (more
-// than a thousandth of a node: the bodies' part is a difference of float sums): the liquid
-// touches a wall, which takes its share of the coarse solve's impulse.
+// True when node k holds some fill of a boundary's samples other than the bodies' (more than a
+// thousandth of a node: the bodies' part is a difference of float sums): liquid there touches
+// a wall, which takes its share of the coarse solve's impulse.
+bool wallFilled(const CoarseGrid& cg, size_t k, bool bodies) {
+    return cg.solid[k] - (bodies ? cg.bodyFill[k] : 0.0f) > 1e-3f;
+}
+
+// True when some fluid node touches a wall (wallFilled).
 bool touchesWall(const CoarseGrid& cg, bool bodies) {
-    for (const uint32_t k : cg.active) {
-        if (cg.solid[k] - (bodies ? cg.bodyFill[k] : 0.0f) > 1e-3f) {
-            return true;
-        }
-    }
-    return false;
+    return std::any_of(cg.active.begin(), cg.active.end(),
+                       [&](uint32_t k) { return wallFilled(cg, k, bodies); });
 }
 
 // Where no wall is in reach, the coarse moves keep the momentum: the particles' moves (mass
@@ -764,7 +765,7 @@ void labelRegions(CoarseGrid& cg) {
         while (!stack.empty()) {
             const uint32_t u = stack.back();
             stack.pop_back();
-            walled |= cg.solid[cg.active[u]] > 1e-3f ? 1 : 0; // touchesWall's test
+            walled |= wallFilled(cg, cg.active[u], false) ? 1 : 0;
             for (int e = 0; e < 4; ++e) {
                 const int32_t v = cg.neighbours[4 * size_t(u) + size_t(e)];
                 if (v != none && cg.region[size_t(v)] < 0) {
