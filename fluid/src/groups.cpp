@@ -148,16 +148,27 @@ void mixColours(WorldState& s, double seconds) {
     }
     const double share = 1.0 - std::exp(-double(s.colourMixing) * seconds);
     const double scale = 65536.0 * share / (1.5 * std::max(lattice, 1.0));
+    // The pair's weight in float: both particles of a pair compute it from the same r^2 with
+    // the same operations, so it is the same integer from either side.
+    const auto weightScale = float(scale);
+    const float invReach2 = 1.0f / reach2;
 
-    Grid grid;
+    WorldState::ColourMixScratch& x = s.colourMix;
+    Grid& grid = x.grid;
     grid.build(p.px, p.py, reach, s.tasks);
     const std::span<const uint32_t> order = grid.order();
     if (s.slotColourFraction.size() < s.slotIndex.size()) {
         s.slotColourFraction.resize(s.slotIndex.size(), 0u);
     }
     // Each channel in 8.8 fixed point: the colour's byte and the slot's fraction byte.
-    std::vector<float> sx(n), sy(n);
-    std::vector<uint64_t> sc(n);
+    x.x.resize(n);
+    x.y.resize(n);
+    x.colour.resize(n);
+    x.next.resize(n);
+    x.nextFraction.resize(n);
+    const std::span<float> sx = x.x, sy = x.y;
+    const std::span<uint64_t> sc = x.colour;
+    const std::span<uint32_t> next = x.next, nextFraction = x.nextFraction;
     const auto fine = [&](uint32_t i) {
         const uint32_t c = p.colour[i], f = s.slotColourFraction[p.slot[i]];
         uint64_t v = 0;
@@ -171,55 +182,119 @@ void mixColours(WorldState& s, double seconds) {
         sy[k] = p.py[order[k]];
         sc[k] = fine(order[k]);
     }
-    std::vector<uint32_t> next(n), nextFraction(n);
     // Each particle reads the old colours and writes its own new one. A pair's trade
     // trunc(K (c_j - c_i) / 65536) is exactly the negative of the reverse pair's (the same
     // weight K from the same r^2; integer division truncates toward zero), so every channel's
-    // sum is kept, and integer sums give the same result in any order or split.
+    // sum is kept, and integer sums give the same result in any order or split. A neighbour of
+    // the same colour and fraction trades nothing and is passed over before its distance is
+    // taken.
     constexpr uint64_t kAlpha = uint64_t(0xFF00) << 48; // alpha's whole byte
-    parallelFor(s.tasks, n, 256, [&](uint32_t b, uint32_t e, uint32_t) {
-        for (uint32_t k = b; k < e; ++k) {
+    // The weight k and m trade with, or -1 where they trade nothing: the same word (k itself
+    // among them), a particle without alpha, or beyond the reach.
+    const auto weightOf = [&](uint32_t k, uint32_t m, uint64_t ci, uint64_t cj) -> int64_t {
+        if (cj == ci || (cj & kAlpha) == 0) {
+            return -1;
+        }
+        const float dx = sx[m] - sx[k], dy = sy[m] - sy[k];
+        const float r2 = dx * dx + dy * dy;
+        if (!(r2 < reach2)) {
+            return -1;
+        }
+        const float q = 1.0f - r2 * invReach2;
+        return int64_t(weightScale * (q * q * q));
+    };
+    const auto channels = [](uint64_t c, int64_t (&out)[4]) {
+        for (int ch = 0; ch < 4; ++ch) {
+            out[ch] = int64_t((c >> (16 * ch)) & 0xFFFFu);
+        }
+    };
+    const auto finish = [&](uint32_t k, const int64_t (&own)[4], const int64_t* acc) {
+        const uint32_t i = order[k];
+        uint32_t out = 0, fraction = 0;
+        for (int c = 0; c < 4; ++c) {
+            // A convex combination of old values: in range (alpha stays at least 1.0).
+            const int64_t v = std::clamp<int64_t>(own[c] + acc[c], c == 3 ? 256 : 0, 0xFFFF);
+            out |= uint32_t(v >> 8) << (8 * c);
+            fraction |= uint32_t(v & 255) << (8 * c);
+        }
+        next[i] = out;
+        nextFraction[i] = fraction;
+    };
+    const auto keep = [&](uint32_t k) {
+        const uint32_t i = order[k];
+        next[i] = p.colour[i];
+        nextFraction[i] = s.slotColourFraction[p.slot[i]];
+    };
+    if (s.tasks.enqueue == nullptr || s.tasks.workerCount <= 1 || n <= 256) {
+        // One thread: each pair once, its trade added to one side and taken from the other
+        // (the reverse pair's trade is exactly its negative), so the sums are the ones the
+        // gather below makes, in half the work.
+        x.acc.assign(size_t(n) * 4, 0);
+        for (uint32_t k = 0; k < n; ++k) {
             const uint64_t ci = sc[k];
-            const uint32_t i = order[k];
             if ((ci & kAlpha) == 0) {
-                next[i] = p.colour[i];
-                nextFraction[i] = s.slotColourFraction[p.slot[i]];
                 continue;
             }
-            int64_t acc[4] = {0, 0, 0, 0};
+            int64_t own[4];
+            channels(ci, own);
+            int64_t* const acc = &x.acc[size_t(k) * 4];
             grid.forEachRange(sx[k], sy[k], [&](uint32_t mb, uint32_t me) {
-                for (uint32_t m = mb; m < me; ++m) {
+                for (uint32_t m = std::max(mb, k + 1); m < me; ++m) {
                     const uint64_t cj = sc[m];
-                    if (m == k || (cj & kAlpha) == 0) {
+                    const int64_t weight = weightOf(k, m, ci, cj);
+                    if (weight < 0) {
                         continue;
                     }
-                    const float dx = sx[m] - sx[k], dy = sy[m] - sy[k];
-                    const float r2 = dx * dx + dy * dy;
-                    if (!(r2 < reach2)) {
-                        continue;
-                    }
-                    const double q = 1.0 - double(r2) / double(reach2);
-                    const auto weight = int64_t(scale * q * q * q);
+                    int64_t* const other = &x.acc[size_t(m) * 4];
                     for (int c = 0; c < 4; ++c) {
-                        const int64_t d = int64_t((cj >> (16 * c)) & 0xFFFFu) -
-                                          int64_t((ci >> (16 * c)) & 0xFFFFu);
-                        acc[c] += weight * d / 65536;
+                        const int64_t d = int64_t((cj >> (16 * c)) & 0xFFFFu) - own[c];
+                        const int64_t t = weight * d / 65536;
+                        acc[c] += t;
+                        other[c] -= t;
                     }
                 }
             });
-            uint32_t out = 0, fraction = 0;
-            for (int c = 0; c < 4; ++c) {
-                // A convex combination of old values: in range (alpha stays at least 1.0).
-                const int64_t v = std::clamp<int64_t>(
-                    int64_t((ci >> (16 * c)) & 0xFFFFu) + acc[c], c == 3 ? 256 : 0, 0xFFFF);
-                out |= uint32_t(v >> 8) << (8 * c);
-                fraction |= uint32_t(v & 255) << (8 * c);
-            }
-            next[i] = out;
-            nextFraction[i] = fraction;
         }
-    });
-    p.colour.swap(next);
+        for (uint32_t k = 0; k < n; ++k) {
+            if ((sc[k] & kAlpha) == 0) {
+                keep(k);
+                continue;
+            }
+            int64_t own[4];
+            channels(sc[k], own);
+            finish(k, own, &x.acc[size_t(k) * 4]);
+        }
+    } else {
+        // Workers: each particle gathers its own trades from the old colours and writes only
+        // its new one.
+        parallelFor(s.tasks, n, 256, [&](uint32_t b, uint32_t e, uint32_t) {
+            for (uint32_t k = b; k < e; ++k) {
+                const uint64_t ci = sc[k];
+                if ((ci & kAlpha) == 0) {
+                    keep(k);
+                    continue;
+                }
+                int64_t own[4];
+                channels(ci, own);
+                int64_t acc[4] = {0, 0, 0, 0};
+                grid.forEachRange(sx[k], sy[k], [&](uint32_t mb, uint32_t me) {
+                    for (uint32_t m = mb; m < me; ++m) {
+                        const uint64_t cj = sc[m];
+                        const int64_t weight = weightOf(k, m, ci, cj);
+                        if (weight < 0) {
+                            continue;
+                        }
+                        for (int c = 0; c < 4; ++c) {
+                            const int64_t d = int64_t((cj >> (16 * c)) & 0xFFFFu) - own[c];
+                            acc[c] += weight * d / 65536;
+                        }
+                    }
+                });
+                finish(k, own, acc);
+            }
+        });
+    }
+    p.colour.swap(x.next);
     for (uint32_t i = 0; i < n; ++i) {
         s.slotColourFraction[p.slot[i]] = nextFraction[i];
     }

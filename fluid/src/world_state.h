@@ -451,6 +451,16 @@ struct WorldState {
     // and keeps each channel's sum exactly; empty until mixing first runs, 0 for a colour just
     // set (leaveSlot, setColour).
     std::vector<uint32_t> slotColourFraction;
+    // Colour mixing's scratch (groups.cpp mixColours), kept so that a frame allocates nothing:
+    // its grid, the positions and 8.8 colours in the grid's order, the new colours, and the
+    // one-thread path's trades (4 channels per particle, in the grid's order).
+    struct ColourMixScratch {
+        Grid grid;
+        std::vector<float> x, y;
+        std::vector<uint64_t> colour;
+        std::vector<uint32_t> next, nextFraction;
+        std::vector<int64_t> acc;
+    } colourMix;
     std::vector<uint32_t> emitterGroup; // per emitter: the group its particles join
     bool interpolate = false;           // keep Particles::lastX, lastY
     bool interpolateSteps = false;      // ... from a step's start (Interpolation::Step)
