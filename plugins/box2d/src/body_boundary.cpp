@@ -136,6 +136,7 @@ void BodyBoundary::attach(b2World* physics, const CouplingDef* def) {
         m_bodies.clear();
         m_colliders.clear();
         m_boxes.clear();
+        m_sweepPose = SweepPose{};
         m_grid.build({}, 1.0f);
     }
 }
@@ -321,6 +322,7 @@ void BodyBoundary::prepare(const StepContext& context) {
     m_rigid.clear();
     m_colliders.clear();
     m_boxes.clear();
+    m_sweepPose = SweepPose{}; // the colliders are listed anew: their boxes too
     m_spacing = context.sampleSpacing;
     m_frameDt = context.frameDt;
     if (m_physics == nullptr) {
@@ -593,22 +595,52 @@ bool BodyBoundary::bodyContains(uint32_t body, glm::vec2 point, float timeInStep
     // of the sweep), where Box2D's fixtures stand.
     const double t = timeInStep;
     SweepPose& pose = m_sweepPose;
-    if (pose.t != t || pose.com != e.com || pose.velocity != e.velocity ||
-        pose.angle != e.angle || pose.omega != e.omega) {
+    const b2Transform& xf = e.body->GetTransform();
+    if (pose.body != body || pose.t != t || pose.com != e.com || pose.velocity != e.velocity ||
+        pose.angle != e.angle || pose.omega != e.omega || pose.px != xf.p.x ||
+        pose.py != xf.p.y || pose.qs != xf.q.s || pose.qc != xf.q.c) {
         const double angle = e.angle + t * e.omega;
-        pose = {t, e.com, e.velocity, e.angle, e.omega, e.com + t * e.velocity,
-                detail::cos(angle), detail::sin(angle)};
+        pose = {t,
+                e.com,
+                e.velocity,
+                e.angle,
+                e.omega,
+                e.com + t * e.velocity,
+                detail::cos(angle),
+                detail::sin(angle),
+                body,
+                xf.p.x,
+                xf.p.y,
+                xf.q.s,
+                xf.q.c};
+        m_sweepBoxes.resize(m_colliders.size());
+        for (uint32_t k = e.colliderBegin; k < e.colliderEnd; ++k) {
+            const b2Shape* shape = m_entries[m_colliders[k].entry].fixture->GetShape();
+            Box& box = m_sweepBoxes[k];
+            if (shape->GetType() == b2Shape::e_chain || shape->GetType() == b2Shape::e_edge) {
+                box = {1.0f, 1.0f, -1.0f, -1.0f}; // empty: a line holds no point inside
+                continue;
+            }
+            b2AABB aabb;
+            shape->ComputeAABB(&aabb, xf, 0);
+            const b2Vec2 size = aabb.upperBound - aabb.lowerBound;
+            const float margin = 1e-5f * (1.0f + std::abs(aabb.lowerBound.x) +
+                                          std::abs(aabb.lowerBound.y) + size.x + size.y);
+            box = {aabb.lowerBound.x - margin, aabb.lowerBound.y - margin,
+                   aabb.upperBound.x + margin, aabb.upperBound.y + margin};
+        }
     }
     const glm::dvec2 d = glm::dvec2(point) - pose.at;
     const glm::dvec2 local = rotate(d, pose.c, -pose.s);
-    const b2Transform& xf = e.body->GetTransform();
     const glm::dvec2 center = toVec(e.body->GetWorldCenter());
     const glm::dvec2 now = center + rotate(local, double(xf.q.c), double(xf.q.s));
     const b2Vec2 p(float(now.x), float(now.y));
     for (uint32_t k = e.colliderBegin; k < e.colliderEnd; ++k) {
-        const b2Fixture* fixture = m_entries[m_colliders[k].entry].fixture;
-        if (fixture->GetShape()->GetType() != b2Shape::e_chain &&
-            fixture->GetShape()->GetType() != b2Shape::e_edge && fixture->TestPoint(p)) {
+        const Box& box = m_sweepBoxes[k];
+        if (p.x < box.loX || p.x > box.hiX || p.y < box.loY || p.y > box.hiY) {
+            continue;
+        }
+        if (m_entries[m_colliders[k].entry].fixture->TestPoint(p)) {
             return true;
         }
     }

@@ -278,8 +278,15 @@ private:
         double angle = 0.0, omega = 0.0;
         glm::dvec2 at{0.0, 0.0}; // centre of mass at t
         double c = 1.0, s = 0.0; // cos and sin of the angle at t
+        uint32_t body = UINT32_MAX;
+        float px = 0.0f, py = 0.0f, qs = 0.0f, qc = 1.0f; // its transform in Box2D now
     };
     mutable SweepPose m_sweepPose;
+    // With the pose: each of that body's colliders' box in Box2D's frame now (its shape's
+    // AABB, the polygon's skin included, grown by a rounding margin), which a point must lie in
+    // before the collider's own inside test is asked (a paddle wheel's lattice point lies in at
+    // most one or two of its seven fixtures' boxes).
+    mutable std::vector<Box> m_sweepBoxes;
 };
 
 } // namespace fluid::box2d
