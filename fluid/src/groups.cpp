@@ -119,6 +119,171 @@ void resetPrevious(WorldState& s) {
     s.particles.lastY = s.particles.py;
 }
 
+namespace {
+
+// The pair weight (1 - r^2 / R^2)^3 summed over a particle's neighbours inside a square
+// lattice of `spacing` for a reach R (m).
+double latticeWeightSum(float spacing, float reach) {
+    const double reach2 = double(reach) * double(reach);
+    double lattice = 0.0;
+    const int span = int(std::ceil(reach / spacing));
+    for (int k = -span; k <= span; ++k) {
+        for (int l = -span; l <= span; ++l) {
+            const double r2 = double(spacing) * double(spacing) * double(k * k + l * l);
+            if ((k != 0 || l != 0) && r2 < reach2) {
+                const double q = 1.0 - r2 / reach2;
+                lattice += q * q * q;
+            }
+        }
+    }
+    return lattice;
+}
+
+// One frame of colour mixing over the particles in the grid's order (mixColours): each channel
+// in 8.8 fixed point, the colour's byte over the slot's fraction byte. A pair's trade
+// trunc(K (c_j - c_i) / 65536) is exactly the negative of the reverse pair's (the same weight K
+// from the same r^2; integer division truncates toward zero), so every channel's sum is kept,
+// and integer sums give the same result in any order or split. A neighbour of the same colour
+// and fraction trades nothing and is passed over before its distance is taken.
+struct ColourTrades {
+    static constexpr uint64_t kAlpha = uint64_t(0xFF00) << 48; // alpha's whole byte
+
+    const Grid& grid;
+    std::span<const uint32_t> order;
+    std::span<const float> x, y;     // positions in the grid's order (m)
+    std::span<const uint64_t> words; // 8.8 colours in the grid's order
+    float reach2, invReach2;         // m^2, 1/m^2
+    float weightScale;               // the weight K at r = 0
+    // What they write, by particle index: the new colour and its fraction byte per channel.
+    std::span<uint32_t> next, nextFraction;
+
+    static void channels(uint64_t c, int64_t (&out)[4]) {
+        for (int ch = 0; ch < 4; ++ch) {
+            out[ch] = int64_t((c >> (16 * ch)) & 0xFFFFu);
+        }
+    }
+
+    // Channel c's trade of a particle with channels `own` from the word cj at weight w.
+    static int64_t trade(int64_t w, uint64_t cj, const int64_t (&own)[4], int c) {
+        return w * (int64_t((cj >> (16 * c)) & 0xFFFFu) - own[c]) / 65536;
+    }
+
+    // The weight k and m trade with, or -1 where they trade nothing: the same word (k itself
+    // among them), a particle without alpha, or beyond the reach. In float: both particles of
+    // a pair compute it from the same r^2 with the same operations, so it is the same integer
+    // from either side.
+    int64_t weightOf(uint32_t k, uint32_t m, uint64_t ci, uint64_t cj) const {
+        if (cj == ci || (cj & kAlpha) == 0) {
+            return -1;
+        }
+        const float dx = x[m] - x[k], dy = y[m] - y[k];
+        const float r2 = dx * dx + dy * dy;
+        if (!(r2 < reach2)) {
+            return -1;
+        }
+        const float q = 1.0f - r2 * invReach2;
+        return int64_t(weightScale * (q * q * q));
+    }
+
+    // Sorted point k's new colour from its old channels and their trades.
+    void finish(uint32_t k, const int64_t (&own)[4], const int64_t* acc) const {
+        uint32_t out = 0, fraction = 0;
+        for (int c = 0; c < 4; ++c) {
+            // A convex combination of old values: in range (alpha stays at least 1.0).
+            const int64_t v = std::clamp<int64_t>(own[c] + acc[c], c == 3 ? 256 : 0, 0xFFFF);
+            out |= uint32_t(v >> 8) << (8 * c);
+            fraction |= uint32_t(v & 255) << (8 * c);
+        }
+        next[order[k]] = out;
+        nextFraction[order[k]] = fraction;
+    }
+
+    // Sorted point k, without alpha, keeps its colour and fraction.
+    void keep(uint32_t k) const {
+        const uint64_t w = words[k];
+        uint32_t out = 0, fraction = 0;
+        for (int c = 0; c < 4; ++c) {
+            out |= uint32_t((w >> (16 * c + 8)) & 255u) << (8 * c);
+            fraction |= uint32_t((w >> (16 * c)) & 255u) << (8 * c);
+        }
+        next[order[k]] = out;
+        nextFraction[order[k]] = fraction;
+    }
+
+    // One thread: each pair once, its trade added to one side and taken from the other (the
+    // reverse pair's trade is exactly its negative), so the sums are the ones `gather` makes,
+    // in half the work. `acc`: 4 channels per sorted point.
+    void pairsOnce(std::vector<int64_t>& acc) const {
+        const auto n = uint32_t(words.size());
+        acc.assign(size_t(n) * 4, 0);
+        for (uint32_t k = 0; k < n; ++k) {
+            const uint64_t ci = words[k];
+            if ((ci & kAlpha) == 0) {
+                continue;
+            }
+            int64_t own[4];
+            channels(ci, own);
+            int64_t* const mine = &acc[size_t(k) * 4];
+            grid.forEachRange(x[k], y[k], [&](uint32_t mb, uint32_t me) {
+                for (uint32_t m = std::max(mb, k + 1); m < me; ++m) {
+                    const uint64_t cj = words[m];
+                    const int64_t weight = weightOf(k, m, ci, cj);
+                    if (weight < 0) {
+                        continue;
+                    }
+                    int64_t* const other = &acc[size_t(m) * 4];
+                    for (int c = 0; c < 4; ++c) {
+                        const int64_t t = trade(weight, cj, own, c);
+                        mine[c] += t;
+                        other[c] -= t;
+                    }
+                }
+            });
+        }
+        for (uint32_t k = 0; k < n; ++k) {
+            if ((words[k] & kAlpha) == 0) {
+                keep(k);
+                continue;
+            }
+            int64_t own[4];
+            channels(words[k], own);
+            finish(k, own, &acc[size_t(k) * 4]);
+        }
+    }
+
+    // Workers: each particle gathers its own trades from the old colours and writes only its
+    // new one.
+    void gather(const TaskHook& tasks) const {
+        parallelFor(tasks, uint32_t(words.size()), 256, [&](uint32_t b, uint32_t e, uint32_t) {
+            for (uint32_t k = b; k < e; ++k) {
+                const uint64_t ci = words[k];
+                if ((ci & kAlpha) == 0) {
+                    keep(k);
+                    continue;
+                }
+                int64_t own[4];
+                channels(ci, own);
+                int64_t acc[4] = {0, 0, 0, 0};
+                grid.forEachRange(x[k], y[k], [&](uint32_t mb, uint32_t me) {
+                    for (uint32_t m = mb; m < me; ++m) {
+                        const uint64_t cj = words[m];
+                        const int64_t weight = weightOf(k, m, ci, cj);
+                        if (weight < 0) {
+                            continue;
+                        }
+                        for (int c = 0; c < 4; ++c) {
+                            acc[c] += trade(weight, cj, own, c);
+                        }
+                    }
+                });
+                finish(k, own, acc);
+            }
+        });
+    }
+};
+
+} // namespace
+
 void mixColours(WorldState& s, double seconds) {
     Particles& p = s.particles;
     const uint32_t n = p.size();
@@ -131,172 +296,45 @@ void mixColours(WorldState& s, double seconds) {
         reach = std::max(reach, m.smoothingDistance);
     }
     const float spacing = particleSpacing(s.materials[s.finestMaterial()], s.def.depth);
-    const float reach2 = reach * reach;
-    // The pair weight (1 - r^2 / R^2)^3 over its sum at a particle inside the finest
-    // material's lattice, with half as much again for compression: a particle's weights sum
-    // below 1, so each new colour is a convex combination of old ones (stays in 0..255).
-    double lattice = 0.0;
-    const int span = int(std::ceil(reach / spacing));
-    for (int k = -span; k <= span; ++k) {
-        for (int l = -span; l <= span; ++l) {
-            const double r2 = double(spacing) * double(spacing) * double(k * k + l * l);
-            if ((k != 0 || l != 0) && r2 < double(reach2)) {
-                const double q = 1.0 - r2 / double(reach2);
-                lattice += q * q * q;
-            }
-        }
-    }
+    // The pair weight over its sum at a particle inside the finest material's lattice, with
+    // half as much again for compression: a particle's weights sum below 1, so each new colour
+    // is a convex combination of old ones (stays in 0..255).
     const double share = 1.0 - std::exp(-double(s.colourMixing) * seconds);
-    const double scale = 65536.0 * share / (1.5 * std::max(lattice, 1.0));
-    // The pair's weight in float: both particles of a pair compute it from the same r^2 with
-    // the same operations, so it is the same integer from either side.
-    const auto weightScale = float(scale);
-    const float invReach2 = 1.0f / reach2;
+    const double scale = 65536.0 * share / (1.5 * std::max(latticeWeightSum(spacing, reach), 1.0));
 
     WorldState::ColourMixScratch& x = s.colourMix;
-    Grid& grid = x.grid;
-    grid.build(p.px, p.py, reach, s.tasks);
-    const std::span<const uint32_t> order = grid.order();
+    x.grid.build(p.px, p.py, reach, s.tasks);
+    const std::span<const uint32_t> order = x.grid.order();
     if (s.slotColourFraction.size() < s.slotIndex.size()) {
         s.slotColourFraction.resize(s.slotIndex.size(), 0u);
     }
-    // Each channel in 8.8 fixed point: the colour's byte and the slot's fraction byte.
     x.x.resize(n);
     x.y.resize(n);
     x.colour.resize(n);
     x.next.resize(n);
     x.nextFraction.resize(n);
-    const std::span<float> sx = x.x, sy = x.y;
-    const std::span<uint64_t> sc = x.colour;
-    const std::span<uint32_t> next = x.next, nextFraction = x.nextFraction;
-    const auto fine = [&](uint32_t i) {
-        const uint32_t c = p.colour[i], f = s.slotColourFraction[p.slot[i]];
-        uint64_t v = 0;
-        for (int ch = 0; ch < 4; ++ch) {
-            v |= uint64_t(((c >> (8 * ch)) & 255u) << 8 | ((f >> (8 * ch)) & 255u)) << (16 * ch);
-        }
-        return v;
-    };
     for (uint32_t k = 0; k < n; ++k) {
-        sx[k] = p.px[order[k]];
-        sy[k] = p.py[order[k]];
-        sc[k] = fine(order[k]);
-    }
-    // Each particle reads the old colours and writes its own new one. A pair's trade
-    // trunc(K (c_j - c_i) / 65536) is exactly the negative of the reverse pair's (the same
-    // weight K from the same r^2; integer division truncates toward zero), so every channel's
-    // sum is kept, and integer sums give the same result in any order or split. A neighbour of
-    // the same colour and fraction trades nothing and is passed over before its distance is
-    // taken.
-    constexpr uint64_t kAlpha = uint64_t(0xFF00) << 48; // alpha's whole byte
-    // The weight k and m trade with, or -1 where they trade nothing: the same word (k itself
-    // among them), a particle without alpha, or beyond the reach.
-    const auto weightOf = [&](uint32_t k, uint32_t m, uint64_t ci, uint64_t cj) -> int64_t {
-        if (cj == ci || (cj & kAlpha) == 0) {
-            return -1;
-        }
-        const float dx = sx[m] - sx[k], dy = sy[m] - sy[k];
-        const float r2 = dx * dx + dy * dy;
-        if (!(r2 < reach2)) {
-            return -1;
-        }
-        const float q = 1.0f - r2 * invReach2;
-        return int64_t(weightScale * (q * q * q));
-    };
-    const auto channels = [](uint64_t c, int64_t (&out)[4]) {
+        const uint32_t i = order[k];
+        const uint32_t c = p.colour[i], f = s.slotColourFraction[p.slot[i]];
+        uint64_t word = 0;
         for (int ch = 0; ch < 4; ++ch) {
-            out[ch] = int64_t((c >> (16 * ch)) & 0xFFFFu);
+            word |= uint64_t(((c >> (8 * ch)) & 255u) << 8 | ((f >> (8 * ch)) & 255u)) << (16 * ch);
         }
-    };
-    const auto finish = [&](uint32_t k, const int64_t (&own)[4], const int64_t* acc) {
-        const uint32_t i = order[k];
-        uint32_t out = 0, fraction = 0;
-        for (int c = 0; c < 4; ++c) {
-            // A convex combination of old values: in range (alpha stays at least 1.0).
-            const int64_t v = std::clamp<int64_t>(own[c] + acc[c], c == 3 ? 256 : 0, 0xFFFF);
-            out |= uint32_t(v >> 8) << (8 * c);
-            fraction |= uint32_t(v & 255) << (8 * c);
-        }
-        next[i] = out;
-        nextFraction[i] = fraction;
-    };
-    const auto keep = [&](uint32_t k) {
-        const uint32_t i = order[k];
-        next[i] = p.colour[i];
-        nextFraction[i] = s.slotColourFraction[p.slot[i]];
-    };
+        x.x[k] = p.px[i];
+        x.y[k] = p.py[i];
+        x.colour[k] = word;
+    }
+    const ColourTrades trades{
+        x.grid,       order,  x.x,           x.y, x.colour, reach * reach, 1.0f / (reach * reach),
+        float(scale), x.next, x.nextFraction};
     if (s.tasks.enqueue == nullptr || s.tasks.workerCount <= 1 || n <= 256) {
-        // One thread: each pair once, its trade added to one side and taken from the other
-        // (the reverse pair's trade is exactly its negative), so the sums are the ones the
-        // gather below makes, in half the work.
-        x.acc.assign(size_t(n) * 4, 0);
-        for (uint32_t k = 0; k < n; ++k) {
-            const uint64_t ci = sc[k];
-            if ((ci & kAlpha) == 0) {
-                continue;
-            }
-            int64_t own[4];
-            channels(ci, own);
-            int64_t* const acc = &x.acc[size_t(k) * 4];
-            grid.forEachRange(sx[k], sy[k], [&](uint32_t mb, uint32_t me) {
-                for (uint32_t m = std::max(mb, k + 1); m < me; ++m) {
-                    const uint64_t cj = sc[m];
-                    const int64_t weight = weightOf(k, m, ci, cj);
-                    if (weight < 0) {
-                        continue;
-                    }
-                    int64_t* const other = &x.acc[size_t(m) * 4];
-                    for (int c = 0; c < 4; ++c) {
-                        const int64_t d = int64_t((cj >> (16 * c)) & 0xFFFFu) - own[c];
-                        const int64_t t = weight * d / 65536;
-                        acc[c] += t;
-                        other[c] -= t;
-                    }
-                }
-            });
-        }
-        for (uint32_t k = 0; k < n; ++k) {
-            if ((sc[k] & kAlpha) == 0) {
-                keep(k);
-                continue;
-            }
-            int64_t own[4];
-            channels(sc[k], own);
-            finish(k, own, &x.acc[size_t(k) * 4]);
-        }
+        trades.pairsOnce(x.acc);
     } else {
-        // Workers: each particle gathers its own trades from the old colours and writes only
-        // its new one.
-        parallelFor(s.tasks, n, 256, [&](uint32_t b, uint32_t e, uint32_t) {
-            for (uint32_t k = b; k < e; ++k) {
-                const uint64_t ci = sc[k];
-                if ((ci & kAlpha) == 0) {
-                    keep(k);
-                    continue;
-                }
-                int64_t own[4];
-                channels(ci, own);
-                int64_t acc[4] = {0, 0, 0, 0};
-                grid.forEachRange(sx[k], sy[k], [&](uint32_t mb, uint32_t me) {
-                    for (uint32_t m = mb; m < me; ++m) {
-                        const uint64_t cj = sc[m];
-                        const int64_t weight = weightOf(k, m, ci, cj);
-                        if (weight < 0) {
-                            continue;
-                        }
-                        for (int c = 0; c < 4; ++c) {
-                            const int64_t d = int64_t((cj >> (16 * c)) & 0xFFFFu) - own[c];
-                            acc[c] += weight * d / 65536;
-                        }
-                    }
-                });
-                finish(k, own, acc);
-            }
-        });
+        trades.gather(s.tasks);
     }
     p.colour.swap(x.next);
     for (uint32_t i = 0; i < n; ++i) {
-        s.slotColourFraction[p.slot[i]] = nextFraction[i];
+        s.slotColourFraction[p.slot[i]] = x.nextFraction[i];
     }
 }
 
