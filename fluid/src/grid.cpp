@@ -30,6 +30,9 @@ void Grid::build(std::span<const float> px, std::span<const float> py, float rad
     };
     const Box init{std::numeric_limits<int64_t>::max(), std::numeric_limits<int64_t>::max(),
                    std::numeric_limits<int64_t>::min(), std::numeric_limits<int64_t>::min()};
+    // Each point's cell, kept for the keys of a dense grid (a hashed one has cells of R).
+    m_cellX.resize(count);
+    m_cellY.resize(count);
     const Box box = blockReduce<Box>(
         tasks, count, init,
         [&](uint32_t b, uint32_t e) {
@@ -37,6 +40,8 @@ void Grid::build(std::span<const float> px, std::span<const float> py, float rad
             for (uint32_t i = b; i < e; ++i) {
                 const int64_t cx = gridCell(px[i], v.invCellX);
                 const int64_t cy = gridCell(py[i], v.invCellY);
+                m_cellX[i] = cx;
+                m_cellY[i] = cy;
                 r.x0 = std::min(r.x0, cx);
                 r.y0 = std::min(r.y0, cy);
                 r.x1 = std::max(r.x1, cx);
@@ -80,11 +85,19 @@ void Grid::build(std::span<const float> px, std::span<const float> py, float rad
     }
 
     parallelFor(tasks, count, 4096, [&](uint32_t b, uint32_t e, uint32_t) {
-        for (uint32_t i = b; i < e; ++i) {
-            const int64_t cx = gridCell(px[i], v.invCellX);
-            const int64_t cy = gridCell(py[i], v.invCellY);
-            m_keys[i] = v.hashed ? gridHash(cx, cy, v.mask)
-                                 : uint32_t((cy - v.oy) * int64_t(v.nx) + (cx - v.ox));
+        if (v.hashed) {
+            for (uint32_t i = b; i < e; ++i) {
+                m_keys[i] = gridHash(gridCell(px[i], v.invCellX), gridCell(py[i], v.invCellY),
+                                     v.mask);
+            }
+        } else {
+            const int64_t* __restrict cx = m_cellX.data();
+            const int64_t* __restrict cy = m_cellY.data();
+            uint32_t* __restrict keys = m_keys.data();
+            const int64_t ox = v.ox, oy = v.oy, width = int64_t(v.nx);
+            for (uint32_t i = b; i < e; ++i) {
+                keys[i] = uint32_t((cy[i] - oy) * width + (cx[i] - ox));
+            }
         }
     });
 
