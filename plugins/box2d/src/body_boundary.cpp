@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -309,6 +310,38 @@ void layProbes(FixtureEntry& entry, double spacing, double cell) {
         entry.probeCells.emplace_back(cellKey(entry.probes[k], cell), k);
     }
     std::sort(entry.probeCells.begin(), entry.probeCells.end());
+    // The table over the probes' box of cells, when it stays within a few cells per probe.
+    entry.probeStart.clear();
+    entry.probeColumns = entry.probeRows = 0;
+    if (!entry.probes.empty()) {
+        const int64_t most = std::numeric_limits<int64_t>::max();
+        int64_t x0 = most, y0 = most, x1 = -most, y1 = -most;
+        for (const glm::dvec2 q : entry.probes) {
+            const auto ix = static_cast<int64_t>(std::floor(q.x / cell));
+            const auto iy = static_cast<int64_t>(std::floor(q.y / cell));
+            x0 = std::min(x0, ix);
+            y0 = std::min(y0, iy);
+            x1 = std::max(x1, ix);
+            y1 = std::max(y1, iy);
+        }
+        const int64_t columns = x1 - x0 + 1, rows = y1 - y0 + 1;
+        if (columns * rows <= 16 * int64_t(entry.probes.size()) + 1024) {
+            entry.probeX0 = x0;
+            entry.probeY0 = y0;
+            entry.probeColumns = columns;
+            entry.probeRows = rows;
+            entry.probeStart.assign(size_t(columns * rows) + 1, 0);
+            for (const auto& [key, k] : entry.probeCells) {
+                const glm::dvec2 q = entry.probes[k];
+                const auto ix = static_cast<int64_t>(std::floor(q.x / cell));
+                const auto iy = static_cast<int64_t>(std::floor(q.y / cell));
+                ++entry.probeStart[size_t((ix - x0) * rows + (iy - y0)) + 1];
+            }
+            for (size_t c = 1; c < entry.probeStart.size(); ++c) {
+                entry.probeStart[c] += entry.probeStart[c - 1];
+            }
+        }
+    }
     entry.probeSpacing = spacing;
     entry.probeCell = cell;
 }

@@ -114,6 +114,12 @@ struct FixtureEntry {
     double area = 0.0, probeArea = 0.0;
     /// Probes sorted by cell of side `probeCell` (cell key, probe index), for wet tests.
     std::vector<std::pair<int64_t, uint32_t>> probeCells;
+    /// The same cells as a table over the probes' box of cells, column by column: the probes
+    /// of cell (x, y) are probeCells[probeStart[c]] to probeCells[probeStart[c + 1]], c =
+    /// (x - probeX0) probeRows + (y - probeY0); a column's cells are contiguous. Empty when
+    /// the box has too many cells for its probes (a long chain), which then search probeCells.
+    std::vector<uint32_t> probeStart;
+    int64_t probeX0 = 0, probeY0 = 0, probeColumns = 0, probeRows = 0;
     /// Spacing and cell size the probes were laid for (unit: m).
     double probeSpacing = 0.0, probeCell = 0.0;
     /// Seen at the last `prepare` (entries not seen are dropped).

@@ -600,6 +600,31 @@ void Coupling::makeReports(const World& world) {
             const glm::dvec2 local(f.c * d.x + f.s * d.y, -f.s * d.x + f.c * d.y);
             const auto ix = static_cast<int64_t>(std::floor(local.x / entry.probeCell));
             const auto iy = static_cast<int64_t>(std::floor(local.y / entry.probeCell));
+            const auto mark = [&](uint32_t probe) {
+                const glm::dvec2 e = entry.probes[probe] - local;
+                const uint32_t slot = probeBegin[k] + probe;
+                if (e.x * e.x + e.y * e.y <= r2 && wet[slot] == 0) {
+                    wet[slot] = 1;
+                    wetMaterial[slot] = material[i];
+                }
+            };
+            if (entry.probeColumns > 0) {
+                // The table: per column, its three cells' probes are one range.
+                const int64_t y0 = std::max(iy - 1, entry.probeY0) - entry.probeY0;
+                const int64_t y1 = std::min(iy + 1, entry.probeY0 + entry.probeRows - 1) -
+                                   entry.probeY0;
+                const int64_t x0 = std::max(ix - 1, entry.probeX0) - entry.probeX0;
+                const int64_t x1 = std::min(ix + 1, entry.probeX0 + entry.probeColumns - 1) -
+                                   entry.probeX0;
+                for (int64_t cx = x0; y0 <= y1 && cx <= x1; ++cx) {
+                    const size_t c = size_t(cx * entry.probeRows);
+                    for (uint32_t n = entry.probeStart[c + size_t(y0)];
+                         n < entry.probeStart[c + size_t(y1) + 1]; ++n) {
+                        mark(entry.probeCells[n].second);
+                    }
+                }
+                return;
+            }
             for (int64_t cx = ix - 1; cx <= ix + 1; ++cx) {
                 for (int64_t cy = iy - 1; cy <= iy + 1; ++cy) {
                     const int64_t key = cx * (int64_t(1) << 32) + cy;
@@ -609,12 +634,7 @@ void Coupling::makeReports(const World& world) {
                                              return a.first < b;
                                          });
                     for (; it != entry.probeCells.end() && it->first == key; ++it) {
-                        const glm::dvec2 e = entry.probes[it->second] - local;
-                        const uint32_t slot = probeBegin[k] + it->second;
-                        if (e.x * e.x + e.y * e.y <= r2 && wet[slot] == 0) {
-                            wet[slot] = 1;
-                            wetMaterial[slot] = material[i];
-                        }
+                        mark(it->second);
                     }
                 }
             }
