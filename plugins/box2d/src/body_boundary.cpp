@@ -325,7 +325,8 @@ void layProbes(FixtureEntry& entry, double spacing, double cell) {
             y1 = std::max(y1, iy);
         }
         const int64_t columns = x1 - x0 + 1, rows = y1 - y0 + 1;
-        if (columns * rows <= 16 * int64_t(entry.probes.size()) + 1024) {
+        // (In double: a chain thousands of kilometres long must not wrap the product.)
+        if (double(columns) * double(rows) <= 16.0 * double(entry.probes.size()) + 1024.0) {
             entry.probeX0 = x0;
             entry.probeY0 = y0;
             entry.probeColumns = columns;
