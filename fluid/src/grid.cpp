@@ -30,7 +30,8 @@ void Grid::build(std::span<const float> px, std::span<const float> py, float rad
     };
     const Box init{std::numeric_limits<int64_t>::max(), std::numeric_limits<int64_t>::max(),
                    std::numeric_limits<int64_t>::min(), std::numeric_limits<int64_t>::min()};
-    // Each point's cell, kept for the keys of a dense grid (a hashed one has cells of R).
+    // Each point's cell, kept for the keys (a hashed grid's cells are R wide: the same cells
+    // when the layout divides R into one).
     m_cellX.resize(count);
     m_cellY.resize(count);
     const Box box = blockReduce<Box>(
@@ -85,10 +86,14 @@ void Grid::build(std::span<const float> px, std::span<const float> py, float rad
     }
 
     parallelFor(tasks, count, 4096, [&](uint32_t b, uint32_t e, uint32_t) {
-        if (v.hashed) {
+        if (v.hashed && (sx != 1 || sy != 1)) {
             for (uint32_t i = b; i < e; ++i) {
-                m_keys[i] = gridHash(gridCell(px[i], v.invCellX), gridCell(py[i], v.invCellY),
-                                     v.mask);
+                m_keys[i] =
+                    gridHash(gridCell(px[i], v.invCellX), gridCell(py[i], v.invCellY), v.mask);
+            }
+        } else if (v.hashed) {
+            for (uint32_t i = b; i < e; ++i) {
+                m_keys[i] = gridHash(m_cellX[i], m_cellY[i], v.mask);
             }
         } else {
             const int64_t* __restrict cx = m_cellX.data();

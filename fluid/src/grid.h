@@ -59,7 +59,7 @@ private:
     std::vector<uint32_t> m_start; // cell -> first sorted position; size cells + 1
     std::vector<uint32_t> m_order;
     std::vector<uint32_t> m_keys;
-    std::vector<int64_t> m_cellX, m_cellY; // per point (input order), its cell (dense grids)
+    std::vector<int64_t> m_cellX, m_cellY; // per point (input order), its cell of the layout
 };
 
 } // namespace fluid::detail

@@ -50,10 +50,14 @@ void addEdgeProbes(glm::dvec2 a, glm::dvec2 b, double spacing, std::vector<glm::
     }
 }
 
-int64_t cellKey(glm::dvec2 p, double cell) {
-    const auto ix = static_cast<int64_t>(std::floor(p.x / cell));
-    const auto iy = static_cast<int64_t>(std::floor(p.y / cell));
-    return ix * (int64_t(1) << 32) + iy;
+// The cell (x, y) of side `cell` that holds p.
+glm::i64vec2 probeCellOf(glm::dvec2 p, double cell) {
+    return {static_cast<int64_t>(std::floor(p.x / cell)),
+            static_cast<int64_t>(std::floor(p.y / cell))};
+}
+
+int64_t cellKey(glm::i64vec2 c) {
+    return c.x * (int64_t(1) << 32) + c.y;
 }
 
 std::string where(uint32_t bodyIndex, uint32_t fixtureIndex) {
@@ -306,37 +310,30 @@ void layProbes(FixtureEntry& entry, double spacing, double cell) {
     }
     entry.probeArea = entry.closed ? std::fabs(shoelace(entry.probes)) : 0.0;
     entry.probeCells.clear();
+    entry.probeStart.clear();
+    entry.probeColumns = entry.probeRows = 0;
+    const int64_t most = std::numeric_limits<int64_t>::max();
+    glm::i64vec2 lo(most), hi(-most);
+    std::vector<glm::i64vec2> cells(entry.probes.size());
     for (uint32_t k = 0; k < entry.probes.size(); ++k) {
-        entry.probeCells.emplace_back(cellKey(entry.probes[k], cell), k);
+        cells[k] = probeCellOf(entry.probes[k], cell);
+        lo = glm::min(lo, cells[k]);
+        hi = glm::max(hi, cells[k]);
+        entry.probeCells.emplace_back(cellKey(cells[k]), k);
     }
     std::sort(entry.probeCells.begin(), entry.probeCells.end());
     // The table over the probes' box of cells, when it stays within a few cells per probe.
-    entry.probeStart.clear();
-    entry.probeColumns = entry.probeRows = 0;
     if (!entry.probes.empty()) {
-        const int64_t most = std::numeric_limits<int64_t>::max();
-        int64_t x0 = most, y0 = most, x1 = -most, y1 = -most;
-        for (const glm::dvec2 q : entry.probes) {
-            const auto ix = static_cast<int64_t>(std::floor(q.x / cell));
-            const auto iy = static_cast<int64_t>(std::floor(q.y / cell));
-            x0 = std::min(x0, ix);
-            y0 = std::min(y0, iy);
-            x1 = std::max(x1, ix);
-            y1 = std::max(y1, iy);
-        }
-        const int64_t columns = x1 - x0 + 1, rows = y1 - y0 + 1;
+        const int64_t columns = hi.x - lo.x + 1, rows = hi.y - lo.y + 1;
         // (In double: a chain thousands of kilometres long must not wrap the product.)
         if (double(columns) * double(rows) <= 16.0 * double(entry.probes.size()) + 1024.0) {
-            entry.probeX0 = x0;
-            entry.probeY0 = y0;
+            entry.probeX0 = lo.x;
+            entry.probeY0 = lo.y;
             entry.probeColumns = columns;
             entry.probeRows = rows;
             entry.probeStart.assign(size_t(columns * rows) + 1, 0);
-            for (const auto& [key, k] : entry.probeCells) {
-                const glm::dvec2 q = entry.probes[k];
-                const auto ix = static_cast<int64_t>(std::floor(q.x / cell));
-                const auto iy = static_cast<int64_t>(std::floor(q.y / cell));
-                ++entry.probeStart[size_t((ix - x0) * rows + (iy - y0)) + 1];
+            for (const glm::i64vec2 c : cells) {
+                ++entry.probeStart[size_t((c.x - lo.x) * rows + (c.y - lo.y)) + 1];
             }
             for (size_t c = 1; c < entry.probeStart.size(); ++c) {
                 entry.probeStart[c] += entry.probeStart[c - 1];
