@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <deque>
+#include <filesystem>
 #include <map>
 #include <sstream>
 #include <string>
@@ -276,6 +277,25 @@ TEST_CASE("no background shows through the liquid of any level", "[demo][holes]"
     }
     // The check means something only if the pictures hold liquid.
     CHECK(withLiquid >= shots.size() - 1);
+}
+
+// Not run by ctest (hidden): the holes in the screenshots of the directories listed (':'
+// between them) in FLUID_READINGS_SHOTS, for scripts/readings.sh, which pours the yoghurt
+// dollop with its spout at several places (a heap is one pour: whether a pocket stays in it
+// moves with any change of the solver's bits).
+TEST_CASE("readings: holes in the screenshots of the directories named", "[.readings]") {
+    const char* dirs = std::getenv("FLUID_READINGS_SHOTS");
+    REQUIRE(dirs != nullptr);
+    std::istringstream list(dirs);
+    std::string dir;
+    while (std::getline(list, dir, ':')) {
+        for (const Shot& shot : readShots(dir)) {
+            const std::vector<size_t> holes = findHoles(Picture(shot));
+            std::printf("[reading] holes/%s/%s/frames=%s/pixels %zu\n",
+                        std::filesystem::path(dir).filename().c_str(), shot.at("level").c_str(),
+                        shot.at("frames").c_str(), holes.size());
+        }
+    }
 }
 
 TEST_CASE("the hole finder finds a pocket under a liquid and ignores open air and bubbles",

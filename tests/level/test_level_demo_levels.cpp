@@ -401,6 +401,37 @@ TEST_CASE("big_tank.json: the stress level's particles stay in the tank, sanely 
     CHECK(reach > 2.2f); // within 0.2 m of the far wall (the surge of 960 particles is low)
 }
 
+// Not run by ctest (hidden): big_tank.json with its column moved right by 0 to 3.5 mm in steps
+// of 0.5 mm, for scripts/readings.sh: the largest compression the test above reads is one
+// particle's at the column's impact on the wall, and it moves with the column's place
+// (docs/position_based_method.md, "Coarse correction").
+TEST_CASE("readings: big_tank.json's largest compression at eight placements of its column",
+          "[.readings]") {
+    const std::string text = readLevel("big_tank.json");
+    const std::string column = R"("min": [0.5, 0], "max": [0.86, 0.70])";
+    const size_t at = text.find(column);
+    REQUIRE(at != std::string::npos);
+    for (int k = 0; k < 8; ++k) {
+        const double dx = 0.0005 * k;
+        char moved[96];
+        std::snprintf(moved, sizeof moved, R"("min": [%.4f, 0], "max": [%.4f, 0.70])", 0.5 + dx,
+                      0.86 + dx);
+        LevelOptions options;
+        options.workerCount = physicsWorkers(); // results do not depend on it
+        Level level = parseLevel(text.substr(0, at) + moved + text.substr(at + column.size()),
+                                 "big_tank.json", builtins(), options);
+        bench::CompressionMeter meter(level.world.spacing(MaterialId{0}));
+        double worst = 0.0;
+        for (int f = 0; f < 150; ++f) {
+            playFrames(level, 1);
+            worst = std::max(worst,
+                             meter.measure(level.world.positionX(), level.world.positionY()).max);
+        }
+        std::printf("[reading] big-tank/shift=%.1fmm/largest-compression %.2f%%\n", 1000.0 * dx,
+                    100.0 * worst);
+    }
+}
+
 namespace {
 
 // Particles of `material` inside the box [x0, x1] x [y0, y1] (unit: m).
