@@ -18,14 +18,14 @@ using namespace fluid::test;
 namespace {
 
 // A yielding field's corner of its documented range (issue 47's corners test below).
-struct Corner {
+struct YieldCorner {
     float tauY, k, n, g, vx;
 };
 
 // A 0.15 x 0.3 m block of yoghurt with the corner's fields, its left side at x = 0.05 m plus
 // `shift` (m), thrown sideways at the corner's speed, in a closed 0.6 x 0.5 m box under
 // gravity, at `quality` with the given yield model (PositionBasedDef::shearConstraint).
-World cornerBlock(const Corner& corner, Quality quality, uint32_t shear, float shift,
+World cornerBlock(const YieldCorner& corner, Quality quality, uint32_t shear, float shift,
                   uint32_t& count) {
     WorldDef def = physicsDef();
     def.positionBased = positionBasedPreset(quality);
@@ -296,11 +296,11 @@ TEST_CASE("yoghurt keeps momentum in zero gravity and gives bit-identical states
 TEST_CASE("a block at the corners of the yield-stress ranges never gains energy, and a stiff "
           "block stands",
           "[slow][invariants][yield]") {
-    const Corner corner =
-        GENERATE(Corner{1e5f, 2.0f, 0.7f, 0.0f, 0.0f}, Corner{1e5f, 2.0f, 0.7f, 0.0f, 3.0f},
-                 Corner{1e4f, 1e4f, 0.1f, 0.0f, 3.0f}, Corner{1e4f, 1e4f, 2.0f, 1e6f, 3.0f},
-                 Corner{0.0f, 1e4f, 0.1f, 0.0f, 3.0f}, Corner{0.0f, 1e4f, 2.0f, 0.0f, 3.0f},
-                 Corner{1e5f, 1e4f, 0.1f, 1e6f, 0.0f}, Corner{1e5f, 0.0f, 1.0f, 1e6f, 0.0f});
+    const YieldCorner corner = GENERATE(
+        YieldCorner{1e5f, 2.0f, 0.7f, 0.0f, 0.0f}, YieldCorner{1e5f, 2.0f, 0.7f, 0.0f, 3.0f},
+        YieldCorner{1e4f, 1e4f, 0.1f, 0.0f, 3.0f}, YieldCorner{1e4f, 1e4f, 2.0f, 1e6f, 3.0f},
+        YieldCorner{0.0f, 1e4f, 0.1f, 0.0f, 3.0f}, YieldCorner{0.0f, 1e4f, 2.0f, 0.0f, 3.0f},
+        YieldCorner{1e5f, 1e4f, 0.1f, 1e6f, 0.0f}, YieldCorner{1e5f, 0.0f, 1.0f, 1e6f, 0.0f});
     const Quality quality = GENERATE(Quality::Precise, Quality::Game);
     const uint32_t shear = GENERATE(0u, 1u);
     CAPTURE(corner.tauY, corner.k, corner.n, corner.g, corner.vx, quality == Quality::Game, shear);
@@ -344,7 +344,7 @@ TEST_CASE("readings: the stiff block at six placements", "[.readings]") {
         for (const uint32_t shear : {0u, 1u}) {
             for (int mm = 0; mm <= 5; ++mm) {
                 uint32_t count = 0;
-                World world = cornerBlock(Corner{1e5f, 0.0f, 1.0f, 1e6f, 0.0f}, quality, shear,
+                World world = cornerBlock(YieldCorner{1e5f, 0.0f, 1.0f, 1e6f, 0.0f}, quality, shear,
                                           0.001f * float(mm), count);
                 for (int frame = 1; frame <= 240; ++frame) {
                     world.step(kFrame);
