@@ -79,4 +79,5 @@ if [[ $# -eq 1 ]]; then
     exit 0
 fi
 read_build "$2" "$work/b"
-LC_ALL=C join -a 1 -a 2 -e - -o 0,1.2,2.2 "$work/a" "$work/b" | column -t
+LC_ALL=C join -a 1 -a 2 -e - -o 0,1.2,2.2 "$work/a" "$work/b" |
+    awk '{ printf "%-52s %-10s %s\n", $1, $2, $3 }'
