@@ -22,8 +22,8 @@
 #   holes/...        yoghurt_dollop.json poured with its yoghurt spout moved by -6 to +8 mm:
 #                    hole pixels in its picture after 240 frames (the demo, under xvfb-run when
 #                    there is no display; --no-demo leaves it out)
-# Output: one line per figure, "KEY VALUE" for one build, "KEY OLD NEW" for two. About 2
-# minutes per build on two cores. Exit status 0, or 2 for bad arguments.
+# Output: one line per figure, "KEY VALUE" for one build, "KEY OLD NEW" for two. About a
+# minute per build on an idle two-core machine. Exit status 0, or 2 for bad arguments.
 set -euo pipefail
 
 demo=1
