@@ -50,7 +50,13 @@ void addEdgeProbes(glm::dvec2 a, glm::dvec2 b, double spacing, std::vector<glm::
     }
 }
 
-// The cell (x, y) of side `cell` that holds p.
+std::string where(uint32_t bodyIndex, uint32_t fixtureIndex) {
+    return "box2d.bodies: body " + std::to_string(bodyIndex) +
+           " (in b2World::GetBodyList order) fixture " + std::to_string(fixtureIndex) + ": ";
+}
+
+} // namespace
+
 glm::i64vec2 probeCellOf(glm::dvec2 p, double cell) {
     return {static_cast<int64_t>(std::floor(p.x / cell)),
             static_cast<int64_t>(std::floor(p.y / cell))};
@@ -59,13 +65,6 @@ glm::i64vec2 probeCellOf(glm::dvec2 p, double cell) {
 int64_t cellKey(glm::i64vec2 c) {
     return c.x * (int64_t(1) << 32) + c.y;
 }
-
-std::string where(uint32_t bodyIndex, uint32_t fixtureIndex) {
-    return "box2d.bodies: body " + std::to_string(bodyIndex) +
-           " (in b2World::GetBodyList order) fixture " + std::to_string(fixtureIndex) + ": ";
-}
-
-} // namespace
 
 double shoelace(std::span<const glm::dvec2> points) {
     double twice = 0.0;

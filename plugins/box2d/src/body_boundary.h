@@ -6,6 +6,7 @@
 #include <fluid/plugins/kinematic_shape.h>
 
 #include <glm/common.hpp>
+#include <glm/ext/vector_int2_sized.hpp>
 #include <glm/vec2.hpp>
 
 #include <algorithm>
@@ -28,6 +29,13 @@ namespace fluid::box2d {
 /// Signed area of the closed polygon `points` (unit: m^2; positive when counter-clockwise). Any
 /// thread.
 double shoelace(std::span<const glm::dvec2> points);
+
+/// The cell (x, y) of side `cell` (unit: m, positive) that holds the body-frame point `p`
+/// (unit: m): the cells a fixture's probes are sorted and looked up by. Any thread.
+glm::i64vec2 probeCellOf(glm::dvec2 p, double cell);
+
+/// The sort key of probe cell `c` (FixtureEntry::probeCells). Any thread.
+int64_t cellKey(glm::i64vec2 c);
 
 /// Axis-aligned box in world coordinates (unit: m).
 struct Box {

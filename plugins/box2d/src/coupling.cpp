@@ -598,8 +598,8 @@ void Coupling::makeReports(const World& world) {
             const Frame& f = frames[colliders[k].body];
             const glm::dvec2 d = glm::dvec2(px[i], py[i]) - f.com;
             const glm::dvec2 local(f.c * d.x + f.s * d.y, -f.s * d.x + f.c * d.y);
-            const auto ix = static_cast<int64_t>(std::floor(local.x / entry.probeCell));
-            const auto iy = static_cast<int64_t>(std::floor(local.y / entry.probeCell));
+            const glm::i64vec2 cell = probeCellOf(local, entry.probeCell);
+            const int64_t ix = cell.x, iy = cell.y;
             const auto mark = [&](uint32_t probe) {
                 const glm::dvec2 e = entry.probes[probe] - local;
                 const uint32_t slot = probeBegin[k] + probe;
@@ -627,7 +627,7 @@ void Coupling::makeReports(const World& world) {
             }
             for (int64_t cx = ix - 1; cx <= ix + 1; ++cx) {
                 for (int64_t cy = iy - 1; cy <= iy + 1; ++cy) {
-                    const int64_t key = cx * (int64_t(1) << 32) + cy;
+                    const int64_t key = cellKey({cx, cy});
                     auto it =
                         std::lower_bound(entry.probeCells.begin(), entry.probeCells.end(), key,
                                          [](const std::pair<int64_t, uint32_t>& a, int64_t b) {
