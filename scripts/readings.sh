@@ -16,6 +16,9 @@
 #                    after 4 s (tests/invariants/test_yield_stress.cpp)
 #   big-tank/...     big_tank.json's column moved 0-3.5 mm: the largest compression over 150
 #                    frames (tests/level/test_level_demo_levels.cpp)
+#   tank-pressure/...
+#                    the game preset's 0.3 m resting tank after 140-170 frames: its pressure at
+#                    four depths against rho0 g d (tests/invariants/test_rays_tank.cpp)
 #   landing/...      the seven crate landings on yoghurt, the crate at the middle and 7 and
 #                    13 mm right of it: its speed and the paste's energy after 5 s
 #                    (tests/box2d/physics/test_yoghurt_impact.cpp)
