@@ -57,15 +57,6 @@ std::string where(uint32_t bodyIndex, uint32_t fixtureIndex) {
 
 } // namespace
 
-glm::i64vec2 probeCellOf(glm::dvec2 p, double cell) {
-    return {static_cast<int64_t>(std::floor(p.x / cell)),
-            static_cast<int64_t>(std::floor(p.y / cell))};
-}
-
-int64_t cellKey(glm::i64vec2 c) {
-    return c.x * (int64_t(1) << 32) + c.y;
-}
-
 double shoelace(std::span<const glm::dvec2> points) {
     double twice = 0.0;
     for (std::size_t k = 0; k < points.size(); ++k) {

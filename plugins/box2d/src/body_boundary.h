@@ -31,11 +31,17 @@ namespace fluid::box2d {
 double shoelace(std::span<const glm::dvec2> points);
 
 /// The cell (x, y) of side `cell` (unit: m, positive) that holds the body-frame point `p`
-/// (unit: m): the cells a fixture's probes are sorted and looked up by. Any thread.
-glm::i64vec2 probeCellOf(glm::dvec2 p, double cell);
+/// (unit: m): the cells a fixture's probes are sorted and looked up by. Inline: the wet test
+/// asks it for every particle near a fixture. Any thread.
+inline glm::i64vec2 probeCellOf(glm::dvec2 p, double cell) {
+    return {static_cast<int64_t>(std::floor(p.x / cell)),
+            static_cast<int64_t>(std::floor(p.y / cell))};
+}
 
 /// The sort key of probe cell `c` (FixtureEntry::probeCells). Any thread.
-int64_t cellKey(glm::i64vec2 c);
+inline int64_t cellKey(glm::i64vec2 c) {
+    return c.x * (int64_t(1) << 32) + c.y;
+}
 
 /// Axis-aligned box in world coordinates (unit: m).
 struct Box {
