@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
     if (!hasDisplay && (headless || game)) {
         std::fprintf(stderr,
                      "fluid-demo: no display (DISPLAY is not set); run it under Xvfb:\n"
-                     "  xvfb-run -a -s \"-screen 0 1280x720x24\" %s ...\n",
+                     "  xvfb-run -a -s \"-screen 0 1280x720x24 -noreset\" %s ...\n",
                      argv[0]);
         return kNoDisplay;
     }
@@ -213,7 +213,7 @@ int main(int argc, char** argv) {
         std::vector<std::string> args{"xvfb-run",
                                       "-a",
                                       "-s",
-                                      "-screen 0 1280x720x24",
+                                      "-screen 0 1280x720x24 -noreset",
                                       self,
                                       "--level",
                                       "all",

@@ -57,7 +57,7 @@ read_build() {
         local demo_bin=$build/demo/fluid-demo holes=$build/tests/demo/fluid-tests-demo-holes
         local run=() dirs=() dx x dir
         if [[ -z ${DISPLAY:-} ]]; then
-            run=(xvfb-run -a -s "-screen 0 1280x720x24")
+            run=(xvfb-run -a -s "-screen 0 1280x720x24 -noreset")
         fi
         for dx in -0.006 -0.004 -0.002 0 0.002 0.004 0.006 0.008; do
             x=$(awk -v d="$dx" 'BEGIN { printf "%.3f", 0.93 + d }')

@@ -17,7 +17,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 run() {
-    if [[ -n "${DISPLAY:-}" ]]; then "$@"; else xvfb-run -a -s "-screen 0 1280x720x24" "$@"; fi
+    if [[ -n "${DISPLAY:-}" ]]; then "$@"; else xvfb-run -a -s "-screen 0 1280x720x24 -noreset" "$@"; fi
 }
 
 run "$demo" --level all --frames 150 --size "$size" --screenshot-dir "$tmp" >/dev/null

@@ -78,7 +78,7 @@ desktop() {
     local name=$1 file=$2 count=$3
     shift 3
     local run=("$native" --level "$level" --script "$file" --frames "$count" --threads 1 "$@")
-    [[ -z ${DISPLAY:-} ]] && run=(xvfb-run -a -s "-screen 0 1280x720x24" "${run[@]}")
+    [[ -z ${DISPLAY:-} ]] && run=(xvfb-run -a -s "-screen 0 1280x720x24 -noreset" "${run[@]}")
     if ! "${run[@]}" >"$out/$name.log" 2>&1; then
         echo "same_game: the desktop demo failed ($name):" >&2
         tail -5 "$out/$name.log" >&2
