@@ -40,6 +40,11 @@ PbfView makeView(const WorldState& s, const PbfConstants& c) {
     v.mass = p.mass.data();
     v.restDensity = p.restDensity.data();
     v.gamma = p.gamma.data();
+    if (!p.skinGamma.empty()) {
+        v.skinGamma = p.skinGamma.data();
+        v.materialTag = p.materialTag.data();
+        v.otherShare = p.otherShare.data();
+    }
     v.density = p.density.data();
     // After the density solve its scratch holds the viscosity pass's outputs for the surface
     // pass: the vorticity in `diagonal`, the normals in `prevX`, `prevY` (see world_state.h).
@@ -165,6 +170,9 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first,
     o.nx = x.normalX.data();
     o.ny = x.normalY.data();
     o.density = p.density.data();
+    if (first && !p.otherShare.empty()) {
+        o.otherShare = p.otherShare.data();
+    }
     if (first && s.stressPass()) {
         v.yield = laws.data();
         o.sxx = p.sxx.data();

@@ -29,9 +29,22 @@ void fillMaterialChannels(WorldState& s, const TaskHook& tasks) {
                           &p.invMass, &p.volume, &p.pairPressure, &p.invLattice}) {
         channel->resize(n);
     }
+    // A yield-stress material's skin against another material (tuning::kSkinCohesion; the
+    // position-based passes read it).
+    const bool skin =
+        s.def.solver == Solver::PositionBased && s.constants.size() >= 2 &&
+        std::any_of(s.constants.begin(), s.constants.end(),
+                    [](const MaterialConstants& c) { return c.yielding && c.gamma > 0.0f; });
+    for (auto* channel : {&p.skinGamma, &p.materialTag, &p.otherShare}) {
+        channel->resize(skin ? n : 0);
+    }
     parallelFor(tasks, n, 1024, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {
             const MaterialConstants& c = s.constants[p.material[i]];
+            if (skin) {
+                p.skinGamma[i] = c.yielding ? tuning::kSkinCohesion * c.gamma : 0.0f;
+                p.materialTag[i] = float(p.material[i]);
+            }
             p.h[i] = c.support;
             p.massPerDepth[i] = c.massPerDepth;
             p.viscosity[i] = c.viscosity;

@@ -50,6 +50,12 @@ struct Particles {
     std::vector<float> invRho;
     std::vector<float> h, massPerDepth, viscosity, mass, restDensity, gamma;
     std::vector<float> invMass, volume, pairPressure, invLattice;
+    // A yield-stress material's skin (tuning::kSkinCohesion), sized only in a world with a
+    // yield-stress material with cohesion and another material (else empty): the skin's extra
+    // cohesion gamma per particle (0 for other materials), the material index as a float (for
+    // the pair passes' comparisons) and, written by each viscosity run's first pass, the share
+    // of the particle's kernel weight that other materials hold (1).
+    std::vector<float> skinGamma, materialTag, otherShare;
     // ---- Optional channels (groups.cpp), empty until a world uses them ----
     // Interpolation: positions at the start of the last sub-step (m), permuted by the sort of
     // the last sub-step only (WorldState::permuteLast); empty while interpolation is off.

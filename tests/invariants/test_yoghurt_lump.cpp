@@ -184,8 +184,16 @@ TEST_CASE("a yoghurt lump dropped into water sinks, rests on the floor as one pi
     CHECK(double(rested.pieces[0]) >= 0.98 * double(ny)); // as one piece: 2% apart at most
     CHECK(r.drift < 0.003);                               // at rest
 
-    // A hard push at three sweep speeds, each from the rested lump.
-    for (const float sweep : {0.2f, 0.4f, 0.8f}) {
+    // A hard push at nine sweep speeds, 0.2 to 1.0 m/s, each from the rested lump. It deforms
+    // and keeps together: what tears off is a few particles of its skin, not the lump, in at
+    // most 5 pieces at every speed (issue 67's target). Its skin holds against the water
+    // around it (tuning::kSkinCohesion): without that, the count of pieces was a noisy reading
+    // of what the water stripped, 2-9 pieces over these speeds (largest 51-71 of 75), and the
+    // test could only hold the three speeds it met the target at (docs/yield_stress.md, "A
+    // lump in water"). The push moves it 3.8-8.9 cm; without its skin's hold, 6.7-16 cm, its
+    // torn-off particles carried farther.
+    for (int k = 2; k <= 10; ++k) {
+        const float sweep = 0.1f * float(k);
         const Lump pushed = pushLump(r, sweep);
         std::printf("[measure] yoghurt lump pushed at %.1f m/s: centroid x %.3f -> %.3f m, %zu "
                     "pieces:",
@@ -195,18 +203,14 @@ TEST_CASE("a yoghurt lump dropped into water sinks, rests on the floor as one pi
         }
         std::printf(" of %u\n", ny);
         CAPTURE(sweep, pushed.pieces.size());
-        CHECK(pushed.cx > rested.cx + 0.04); // the push moved it
-        // It deforms and keeps together: what tears off is a few particles of its skin, not
-        // the lump, in at most 5 pieces (issue 67's target; the lump filled on the lattice,
-        // before its circle was filled in rings, came apart in 6 at 0.2 m/s).
+        CHECK(pushed.cx > rested.cx + 0.03); // the push reached it and moved it
         CHECK(double(pushed.pieces[0]) >= 0.9 * double(ny));
         CHECK(pushed.pieces.size() <= 5);
     }
 }
 
-// Not run by ctest (hidden): the push at nine sweep speeds, for scripts/readings.sh, which
-// compares two builds over more cases than the test above reads (a count of pieces at one
-// speed moves with any change of the solver's bits).
+// Not run by ctest (hidden): the test's nine pushes, for scripts/readings.sh (two builds side by
+// side).
 TEST_CASE("readings: the yoghurt lump pushed at nine sweep speeds", "[.readings]") {
     const RestedLump r = restLump();
     std::printf("[reading] lump/rested/largest %u\n", r.rested.pieces[0]);
@@ -215,5 +219,7 @@ TEST_CASE("readings: the yoghurt lump pushed at nine sweep speeds", "[.readings]
         const Lump pushed = pushLump(r, sweep);
         std::printf("[reading] lump/sweep=%.1f/pieces %zu\n", double(sweep), pushed.pieces.size());
         std::printf("[reading] lump/sweep=%.1f/largest %u\n", double(sweep), pushed.pieces[0]);
+        std::printf("[reading] lump/sweep=%.1f/moved-cm %.1f\n", double(sweep),
+                    100.0 * (pushed.cx - r.rested.cx));
     }
 }

@@ -122,6 +122,10 @@ struct PbfView {
     const float *invRho = nullptr, *mass = nullptr, *restDensity = nullptr, *gamma = nullptr;
     const float *density = nullptr, *vorticity = nullptr, *nx = nullptr, *ny = nullptr;
     const uint16_t* material = nullptr;
+    // A yield-stress material's skin (Particles::skinGamma; null in worlds without one): the
+    // extra cohesion gamma, the material index as a float and the share of the kernel weight
+    // other materials hold (1).
+    const float *skinGamma = nullptr, *materialTag = nullptr, *otherShare = nullptr;
     const float* leastDiagonal = nullptr; // per material: least denominator of a multiplier
     // Yielding worlds (Material::yieldStress): each particle's deviatoric stress (Pa) and the
     // same over rho0^2 (m^2/s^2), and per material its Herschel-Bulkley law this step.
@@ -152,6 +156,7 @@ struct PbfOut {
     float *vx = nullptr, *vy = nullptr;
     float *sxx = nullptr, *sxy = nullptr, *tx = nullptr, *ty = nullptr, *rigidity = nullptr;
     float *wallNx = nullptr, *wallNy = nullptr, *wallAdhesion = nullptr;
+    float* otherShare = nullptr; // the viscosity run's first pass, in a world with a skin
 };
 
 /// The shear constraint's channels (pbf_shear.cpp), all in sorted order: its inputs (the
