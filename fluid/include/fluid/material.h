@@ -46,6 +46,9 @@ struct Material {
     float kernelParticles = 32.0f;
     /// Surface tension / cohesion coefficient gamma of [Akinci 2013] (unit: m^3/(kg s^2); range
     /// [0, 0.5]: above it a dam break gains energy; docs/levels.md, Corners). 0 disables it. Not in the seed's table; presets: water 0.1, yoghurt 0.1.
+    /// With a yield stress, the position-based solver also holds the material's skin against
+    /// another liquid with up to 6 times this between two of its particles there
+    /// (docs/yield_stress.md, "Its skin against the water").
     float surfaceTension = 0.1f;
     /// Yield stress tau_y of the Herschel-Bulkley law tau = tau_y + K gamma_dot^n (unit: Pa; range
     /// [0, 1e5]). Below it the material does not flow: it holds a heap, a shape in zero gravity,
