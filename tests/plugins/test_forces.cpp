@@ -893,7 +893,8 @@ TEST_CASE("forces write only their range, and any split of it gives the same bit
     std::uniform_real_distribution<float> pos(-0.3f, 0.3f), vel(-2.0f, 2.0f);
     Bench b;
     for (int k = 0; k < 50; ++k) {
-        b.add({pos(rng), pos(rng)}, {vel(rng), vel(rng)});
+        const glm::vec2 at{pos(rng), pos(rng)}; // braces: drawn left to right
+        b.add(at, {vel(rng), vel(rng)});
     }
     const float dt = 1.0f / 240.0f;
     for (const std::string_view type : kForceTypes) {

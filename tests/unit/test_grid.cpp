@@ -31,13 +31,19 @@ Points makePoints(float cell, uint32_t seed) {
     std::uniform_real_distribution<float> u(-0.3f, 0.2f);
     std::uniform_int_distribution<int> k(-9, 5);
     Points p;
+    // x is drawn in a statement of its own: the order a call's arguments are evaluated in is
+    // the compiler's, and g++ and clang would make different points.
     for (int i = 0; i < 1400; ++i) {
-        p.add(u(rng), u(rng));
+        const float x = u(rng);
+        p.add(x, u(rng));
     }
     for (int i = 0; i < 200; ++i) {
-        p.add(float(k(rng)) * cell, u(rng));               // on a vertical border
-        p.add(u(rng), float(k(rng)) * cell);               // on a horizontal border
-        p.add(float(k(rng)) * cell, float(k(rng)) * cell); // on a corner
+        const float vx = float(k(rng)) * cell;
+        p.add(vx, u(rng)); // on a vertical border
+        const float hx = u(rng);
+        p.add(hx, float(k(rng)) * cell); // on a horizontal border
+        const float cx = float(k(rng)) * cell;
+        p.add(cx, float(k(rng)) * cell); // on a corner
     }
     for (int i = 0; i < 100; ++i) {
         const int c = k(rng);
@@ -130,7 +136,8 @@ TEST_CASE("grid build is the same with a thread pool", "[unit][grid]") {
     std::uniform_real_distribution<float> u(-2.0f, 2.0f);
     Points p;
     for (int i = 0; i < 12000; ++i) {
-        p.add(u(rng), u(rng));
+        const float x = u(rng);
+        p.add(x, u(rng));
     }
     fluid::detail::Grid serial, pooled;
     serial.build(p.x, p.y, 0.04f, fluid::TaskHook{});
@@ -149,7 +156,8 @@ TEST_CASE("grid counting sort is stable", "[unit][grid]") {
     std::uniform_real_distribution<float> u(-0.25f, 0.25f);
     Points p;
     for (int i = 0; i < 3000; ++i) {
-        p.add(u(rng), u(rng));
+        const float x = u(rng);
+        p.add(x, u(rng));
     }
     for (const bool hashed : {false, true}) {
         CAPTURE(hashed);

@@ -65,11 +65,17 @@ Shape randomShape(std::mt19937& rng) {
     std::uniform_real_distribution<float> x(-0.5f, 0.5f), y(-0.1f, 0.6f), size(0.005f, 0.3f);
     switch (rng() % 3) {
     case 0: {
+        // Each draw its own statement (a call's arguments are evaluated in an order the
+        // compiler picks).
         const glm::vec2 a{x(rng), y(rng)};
-        return Shape::box(a, a + glm::vec2(size(rng), size(rng)));
+        const float w = size(rng);
+        const float h = size(rng);
+        return Shape::box(a, a + glm::vec2(w, h));
     }
-    case 1:
-        return Shape::circle({x(rng), y(rng)}, size(rng));
+    case 1: {
+        const glm::vec2 c{x(rng), y(rng)};
+        return Shape::circle(c, size(rng));
+    }
     default: {
         // A star-shaped polygon round a centre: simple, often concave.
         const glm::vec2 c{x(rng), y(rng)};
