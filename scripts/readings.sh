@@ -10,8 +10,9 @@
 # e.g. bash scripts/readings.sh /tmp/before/build/release build/release
 #
 # What it reads (the hidden test cases tagged [.readings], each next to the test it widens):
-#   lump/...         the yoghurt lump pushed at nine sweep speeds, 0.2-1.0 m/s: pieces and the
-#                    largest piece (tests/invariants/test_yoghurt_lump.cpp)
+#   lump/...         the yoghurt lump pushed at nine sweep speeds, 0.2-1.0 m/s: pieces, the
+#                    largest piece and how far its centre moved (tests/invariants/
+#                    test_yoghurt_lump.cpp, which checks all nine)
 #   stiff-block/...  the 1e5 Pa block moved 0-5 mm, both yield models, both presets: its top
 #                    after 4 s (tests/invariants/test_yield_stress.cpp)
 #   big-tank/...     big_tank.json's column moved 0-3.5 mm: the largest compression over 150
