@@ -89,10 +89,8 @@ inline constexpr float kShearJacobi = 20.0f;
 /// of its particles, one of them with particles of another material in its support, is raised
 /// by this many times the material's own (Material::surfaceTension), in proportion to the share
 /// of the support's kernel weight the other material holds. It stands for the paste's network,
-/// which holds its skin together where the liquid around it drags: a yoghurt lump pushed through
-/// water kept 71-75 of its 75 particles and came apart in 1-3 pieces at nine sweep speeds
-/// instead of 51-71 in 2-9 (docs/yield_stress.md, "A lump in water"). In air, and in worlds of
-/// one material, nothing changes.
+/// which holds its skin together where the liquid around it drags (figures: docs/yield_stress.md,
+/// "Its skin against the water"). In air, and in worlds of one material, nothing changes.
 inline constexpr float kSkinCohesion = 6.0f;
 
 // ---- the coarse correction (pbf_coarse.cpp) -------------------------------------------------

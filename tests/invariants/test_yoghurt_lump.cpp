@@ -186,12 +186,9 @@ TEST_CASE("a yoghurt lump dropped into water sinks, rests on the floor as one pi
 
     // A hard push at nine sweep speeds, 0.2 to 1.0 m/s, each from the rested lump. It deforms
     // and keeps together: what tears off is a few particles of its skin, not the lump, in at
-    // most 5 pieces at every speed (issue 67's target). Its skin holds against the water
-    // around it (tuning::kSkinCohesion): without that, the count of pieces was a noisy reading
-    // of what the water stripped, 2-9 pieces over these speeds (largest 51-71 of 75), and the
-    // test could only hold the three speeds it met the target at (docs/yield_stress.md, "A
-    // lump in water"). The push moves it 3.8-8.9 cm; without its skin's hold, 6.7-16 cm, its
-    // torn-off particles carried farther.
+    // most 5 pieces at every speed (issue 67's target), since its skin holds against the water
+    // (tuning::kSkinCohesion). Held together it slides less than a torn lump, so the push need
+    // only move it 3 cm (figures: docs/yield_stress.md, "Its skin against the water").
     for (int k = 2; k <= 10; ++k) {
         const float sweep = 0.1f * float(k);
         const Lump pushed = pushLump(r, sweep);

@@ -421,8 +421,8 @@ BigTankRun playBigTank(double dx) {
 TEST_CASE("big_tank.json: the stress level's particles stay in the tank, sanely compressed",
           "[level][demo][slow]") {
     // The shipped column, then moved right by 0.5 to 3.5 mm: at every place the particles stay
-    // in the tank and the largest compression stays under 15% (the level's 6 sub-steps a frame;
-    // at the game preset's 4 it read 14.0-23.9% over these places).
+    // in the tank and the largest compression stays under 15%, which the level's 6 sub-steps a
+    // frame hold (figures: docs/levels.md, "Which preset each level runs").
     for (int k = 0; k < 8; ++k) {
         const double dx = 0.0005 * k;
         const BigTankRun r = playBigTank(dx);

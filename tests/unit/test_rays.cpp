@@ -408,8 +408,8 @@ TEST_CASE("rays: sample interpolates the particles' values with the solvers' ker
     const World world = randomWorld(Setting::Game, 4);
     std::mt19937 rng(12);
     std::uniform_real_distribution<float> x(-0.45f, 0.45f), y(-0.05f, 0.5f);
-    // 200 points, of which about a third land near particles (61 here; more than 30 for the
-    // comparisons below to mean something).
+    // 200 points, of which about a third land near particles: more than 30 for the comparisons
+    // below to mean something.
     uint32_t reached = 0;
     for (int k = 0; k < 200; ++k) {
         const glm::vec2 p{x(rng), y(rng)};
