@@ -23,6 +23,9 @@
 #   landing/...      the seven crate landings on yoghurt, the crate at the middle and 7 and
 #                    13 mm right of it: its speed and the paste's energy after 5 s
 #                    (tests/box2d/physics/test_yoghurt_impact.cpp)
+#   set-down/...     a crate of 0.5, 1 and 2 x the paste's density set down on the same layer,
+#                    at the middle and 7 mm right of it: its RMS speed and its height's range
+#                    over 2-4 s (the same file; no test bounds it yet)
 #   holes/...        yoghurt_dollop.json poured with its yoghurt spout moved by -6 to +8 mm:
 #                    hole pixels in its picture after 240 frames (the demo, under xvfb-run when
 #                    there is no display; --no-demo leaves it out)

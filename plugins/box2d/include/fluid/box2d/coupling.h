@@ -197,7 +197,9 @@ void registerCouplingPlugin(Registry& registry);
 ///     w = m / (m + m_added + h c), c the drag rate the fluid reports for the body's samples
 ///     (N s/m), m_added = the areal density x the larger of the submerged area (a submerged
 ///     disc's added mass in 2D potential flow) and pi/8 x the wet chord^2 (a plate entering a
-///     free surface); the torque likewise with the moment of inertia. Every impulse the fluid
+///     free surface), or 0 when the material touched has a yield stress (a paste holds the body
+///     on its elastic strain, a spring the relaxation would delay and so pump: docs/box2d.md);
+///     the torque likewise with the moment of inertia. Every impulse the fluid
 ///     took is paid, whatever w does from round to round;
 ///   - but never more against the body's motion than its momentum m |v|: a light body slammed
 ///     into water has pushed more of it than it could, and paying that would throw the body
