@@ -284,8 +284,9 @@ void outlineSplat(CoarseGrid& cg, const Layout& g, const NodeBox& box, float shi
     }
 }
 
-// Which body fills each node (cg.owner): b for a node inside body b (its inside test at the
-// pose its samples stand at), -1 elsewhere. Each body's fill of the nodes in its box comes from
+// Which body fills each node (cg.owner): b for a node whose cell body b's outline fills to
+// kCoarseBodyOwn or more (its inside test at the pose its samples stand at, on the lattice), -1
+// elsewhere. Each body's fill of the nodes in its box comes from
 // its outline, in place of its samples' splat (cg.solid; cg.bodyFill keeps the bodies' part): a
 // body's own samples must never fill a node outside it and push it (a 4.5 cm crate whose samples
 // overfilled the node under it climbed to the lid at 2.4 m/s). A plugin without an inside test,
@@ -345,7 +346,7 @@ void markOwners(WorldState& s, const Layout& g, float amount, float time) {
                 const float geometric = cg.ownFill[local];
                 cg.solid[k] = std::max(cg.solid[k] - sampled, 0.0f) + geometric;
                 cg.bodyFill[k] += geometric;
-                if (contains(g.x0 + float(i) * cell, g.y0 + float(j) * cell)) {
+                if (geometric >= tuning::kCoarseBodyOwn) {
                     cg.owner[k] = int32_t(b);
                 }
             }
@@ -418,7 +419,13 @@ bool classifyNodes(CoarseGrid& cg, size_t nodes, float tolerance, float h2, bool
             cg.type[k] = kSolid;
         } else if (f + sf >= 0.5f) {
             cg.type[k] = kFluid;
-            const float e = f + sf - 1.0f - tolerance;
+            float e = f + sf - 1.0f - tolerance;
+            if (bodies) {
+                // Gone where the node would be a body's (kCoarseBodyOwn), so the source does
+                // not step when it becomes one.
+                e *= std::clamp((tuning::kCoarseBodyOwn - cg.bodyFill[k]) / tuning::kCoarseBodyFade,
+                                0.0f, 1.0f);
+            }
             if (e > 0.0f) {
                 cg.rhs[k] = e * h2;
                 any = true;

@@ -116,6 +116,15 @@ inline constexpr float kCoarseMaxMove = 0.25f;
 /// the particles out of it without this move, which reaches it only after the step
 /// (docs/notes/pbf_tuning_constants.md, "Tuning constants").
 inline constexpr float kCoarseBodyMaxMove = 0.05f;
+/// Share of a node's cell a rigid body's outline fills (its bilinear fill, CoarseGrid::bodyFill)
+/// from which the node is the body's, solid in the coarse solve. The fill moves smoothly with
+/// the body; the inside test at the node's point, used before, switched a whole row of nodes
+/// under a flat bottom as the body moved a fraction of a millimetre, and the solve's push on it
+/// stepped with them (docs/notes/bodies_coarse_solve.md, "Nodes a body owns").
+inline constexpr float kCoarseBodyOwn = 0.5f;
+/// Below kCoarseBodyOwn, a fluid node's compression fades to 0 over this much of the bodies'
+/// fill, so that what the solve removes does not step when the node becomes the body's.
+inline constexpr float kCoarseBodyFade = 0.25f;
 /// Nearest a fluid node's zero of the potential may lie to it, in cells (the free surface,
 /// placed where the fill crosses 1/2 between the node and its air neighbour): the operator's
 /// diagonal grows by 1/theta, so this bounds it at 10 (docs/notes/pbf_tuning_constants.md, "Tuning

@@ -2,10 +2,13 @@
 // dense as the paste, thrown down onto a rested layer of the yoghurt preset (400 Pa, the shear
 // constraint, the game preset), pushes paste aside as it lands and stays in the dent it made.
 //
-// Not every landing comes to rest yet: some keep a bounded jitter, and the fastest let a
-// particle or two into the crate for a moment (the figures per landing: docs/position_based.md,
-// "Hit by a crate"). So this test asserts the flow, the dent and a bounded jitter for every
-// landing, and the full rest for at least three of the seven.
+// Issue 67: every landing comes to rest, the crate under 1 cm/s after 5 s. Over the seven throws
+// at three places (scripts/readings.sh, `landing/`) the crate moves at 0.1-4.3 mm/s and the
+// paste at 2.5e-8 to 1.5e-6 J/kg, since the coarse solve's nodes follow the body's fill
+// (docs/notes/bodies_coarse_solve.md, "Nodes a body owns"). So this test asserts the flow, the
+// dent and the crate's rest for every landing, the paste's rest (under 1e-6 J/kg with the crate
+// under 5 mm/s) for five of the seven; the fastest let a particle or two into the crate for a
+// moment.
 #include "box2d_support.h"
 
 #include <catch2/catch.hpp>
@@ -101,12 +104,12 @@ TEST_CASE("a crate dropped on yoghurt pushes the paste aside and stays in its de
         CHECK(l.depth > 0.01f);                        // the crate went into the paste
         CHECK(l.settled < 0.08f);                      // but not through it
         CHECK(std::abs(l.settled - l.depth) < 0.005f); // and stays in its dent
-        CHECK(l.rest < 3e-5);                          // a bounded jitter at most
-        CHECK(l.speed < 0.03f);
+        CHECK(l.rest < 3e-6);                          // the paste still
+        CHECK(l.speed < 0.01f);                        // and the crate at rest
         CHECK(l.inside <= 2);
         resting += l.rest < 1e-6 && l.speed < 0.005f ? 1 : 0;
     }
-    CHECK(resting >= 3);
+    CHECK(resting >= 5);
 }
 
 // Not run by ctest (hidden): the seven landings with the crate also 7 and 13 mm right of the
