@@ -23,6 +23,10 @@
 #   landing/...      the seven crate landings on yoghurt, the crate at the middle and 7 and
 #                    13 mm right of it: its speed and the paste's energy after 5 s
 #                    (tests/box2d/physics/test_yoghurt_impact.cpp)
+#   bearing/...      a guided box at 0.5, 1 and 1.5 x the paste's density on 0.3 m of 50 and
+#                    100 Pa paste, both yield models: what the paste carries beyond buoyancy over
+#                    Prandtl's load, and the box's submerged fraction, after 8 s
+#                    (tests/box2d/physics/test_yoghurt_bearing.cpp, which checks two of them)
 #   set-down/...     a crate of 0.5, 1 and 2 x the paste's density set down on the same layer,
 #                    at the middle and 7 mm right of it: its RMS speed and its height's range
 #                    over 2-4 s (the same file; no test bounds it yet)
