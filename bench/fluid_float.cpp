@@ -183,15 +183,10 @@ int run(const Options& opt) {
         if (f < frames - window) {
             continue;
         }
-        const Box box = bodyBounds(*body);
-        const std::vector<std::pair<double, double>> none;
-        const Waterline left = waterline(world, s, h, box.x0 - h, none, 0.0);
-        const Waterline right = waterline(world, s, box.x1 + h, width - h, none, 0.0);
-        const double y = 0.5 * (left.height + right.height);
-        const auto [below, total] = bodyAreaBelow(*body, y);
-        submerged += below / total / window;
+        const Immersion in = immersion(world, *body, s, width, h);
+        submerged += in.submerged / window;
         reported += double(coupling.report(body)->submergedFraction) / window;
-        level += y / window;
+        level += in.level / window;
         lowest += (double(body->GetPosition().y) - hh) / window; // the bottom, upright
         speed = std::max(speed, length(toD(body->GetLinearVelocity())));
         if (opt.trace) {

@@ -277,6 +277,26 @@ inline Waterline waterline(const World& world, float spacing, double x0, double 
     return w;
 }
 
+/// The level of a tank's liquid beside one body (unit: m): the mean of the waterlines between
+/// each of the tank's walls (at x = 0 and `width`) and the body, `gap` from either, and the share
+/// of the body's area below it (1).
+struct Immersion {
+    double level = 0.0;
+    double submerged = 0.0;
+};
+inline Immersion immersion(const World& world, const b2Body& body, float spacing, float width,
+                           float gap) {
+    const Box box = bodyBounds(body);
+    const std::vector<std::pair<double, double>> none;
+    const Waterline left = waterline(world, spacing, gap, box.x0 - gap, none, 0.0);
+    const Waterline right = waterline(world, spacing, box.x1 + gap, width - gap, none, 0.0);
+    Immersion out;
+    out.level = 0.5 * (left.height + right.height);
+    const auto [below, total] = bodyAreaBelow(body, out.level);
+    out.submerged = below / total;
+    return out;
+}
+
 /// FNV-1a of every body's position, angle and velocities as bytes, in body-list order.
 inline uint64_t bodiesHash(const b2World& physics) {
     uint64_t h = 1469598103934665603ull;

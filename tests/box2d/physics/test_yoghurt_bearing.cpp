@@ -63,12 +63,7 @@ Bearing bear(float yieldStress, float ratio, bool shearConstraint = true, float 
         if (f < frames - window) {
             continue;
         }
-        const Box b = bodyBounds(*box);
-        const std::vector<std::pair<double, double>> none;
-        const Waterline left = waterline(world, s, h, b.x0 - h, none, 0.0);
-        const Waterline right = waterline(world, s, b.x1 + h, width - h, none, 0.0);
-        const auto [below, total] = bodyAreaBelow(*box, 0.5 * (left.height + right.height));
-        out.submerged += below / total / window;
+        out.submerged += immersion(world, *box, s, width, h).submerged / window;
         out.speed = std::max(out.speed, double(box->GetLinearVelocity().Length()));
     }
     const double prandtl =

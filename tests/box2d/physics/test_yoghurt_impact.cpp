@@ -29,27 +29,57 @@ struct Landing {
     bool finite = false, kept = false;
 };
 
+// The game preset's world with a tank 0.8 m wide and a rested layer of the yoghurt preset, 70 x 10
+// spacings (0.81 x 0.12 m), coupled to Box2D and settled for 1 s: the scene every case here
+// drops or sets its crate into.
+struct RestedLayer {
+    static WorldDef gameDef() {
+        WorldDef def = physicsDef();
+        def.positionBased = positionBasedPreset(Quality::Game);
+        return def;
+    }
+    // The material, the tank and the layer, before the coupling is made.
+    struct Layer {
+        MaterialId yog;
+        float width = 0.0f;
+        uint32_t count = 0;
+    };
+    static Layer fill(World& world) {
+        Layer l;
+        l.yog = world.addMaterial(fluid::yoghurt());
+        l.width = 70.0f * world.spacing(l.yog);
+        world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
+        world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, l.width, 1.0f));
+        BlobDef layer = latticeBlock(world, l.yog, 0.0f, 0.0f, 70, 10);
+        layer.structure = 1.0f;
+        l.count = world.spawnBlob(layer);
+        return l;
+    }
+
+    World world{gameDef()};
+    Layer layer = fill(world);
+    b2World physics{b2Vec2(0.0f, -kG)};
+    box2d::Coupling coupling{world, physics};
+    float surface = 0.0f; // the layer's top after settling (m)
+
+    RestedLayer() {
+        for (int f = 0; f < 60; ++f) { // 1 s to settle
+            coupling.step(world, kFrame);
+        }
+        surface = bounds(world).y1;
+    }
+};
+
 // The crate thrown down at `throwSpeed` (m/s) onto the rested layer, its centre `offset` (m)
 // right of the tank's middle; 1 s of impact, 4 s more.
 Landing land(float throwSpeed, float offset = 0.0f) {
-    WorldDef def = physicsDef();
-    def.positionBased = positionBasedPreset(Quality::Game);
-    World world(def);
-    const MaterialId yog = world.addMaterial(fluid::yoghurt());
-    // A tank 0.8 m wide; a rested layer of 70 x 10 spacings (0.81 x 0.12 m).
-    const float width = 70.0f * world.spacing(yog);
-    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
-    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, width, 1.0f));
-    BlobDef layer = latticeBlock(world, yog, 0.0f, 0.0f, 70, 10);
-    layer.structure = 1.0f;
-    const uint32_t count = world.spawnBlob(layer);
+    RestedLayer scene;
+    World& world = scene.world;
+    b2World& physics = scene.physics;
+    box2d::Coupling& coupling = scene.coupling;
+    const uint32_t count = scene.layer.count;
     REQUIRE(count == 700);
-    b2World physics(b2Vec2(0.0f, -kG));
-    box2d::Coupling coupling(world, physics);
-    for (int f = 0; f < 60; ++f) { // 1 s to settle
-        coupling.step(world, kFrame);
-    }
-    const float surface = bounds(world).y1;
+    const float width = scene.layer.width, surface = scene.surface;
     std::vector<glm::vec2> before(count);
     for (uint32_t i = 0; i < count; ++i) {
         before[i] = world.position(world.handleAt(i));
@@ -57,7 +87,7 @@ Landing land(float throwSpeed, float offset = 0.0f) {
     // A 0.16 x 0.08 m crate as dense as the paste, its base 0.2 m over the surface: even a
     // crate let fall lands at 2 m/s, a dynamic pressure rho v^2 / 2 of 2 kPa, five times the
     // yield stress.
-    const float rho = box2d::arealDensity(world, yog);
+    const float rho = box2d::arealDensity(world, scene.layer.yog);
     b2Body* crate = addBox(physics, b2_dynamicBody, {0.5f * width + offset, surface + 0.24f}, 0.08f,
                            0.04f, rho);
     crate->SetLinearVelocity({0.0f, -throwSpeed});
@@ -138,29 +168,15 @@ struct SetDown {
 // A crate of `density` x the paste's set down on the rested layer (its base 5 mm over the
 // surface, at rest), `offset` (m) right of the middle; 2 s to settle, 2 s read frame by frame.
 SetDown setDown(float density, float offset) {
-    WorldDef def = physicsDef();
-    def.positionBased = positionBasedPreset(Quality::Game);
-    World world(def);
-    const MaterialId yog = world.addMaterial(fluid::yoghurt());
-    const float width = 70.0f * world.spacing(yog);
-    world.addForce(std::make_unique<GravityForce>(0.0f, -kG));
-    world.addBoundary(std::make_unique<BoxContainer>(0.0f, 0.0f, width, 1.0f));
-    BlobDef layer = latticeBlock(world, yog, 0.0f, 0.0f, 70, 10);
-    layer.structure = 1.0f;
-    world.spawnBlob(layer);
-    b2World physics(b2Vec2(0.0f, -kG));
-    box2d::Coupling coupling(world, physics);
-    for (int f = 0; f < 60; ++f) {
-        coupling.step(world, kFrame);
-    }
-    const float surface = bounds(world).y1;
-    const float rho = density * box2d::arealDensity(world, yog);
-    b2Body* crate = addBox(physics, b2_dynamicBody, {0.5f * width + offset, surface + 0.045f},
-                           0.08f, 0.04f, rho);
+    RestedLayer scene;
+    const float rho = density * box2d::arealDensity(scene.world, scene.layer.yog);
+    b2Body* crate =
+        addBox(scene.physics, b2_dynamicBody,
+               {0.5f * scene.layer.width + offset, scene.surface + 0.045f}, 0.08f, 0.04f, rho);
     double squares = 0.0;
     float low = 1e9f, high = -1e9f;
     for (int f = 0; f < 240; ++f) {
-        coupling.step(world, kFrame);
+        scene.coupling.step(scene.world, kFrame);
         if (f >= 120) {
             squares += double(crate->GetLinearVelocity().LengthSquared());
             low = std::min(low, crate->GetPosition().y);
