@@ -30,6 +30,11 @@
 #   set-down/...     a crate of 0.5, 1 and 2 x the paste's density set down on the same layer,
 #                    at the middle and 7 mm right of it: its RMS speed and its height's range
 #                    over 2-4 s (the same file; no test bounds it yet)
+#   outline/...      yoghurt_dollop.json's heap poured with its yoghurt spout moved by -6 to +8
+#                    mm, at both presets, and 160-particle water and yoghurt drops at rest in
+#                    zero-g: the drawn outline's RMS roughness (spacings) and curvature noise
+#                    (rad per spacing) after 10 s (tests/level/test_level_dollop_outline.cpp,
+#                    which checks the shipped preset's mean)
 #   holes/...        yoghurt_dollop.json poured with its yoghurt spout moved by -6 to +8 mm:
 #                    hole pixels in its picture after 240 frames (the demo, under xvfb-run when
 #                    there is no display; --no-demo leaves it out)

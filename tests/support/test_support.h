@@ -253,6 +253,149 @@ inline Bounds bounds(const World& world, int material = -1) {
     return b;
 }
 
+/// How smooth the liquid's outline is as the player sees it (`outlineRoughness`).
+struct OutlineRoughness {
+    /// RMS distance of the outline from the outline smoothed over `window` (unit: m).
+    double rms = 0.0;
+    /// The largest such distance (unit: m).
+    double worst = 0.0;
+    /// Its curvature noise: how far the outline, resampled every `step`, turns back and forth:
+    /// its total absolute turning less its net turning, per length of outline (unit: rad/m); 0
+    /// for an outline that turns one way only (a drop, a smooth mound).
+    double excessTurning = 0.0;
+    /// Outline points fitted (rays that met the liquid with at least 5 points within the
+    /// window).
+    uint32_t points = 0;
+};
+
+/// The outline of the liquid as drawn (the renderer's field, `fluid::rayCast`) seen from
+/// outside: `rays` rays from the circle of radius `reach` (m) around `centre` towards it, at
+/// angles from `from` to `to` (rad, counter-clockwise from +x; `to - from` = 2 pi closes the
+/// outline). Each ray's first hit is one outline point at distance r from the centre; r is
+/// fitted by a quadratic in the outline's arc length over `window` (m) around each point, and
+/// the point's distance from its fit is its roughness at scales below the window. A round drop
+/// reads only its particles' graininess; a heap of drops frozen where they landed reads its
+/// bumps. Counts every material's particles (the field does); `field` as `fluid::rayCast`.
+inline OutlineRoughness outlineRoughness(const World& world, glm::vec2 centre, float reach,
+                                         double from, double to, uint32_t rays, double window,
+                                         double step, const SurfaceField& field = {}) {
+    std::vector<glm::dvec2> at;
+    std::vector<double> r;
+    const bool closed = to - from >= 2.0 * kPi - 1e-9;
+    const uint32_t steps = closed ? rays : rays - 1;
+    for (uint32_t k = 0; k < rays; ++k) {
+        const double a = from + (to - from) * double(k) / double(steps);
+        const glm::vec2 start = centre + reach * glm::vec2(float(std::cos(a)), float(std::sin(a)));
+        const RayHit hit = rayCast(world, start, centre, field);
+        if (hit.hit && hit.fraction > 0.0f) {
+            at.push_back({hit.point.x, hit.point.y});
+            r.push_back(std::hypot(double(hit.point.x - centre.x), double(hit.point.y - centre.y)));
+        }
+    }
+    OutlineRoughness out;
+    const size_t n = at.size();
+    out.points = uint32_t(n);
+    if (n < 8) {
+        return out;
+    }
+    // Arc length along the outline (unrolled once more on each side when it closes).
+    std::vector<double> s(n, 0.0);
+    for (size_t k = 1; k < n; ++k) {
+        s[k] = s[k - 1] + std::hypot(at[k].x - at[k - 1].x, at[k].y - at[k - 1].y);
+    }
+    const double length =
+        closed ? s[n - 1] + std::hypot(at[0].x - at[n - 1].x, at[0].y - at[n - 1].y) : s[n - 1];
+    double sum2 = 0.0;
+    uint32_t fitted = 0;
+    for (size_t k = 0; k < n; ++k) {
+        // Least squares r = c0 + c1 u + c2 u^2 over the points within half a window, u = their
+        // arc length from point k.
+        double m[3][4] = {};
+        const auto add = [&](double u, double rv) {
+            const double b[3] = {1.0, u, u * u};
+            for (int i = 0; i < 3; ++i) {
+                for (int j = 0; j < 3; ++j) {
+                    m[i][j] += b[i] * b[j];
+                }
+                m[i][3] += b[i] * rv;
+            }
+        };
+        uint32_t inWindow = 0;
+        for (size_t j = 0; j < n; ++j) {
+            double u = s[j] - s[k];
+            if (closed) {
+                u -= length * std::round(u / length);
+            }
+            if (std::abs(u) <= 0.5 * window) {
+                add(u, r[j]);
+                ++inWindow;
+            }
+        }
+        if (inWindow < 5) {
+            continue; // a gap in the outline (a step the rays jump across): no fit here
+        }
+        // Gaussian elimination with partial pivoting; c0 is the fit at point k.
+        bool singular = false;
+        for (int c = 0; c < 3 && !singular; ++c) {
+            int p = c;
+            for (int i = c + 1; i < 3; ++i) {
+                if (std::abs(m[i][c]) > std::abs(m[p][c])) {
+                    p = i;
+                }
+            }
+            std::swap(m[c], m[p]);
+            if (std::abs(m[c][c]) < 1e-300) {
+                singular = true;
+                break;
+            }
+            for (int i = c + 1; i < 3; ++i) {
+                const double f = m[i][c] / m[c][c];
+                for (int j = c; j < 4; ++j) {
+                    m[i][j] -= f * m[c][j];
+                }
+            }
+        }
+        if (singular) {
+            continue;
+        }
+        ++fitted;
+        double c2 = m[2][3] / m[2][2];
+        double c1 = (m[1][3] - m[1][2] * c2) / m[1][1];
+        const double c0 = (m[0][3] - m[0][1] * c1 - m[0][2] * c2) / m[0][0];
+        const double d = std::abs(r[k] - c0);
+        sum2 += d * d;
+        out.worst = std::max(out.worst, d);
+    }
+    out.rms = fitted > 0 ? std::sqrt(sum2 / double(fitted)) : 0.0;
+    out.points = fitted;
+    // The outline resampled every `step` of arc length, and how much it turns back and forth:
+    // all its turning against its net turning.
+    {
+        std::vector<glm::dvec2> q{at[0]};
+        double carry = 0.0;
+        const size_t segments = closed ? n : n - 1;
+        for (size_t k = 0; k < segments; ++k) {
+            const glm::dvec2 a = at[k], b = at[(k + 1) % n];
+            const double len = std::hypot(b.x - a.x, b.y - a.y);
+            double t = step - carry;
+            while (t <= len) {
+                q.push_back(a + (b - a) * (t / len));
+                t += step;
+            }
+            carry = len - (t - step);
+        }
+        double all = 0.0, net = 0.0;
+        for (size_t k = 1; k + 1 < q.size(); ++k) {
+            const glm::dvec2 e0 = q[k] - q[k - 1], e1 = q[k + 1] - q[k];
+            const double turn = std::atan2(e0.x * e1.y - e0.y * e1.x, e0.x * e1.x + e0.y * e1.y);
+            all += std::abs(turn);
+            net += turn;
+        }
+        out.excessTurning = (all - std::abs(net)) / (double(q.size()) * step);
+    }
+    return out;
+}
+
 /// A heap's free-surface profile: per lattice column, the top particle's height plus half a
 /// spacing, and the fronts (outermost particles plus half a spacing).
 struct HeapProfile {
