@@ -158,7 +158,7 @@ std::vector<YieldLaw> yieldLaws(const WorldState& s, float dt) {
 }
 
 void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first, bool curl,
-                  std::span<const YieldLaw> laws) {
+                  std::span<const YieldLaw> laws, int split, float splitWeight) {
     Particles& p = s.particles;
     PositionBasedScratch& x = s.pbfScratch;
     YieldScratch& y = s.yieldScratch;
@@ -181,8 +181,16 @@ void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first,
         o.ty = y.ty.data();
         o.rigidity = y.rigidity.data();
     }
+    if (split != 0) {
+        v.viscousTag = x.viscousTag.data();
+        v.viscousFlag = x.viscousFlag.data();
+        v.splitWeight = splitWeight;
+        if (split == 1) {
+            o.viscousFlag = x.viscousFlag.data();
+        }
+    }
     const PbfPairs& k = pbfPairs();
-    pairs(s, [&](uint32_t b, uint32_t e) { k.viscosity(v, o, scale, first, curl, b, e); });
+    pairs(s, [&](uint32_t b, uint32_t e) { k.viscosity(v, o, scale, first, curl, split, b, e); });
 }
 
 void pbfSurface(WorldState& s, const PbfConstants& c, float vorticity, bool surfaceTension) {

@@ -55,9 +55,14 @@ std::vector<YieldLaw> yieldLaws(const WorldState& s, float dt);
 /// positions (over the lattice sum, as the constraint reads it), with `curl` its vorticity
 /// (for vorticity confinement; without it the vorticity is left unwritten), and in a yielding
 /// world the stress of its yielding particles advanced over dt under `laws` (yieldLaws; into
-/// sxx, sxy and over rho0^2 into tx, ty).
+/// sxx, sxy and over rho0^2 into tx, ty). `split` > 0 splits the run by viscosity (a world of
+/// low- and high-viscosity particles, without the stress pass; PositionBasedScratch::viscousTag
+/// filled): 1 for its first pass, which takes the pairs of two low-viscosity particles and
+/// their walls over the whole run (`splitWeight` times the pass, its passes' count) and marks
+/// the particles with a high-viscosity one in their support (viscousFlag), 2 for the passes
+/// after it, which step only those, over their pairs with a high-viscosity particle.
 void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first, bool curl,
-                  std::span<const YieldLaw> laws);
+                  std::span<const YieldLaw> laws, int split = 0, float splitWeight = 0.0f);
 
 /// Vorticity confinement (strength `vorticity`) and, when `surfaceTension`, cohesion and
 /// curvature [Akinci 2013], added to vx, vy over dt; in a yielding world the acceleration goes

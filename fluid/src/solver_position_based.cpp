@@ -304,6 +304,23 @@ public:
                             std::max(1.0f, facts.maxFriction) * (40.0f / 3.0f) /
                             (facts.minSupport * facts.minSupport);
         m_speedCap = kMaxPredictedMove * facts.minSupport / plan.dt;
+        // A run is split by viscosity where one pass holds some present material and not
+        // another (water beside yoghurt): the low-viscosity pairs take their whole run in the
+        // first pass (pbfViscosity's `split`). Not with the stress pass, whose first pass reads
+        // the velocity gradient of every particle, nor where boundaries take the fluid's forces
+        // (their friction's reaction is read pass by pass).
+        m_highViscosity.assign(s.materials.size(), 0);
+        bool low = false, high = false;
+        for (size_t m = 0; m < s.materials.size(); ++m) {
+            if (!s.isPresent(m) || !(facts.maxNu > 0.0f)) {
+                continue;
+            }
+            const float nu = s.materials[m].viscosity / s.materials[m].restDensity;
+            const bool more = m_viscosityFactor * (nu / facts.maxNu) > kViscosityFactor;
+            m_highViscosity[m] = more ? 1 : 0;
+            (more ? high : low) = true;
+        }
+        m_split = low && high && !facts.wantsForces && !s.stressPass();
         // The coarse correction's share per sub-step: the setting, but at most kCoarseFrame
         // over a frame's sub-steps together.
         m_coarse.share =
@@ -459,11 +476,21 @@ private:
         const float weight = spanned.dt / m_frameDt;
         const float passScale = 1.0f / std::max(float(passes), needed);
         const float vorticity = s.def.positionBased.vorticity;
+        const bool split = m_split && passes > 1;
+        if (split) {
+            PositionBasedScratch& x = s.pbfScratch;
+            x.viscousTag.resize(p.size());
+            x.viscousFlag.resize(p.size());
+            each(s, [&](uint32_t i) {
+                x.viscousTag[i] = m_highViscosity[p.material[i]] != 0 ? 1.0f : 0.0f;
+            });
+        }
         for (uint32_t pass = 0; pass < passes; ++pass) {
             if (m_facts.wantsForces) {
                 pbfSampleFriction(s, spanned, passScale, weight);
             }
-            pbfViscosity(s, spanned, passScale, pass == 0, vorticity > 0.0f, laws);
+            pbfViscosity(s, spanned, passScale, pass == 0, vorticity > 0.0f, laws,
+                         split ? (pass == 0 ? 1 : 2) : 0, 1.0f / passScale);
             p.vx.swap(s.pbfScratch.nextVx);
             p.vy.swap(s.pbfScratch.nextVy);
         }
@@ -495,6 +522,8 @@ private:
     float m_frameDt = 0.0f;
     uint32_t m_interval = 1;
     float m_viscosityFactor = 0.0f;
+    std::vector<uint8_t> m_highViscosity; // per material: needs more than one pass per run
+    bool m_split = false;                 // runs split by viscosity (pbfViscosity's `split`)
     float m_speedCap = 0.0f;
     bool m_moving = false;
     // Some rigid body was moved by the coarse solve in this frame: its samples are placed

@@ -105,6 +105,10 @@ struct PositionBasedScratch {
     std::vector<float> vorticity;      // the viscosity pass's vorticity, for the surface pass (1/s)
     std::vector<float> normalX, normalY; // its surface normals, for the surface pass (1)
     std::vector<float> nextVx, nextVy;   // a viscosity pass's new velocity (m/s), swapped into v
+    // A viscosity run split by viscosity (pbfViscosity's `split`): 1 for a particle of a
+    // material that needs the run's passes, else 0; and 1 for a particle with one in its
+    // support (from the run's first pass), else 0.
+    std::vector<float> viscousTag, viscousFlag;
 };
 
 /// The yield model's scratch in a yielding world (position-based: pbf_loops.cpp,

@@ -70,7 +70,7 @@ OutlineFigures dollopOutline(double dx, const std::string& quality) {
     const OutlineRoughness o =
         outlineRoughness(level.world, glm::vec2(c), 0.25f, 0.0, kPi, uint32_t(kRaysPerRadian * kPi),
                          kOutlineWindow * s, kOutlineStep * s);
-    REQUIRE(o.points > 60);
+    REQUIRE(o.points > 30); // a third of the rays: enough outline to read
     return inSpacings(o, s);
 }
 

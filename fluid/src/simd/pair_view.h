@@ -127,6 +127,12 @@ struct PbfView {
     // other materials hold (1).
     const float *skinGamma = nullptr, *materialTag = nullptr, *otherShare = nullptr;
     const float* leastDiagonal = nullptr; // per material: least denominator of a multiplier
+    // A viscosity run split by viscosity (pbfViscosity's `split`): 1 for a particle of a
+    // material that needs the run's passes, 0 for one that one pass holds; from the first
+    // pass, 1 for a particle with such a particle in its support (itself included); and what a
+    // pair of two low-viscosity particles is weighted by in the first pass (the run's passes).
+    const float *viscousTag = nullptr, *viscousFlag = nullptr;
+    float splitWeight = 0;
     // Yielding worlds (Material::yieldStress): each particle's deviatoric stress (Pa) and the
     // same over rho0^2 (m^2/s^2), and per material its Herschel-Bulkley law this step.
     const float *sxx = nullptr, *sxy = nullptr, *tx = nullptr, *ty = nullptr;
@@ -157,6 +163,7 @@ struct PbfOut {
     float *sxx = nullptr, *sxy = nullptr, *tx = nullptr, *ty = nullptr, *rigidity = nullptr;
     float *wallNx = nullptr, *wallNy = nullptr, *wallAdhesion = nullptr;
     float* otherShare = nullptr; // the viscosity run's first pass, in a world with a skin
+    float* viscousFlag = nullptr; // the first pass of a split viscosity run (PbfView)
 };
 
 /// The shear constraint's channels (pbf_shear.cpp), all in sorted order: its inputs (the
@@ -191,8 +198,8 @@ struct PbfPairs {
     void (*constraint)(const PbfView&, const PbfOut&, uint32_t b, uint32_t e);
     void (*displace)(const PbfView&, const PbfOut&, const float* multiplier, bool sCorr, uint32_t b,
                      uint32_t e);
-    void (*viscosity)(const PbfView&, const PbfOut&, float scale, bool first, bool curl, uint32_t b,
-                      uint32_t e);
+    void (*viscosity)(const PbfView&, const PbfOut&, float scale, bool first, bool curl, int split,
+                      uint32_t b, uint32_t e);
     void (*surface)(const PbfView&, const PbfOut&, float vorticity, bool surfaceTension, uint32_t b,
                     uint32_t e);
     void (*stress)(const PbfView&, const PbfOut&, uint32_t b, uint32_t e);
