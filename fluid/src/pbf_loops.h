@@ -58,7 +58,7 @@ std::vector<YieldLaw> yieldLaws(const WorldState& s, float dt);
 /// sxx, sxy and over rho0^2 into tx, ty). `split` > 0 splits the run by viscosity (a world of
 /// low- and high-viscosity particles, without the stress pass; PositionBasedScratch::viscousTag
 /// filled): 1 for its first pass, which takes the pairs of two low-viscosity particles and
-/// their walls over the whole run (`splitWeight` times the pass, its passes' count) and marks
+/// their walls over the whole run (`splitWeight` = 1 / `scale` times the pass) and marks
 /// the particles with a high-viscosity one in their support (viscousFlag), 2 for the passes
 /// after it, which step only those, over their pairs with a high-viscosity particle.
 void pbfViscosity(WorldState& s, const PbfConstants& c, float scale, bool first, bool curl,
