@@ -18,6 +18,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <sstream>
 #include <string>
@@ -257,8 +258,6 @@ inline Bounds bounds(const World& world, int material = -1) {
 struct OutlineRoughness {
     /// RMS distance of the outline from the outline smoothed over `window` (unit: m).
     double rms = 0.0;
-    /// The largest such distance (unit: m).
-    double worst = 0.0;
     /// Its curvature noise: how far the outline, resampled every `step`, turns back and forth:
     /// its total absolute turning less its net turning, per length of outline (unit: rad/m); 0
     /// for an outline that turns one way only (a drop, a smooth mound).
@@ -267,6 +266,71 @@ struct OutlineRoughness {
     /// window).
     uint32_t points = 0;
 };
+
+/// The value at u = 0 of the least-squares quadratic through the points (u_k, r_k) of `u`
+/// and `r`; nothing when the points leave it undetermined (fewer than 3 distinct u).
+inline std::optional<double> quadraticAtZero(std::span<const double> u, std::span<const double> r) {
+    // The normal equations of r = c0 + c1 u + c2 u^2, by Gaussian elimination with partial
+    // pivoting.
+    double m[3][4] = {};
+    for (size_t k = 0; k < u.size(); ++k) {
+        const double basis[3] = {1.0, u[k], u[k] * u[k]};
+        for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) {
+                m[i][j] += basis[i] * basis[j];
+            }
+            m[i][3] += basis[i] * r[k];
+        }
+    }
+    for (int c = 0; c < 3; ++c) {
+        int p = c;
+        for (int i = c + 1; i < 3; ++i) {
+            if (std::abs(m[i][c]) > std::abs(m[p][c])) {
+                p = i;
+            }
+        }
+        std::swap(m[c], m[p]);
+        if (std::abs(m[c][c]) < 1e-300) {
+            return std::nullopt;
+        }
+        for (int i = c + 1; i < 3; ++i) {
+            const double f = m[i][c] / m[c][c];
+            for (int j = c; j < 4; ++j) {
+                m[i][j] -= f * m[c][j];
+            }
+        }
+    }
+    const double c2 = m[2][3] / m[2][2];
+    const double c1 = (m[1][3] - m[1][2] * c2) / m[1][1];
+    return (m[0][3] - m[0][1] * c1 - m[0][2] * c2) / m[0][0];
+}
+
+/// Total absolute turning less net turning of the polyline `at` (closed: its last point joins
+/// the first), resampled every `step` of its length (m), per length (rad/m).
+inline double excessTurning(std::span<const glm::dvec2> at, bool closed, double step) {
+    const size_t n = at.size();
+    std::vector<glm::dvec2> q{at[0]};
+    double carry = 0.0; // length since the last resampled point
+    const size_t segments = closed ? n : n - 1;
+    for (size_t k = 0; k < segments; ++k) {
+        const glm::dvec2 a = at[k], b = at[(k + 1) % n];
+        const double len = std::hypot(b.x - a.x, b.y - a.y);
+        double t = step - carry;
+        while (t <= len) {
+            q.push_back(a + (b - a) * (t / len));
+            t += step;
+        }
+        carry = len - (t - step);
+    }
+    double all = 0.0, net = 0.0;
+    for (size_t k = 1; k + 1 < q.size(); ++k) {
+        const glm::dvec2 e0 = q[k] - q[k - 1], e1 = q[k + 1] - q[k];
+        const double turn = std::atan2(e0.x * e1.y - e0.y * e1.x, e0.x * e1.x + e0.y * e1.y);
+        all += std::abs(turn);
+        net += turn;
+    }
+    return (all - std::abs(net)) / (double(q.size()) * step);
+}
 
 /// The outline of the liquid as drawn (the renderer's field, `fluid::rayCast`) seen from
 /// outside: `rays` rays from the circle of radius `reach` (m) around `centre` towards it, at
@@ -298,7 +362,7 @@ inline OutlineRoughness outlineRoughness(const World& world, glm::vec2 centre, f
     if (n < 8) {
         return out;
     }
-    // Arc length along the outline (unrolled once more on each side when it closes).
+    // Arc length along the outline; a closed one's arc lengths are taken the short way round.
     std::vector<double> s(n, 0.0);
     for (size_t k = 1; k < n; ++k) {
         s[k] = s[k - 1] + std::hypot(at[k].x - at[k - 1].x, at[k].y - at[k - 1].y);
@@ -307,92 +371,32 @@ inline OutlineRoughness outlineRoughness(const World& world, glm::vec2 centre, f
         closed ? s[n - 1] + std::hypot(at[0].x - at[n - 1].x, at[0].y - at[n - 1].y) : s[n - 1];
     double sum2 = 0.0;
     uint32_t fitted = 0;
+    std::vector<double> u, rw;
     for (size_t k = 0; k < n; ++k) {
-        // Least squares r = c0 + c1 u + c2 u^2 over the points within half a window, u = their
-        // arc length from point k.
-        double m[3][4] = {};
-        const auto add = [&](double u, double rv) {
-            const double b[3] = {1.0, u, u * u};
-            for (int i = 0; i < 3; ++i) {
-                for (int j = 0; j < 3; ++j) {
-                    m[i][j] += b[i] * b[j];
-                }
-                m[i][3] += b[i] * rv;
-            }
-        };
-        uint32_t inWindow = 0;
+        // The points within half a window of point k, at their arc length from it.
+        u.clear();
+        rw.clear();
         for (size_t j = 0; j < n; ++j) {
-            double u = s[j] - s[k];
+            double d = s[j] - s[k];
             if (closed) {
-                u -= length * std::round(u / length);
+                d -= length * std::round(d / length);
             }
-            if (std::abs(u) <= 0.5 * window) {
-                add(u, r[j]);
-                ++inWindow;
+            if (std::abs(d) <= 0.5 * window) {
+                u.push_back(d);
+                rw.push_back(r[j]);
             }
         }
-        if (inWindow < 5) {
+        if (u.size() < 5) {
             continue; // a gap in the outline (a step the rays jump across): no fit here
         }
-        // Gaussian elimination with partial pivoting; c0 is the fit at point k.
-        bool singular = false;
-        for (int c = 0; c < 3 && !singular; ++c) {
-            int p = c;
-            for (int i = c + 1; i < 3; ++i) {
-                if (std::abs(m[i][c]) > std::abs(m[p][c])) {
-                    p = i;
-                }
-            }
-            std::swap(m[c], m[p]);
-            if (std::abs(m[c][c]) < 1e-300) {
-                singular = true;
-                break;
-            }
-            for (int i = c + 1; i < 3; ++i) {
-                const double f = m[i][c] / m[c][c];
-                for (int j = c; j < 4; ++j) {
-                    m[i][j] -= f * m[c][j];
-                }
-            }
+        if (const std::optional<double> fit = quadraticAtZero(u, rw)) {
+            ++fitted;
+            sum2 += (r[k] - *fit) * (r[k] - *fit);
         }
-        if (singular) {
-            continue;
-        }
-        ++fitted;
-        double c2 = m[2][3] / m[2][2];
-        double c1 = (m[1][3] - m[1][2] * c2) / m[1][1];
-        const double c0 = (m[0][3] - m[0][1] * c1 - m[0][2] * c2) / m[0][0];
-        const double d = std::abs(r[k] - c0);
-        sum2 += d * d;
-        out.worst = std::max(out.worst, d);
     }
     out.rms = fitted > 0 ? std::sqrt(sum2 / double(fitted)) : 0.0;
     out.points = fitted;
-    // The outline resampled every `step` of arc length, and how much it turns back and forth:
-    // all its turning against its net turning.
-    {
-        std::vector<glm::dvec2> q{at[0]};
-        double carry = 0.0;
-        const size_t segments = closed ? n : n - 1;
-        for (size_t k = 0; k < segments; ++k) {
-            const glm::dvec2 a = at[k], b = at[(k + 1) % n];
-            const double len = std::hypot(b.x - a.x, b.y - a.y);
-            double t = step - carry;
-            while (t <= len) {
-                q.push_back(a + (b - a) * (t / len));
-                t += step;
-            }
-            carry = len - (t - step);
-        }
-        double all = 0.0, net = 0.0;
-        for (size_t k = 1; k + 1 < q.size(); ++k) {
-            const glm::dvec2 e0 = q[k] - q[k - 1], e1 = q[k + 1] - q[k];
-            const double turn = std::atan2(e0.x * e1.y - e0.y * e1.x, e0.x * e1.x + e0.y * e1.y);
-            all += std::abs(turn);
-            net += turn;
-        }
-        out.excessTurning = (all - std::abs(net)) / (double(q.size()) * step);
-    }
+    out.excessTurning = excessTurning(at, closed, step);
     return out;
 }
 
