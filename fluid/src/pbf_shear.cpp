@@ -145,10 +145,23 @@ Gradient correctedGradient(const YieldScratch& y, uint32_t i) {
             hyx * ixy + hyy * iyy};
 }
 
+// A yielding particle's trial stress, as readEach's `trial` leaves it for the return: (a, b)
+// on the way to the surface of `law`.
+struct ShearTrial {
+    YieldLaw law;
+    float a = 0, b = 0;
+};
+
+// Returns read and solved together (plasticSolves): a batch of particles at a time.
+inline constexpr uint32_t kReturnBatch = 64;
+
 // One reading at the current positions (shearRead, through the views v and w) and, for each
-// yielding particle, f(i, L): the first of a sub-step also takes M and S and inverts M.
-template <class F>
-void readEach(WorldState& s, const PbfView& v, const ShearView& w, F&& f) {
+// yielding particle, `trial(i, L)` (a ShearTrial), the trial's return to its law's surface over
+// dt, then `commit(i, trial, norm)` with the returned stress in trial and the trial's norm
+// (Pa). The first reading of a sub-step also takes M and S and inverts M.
+template <class Trial, class Commit>
+void readEach(WorldState& s, const PbfView& v, const ShearView& w, float dt, Trial&& trial,
+              Commit&& commit) {
     const Particles& p = s.particles;
     YieldScratch& y = s.yieldScratch;
     const PbfPairs& k = pbfPairs();
@@ -157,14 +170,31 @@ void readEach(WorldState& s, const PbfView& v, const ShearView& w, F&& f) {
     displacements(s);
     parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         k.shearRead(v, w, matrix, b, e);
-        for (uint32_t i = b; i < e; ++i) {
-            if (!(y.yields[i] > 0.0f)) {
-                continue;
+        for (uint32_t c = b; c < e; c += kReturnBatch) {
+            uint32_t index[kReturnBatch];
+            ShearTrial trials[kReturnBatch];
+            StressReturn returns[kReturnBatch];
+            unsigned active[kReturnBatch];
+            uint32_t count = 0;
+            for (uint32_t i = c; i < std::min(e, c + kReturnBatch); ++i) {
+                if (!(y.yields[i] > 0.0f)) {
+                    continue;
+                }
+                if (matrix) {
+                    invertCorrection(y, i);
+                }
+                const ShearTrial t = trial(i, correctedGradient(y, i));
+                index[count] = i;
+                trials[count] = t;
+                returns[count] = returnOpen(t.law, dt, t.a, t.b);
+                ++count;
             }
-            if (matrix) {
-                invertCorrection(y, i);
+            plasticSolves(returns, active, count);
+            for (uint32_t j = 0; j < count; ++j) {
+                ShearTrial& t = trials[j];
+                returnClose(t.law, returns[j], t.a, t.b);
+                commit(index[j], t, returns[j].norm);
             }
-            f(i, correctedGradient(y, i));
         }
     });
 }
@@ -176,33 +206,31 @@ YieldLaw structuredLaw(const YieldLaw& law, float structure) {
     return l;
 }
 
-// The stress the sub-step's displacement gives particle i: the stored stress (a, b) turned by
-// the spin (a Cayley turn, norm kept, as yieldStep), plus 2 G times the deviatoric strain of L,
-// returned to the surface of `law`. With q > 0 the update from the stress the sweeps applied so
-// far (sa, sb) is scaled by 1 / (1 + q), and the return sees G / (1 + q). `trial` takes the
-// norm before the return (Pa).
-void shearStress(const YieldLaw& law, const Gradient& l, float dt, float& a, float& b,
-                 float& trial, float q = 0.0f, float sa = 0.0f, float sb = 0.0f) {
+// The trial stress the sub-step's displacement gives particle i, for the return to the
+// surface of `law` (readEach): the stored stress (a, b) turned by the spin (a Cayley turn, norm
+// kept, as yieldStep), plus 2 G times the deviatoric strain of L. With q > 0 the update from
+// the stress the sweeps applied so far (sa, sb) is scaled by 1 / (1 + q), and the return sees
+// G / (1 + q).
+ShearTrial trialStress(const YieldLaw& law, const Gradient& l, float a, float b, float q = 0.0f,
+                       float sa = 0.0f, float sb = 0.0f) {
     const float u = 0.5f * (l.xy - l.yx);
     const float inv = 1.0f / (1.0f + u * u);
     const float cosine = (1.0f - u * u) * inv, sine = 2.0f * u * inv;
     const float g2 = 2.0f * law.shearModulus;
-    float ta = (a * cosine + b * sine) + g2 * 0.5f * (l.xx - l.yy);
-    float tb = (b * cosine - a * sine) + g2 * 0.5f * (l.xy + l.yx);
-    YieldLaw scaled = law;
+    ShearTrial t;
+    t.a = (a * cosine + b * sine) + g2 * 0.5f * (l.xx - l.yy);
+    t.b = (b * cosine - a * sine) + g2 * 0.5f * (l.xy + l.yx);
+    t.law = law;
     if (q > 0.0f) {
         const float scale = 1.0f / (1.0f + q);
-        ta = sa + (ta - sa) * scale;
-        tb = sb + (tb - sb) * scale;
-        scaled.shearModulus = law.shearModulus * scale;
+        t.a = sa + (t.a - sa) * scale;
+        t.b = sb + (t.b - sb) * scale;
+        t.law.shearModulus = law.shearModulus * scale;
     }
-    trial = std::sqrt(ta * ta + tb * tb);
-    a = ta;
-    b = tb;
-    returnStress(scaled, dt, a, b);
+    return t;
 }
 
-// The scale q of particle i's sweep update (shearStress): 0 up to the explicit cap; above it
+// The scale q of particle i's sweep update (trialStress): 0 up to the explicit cap; above it
 // kShearJacobi times 2 G over the particle's own compliance, G V dt^2 depth tr(T) (the strain
 // its own stress change takes back through the gather: ShearView::trace), times the share of G
 // above the cap.
@@ -321,25 +349,29 @@ void pbfShearSweep(WorldState& s, const PbfConstants& c, std::span<const YieldLa
     const float depth = s.def.depth;
     const PbfView v = pbfView(s, c);
     const ShearView w = shearView(s);
-    readEach(s, v, w, [&](uint32_t i, const Gradient& l) {
-        float a = p.sxx[i], b = p.sxy[i], trial = 0.0f;
-        const YieldLaw& law = laws[p.material[i]];
-        // The stress the sweeps applied so far in this sub-step.
-        const float toStress = 1.0f / (toMultiplier * p.volume[i]);
-        const float q = jacobiScale(law, y, p, c.dt, depth, i);
-        shearStress(structuredLaw(law, p.structure[i]), l, c.dt, a, b, trial, q,
-                    y.appliedA[i] * toStress, y.appliedB[i] * toStress);
-        const float na = toMultiplier * p.volume[i] * a, nb = toMultiplier * p.volume[i] * b;
-        const float da = na - y.appliedA[i], db = nb - y.appliedB[i];
-        y.appliedA[i] = na;
-        y.appliedB[i] = nb;
-        // S(dl) M^-1, which the gather reads for each pair.
-        const float mxx = y.mxx[i], mxy = y.mxy[i], myy = y.myy[i];
-        y.t00[i] = da * mxx + db * mxy;
-        y.t01[i] = da * mxy + db * myy;
-        y.t10[i] = db * mxx - da * mxy;
-        y.t11[i] = db * mxy - da * myy;
-    });
+    readEach(
+        s, v, w, c.dt,
+        [&](uint32_t i, const Gradient& l) {
+            const YieldLaw& law = laws[p.material[i]];
+            // The stress the sweeps applied so far in this sub-step.
+            const float toStress = 1.0f / (toMultiplier * p.volume[i]);
+            const float q = jacobiScale(law, y, p, c.dt, depth, i);
+            return trialStress(structuredLaw(law, p.structure[i]), l, p.sxx[i], p.sxy[i], q,
+                               y.appliedA[i] * toStress, y.appliedB[i] * toStress);
+        },
+        [&](uint32_t i, const ShearTrial& t, float) {
+            const float na = toMultiplier * p.volume[i] * t.a;
+            const float nb = toMultiplier * p.volume[i] * t.b;
+            const float da = na - y.appliedA[i], db = nb - y.appliedB[i];
+            y.appliedA[i] = na;
+            y.appliedB[i] = nb;
+            // S(dl) M^-1, which the gather reads for each pair.
+            const float mxx = y.mxx[i], mxy = y.mxy[i], myy = y.myy[i];
+            y.t00[i] = da * mxx + db * mxy;
+            y.t01[i] = da * mxy + db * myy;
+            y.t10[i] = db * mxx - da * mxy;
+            y.t11[i] = db * mxy - da * myy;
+        });
     const PbfPairs& k = pbfPairs();
     parallelFor(s.tasks, p.size(), kPairGrain, [&](uint32_t b, uint32_t e, uint32_t) {
         k.shearGather(v, w, b, e);
@@ -357,20 +389,23 @@ void pbfShearSweep(WorldState& s, const PbfConstants& c, std::span<const YieldLa
 void pbfShearFinish(WorldState& s, const PbfConstants& c, std::span<const YieldLaw> laws) {
     Particles& p = s.particles;
     // The trial reads only particle i's own stress, so the new one can be written in place.
-    readEach(s, pbfView(s, c), shearView(s), [&](uint32_t i, const Gradient& l) {
-        const YieldLaw structured = structuredLaw(laws[p.material[i]], p.structure[i]);
-        float a = p.sxx[i], b = p.sxy[i], trial = 0.0f;
-        // Read in full, unscaled: scaled too, a resting stiff paste would need strain every
-        // sub-step to keep its stress, that is creep.
-        shearStress(structured, l, c.dt, a, b, trial);
-        p.sxx[i] = a;
-        p.sxy[i] = b;
-        // Plastic flow breaks the structure; at rest it rebuilds towards 1.
-        const float r = p.structure[i];
-        p.structure[i] = trial > structured.flowStress
-                             ? 0.0f
-                             : r + (1.0f - r) * std::min(c.dt / tuning::kStructureTime, 1.0f);
-    });
+    readEach(
+        s, pbfView(s, c), shearView(s), c.dt,
+        [&](uint32_t i, const Gradient& l) {
+            // Read in full, unscaled: scaled too, a resting stiff paste would need strain every
+            // sub-step to keep its stress, that is creep.
+            return trialStress(structuredLaw(laws[p.material[i]], p.structure[i]), l, p.sxx[i],
+                               p.sxy[i]);
+        },
+        [&](uint32_t i, const ShearTrial& t, float trial) {
+            p.sxx[i] = t.a;
+            p.sxy[i] = t.b;
+            // Plastic flow breaks the structure; at rest it rebuilds towards 1.
+            const float r = p.structure[i];
+            p.structure[i] = trial > t.law.flowStress
+                                 ? 0.0f
+                                 : r + (1.0f - r) * std::min(c.dt / tuning::kStructureTime, 1.0f);
+        });
 }
 
 void pbfShearSamples(WorldState& s, const PbfConstants& c, float weight) {

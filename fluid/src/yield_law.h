@@ -37,6 +37,12 @@ struct YieldLaw {
                                // explicitly (Pa); 0 for the stress pass
 };
 
+/// The lesser of a and b, as fminf gives it wherever b is not NaN (a NaN a gives b), without
+/// the library call fminf is on x86 (its NaN rule has no instruction).
+static inline float lesser(float a, float b) {
+    return a < b ? a : b;
+}
+
 /// The law of a material with yield stress `tauY` (Pa), consistency `k` (Pa s^n), flow index `n`
 /// and shear modulus `g` (Pa, as the solver caps it): the stress the step carries follows.
 static inline YieldLaw makeYieldLaw(bool yielding, float tauY, float k, float n, float g) {
@@ -52,59 +58,149 @@ static inline YieldLaw makeYieldLaw(bool yielding, float tauY, float k, float n,
 }
 
 /// The plastic shear rate g >= 0 (1/s) with excess - gdt g = K g^n (excess = |s*| - tau_y > 0,
-/// gdt = G dt > 0, K > 0): safeguarded Newton from excess / gdt, the rate without the flow law,
-/// which bounds the root from above; f is monotone, so the bracket [lo, hi] always holds the
-/// root. The elastic term usually dominates (G dt is about 5-10 Pa s with the solver's cap against
-/// K n g^(n-1) of a few Pa s), so two or three steps reach 1e-3; at most 8, each a powf (in a
-/// 16k yoghurt dam break the update with 12 steps to 1e-5 took an eighth of the frame).
-static inline float plasticRate(float excess, float gdt, float consistency, float flowIndex) {
-    float lo = 0.0f, hi = excess / gdt;
-    float x = hi;
-    for (int it = 0; it < 8; ++it) {
-        const float power = __builtin_powf(x, flowIndex);
-        const float f = excess - gdt * x - consistency * power;
-        if (f > 0.0f) {
-            lo = x;
-        } else {
-            hi = x;
-        }
-        // f' = -gdt - K n x^(n-1), written without dividing by x when it is 0.
-        const float slope = x > 0.0f ? gdt + consistency * flowIndex * power / x : gdt;
-        float next = x + f / slope;
-        if (!(next > lo && next < hi)) {
-            next = 0.5f * (lo + hi);
-        }
-        if (__builtin_fabsf(next - x) <= 1e-3f * x) {
-            return next;
-        }
-        x = next;
-    }
-    return x;
+/// gdt = G dt > 0, K > 0), and K g^n (Pa): safeguarded Newton from excess / gdt, the rate
+/// without the flow law, which bounds the root from above; f is monotone, so the bracket
+/// [lo, hi] always holds the root. The elastic term usually dominates (G dt is about 5-10 Pa s
+/// with the solver's cap against K n g^(n-1) of a few Pa s), so two or three steps reach 1e-3;
+/// at most kPlasticSteps, each a powf (in a 16k yoghurt dam break the update with 12 steps to
+/// 1e-5 took an eighth of the frame). One solve's state, so that many can be stepped side by
+/// side (plasticSolves): each takes the same steps, with the same arithmetic, whichever others
+/// run beside it.
+struct PlasticSolve {
+    float excess = 0, gdt = 0, consistency = 0, flowIndex = 1;
+    float lo = 0, hi = 0, x = 0;
+    float viscous = 0; // K g^n (Pa), once done (plasticPower)
+};
+
+inline constexpr int kPlasticSteps = 8;
+
+static inline PlasticSolve plasticStart(float excess, float gdt, float consistency,
+                                        float flowIndex) {
+    PlasticSolve p;
+    p.excess = excess;
+    p.gdt = gdt;
+    p.consistency = consistency;
+    p.flowIndex = flowIndex;
+    p.hi = excess / gdt;
+    p.x = p.hi;
+    return p;
 }
 
-/// Returns a trial stress (a, b) (Pa) reached over `dt` (s) to the Herschel-Bulkley surface of
-/// `law`: unchanged below law.flowStress; above it scaled to flowStress + K g^n, at most
-/// law.carriedStress, with g the plastic shear rate taken implicitly (plasticRate). A
-/// non-finite trial returns 0.
-static inline void returnStress(const YieldLaw& law, float dt, float& a, float& b) {
-    const float norm = __builtin_sqrtf(a * a + b * b);
-    const float excess = norm - law.flowStress;
+/// One Newton step of `p`; true once it has stopped (p.x the rate).
+static inline bool plasticStep(PlasticSolve& p) {
+    const float x = p.x;
+    const float power = __builtin_powf(x, p.flowIndex);
+    const float f = p.excess - p.gdt * x - p.consistency * power;
+    if (f > 0.0f) {
+        p.lo = x;
+    } else {
+        p.hi = x;
+    }
+    // f' = -gdt - K n x^(n-1), written without dividing by x when it is 0.
+    const float slope = x > 0.0f ? p.gdt + p.consistency * p.flowIndex * power / x : p.gdt;
+    float next = x + f / slope;
+    if (!(next > p.lo && next < p.hi)) {
+        next = 0.5f * (p.lo + p.hi);
+    }
+    p.x = next;
+    return __builtin_fabsf(next - x) <= 1e-3f * x;
+}
+
+/// K g^n at the rate the solve stopped at.
+static inline void plasticPower(PlasticSolve& p) {
+    p.viscous = p.consistency * __builtin_powf(p.x, p.flowIndex);
+}
+
+/// One solve, stepped alone.
+static inline PlasticSolve plasticRate(float excess, float gdt, float consistency,
+                                       float flowIndex) {
+    PlasticSolve p = plasticStart(excess, gdt, consistency, flowIndex);
+    for (int it = 0; it < kPlasticSteps && !plasticStep(p); ++it) {
+    }
+    plasticPower(p);
+    return p;
+}
+
+/// One trial stress's return, in three parts so that many can share the plastic solves
+/// (plasticSolves): returnOpen reads the trial, the solve runs, returnClose scales.
+struct StressReturn {
+    float norm = 0;       // |s*| (Pa)
+    float target = 0;     // the stress it returns to (Pa), before the flow law's part
+    bool below = false;   // at or below the flow stress (or not finite): kept as it is
+    bool plastic = false; // needs the plastic rate (rate.viscous adds to the target)
+    PlasticSolve rate;
+};
+
+static inline StressReturn returnOpen(const YieldLaw& law, float dt, float a, float b) {
+    StressReturn r;
+    r.norm = __builtin_sqrtf(a * a + b * b);
+    const float excess = r.norm - law.flowStress;
     if (!(excess > 0.0f)) {
-        const bool finite = __builtin_isfinite(norm);
+        r.below = true;
+        return r;
+    }
+    const float gdt = law.shearModulus * dt;
+    r.target = law.flowStress;
+    if (law.consistency > 0.0f && gdt > 0.0f) {
+        r.plastic = true;
+        r.rate = plasticStart(excess, gdt, law.consistency, law.flowIndex);
+    }
+    return r;
+}
+
+static inline void returnClose(const YieldLaw& law, const StressReturn& r, float& a, float& b) {
+    if (r.below) {
+        const bool finite = __builtin_isfinite(r.norm);
         a = finite ? a : 0.0f;
         b = finite ? b : 0.0f;
         return;
     }
-    const float gdt = law.shearModulus * dt;
-    float target = law.flowStress;
-    if (law.consistency > 0.0f && gdt > 0.0f) {
-        const float rate = plasticRate(excess, gdt, law.consistency, law.flowIndex);
-        target += law.consistency * __builtin_powf(rate, law.flowIndex);
-        target = __builtin_fminf(target, law.carriedStress);
+    float target = r.target;
+    if (r.plastic) {
+        target += r.rate.viscous;
+        target = lesser(target, law.carriedStress);
     }
-    const float scale = __builtin_fminf(target / norm, 1.0f);
+    const float scale = lesser(target / r.norm, 1.0f);
     a = __builtin_isfinite(scale) ? a * scale : 0.0f;
     b = __builtin_isfinite(scale) ? b * scale : 0.0f;
+}
+
+/// Returns a trial stress (a, b) (Pa) reached over `dt` (s) to the Herschel-Bulkley surface of
+/// `law`: unchanged below law.flowStress; above it scaled to flowStress + K g^n, at most
+/// law.carriedStress, with g the plastic shear rate taken implicitly (PlasticSolve). A
+/// non-finite trial returns 0.
+static inline void returnStress(const YieldLaw& law, float dt, float& a, float& b) {
+    StressReturn r = returnOpen(law, dt, a, b);
+    if (r.plastic) {
+        r.rate = plasticRate(r.rate.excess, r.rate.gdt, r.rate.consistency, r.rate.flowIndex);
+    }
+    returnClose(law, r, a, b);
+}
+
+/// The plastic solves of `count` returns stepped side by side, step by step: the same bits as
+/// each stepped alone (returnStress), but one's divisions and powf no longer wait on
+/// another's. `active` holds `count` indices, scratch.
+static inline void plasticSolves(StressReturn* returns, unsigned* active, unsigned count) {
+    unsigned open = 0;
+    for (unsigned k = 0; k < count; ++k) {
+        if (returns[k].plastic) {
+            active[open++] = k;
+        }
+    }
+    for (int it = 0; it < kPlasticSteps && open > 0; ++it) {
+        unsigned left = 0;
+        for (unsigned j = 0; j < open; ++j) {
+            if (!plasticStep(returns[active[j]].rate)) {
+                active[left++] = active[j];
+            }
+        }
+        open = left;
+    }
+    for (unsigned k = 0; k < count; ++k) {
+        if (returns[k].plastic) {
+            plasticPower(returns[k].rate);
+        }
+    }
 }
 
 /// Advances the stress (a, b) of one particle over `dt` (s) with deviatoric strain rate (dxx,
