@@ -156,9 +156,9 @@ struct ShearTrial {
 inline constexpr uint32_t kReturnBatch = 64;
 
 // One reading at the current positions (shearRead, through the views v and w) and, for each
-// yielding particle, `trial(i, L)` (a ShearTrial), the trial's return to its law's surface over
-// dt, then `commit(i, trial, norm)` with the returned stress in trial and the trial's norm
-// (Pa). The first reading of a sub-step also takes M and S and inverts M.
+// yielding particle, `trial(i, L, t)` (filling a ShearTrial t), the trial's return to its law's
+// surface over dt, then `commit(i, trial, norm)` with the returned stress in trial and the trial's
+// norm (Pa). The first reading of a sub-step also takes M and S and inverts M.
 template <class Trial, class Commit>
 void readEach(WorldState& s, const PbfView& v, const ShearView& w, float dt, Trial&& trial,
               Commit&& commit) {
@@ -183,10 +183,10 @@ void readEach(WorldState& s, const PbfView& v, const ShearView& w, float dt, Tri
                 if (matrix) {
                     invertCorrection(y, i);
                 }
-                const ShearTrial t = trial(i, correctedGradient(y, i));
+                ShearTrial& t = trials[count];
+                trial(i, correctedGradient(y, i), t);
+                returnOpen(t.law, dt, t.a, t.b, returns[count]);
                 index[count] = i;
-                trials[count] = t;
-                returns[count] = returnOpen(t.law, dt, t.a, t.b);
                 ++count;
             }
             plasticSolves(returns, active, count);
@@ -207,27 +207,28 @@ YieldLaw structuredLaw(const YieldLaw& law, float structure) {
 }
 
 // The trial stress the sub-step's displacement gives particle i, for the return to the
-// surface of `law` (readEach): the stored stress (a, b) turned by the spin (a Cayley turn, norm
-// kept, as yieldStep), plus 2 G times the deviatoric strain of L. With q > 0 the update from
-// the stress the sweeps applied so far (sa, sb) is scaled by 1 / (1 + q), and the return sees
-// G / (1 + q).
-ShearTrial trialStress(const YieldLaw& law, const Gradient& l, float a, float b, float q = 0.0f,
-                       float sa = 0.0f, float sb = 0.0f) {
+// surface of its material's `law` with the yield stress its `structure` holds (structuredLaw;
+// readEach): the stored stress (a, b) turned by the spin (a Cayley turn, norm kept, as
+// yieldStep), plus 2 G times the deviatoric strain of L. With q > 0 the update from the stress
+// the sweeps applied so far (sa, sb) is scaled by 1 / (1 + q), and the return sees G / (1 + q).
+// t.law is copied from `law` and changed field by field: a law built aside and copied in stalls
+// on the partial stores that built it.
+void trialStress(const YieldLaw& law, float structure, const Gradient& l, float a, float b,
+                 ShearTrial& t, float q = 0.0f, float sa = 0.0f, float sb = 0.0f) {
     const float u = 0.5f * (l.xy - l.yx);
     const float inv = 1.0f / (1.0f + u * u);
     const float cosine = (1.0f - u * u) * inv, sine = 2.0f * u * inv;
     const float g2 = 2.0f * law.shearModulus;
-    ShearTrial t;
     t.a = (a * cosine + b * sine) + g2 * 0.5f * (l.xx - l.yy);
     t.b = (b * cosine - a * sine) + g2 * 0.5f * (l.xy + l.yx);
     t.law = law;
+    t.law.flowStress = structuredLaw(law, structure).flowStress;
     if (q > 0.0f) {
         const float scale = 1.0f / (1.0f + q);
         t.a = sa + (t.a - sa) * scale;
         t.b = sb + (t.b - sb) * scale;
         t.law.shearModulus = law.shearModulus * scale;
     }
-    return t;
 }
 
 // The scale q of particle i's sweep update (trialStress): 0 up to the explicit cap; above it
@@ -351,13 +352,13 @@ void pbfShearSweep(WorldState& s, const PbfConstants& c, std::span<const YieldLa
     const ShearView w = shearView(s);
     readEach(
         s, v, w, c.dt,
-        [&](uint32_t i, const Gradient& l) {
+        [&](uint32_t i, const Gradient& l, ShearTrial& t) {
             const YieldLaw& law = laws[p.material[i]];
             // The stress the sweeps applied so far in this sub-step.
             const float toStress = 1.0f / (toMultiplier * p.volume[i]);
             const float q = jacobiScale(law, y, p, c.dt, depth, i);
-            return trialStress(structuredLaw(law, p.structure[i]), l, p.sxx[i], p.sxy[i], q,
-                               y.appliedA[i] * toStress, y.appliedB[i] * toStress);
+            trialStress(law, p.structure[i], l, p.sxx[i], p.sxy[i], t, q, y.appliedA[i] * toStress,
+                        y.appliedB[i] * toStress);
         },
         [&](uint32_t i, const ShearTrial& t, float) {
             const float na = toMultiplier * p.volume[i] * t.a;
@@ -391,11 +392,10 @@ void pbfShearFinish(WorldState& s, const PbfConstants& c, std::span<const YieldL
     // The trial reads only particle i's own stress, so the new one can be written in place.
     readEach(
         s, pbfView(s, c), shearView(s), c.dt,
-        [&](uint32_t i, const Gradient& l) {
+        [&](uint32_t i, const Gradient& l, ShearTrial& t) {
             // Read in full, unscaled: scaled too, a resting stiff paste would need strain every
             // sub-step to keep its stress, that is creep.
-            return trialStress(structuredLaw(laws[p.material[i]], p.structure[i]), l, p.sxx[i],
-                               p.sxy[i]);
+            trialStress(laws[p.material[i]], p.structure[i], l, p.sxx[i], p.sxy[i], t);
         },
         [&](uint32_t i, const ShearTrial& t, float trial) {
             p.sxx[i] = t.a;

@@ -131,21 +131,23 @@ struct StressReturn {
     PlasticSolve rate;
 };
 
-static inline StressReturn returnOpen(const YieldLaw& law, float dt, float a, float b) {
-    StressReturn r;
+/// Fills r (written in place, field by field: a whole struct built aside and copied in stalled
+/// on its partial stores) for the trial (a, b) (Pa) over `dt` (s) under `law`.
+static inline void returnOpen(const YieldLaw& law, float dt, float a, float b, StressReturn& r) {
     r.norm = __builtin_sqrtf(a * a + b * b);
+    r.target = law.flowStress;
+    r.below = false;
+    r.plastic = false;
     const float excess = r.norm - law.flowStress;
     if (!(excess > 0.0f)) {
         r.below = true;
-        return r;
+        return;
     }
     const float gdt = law.shearModulus * dt;
-    r.target = law.flowStress;
     if (law.consistency > 0.0f && gdt > 0.0f) {
         r.plastic = true;
         r.rate = plasticStart(excess, gdt, law.consistency, law.flowIndex);
     }
-    return r;
 }
 
 static inline void returnClose(const YieldLaw& law, const StressReturn& r, float& a, float& b) {
@@ -170,7 +172,8 @@ static inline void returnClose(const YieldLaw& law, const StressReturn& r, float
 /// law.carriedStress, with g the plastic shear rate taken implicitly (PlasticSolve). A
 /// non-finite trial returns 0.
 static inline void returnStress(const YieldLaw& law, float dt, float& a, float& b) {
-    StressReturn r = returnOpen(law, dt, a, b);
+    StressReturn r;
+    returnOpen(law, dt, a, b, r);
     if (r.plastic) {
         r.rate = plasticRate(r.rate.excess, r.rate.gdt, r.rate.consistency, r.rate.flowIndex);
     }
