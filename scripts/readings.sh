@@ -34,7 +34,9 @@
 #                    mm, at both presets, and 160-particle water and yoghurt drops at rest in
 #                    zero-g: the drawn outline's RMS roughness (spacings) and curvature noise
 #                    (rad per spacing) after 10 s (tests/level/test_level_dollop_outline.cpp,
-#                    which checks the shipped preset's mean)
+#                    which checks the shipped preset's mean); outline/spout/...: the same heap
+#                    poured at the game preset by other spouts (lower, a wide slow extruder,
+#                    a faster rate), with the particles each poured
 #   holes/...        yoghurt_dollop.json poured with its yoghurt spout moved by -6 to +8 mm:
 #                    hole pixels in its picture after 240 frames (the demo, under xvfb-run when
 #                    there is no display; --no-demo leaves it out)
