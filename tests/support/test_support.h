@@ -3,6 +3,7 @@
 
 #include <fluid/fluid.h>
 
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
 #include <algorithm>
@@ -643,11 +644,42 @@ inline BlobDef latticeBlock(const World& world, MaterialId material, float x0, f
 }
 
 /// What a stirred paste did (stirAndRelease): the farthest any particle moved while stirred
-/// (m), and the kinetic energy per kilogram at the end of the stirring and of the rest (J/kg).
+/// (m), the kinetic energy per kilogram at the end of the stirring and of the rest (J/kg), and
+/// how far the stir moved the paste for good (m): each particle's move from before the stir to
+/// the end of the rest, less the block's best rigid move (translation and turn, least squares),
+/// at the 75th percentile. A paste the stir yields keeps that flow; one it does not springs back
+/// and keeps only what its surface threw off.
 struct Stirred {
     uint32_t particles = 0; // spawned (800 asked for)
-    double moved = 0.0, stirred = 0.0, rest = 0.0;
+    double moved = 0.0, stirred = 0.0, rest = 0.0, kept = 0.0;
 };
+
+/// The 75th percentile of |b_i - (R a_i + t)| over the points, with R and t the rigid move that
+/// best takes `a` onto `b` (least squares: Procrustes in 2D) (m).
+inline double nonRigidMove(const std::vector<glm::dvec2>& a, const std::vector<glm::dvec2>& b) {
+    glm::dvec2 ca{0.0, 0.0}, cb{0.0, 0.0};
+    for (size_t i = 0; i < a.size(); ++i) {
+        ca += a[i];
+        cb += b[i];
+    }
+    ca /= double(a.size());
+    cb /= double(b.size());
+    double dot = 0.0, cross = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        const glm::dvec2 p = a[i] - ca, q = b[i] - cb;
+        dot += p.x * q.x + p.y * q.y;
+        cross += p.x * q.y - p.y * q.x;
+    }
+    const double angle = std::atan2(cross, dot), c = std::cos(angle), s = std::sin(angle);
+    std::vector<double> r(a.size());
+    for (size_t i = 0; i < a.size(); ++i) {
+        const glm::dvec2 p = a[i] - ca;
+        const glm::dvec2 fit = cb + glm::dvec2(c * p.x - s * p.y, s * p.x + c * p.y);
+        r[i] = glm::length(b[i] - fit);
+    }
+    std::sort(r.begin(), r.end());
+    return r[(3 * (r.size() - 1)) / 4];
+}
 
 /// In `world`, holding `material` and nothing else yet: gravity, a 40 x 20 lattice block in a
 /// closed 0.45 x 0.6 m box, settled for 1 s, stirred in a circle for 1 s by a pointer force of
@@ -684,6 +716,12 @@ inline Stirred stirAndRelease(World& world, MaterialId material, float accelerat
         world.step(kFrame);
     }
     out.rest = kineticPerMass(world);
+    std::vector<glm::dvec2> from, to;
+    for (const auto& [h, x] : before) {
+        from.push_back(glm::dvec2(x));
+        to.push_back(glm::dvec2(world.position(h)));
+    }
+    out.kept = nonRigidMove(from, to);
     return out;
 }
 
