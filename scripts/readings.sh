@@ -30,6 +30,10 @@
 #   set-down/...     a crate of 0.5, 1 and 2 x the paste's density set down on the same layer,
 #                    at the middle and 7 mm right of it: its RMS speed and its height's range
 #                    over 2-4 s (the same file; no test bounds it yet)
+#   stirred-game/... a 300 Pa paste at the game preset stirred at 60 to 100 m/s^2: its largest
+#                    kinetic energy per kilogram 5-10 s after release against the largest RMS of
+#                    its particles' real moves per quarter second, as a speed (m/s)
+#                    (tests/invariants/test_shear_constraint.cpp)
 #   outline/...      yoghurt_dollop.json's heap poured with its yoghurt spout moved by -6 to +8
 #                    mm, at both presets, and 160-particle water and yoghurt drops at rest in
 #                    zero-g: the drawn outline's RMS roughness (spacings) and curvature noise

@@ -294,3 +294,43 @@ TEST_CASE("the shear constraint changes no bit of a water world", "[invariants][
     CHECK(dam(1, false) == off);
     CHECK(dam(1, true) == off);
 }
+
+// Not run by ctest (hidden): the game preset's paste after a stir that yields it (300 Pa,
+// stirred at 60 to 100 m/s^2): its kinetic energy per kilogram from 5 to 10 s after release,
+// against how far its particles really move (the RMS of their moves over each quarter second,
+// as a speed). After some stirs the velocities keep reading centimetres per second while the
+// particles hardly move (docs/yield_stress.md, "Stirred: what tells flow").
+TEST_CASE("readings: the game preset's paste after hard stirs", "[.readings]") {
+    for (const int accel : {60, 70, 75, 80, 85, 90, 100}) {
+        World world(gameDef());
+        const MaterialId id = world.addMaterial(paste(300.0f));
+        const Stirred stirred = stirAndRelease(world, id, float(accel), 300); // 5 s alone
+        REQUIRE(stirred.particles == 800);
+        std::vector<ParticleHandle> handles;
+        std::vector<glm::vec2> last;
+        for (uint32_t i = 0; i < world.particleCount(); ++i) {
+            handles.push_back(world.handleAt(i));
+            last.push_back(world.position(handles.back()));
+        }
+        double energy = 0.0, moved = 0.0;
+        int quarters = 0;
+        for (int frame = 1; frame <= 300; ++frame) {
+            world.step(kFrame);
+            if (frame % 15 != 0) {
+                continue;
+            }
+            double squares = 0.0;
+            for (size_t k = 0; k < handles.size(); ++k) {
+                const glm::vec2 now = world.position(handles[k]);
+                squares += double(glm::dot(now - last[k], now - last[k]));
+                last[k] = now;
+            }
+            energy = std::max(energy, kineticPerMass(world));
+            moved = std::max(moved, std::sqrt(squares / double(handles.size())) / 0.25);
+            ++quarters;
+        }
+        REQUIRE(quarters == 20);
+        std::printf("[reading] stirred-game/%d/largest-energy %.3g\n", accel, energy);
+        std::printf("[reading] stirred-game/%d/largest-rms-move-speed %.3g\n", accel, moved);
+    }
+}
