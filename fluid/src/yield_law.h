@@ -111,14 +111,11 @@ static inline void plasticPower(PlasticSolve& p) {
     p.viscous = p.consistency * __builtin_powf(p.x, p.flowIndex);
 }
 
-/// One solve, stepped alone.
-static inline PlasticSolve plasticRate(float excess, float gdt, float consistency,
-                                       float flowIndex) {
-    PlasticSolve p = plasticStart(excess, gdt, consistency, flowIndex);
+/// One started solve (plasticStart), stepped alone to its end.
+static inline void plasticSolve(PlasticSolve& p) {
     for (int it = 0; it < kPlasticSteps && !plasticStep(p); ++it) {
     }
     plasticPower(p);
-    return p;
 }
 
 /// One trial stress's return, in three parts so that many can share the plastic solves
@@ -175,7 +172,7 @@ static inline void returnStress(const YieldLaw& law, float dt, float& a, float& 
     StressReturn r;
     returnOpen(law, dt, a, b, r);
     if (r.plastic) {
-        r.rate = plasticRate(r.rate.excess, r.rate.gdt, r.rate.consistency, r.rate.flowIndex);
+        plasticSolve(r.rate);
     }
     returnClose(law, r, a, b);
 }
