@@ -410,6 +410,14 @@ void setMoveScale(CoarseGrid& cg, const WorldState& s, bool oneDensity, double r
 bool classifyNodes(CoarseGrid& cg, size_t nodes, float tolerance, float h2, bool bodies) {
     cg.type.assign(nodes, kAir);
     cg.rhs.assign(nodes, 0.0f);
+    cg.weighted = bodies;
+    if (bodies) {
+        cg.open.resize(nodes);
+        for (size_t k = 0; k < nodes; ++k) {
+            cg.open[k] = std::clamp(
+                (tuning::kCoarseBodyOwn - cg.bodyFill[k]) / tuning::kCoarseBodyFade, 0.0f, 1.0f);
+        }
+    }
     bool any = false;
     for (size_t k = 0; k < nodes; ++k) {
         const float f = cg.fluid[k], sf = cg.solid[k];
@@ -423,8 +431,7 @@ bool classifyNodes(CoarseGrid& cg, size_t nodes, float tolerance, float h2, bool
             if (bodies) {
                 // Gone where the node would be a body's (kCoarseBodyOwn), so the source does
                 // not step when it becomes one.
-                e *= std::clamp((tuning::kCoarseBodyOwn - cg.bodyFill[k]) / tuning::kCoarseBodyFade,
-                                0.0f, 1.0f);
+                e *= cg.open[k];
             }
             if (e > 0.0f) {
                 cg.rhs[k] = e * h2;
@@ -471,6 +478,7 @@ void buildOperator(CoarseGrid& cg, const Layout& g, float cellSize, bool bodies)
     const auto none = int32_t(count);
     cg.diagonal.assign(count, tuning::kCoarseShift);
     cg.neighbours.assign(4 * count, none);
+    cg.faceWeight.assign(cg.weighted ? 4 * count : 0, 0.0f);
     cg.bodyFaces.clear();
     for (size_t a = 0; a < count; ++a) {
         const uint32_t k = cg.active[a];
@@ -480,16 +488,27 @@ void buildOperator(CoarseGrid& cg, const Layout& g, float cellSize, bool bodies)
             const int ii = i + di[e], jj = j + dj[e];
             if (ii < 0 || jj < 0 || ii >= nx || jj >= ny) {
                 // Outside the grid: air, the surface where the fill crosses 1/2 on the way.
-                cg.diagonal[a] += surfaceCoefficient(cg.fluid[k] + cg.solid[k], 0.0f);
+                const float c = surfaceCoefficient(cg.fluid[k] + cg.solid[k], 0.0f);
+                cg.diagonal[a] += cg.weighted ? c * cg.open[k] : c;
                 continue;
             }
             const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
             if (cg.type[m] != kSolid) { // no flux through solids
-                cg.diagonal[a] += cg.type[m] == kAir ? surfaceCoefficient(cg.fluid[k] + cg.solid[k],
-                                                                          cg.fluid[m] + cg.solid[m])
-                                                     : 1.0f;
+                const bool air = cg.type[m] == kAir;
+                const float c =
+                    air ? surfaceCoefficient(cg.fluid[k] + cg.solid[k], cg.fluid[m] + cg.solid[m])
+                        : 1.0f;
+                // Next to a body a face is as open as the less open of its two nodes (air
+                // beyond: the fluid node's share), so a node the body covers closes by degrees.
+                const float open = !cg.weighted ? 1.0f
+                                   : air        ? cg.open[k]
+                                                : std::min(cg.open[k], cg.open[m]);
+                cg.diagonal[a] += cg.weighted ? c * open : c;
                 if (cg.slot[m] >= 0) {
                     cg.neighbours[4 * a + size_t(e)] = cg.slot[m];
+                    if (cg.weighted) {
+                        cg.faceWeight[4 * a + size_t(e)] = open;
+                    }
                 }
             } else if (bodies && cg.owner[m] >= 0 && cg.outlined[size_t(cg.owner[m])] == 0) {
                 cg.bodyFaces.push_back({uint32_t(a), uint32_t(cg.owner[m]), cellSize * float(di[e]),
@@ -519,11 +538,14 @@ int fluidNeighbours(const CoarseGrid& cg, int nx, int ny, size_t k, uint32_t (&s
 }
 
 // The node values inside the bodies with an outline as combinations of the unknowns
-// (CoarseGrid::extStart, extTerms): a node with fluid neighbours takes the mean of the values
-// extrapolated linearly to it from each (2 psi_a - psi_b, b the next node beyond a; psi_a alone
-// when b is solid), so the potential's hydrostatic slope runs on into the body, as it would run
-// on into the water the body displaces; a node beside air and no fluid holds 0 (a dry top); one
-// deeper inside takes the mean of its neighbours' extrapolations, or 0.
+// (CoarseGrid::extStart, extTerms), and the same for the fluid nodes a body partly covers (open
+// below 1: gradientRows blends the two): a node with open fluid neighbours takes the mean, each
+// weighted by its open share o_a, of the values extrapolated linearly to it from each
+// (psi_a + o_b (psi_a - psi_b), b the next node beyond a: 2 psi_a - psi_b through open water,
+// psi_a alone when b is solid, 2 psi_a when b is air), so the potential's hydrostatic slope runs
+// on into the body, as it would run on into the water the body displaces, and a neighbour the
+// body is closing counts less and less; a node beside air and no open fluid holds 0 (a dry
+// top); one deeper inside takes the mean of its neighbours' extrapolations, or 0.
 void extendIntoBodies(CoarseGrid& cg, const Layout& g) {
     const int nx = g.nx, ny = g.ny;
     const size_t nodes = size_t(nx) * size_t(ny);
@@ -531,7 +553,9 @@ void extendIntoBodies(CoarseGrid& cg, const Layout& g) {
     cg.extTerms.clear();
     const int di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
     const auto inBody = [&](size_t k) {
-        return cg.type[k] == kSolid && cg.owner[k] >= 0 && cg.outlined[size_t(cg.owner[k])] != 0;
+        return (cg.type[k] == kSolid && cg.owner[k] >= 0 &&
+                cg.outlined[size_t(cg.owner[k])] != 0) ||
+               (cg.type[k] == kFluid && cg.open[k] < 1.0f);
     };
     const auto node = [&](int i, int j) -> int64_t {
         return i < 0 || j < 0 || i >= nx || j >= ny ? -1 : int64_t(j) * nx + i;
@@ -544,25 +568,26 @@ void extendIntoBodies(CoarseGrid& cg, const Layout& g) {
                 continue;
             }
             const auto begin = uint32_t(cg.extTerms.size());
-            int fluid = 0;
+            float open = 0.0f;
             bool air = false;
             for (int e = 0; e < 4; ++e) {
                 const int64_t a = node(i + di[e], j + dj[e]);
-                fluid += a >= 0 && cg.type[size_t(a)] == kFluid ? 1 : 0;
+                open += a >= 0 && cg.type[size_t(a)] == kFluid ? cg.open[size_t(a)] : 0.0f;
                 air = air || a < 0 || cg.type[size_t(a)] == kAir;
             }
-            if (fluid > 0) {
-                const float share = 1.0f / float(fluid);
+            if (open > 0.0f) {
                 for (int e = 0; e < 4; ++e) {
                     const int64_t a = node(i + di[e], j + dj[e]);
                     if (a < 0 || cg.type[size_t(a)] != kFluid) {
                         continue;
                     }
+                    const float share = cg.open[size_t(a)] / open;
                     const int64_t b = node(i + 2 * di[e], j + 2 * dj[e]);
                     const auto ua = uint32_t(cg.slot[size_t(a)]);
                     if (b >= 0 && cg.type[size_t(b)] == kFluid) {
-                        cg.extTerms.push_back({ua, 2.0f * share});
-                        cg.extTerms.push_back({uint32_t(cg.slot[size_t(b)]), -share});
+                        const float ob = cg.open[size_t(b)];
+                        cg.extTerms.push_back({ua, (1.0f + ob) * share});
+                        cg.extTerms.push_back({uint32_t(cg.slot[size_t(b)]), -ob * share});
                     } else if (b < 0 || cg.type[size_t(b)] == kAir) {
                         cg.extTerms.push_back({ua, 2.0f * share});
                     } else {
@@ -608,16 +633,24 @@ void extendIntoBodies(CoarseGrid& cg, const Layout& g) {
 }
 
 // The bodies' Jacobian rows from their gradient weights: node k's weight (wx, wy) times each
-// unknown's share of k's value (fluid: itself; inside a body: its extension; a wall's node: the
-// mean of its fluid neighbours, as nodeValues reads it; air: none), negated (-integral of grad
-// psi), appended to cg.bodyFaces in the weights' order.
+// unknown's share of k's value (fluid: itself, or where a body partly covers it, its open share
+// o of itself and 1 - o of its extension, so its part moves smoothly to the extension it has
+// once it is the body's; inside a body: its extension; a wall's node: the mean of its fluid
+// neighbours, as nodeValues reads it; air: none), negated (-integral of grad psi), appended to
+// cg.bodyFaces in the weights' order.
 void gradientRows(CoarseGrid& cg, const Layout& g) {
     for (const CoarseGrid::NodeWeight& w : cg.bodyGradient) {
         const size_t k = w.node;
         const auto add = [&](uint32_t unknown, float share) {
             cg.bodyFaces.push_back({unknown, w.body, -w.wx * share, -w.wy * share});
         };
-        if (cg.type[k] == kFluid) {
+        if (cg.type[k] == kFluid && cg.open[k] < 1.0f) {
+            const float open = cg.open[k];
+            add(uint32_t(cg.slot[k]), open);
+            for (uint32_t t = cg.extStart[2 * k]; t < cg.extStart[2 * k + 1]; ++t) {
+                add(cg.extTerms[t].unknown, cg.extTerms[t].weight * (1.0f - open));
+            }
+        } else if (cg.type[k] == kFluid) {
             add(uint32_t(cg.slot[k]), 1.0f);
         } else if (cg.type[k] == kSolid && cg.owner[k] >= 0 &&
                    cg.outlined[size_t(cg.owner[k])] != 0) {
@@ -906,7 +939,22 @@ bool coarseLayout(const WorldState& s, float cellSize, Layout& g) {
             return Bounds{std::min(a.lx, b.lx), std::max(a.hx, b.hx), std::min(a.ly, b.ly),
                           std::max(a.hy, b.hy)};
         });
-    const float lx = bounds.lx, hx = bounds.hx, ly = bounds.ly, hy = bounds.hy;
+    float lx = bounds.lx, hx = bounds.hx, ly = bounds.ly, hy = bounds.hy;
+    // The bodies' samples widen it, up to kCoarseBodyReach cells beyond the particles: a body
+    // the grid cut would lose the fill of its part beyond the cut, and the cut moves with the
+    // particles' top.
+    const float reach = tuning::kCoarseBodyReach * cellSize;
+    const float rx0 = lx - reach, rx1 = hx + reach, ry0 = ly - reach, ry1 = hy + reach;
+    for (const BodyState& body : s.bodies) {
+        for (uint32_t k = body.sampleBegin; k < body.sampleEnd; ++k) {
+            const float x = std::clamp(s.samples.px[k], rx0, rx1);
+            const float y = std::clamp(s.samples.py[k], ry0, ry1);
+            lx = std::min(lx, x);
+            hx = std::max(hx, x);
+            ly = std::min(ly, y);
+            hy = std::max(hy, y);
+        }
+    }
     g.invH = 1.0f / cellSize;
     g.x0 = lx - cellSize;
     g.y0 = ly - cellSize;
@@ -976,7 +1024,10 @@ void fillFluid(WorldState& s, const Layout& g) {
 // entries -1); an e_a below kMicSafety A_aa falls back to A_aa. The unknowns are in node order,
 // row by row, so l and b come before a, and a left neighbour is always a - 1 (a right one a + 1).
 // Kept for the sweeps of applyPreconditioner: micLeft_a = precon_a precon_l (0 without l).
-// Slot `count` (no neighbour) holds 0 in precon.
+// Slot `count` (no neighbour) holds 0 in precon. In a weighted operator (bodies: off-diagonal
+// entries -w, CoarseGrid::faceWeight) the same with w_al precon_l for precon_l in the squares and
+// in micLeft, w_ab precon_b for precon_b, and w_al w_l,up and w_ab w_b,right for the brackets;
+// with every w 1 the same operations on the same values.
 constexpr float kMicTau = 0.97f;
 constexpr float kMicSafety = 0.25f;
 void buildPreconditioner(CoarseGrid& cg, size_t count) {
@@ -985,14 +1036,23 @@ void buildPreconditioner(CoarseGrid& cg, size_t count) {
     cg.precon.assign(count + 1, 0.0f);
     cg.micLeft.assign(count + 1, 0.0f);
     float* precon = cg.precon.data();
+    const float* w = cg.weighted ? cg.faceWeight.data() : nullptr;
     for (size_t a = 0; a < count; ++a) {
         const int32_t l = nb[4 * a + 0], b = nb[4 * a + 2];
-        const float pl = precon[l], pb = precon[b];
-        const float upOfLeft = l != none && nb[4 * size_t(l) + 3] != none ? 1.0f : 0.0f;
-        const float rightOfBelow = b != none && nb[4 * size_t(b) + 1] != none ? 1.0f : 0.0f;
+        const float ql = precon[l], qb = precon[b];
+        float pl = ql, pb = qb, upOfLeft = 0.0f, rightOfBelow = 0.0f;
+        if (w == nullptr) {
+            upOfLeft = l != none && nb[4 * size_t(l) + 3] != none ? 1.0f : 0.0f;
+            rightOfBelow = b != none && nb[4 * size_t(b) + 1] != none ? 1.0f : 0.0f;
+        } else {
+            pl = w[4 * a + 0] * ql;
+            pb = w[4 * a + 2] * qb;
+            upOfLeft = l != none ? w[4 * a + 0] * w[4 * size_t(l) + 3] : 0.0f;
+            rightOfBelow = b != none ? w[4 * a + 2] * w[4 * size_t(b) + 1] : 0.0f;
+        }
         const float diagonal = cg.diagonal[a];
         float e =
-            diagonal - pl * pl - pb * pb - kMicTau * (upOfLeft * pl * pl + rightOfBelow * pb * pb);
+            diagonal - pl * pl - pb * pb - kMicTau * (upOfLeft * ql * ql + rightOfBelow * qb * qb);
         if (!(e >= kMicSafety * diagonal)) {
             e = diagonal;
         }
@@ -1018,9 +1078,13 @@ void applyPreconditioner(const CoarseGrid& cg, size_t count, const float* r, flo
     z[count] = 0.0f;
     // Forward: t_a = precon_a (r_a + precon_b t_b) + micLeft_a t_(a-1) (micLeft_a = 0 at the
     // start of a run of the row).
+    // A weighted operator's faces (CoarseGrid::faceWeight): each neighbour's term times its
+    // face's coefficient.
+    const float* w = cg.weighted ? cg.faceWeight.data() : nullptr;
     const auto forward = [&](uint32_t a, float& previous) {
         const int32_t b = nb[4 * size_t(a) + 2];
-        previous = precon[a] * (r[a] + precon[b] * z[b]) + left[a] * previous;
+        const float pb = w != nullptr ? w[4 * size_t(a) + 2] * precon[b] : precon[b];
+        previous = precon[a] * (r[a] + pb * z[b]) + left[a] * previous;
         z[a] = previous;
     };
     for (int64_t j = 0; j < rowCount; j += 2) {
@@ -1050,8 +1114,13 @@ void applyPreconditioner(const CoarseGrid& cg, size_t count, const float* r, flo
     const auto backward = [&](uint32_t a, float& next) {
         const int32_t up = nb[4 * size_t(a) + 3];
         const float pa = precon[a];
-        const float right = nb[4 * size_t(a) + 1] != none ? next : 0.0f;
-        next = pa * (z[a] + pa * (right + z[up]));
+        float right = nb[4 * size_t(a) + 1] != none ? next : 0.0f;
+        float above = z[up];
+        if (w != nullptr) {
+            right *= w[4 * size_t(a) + 1];
+            above *= w[4 * size_t(a) + 3];
+        }
+        next = pa * (z[a] + pa * (right + above));
         z[a] = next;
     };
     for (int64_t j = rowCount - 1; j >= 0; j -= 2) {
@@ -1114,6 +1183,10 @@ float* solvePotential(CoarseGrid& cg, int nx, int ny, const std::vector<double>&
     cg.d.assign(slots, 0.0f);
     cg.diagonal.resize(padded, 0.0f);
     cg.neighbours.resize(4 * padded, none);
+    if (cg.weighted) {
+        cg.faceWeight.resize(4 * padded, 0.0f);
+    }
+    const float* w = cg.weighted ? cg.faceWeight.data() : nullptr;
     float* psi = cg.psi.data();
     float* r = cg.r.data();
     float* d = cg.d.data();
@@ -1129,10 +1202,18 @@ float* solvePotential(CoarseGrid& cg, int nx, int ny, const std::vector<double>&
                 const size_t a = a0 + l;
                 const int32_t* n4 = nb + 4 * a;
                 float acc = diagonal[a] * x[a];
-                acc -= x[size_t(n4[0])];
-                acc -= x[size_t(n4[1])];
-                acc -= x[size_t(n4[2])];
-                acc -= x[size_t(n4[3])];
+                if (w != nullptr) {
+                    const float* w4 = w + 4 * a;
+                    acc -= w4[0] * x[size_t(n4[0])];
+                    acc -= w4[1] * x[size_t(n4[1])];
+                    acc -= w4[2] * x[size_t(n4[2])];
+                    acc -= w4[3] * x[size_t(n4[3])];
+                } else {
+                    acc -= x[size_t(n4[0])];
+                    acc -= x[size_t(n4[1])];
+                    acc -= x[size_t(n4[2])];
+                    acc -= x[size_t(n4[3])];
+                }
                 q[a] = acc;
                 lanes[l] += double(x[a]) * double(acc);
             }

@@ -122,9 +122,16 @@ inline constexpr float kCoarseBodyMaxMove = 0.05f;
 /// under a flat bottom as the body moved a fraction of a millimetre, and the solve's push on it
 /// stepped with them (docs/notes/bodies_coarse_solve.md, "Nodes a body owns").
 inline constexpr float kCoarseBodyOwn = 0.5f;
-/// Below kCoarseBodyOwn, a fluid node's compression fades to 0 over this much of the bodies'
-/// fill, so that what the solve removes does not step when the node becomes the body's.
+/// Below kCoarseBodyOwn, a fluid node is open to the flow by its share
+/// (kCoarseBodyOwn - fill) / kCoarseBodyFade of the bodies' fill, at most 1: its compression,
+/// its faces' coefficients and its part in a body's rows of the solve fade with that share, so
+/// that nothing the solve does steps when the node becomes the body's
+/// (docs/notes/bodies_coarse_solve.md, "Open nodes").
 inline constexpr float kCoarseBodyFade = 0.25f;
+/// How far beyond the particles' bounds the coarse grid reaches to take in the bodies' samples
+/// (coarse cells): a grid that ended at the particles cut a crate resting on a paste through
+/// its bottom row, and the cut stepped as the particles' top moved.
+inline constexpr float kCoarseBodyReach = 4.0f;
 /// Nearest a fluid node's zero of the potential may lie to it, in cells (the free surface,
 /// placed where the fill crosses 1/2 between the node and its air neighbour): the operator's
 /// diagonal grows by 1/theta, so this bounds it at 10 (docs/notes/pbf_tuning_constants.md, "Tuning
