@@ -29,7 +29,7 @@
 #                    (tests/box2d/physics/test_yoghurt_bearing.cpp, which checks two of them)
 #   set-down/...     a crate of 0.5, 1 and 2 x the paste's density set down on the same layer,
 #                    at the middle and 7 mm right of it: its RMS speed and its height's range
-#                    over 2-4 s (the same file; no test bounds it yet)
+#                    over 2-4 s (the same file; its test bounds the 1 and 2 x crates)
 #   stirred-game/... a 300 Pa paste at the game preset stirred at 60 to 100 m/s^2: its largest
 #                    kinetic energy per kilogram 5-10 s after release against the largest RMS of
 #                    its particles' real moves per quarter second, as a speed (m/s)

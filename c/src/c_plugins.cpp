@@ -157,6 +157,9 @@ static_assert(sizeof(fluid_rigid_body) == sizeof(RigidBody) &&
               "fluid_rigid_body's layout");
 static_assert(sizeof(fluid_rigid_body_impulse) == sizeof(RigidBodyImpulse),
               "fluid_rigid_body_impulse's layout");
+static_assert(sizeof(fluid_body_shift) == sizeof(BodyShift) &&
+                  offsetof(fluid_body_shift, offset) == offsetof(BodyShift, offset),
+              "fluid_body_shift's layout");
 
 class CBoundary final : public CPlugin<BoundaryPlugin> {
 public:
@@ -198,18 +201,23 @@ public:
     }
 
     void project(const ProjectContext& context, uint32_t begin, uint32_t end) override {
-        const fluid_project_context c{context.px.data(),
-                                      context.py.data(),
-                                      context.prevX.data(),
-                                      context.prevY.data(),
-                                      context.vx.data(),
-                                      context.vy.data(),
-                                      context.material.data(),
-                                      context.dt,
-                                      context.timeInStep,
-                                      context.prevTimeInStep,
-                                      context.spacing,
-                                      values.data()};
+        const fluid_project_context c{
+            context.px.data(),
+            context.py.data(),
+            context.prevX.data(),
+            context.prevY.data(),
+            context.vx.data(),
+            context.vy.data(),
+            context.material.data(),
+            context.dt,
+            context.timeInStep,
+            context.prevTimeInStep,
+            context.spacing,
+            values.data(),
+            context.bodyShifts.empty()
+                ? nullptr
+                : reinterpret_cast<const fluid_body_shift*>(context.bodyShifts.data()),
+            uint32_t(context.bodyShifts.size())};
         m_def.project(m_user, &c, begin, end);
     }
 

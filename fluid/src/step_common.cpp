@@ -443,8 +443,26 @@ void projectBoundaries(WorldState& s, float dt, float prevTimeInStep, float time
                        float spacing, const std::vector<float>& prevX,
                        const std::vector<float>& prevY) {
     Particles& p = s.particles;
-    const ProjectContext context{p.px,       p.py, prevX,      prevY,          p.vx,   p.vy,
-                                 p.material, dt,   timeInStep, prevTimeInStep, spacing};
+    // Each plugin's bodies as the coarse solve has shifted them so far in the step (the
+    // samples stand there already): its projection moves their shapes with them.
+    s.bodyShifts.resize(s.boundaries.size());
+    for (std::vector<BodyShift>& shifts : s.bodyShifts) {
+        shifts.clear();
+    }
+    for (const BodyState& body : s.bodies) {
+        if (body.dvx == 0.0f && body.dvy == 0.0f && body.ox == 0.0f && body.oy == 0.0f) {
+            continue;
+        }
+        const size_t count = s.boundaries[body.plugin]->rigidBodies().size();
+        if (body.index >= count) {
+            continue;
+        }
+        std::vector<BodyShift>& shifts = s.bodyShifts[body.plugin];
+        shifts.resize(count);
+        shifts[body.index] = BodyShift{{body.dvx, body.dvy}, {body.ox, body.oy}};
+    }
+    ProjectContext context{p.px,       p.py, prevX,      prevY,          p.vx,    p.vy,
+                           p.material, dt,   timeInStep, prevTimeInStep, spacing, {}};
     // Solids, then walls, then containers (BoundaryPlugin::role), each in the order added.
     for (const BoundaryRole role :
          {BoundaryRole::Solid, BoundaryRole::Wall, BoundaryRole::Container}) {
@@ -453,6 +471,7 @@ void projectBoundaries(WorldState& s, float dt, float prevTimeInStep, float time
             if (plugin->role() != role) {
                 continue;
             }
+            context.bodyShifts = s.bodyShifts[index];
             // A position or velocity the plugin left non-finite is undone: that particle keeps
             // what it had before this plugin's call (docs/plugins.md, "Output that is not
             // finite"). Each range keeps its own copy, so the check costs one pass over it.

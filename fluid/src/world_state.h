@@ -402,6 +402,10 @@ struct WorldState {
     Grid grid;
     Samples samples;
     std::vector<BodyState> bodies;
+    // Per boundary plugin, its rigid bodies' shifts by the coarse solve for its projection
+    // (ProjectContext::bodyShifts; projectBoundaries); empty for a plugin none of whose bodies
+    // has moved.
+    std::vector<std::vector<BodyShift>> bodyShifts;
     CoarseGrid coarse;
     ExplicitScratch explicitScratch;
     PositionBasedScratch pbfScratch;

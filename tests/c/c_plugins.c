@@ -167,28 +167,36 @@ static void box_prepare(void* user, const fluid_step_context* context,
 }
 
 /* Particles inside the box go to its nearest side; their velocity into the box becomes the
- * box's. */
+ * box's. The box stands as high as the coarse solve has moved it so far in the step
+ * (body_shifts), as its samples do (it moves up and down only: box_receive_impulses takes the
+ * vertical part). */
 static void box_project(void* user, const fluid_project_context* context, uint32_t begin,
                         uint32_t end) {
     const c_test_box* box = (const c_test_box*)user;
-    const float cy = box_y_at(box, context->time_in_step);
+    const float cx = box->x;
+    float cy = box_y_at(box, context->time_in_step), vy = box->vy;
     uint32_t i;
+    if (context->body_shift_count == 1) {
+        const fluid_body_shift s = context->body_shifts[0];
+        cy += s.offset.y + s.velocity.y * context->time_in_step;
+        vy += s.velocity.y;
+    }
     for (i = begin; i < end; ++i) {
-        const float dx = context->px[i] - box->x, dy = context->py[i] - cy;
+        const float dx = context->px[i] - cx, dy = context->py[i] - cy;
         const float gapX = box->half_width - fabsf(dx), gapY = box->half_height - fabsf(dy);
         if (gapX <= 0.0f || gapY <= 0.0f) {
             continue;
         }
         if (gapX < gapY) {
-            context->px[i] = box->x + (dx < 0.0f ? -box->half_width : box->half_width);
+            context->px[i] = cx + (dx < 0.0f ? -box->half_width : box->half_width);
             if ((dx < 0.0f) == (context->vx[i] > 0.0f)) {
                 context->vx[i] = 0.0f;
             }
         } else {
             const bool below = dy < 0.0f;
             context->py[i] = cy + (below ? -box->half_height : box->half_height);
-            if (below ? context->vy[i] > box->vy : context->vy[i] < box->vy) {
-                context->vy[i] = box->vy;
+            if (below ? context->vy[i] > vy : context->vy[i] < vy) {
+                context->vy[i] = vy;
             }
         }
     }

@@ -15,6 +15,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -307,6 +308,36 @@ TEST_CASE("C API: a force plugin written in C acts as the built-in gravity, bit 
     CHECK(refused.destroyed == 0);
 }
 
+namespace {
+
+// Water about 0.2 m deep (a whole number of spacings) in a `boundary.box` tank `width` wide and
+// 1 m tall, under gravity `g` (m/s^2): what the C box floats in. `spacing` and `depth` get the
+// water's lattice spacing and depth (m).
+struct WaterTank {
+    fluid_material_def water{};
+    fluid_material_id id{};
+    float spacing = 0.0f, depth = 0.0f;
+};
+WaterTank fillWaterTank(fluid_world* world, float width, float g) {
+    WaterTank t;
+    C_OK(fluid_material_preset("water", &t.water));
+    C_OK(fluid_world_add_material(world, &t.water, &t.id));
+    C_OK(fluid_world_spacing(world, t.id, &t.spacing));
+    t.depth = std::round(0.2f / t.spacing) * t.spacing;
+    const fluid_param tank[] = {{"minX", 0.0}, {"minY", 0.0}, {"maxX", width}, {"maxY", 1.0}};
+    fluid_plugin_id plugin{};
+    C_OK(fluid_world_add_plugin(world, "boundary.box", tank, 4, &plugin));
+    const fluid_param gravity[] = {{"gy", double(g)}};
+    C_OK(fluid_world_add_plugin(world, "force.gravity", gravity, 1, &plugin));
+    fluid_blob_def blob = fluid_default_blob_def();
+    blob.shape = fluid_box_shape({0.0f, 0.0f}, {width, t.depth});
+    blob.material = t.id;
+    C_OK(fluid_world_spawn_blob(world, &blob, nullptr));
+    return t;
+}
+
+} // namespace
+
 TEST_CASE("C API: a boundary plugin written in C carries its own rigid body, which floats at "
           "Archimedes' draft",
           "[c][slow]") {
@@ -316,22 +347,11 @@ TEST_CASE("C API: a boundary plugin written in C carries its own rigid body, whi
     fluid_world_def def = fluid_default_world_def();
     C_OK(fluid_world_def_set_quality(&def, "precise"));
     CWorld world(def);
-    fluid_material_def water{};
-    C_OK(fluid_material_preset("water", &water));
-    fluid_material_id id{};
-    C_OK(fluid_world_add_material(world.world, &water, &id));
-    float s = 0.0f;
-    C_OK(fluid_world_spacing(world.world, id, &s));
-    const float width = 0.64f, depth = std::round(0.2f / s) * s, g = -9.81f;
-    const fluid_param tank[] = {{"minX", 0.0}, {"minY", 0.0}, {"maxX", width}, {"maxY", 1.0}};
+    const float width = 0.64f, g = -9.81f;
+    const WaterTank tank = fillWaterTank(world.world, width, g);
+    const fluid_material_def& water = tank.water;
+    const float s = tank.spacing, depth = tank.depth;
     fluid_plugin_id plugin{};
-    C_OK(fluid_world_add_plugin(world.world, "boundary.box", tank, 4, &plugin));
-    const fluid_param gravity[] = {{"gy", double(g)}};
-    C_OK(fluid_world_add_plugin(world.world, "force.gravity", gravity, 1, &plugin));
-    fluid_blob_def blob = fluid_default_blob_def();
-    blob.shape = fluid_box_shape({0.0f, 0.0f}, {width, depth});
-    blob.material = id;
-    C_OK(fluid_world_spawn_blob(world.world, &blob, nullptr));
 
     const float halfWidth = 0.15f, halfHeight = 0.1f, ratio = 0.5f;
     const float slab = def.depth;
@@ -391,6 +411,89 @@ TEST_CASE("C API: a boundary plugin written in C carries its own rigid body, whi
     fluid_world_destroy(world.world);
     world.world = nullptr;
     CHECK(box.destroyed == 1);
+    c_test_box_free(&box);
+}
+
+namespace {
+
+// What the C box's project and receive_body_impulses saw (project runs on worker threads: the
+// same values from each, so plain atomics do).
+struct ShiftSeen {
+    std::atomic<uint32_t> count{0xFFFFFFFFu}; // body_shift_count of the step's last call
+    std::atomic<float> endShift{0.0f};        // its vertical shift at its time_in_step
+    std::atomic<float> endTime{-1.0f};        // that time_in_step
+    float displacement = 0.0f;                // receive_body_impulses' vertical displacement
+    fluid_boundary_plugin_def inner{};
+};
+ShiftSeen g_shiftSeen;
+
+void seenProject(void* user, const fluid_project_context* c, uint32_t begin, uint32_t end) {
+    if (c->time_in_step >= g_shiftSeen.endTime.load()) {
+        g_shiftSeen.endTime = c->time_in_step;
+        g_shiftSeen.count = c->body_shift_count;
+        g_shiftSeen.endShift =
+            c->body_shift_count == 1
+                ? c->body_shifts[0].offset.y + c->body_shifts[0].velocity.y * c->time_in_step
+                : 0.0f;
+    }
+    g_shiftSeen.inner.project(user, c, begin, end);
+}
+
+void seenImpulses(void* user, const fluid_rigid_body_impulse* j, uint32_t count) {
+    g_shiftSeen.displacement = count == 1 ? j[0].displacement.y : 0.0f;
+    g_shiftSeen.inner.receive_body_impulses(user, j, count);
+}
+
+} // namespace
+
+// The game preset's coarse solve moves a C plugin's rigid body within the step; its project gets
+// where (fluid_project_context::body_shifts, C API 1.1), and at the step's end that shift is the
+// displacement receive_body_impulses then hands the host: the particles were put outside the
+// box where it ends up.
+TEST_CASE("C API: a C boundary's project sees the coarse solve's shift of its rigid body, which "
+          "ends the step at the displacement the host gets",
+          "[c]") {
+    fluid_world_def def = fluid_default_world_def(); // the game preset
+    CWorld world(def);
+    const float width = 0.64f, g = -9.81f;
+    const WaterTank tank = fillWaterTank(world.world, width, g);
+    const fluid_material_def& water = tank.water;
+    const float depth = tank.depth;
+    fluid_plugin_id plugin{};
+    const float halfWidth = 0.15f, halfHeight = 0.1f, ratio = 0.5f;
+    const float mass = ratio * water.rest_density * def.depth * (2 * halfWidth) * (2 * halfHeight);
+    const float added = water.rest_density * def.depth * 3.14159265f * halfWidth * halfWidth;
+    c_test_box box;
+    REQUIRE(c_test_box_init(&box, 0.5f * width, depth + halfHeight - ratio * 2 * halfHeight,
+                            halfWidth, halfHeight, mass, added, g));
+    g_shiftSeen.inner = c_test_box_plugin(&box);
+    fluid_boundary_plugin_def boxDef = g_shiftSeen.inner;
+    boxDef.project = seenProject;
+    boxDef.receive_body_impulses = seenImpulses;
+    C_OK(fluid_world_add_boundary(world.world, &boxDef, &plugin));
+
+    int moved = 0;
+    float largest = 0.0f, worst = 0.0f;
+    for (int f = 0; f < 120; ++f) {
+        g_shiftSeen.endTime = -1.0f;
+        C_OK(fluid_world_step(world.world, kFrame));
+        CAPTURE(f, g_shiftSeen.count.load(), g_shiftSeen.endShift.load(), g_shiftSeen.displacement);
+        if (g_shiftSeen.displacement != 0.0f) {
+            ++moved;
+            CHECK(g_shiftSeen.count == 1u);
+            largest = std::max(largest, std::fabs(g_shiftSeen.displacement));
+        }
+        worst = std::max(worst, std::fabs(g_shiftSeen.endShift - g_shiftSeen.displacement));
+    }
+    std::printf("[measure] C API box in the game preset: the coarse solve moved it in %d of 120 "
+                "steps, by up to %.3g m; the shift its project saw at the step's end against "
+                "the displacement it got: at most %.3g m apart\n",
+                moved, double(largest), double(worst));
+    CHECK(moved >= 10);     // the solve moved the box (50 of the 120 steps when written)
+    CHECK(largest > 1e-4f); // by more than float noise
+    CHECK(worst <= 1e-7f);  // and the project saw where it put it
+    fluid_world_destroy(world.world);
+    world.world = nullptr;
     c_test_box_free(&box);
 }
 

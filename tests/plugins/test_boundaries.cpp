@@ -48,7 +48,7 @@ struct Moves {
     glm::vec2 velocity(size_t i) const { return {vx[i], vy[i]}; }
     // Runs the plugin's project over all particles, the path from q (at prevT) to p (at t).
     void project(BoundaryPlugin& plugin, float prevT = 0.0f, float t = kDt) {
-        const ProjectContext c{px, py, qx, qy, vx, vy, material, kDt, t, prevT, kSpacing};
+        const ProjectContext c{px, py, qx, qy, vx, vy, material, kDt, t, prevT, kSpacing, {}};
         plugin.project(c, 0, static_cast<uint32_t>(px.size()));
     }
 };

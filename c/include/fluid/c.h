@@ -45,7 +45,7 @@ extern "C" {
 /// The C API's version this header describes: major (incompatible changes), minor (additions).
 #define FLUID_C_VERSION_MAJOR 1
 /// See FLUID_C_VERSION_MAJOR.
-#define FLUID_C_VERSION_MINOR 0
+#define FLUID_C_VERSION_MINOR 1
 /// major * 100 + minor.
 #define FLUID_C_VERSION (FLUID_C_VERSION_MAJOR * 100 + FLUID_C_VERSION_MINOR)
 
@@ -861,6 +861,16 @@ FLUID_C_API fluid_status fluid_world_add_force(fluid_world* world,
                                                const fluid_force_plugin_def* def,
                                                fluid_plugin_id* id);
 
+/// Where the position-based solver's coarse pressure solve has moved one of a boundary's rigid
+/// bodies within the step so far (C++ fluid::BodyShift): at time t into the step the body stands
+/// offset + velocity t away from where the plugin's own poses put it.
+typedef struct fluid_body_shift {
+    /// The velocity the solve gave the body (unit: m/s).
+    fluid_vec2 velocity;
+    /// The offset at the step's start (unit: m).
+    fluid_vec2 offset;
+} fluid_body_shift;
+
 /// What a boundary's project moves (C++ fluid::ProjectContext).
 typedef struct fluid_project_context {
     /// Positions (unit: m), all particles: move [begin, end) out of the solid.
@@ -887,6 +897,11 @@ typedef struct fluid_project_context {
     float spacing;
     /// The plugin's parameter values.
     const double* params;
+    /// Per rigid body of the plugin (rigid_bodies order), where the coarse solve has moved it so
+    /// far in the step: move the body's shape by it (NULL when none moved). Since C API 1.1.
+    const fluid_body_shift* body_shifts;
+    /// How many entries body_shifts holds (unit: count).
+    uint32_t body_shift_count;
 } fluid_project_context;
 
 /// Samples of a boundary's surface, as the plugin's prepare leaves them: the fluid feels them

@@ -259,6 +259,19 @@ struct BoundarySamples {
     std::size_t size() const { return px.size(); }
 };
 
+/// How the position-based solver's coarse pressure solve has moved one of a plugin's rigid bodies
+/// (`BoundaryPlugin::rigidBodies`) within the step so far: at time t into the step the body stands
+/// `offset + velocity t` away from where its host's poses put it (its samples already do). A
+/// plugin that projects particles out of the body's shape moves the shape with it, so the
+/// particles end outside where the body will be once the host takes the correction
+/// (`receiveBodyImpulses`). Plain data.
+struct BodyShift {
+    /// The velocity the solve gave the body (unit: m/s).
+    glm::vec2 velocity{0.0f, 0.0f};
+    /// The offset at the step's start (unit: m): the shift at time t is offset + velocity t.
+    glm::vec2 offset{0.0f, 0.0f};
+};
+
 /// What a boundary plugin's `project` gets after particles moved: once per sub-step after the
 /// explicit solver's integration; twice per sub-step with the position-based solver (on the
 /// predicted positions before the density constraint, and at the end of the sub-step).
@@ -285,6 +298,9 @@ struct ProjectContext {
     float prevTimeInStep = 0.0f;
     /// The step's boundary sample spacing, `StepContext::sampleSpacing` (unit: m).
     float spacing = 0.0f;
+    /// Per body of this plugin's `rigidBodies()`, in that order, the coarse solve's shift of it
+    /// (`BodyShift`); empty when nothing shifted any (no bodies, no coarse solve). Read-only.
+    std::span<const BodyShift> bodyShifts;
 };
 
 /// A rigid body whose samples a boundary plugin lays (a Box2D body, or another physics engine's):

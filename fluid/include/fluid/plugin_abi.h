@@ -31,14 +31,16 @@ namespace fluid {
 /// contexts). 5: `BoundaryPlugin` gained `rigidBodies` and `receiveBodyImpulses` (bodies in the
 /// coarse pressure solve). 6: `BoundaryPlugin` gained `steppedBy` (a plugin whose host must step
 /// the world). 7: `Plugin` gained `checkParams`, and `Error` writes control characters as
-/// "\xNN". 8: `RigidBody` gained `contacts` (contact events). Thread rule: a constant.
-inline constexpr uint32_t kPluginAbiVersion = 8;
+/// "\xNN". 8: `RigidBody` gained `contacts` (contact events). 9: `ProjectContext` gained
+/// `bodyShifts` (where the coarse solve has moved a plugin's rigid bodies). Thread rule: a
+/// constant.
+inline constexpr uint32_t kPluginAbiVersion = 9;
 
 /// FNV-1a (32 bit) of the declarations of fluid/plugin.h and fluid/registry.h with `//`
 /// comments and all whitespace removed (see `pluginAbiDeclHash`). Part of
 /// `pluginAbiDetails()`, so a plugin compiled against other declarations is refused even when
 /// `kPluginAbiVersion` was not bumped. Update it when that test says so. Thread rule: a constant.
-inline constexpr uint32_t kPluginAbiDeclHash = 0x0df96947u;
+inline constexpr uint32_t kPluginAbiDeclHash = 0xe99fa511u;
 
 /// Name of the entry point returning the library's `kPluginAbiVersion` (C linkage, signature
 /// `uint32_t(void)`, frozen for every future ABI version).

@@ -549,6 +549,18 @@ void BodyBoundary::project(const ProjectContext& context, uint32_t begin, uint32
         const KinematicShape& shape = *m_entries[m_colliders[k].entry].shape;
         if (ready[k] == 0) {
             sweeps[k] = shape.sweep(context);
+            // Where the coarse solve has moved the body so far (its samples stand there): the
+            // shape moves with it, so no particle is left where the body will stand once the
+            // coupling takes the correction.
+            const uint32_t body = m_colliders[k].body;
+            if (body < context.bodyShifts.size()) {
+                const BodyShift& shift = context.bodyShifts[body];
+                const glm::dvec2 v(shift.velocity), o(shift.offset);
+                sweeps[k].before.origin += o + v * double(context.prevTimeInStep);
+                sweeps[k].now.origin += o + v * double(context.timeInStep);
+                sweeps[k].before.velocity += v;
+                sweeps[k].now.velocity += v;
+            }
             ready[k] = 1;
         }
         const float x = context.px[i], y = context.py[i];

@@ -507,15 +507,21 @@ void Coupling::applyForces(float dt) {
         // body's sweep velocity for the whole step (the body is as heavy as the world there),
         // so a light body slammed into it has pushed more fluid than it could have; that
         // excess would throw the body back out (a crate dropped onto water bounced off). It
-        // is dropped.
+        // is dropped, in full from twice the speed one round of gravity gives and not at all
+        // below once it: a body at rest is owed a steady force against its buoyancy's count
+        // (the coarse solve carries most of its weight), and cut whenever its speed of a few
+        // tenths of a millimetre a second pointed the other way, that force kicked it
+        // (docs/notes/bodies_coarse_solve.md, "What else shook a body at rest").
         const b2Vec2 v2 = entry.body->GetLinearVelocity();
         const glm::dvec2 v(v2.x, v2.y);
         const double speed = std::sqrt(v.x * v.x + v.y * v.y);
-        if (speed > 0.0) {
+        const double fall = h * std::sqrt(double(g2.x) * g2.x + double(g2.y) * g2.y);
+        const double share = fall > 0.0 ? std::clamp(speed / fall - 1.0, 0.0, 1.0) : 1.0;
+        if (speed > 0.0 && share > 0.0) {
             const glm::dvec2 u = v / speed;
             const double against = -(owed.x * u.x + owed.y * u.y);
             if (against > mass * speed) {
-                owed += (against - mass * speed) * u;
+                owed += share * (against - mass * speed) * u;
             }
         }
         const glm::dvec2 dynamic = w * owed / h;

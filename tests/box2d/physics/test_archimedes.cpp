@@ -320,10 +320,13 @@ TEST_CASE("Archimedes, game preset: bodies of 24 spacings at 0.5 and 0.75 of wat
     std::printf("[measure] Archimedes, game, %.1f m: %u particles, %u inside a body at the end, "
                 "the deepest %.2e m\n",
                 double(depth), run.particles, run.leaked, run.deepest);
-    // After the fluid's step the coupling moves each body by the coarse solve's displacement,
-    // which may leave a particle on its surface a few hundredths of a millimetre inside until
-    // the next step projects it out (1-2 particles, 8e-6 to 3.4e-5 m; the shipped solver before
-    // issue 43 left one too): none may lie a hundredth of a spacing deep.
+    // After the fluid's step the coupling moves each body by the coarse solve's displacement.
+    // The projection moves the body's shape by it within the step (ProjectContext::bodyShifts),
+    // so the particles on its surface end outside where it then stands (none inside at the end
+    // at either depth); before it did, 1-2 particles read 8e-6 to 3.4e-5 m inside, and up to
+    // 1.65e-4 m once a resting body's steady force was no longer cut
+    // (docs/notes/bodies_coarse_solve.md, "What else shook a body at rest"): none may lie a
+    // hundredth of a spacing deep.
     CHECK(run.deepest < 1e-4);
     for (const Outcome& o : run.bodies) {
         std::printf("[measure] Archimedes, game, %.1f m: %s at %.2f: measured %.4f (%+.1f%%), "
