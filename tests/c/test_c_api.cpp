@@ -311,8 +311,8 @@ TEST_CASE("C API: a force plugin written in C acts as the built-in gravity, bit 
 namespace {
 
 // Water about 0.2 m deep (a whole number of spacings) in a `boundary.box` tank `width` wide and
-// 1 m tall, under gravity `g` (m/s^2): what the C box floats in. `spacing` and `depth` get the
-// water's lattice spacing and depth (m).
+// 1 m tall, under gravity `g` (m/s^2): what the C box floats in. WaterTank holds the water's
+// preset and id, its lattice spacing and its depth (m).
 struct WaterTank {
     fluid_material_def water{};
     fluid_material_id id{};
