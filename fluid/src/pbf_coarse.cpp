@@ -410,7 +410,6 @@ void setMoveScale(CoarseGrid& cg, const WorldState& s, bool oneDensity, double r
 bool classifyNodes(CoarseGrid& cg, size_t nodes, float tolerance, float h2, bool bodies) {
     cg.type.assign(nodes, kAir);
     cg.rhs.assign(nodes, 0.0f);
-    cg.weighted = bodies;
     if (bodies) {
         cg.open.resize(nodes);
         for (size_t k = 0; k < nodes; ++k) {
@@ -478,7 +477,7 @@ void buildOperator(CoarseGrid& cg, const Layout& g, float cellSize, bool bodies)
     const auto none = int32_t(count);
     cg.diagonal.assign(count, tuning::kCoarseShift);
     cg.neighbours.assign(4 * count, none);
-    cg.faceWeight.assign(cg.weighted ? 4 * count : 0, 0.0f);
+    cg.faceWeight.assign(bodies ? 4 * count : 0, 0.0f);
     cg.bodyFaces.clear();
     for (size_t a = 0; a < count; ++a) {
         const uint32_t k = cg.active[a];
@@ -489,7 +488,7 @@ void buildOperator(CoarseGrid& cg, const Layout& g, float cellSize, bool bodies)
             if (ii < 0 || jj < 0 || ii >= nx || jj >= ny) {
                 // Outside the grid: air, the surface where the fill crosses 1/2 on the way.
                 const float c = surfaceCoefficient(cg.fluid[k] + cg.solid[k], 0.0f);
-                cg.diagonal[a] += cg.weighted ? c * cg.open[k] : c;
+                cg.diagonal[a] += bodies ? c * cg.open[k] : c;
                 continue;
             }
             const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
@@ -500,13 +499,13 @@ void buildOperator(CoarseGrid& cg, const Layout& g, float cellSize, bool bodies)
                         : 1.0f;
                 // Next to a body a face is as open as the less open of its two nodes (air
                 // beyond: the fluid node's share), so a node the body covers closes by degrees.
-                const float open = !cg.weighted ? 1.0f
-                                   : air        ? cg.open[k]
-                                                : std::min(cg.open[k], cg.open[m]);
-                cg.diagonal[a] += cg.weighted ? c * open : c;
+                const float open = !bodies ? 1.0f
+                                   : air   ? cg.open[k]
+                                           : std::min(cg.open[k], cg.open[m]);
+                cg.diagonal[a] += bodies ? c * open : c;
                 if (cg.slot[m] >= 0) {
                     cg.neighbours[4 * a + size_t(e)] = cg.slot[m];
-                    if (cg.weighted) {
+                    if (bodies) {
                         cg.faceWeight[4 * a + size_t(e)] = open;
                     }
                 }
@@ -1017,6 +1016,14 @@ void fillFluid(WorldState& s, const Layout& g) {
     });
 }
 
+// The operator's face coefficients per unknown (CoarseGrid::faceWeight), or null where every face
+// is 1 (a world without bodies: buildOperator keeps none).
+namespace {
+const float* faceWeights(const CoarseGrid& cg) {
+    return cg.faceWeight.empty() ? nullptr : cg.faceWeight.data();
+}
+} // namespace
+
 // The modified incomplete Cholesky factor MIC(0) of the grid part of the operator [Bridson 2015,
 // "Fluid Simulation for Computer Graphics", 5.3]: per unknown a, precon_a = 1 / sqrt(e_a) with
 // e_a = A_aa - precon_l^2 - precon_b^2 - kMicTau (precon_l^2 [l's upper neighbour is fluid] +
@@ -1036,7 +1043,7 @@ void buildPreconditioner(CoarseGrid& cg, size_t count) {
     cg.precon.assign(count + 1, 0.0f);
     cg.micLeft.assign(count + 1, 0.0f);
     float* precon = cg.precon.data();
-    const float* w = cg.weighted ? cg.faceWeight.data() : nullptr;
+    const float* w = faceWeights(cg);
     for (size_t a = 0; a < count; ++a) {
         const int32_t l = nb[4 * a + 0], b = nb[4 * a + 2];
         const float ql = precon[l], qb = precon[b];
@@ -1080,7 +1087,7 @@ void applyPreconditioner(const CoarseGrid& cg, size_t count, const float* r, flo
     // start of a run of the row).
     // A weighted operator's faces (CoarseGrid::faceWeight): each neighbour's term times its
     // face's coefficient.
-    const float* w = cg.weighted ? cg.faceWeight.data() : nullptr;
+    const float* w = faceWeights(cg);
     const auto forward = [&](uint32_t a, float& previous) {
         const int32_t b = nb[4 * size_t(a) + 2];
         const float pb = w != nullptr ? w[4 * size_t(a) + 2] * precon[b] : precon[b];
@@ -1183,10 +1190,10 @@ float* solvePotential(CoarseGrid& cg, int nx, int ny, const std::vector<double>&
     cg.d.assign(slots, 0.0f);
     cg.diagonal.resize(padded, 0.0f);
     cg.neighbours.resize(4 * padded, none);
-    if (cg.weighted) {
+    if (!cg.faceWeight.empty()) {
         cg.faceWeight.resize(4 * padded, 0.0f);
     }
-    const float* w = cg.weighted ? cg.faceWeight.data() : nullptr;
+    const float* w = faceWeights(cg);
     float* psi = cg.psi.data();
     float* r = cg.r.data();
     float* d = cg.d.data();

@@ -323,11 +323,10 @@ struct CoarseGrid {
     CoarseLayout layout;
     bool filled = false, solved = false, coupled = false;
     std::vector<double> mobility, bodySum;
-    // Worlds with bodies (`weighted`): per node the share of it the bodies leave open to the
-    // flow (1 away from them; tuning::kCoarseBodyFade), and per unknown its four faces'
-    // coefficients in the operator (left, right, below, above; 0 for none). Without bodies
-    // every face's coefficient is 1 and neither is kept.
-    bool weighted = false;
+    // Worlds with bodies: per node the share of it the bodies leave open to the flow (1 away
+    // from them; tuning::kCoarseBodyFade), and per unknown its four faces' coefficients in the
+    // operator (left, right, below, above; 0 for none). Without bodies every face's coefficient
+    // is 1 and faceWeight is empty.
     std::vector<float> open;
     std::vector<float> faceWeight;
 };
