@@ -53,14 +53,15 @@ struct Box {
 };
 
 /// A uniform grid of boxes: which boxes meet each cell (CSR lists in box order). A particle
-/// whose path stays in one cell tests only that cell's list; a path over several cells tests
-/// every box (rare: cells are much larger than a particle's move per sub-step).
+/// whose path stays within two cells in x and in y tests only those cells' lists, merged in box
+/// order; a longer path tests every box (rare: cells are much larger than a particle's move per
+/// sub-step).
 class BoxGrid {
 public:
     /// Rebuilds the grid over `boxes` with cells about `cellSize` m wide (larger if the boxes
     /// span more than 256 cells in x or y).
     void build(std::span<const Box> boxes, float cellSize);
-    /// Calls `visit(index)` for every box that may meet `query`, in box order.
+    /// Calls `visit(index)` for every box that may meet `query`, in box order, each once.
     template <class F> void forEach(const Box& query, std::span<const Box> boxes, F&& visit) const {
         if (m_cellsX == 0 || !query.overlaps(m_bounds)) {
             return;
@@ -76,6 +77,38 @@ public:
                 }
             }
             return;
+        }
+        if (x1 - x0 <= 1 && y1 - y0 <= 1) {
+            // Up to four cells: their lists merged, a box in several of them visited once.
+            uint32_t at[4], end[4];
+            int lists = 0;
+            for (int y = y0; y <= y1; ++y) {
+                for (int x = x0; x <= x1; ++x) {
+                    const uint32_t cell = uint32_t(y) * m_cellsX + uint32_t(x);
+                    at[lists] = m_start[cell];
+                    end[lists] = m_start[cell + 1];
+                    ++lists;
+                }
+            }
+            for (;;) {
+                uint32_t index = UINT32_MAX;
+                for (int l = 0; l < lists; ++l) {
+                    if (at[l] < end[l]) {
+                        index = std::min(index, m_entries[at[l]]);
+                    }
+                }
+                if (index == UINT32_MAX) {
+                    return;
+                }
+                for (int l = 0; l < lists; ++l) {
+                    if (at[l] < end[l] && m_entries[at[l]] == index) {
+                        ++at[l];
+                    }
+                }
+                if (boxes[index].overlaps(query)) {
+                    visit(index);
+                }
+            }
         }
         for (uint32_t index = 0; index < boxes.size(); ++index) {
             if (boxes[index].overlaps(query)) {
