@@ -483,12 +483,13 @@ void buildOperator(CoarseGrid& cg, const Layout& g, float cellSize, bool bodies)
         const uint32_t k = cg.active[a];
         const int i = int(k % uint32_t(nx)), j = int(k / uint32_t(nx));
         const int di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
+        // Its open share (1 without bodies: a coefficient times it is the coefficient exactly).
+        const float openK = bodies ? cg.open[k] : 1.0f;
         for (int e = 0; e < 4; ++e) {
             const int ii = i + di[e], jj = j + dj[e];
             if (ii < 0 || jj < 0 || ii >= nx || jj >= ny) {
                 // Outside the grid: air, the surface where the fill crosses 1/2 on the way.
-                const float c = surfaceCoefficient(cg.fluid[k] + cg.solid[k], 0.0f);
-                cg.diagonal[a] += bodies ? c * cg.open[k] : c;
+                cg.diagonal[a] += surfaceCoefficient(cg.fluid[k] + cg.solid[k], 0.0f) * openK;
                 continue;
             }
             const size_t m = size_t(jj) * size_t(nx) + size_t(ii);
@@ -499,10 +500,8 @@ void buildOperator(CoarseGrid& cg, const Layout& g, float cellSize, bool bodies)
                         : 1.0f;
                 // Next to a body a face is as open as the less open of its two nodes (air
                 // beyond: the fluid node's share), so a node the body covers closes by degrees.
-                const float open = !bodies ? 1.0f
-                                   : air   ? cg.open[k]
-                                           : std::min(cg.open[k], cg.open[m]);
-                cg.diagonal[a] += bodies ? c * open : c;
+                const float open = air || !bodies ? openK : std::min(openK, cg.open[m]);
+                cg.diagonal[a] += c * open;
                 if (cg.slot[m] >= 0) {
                     cg.neighbours[4 * a + size_t(e)] = cg.slot[m];
                     if (bodies) {
