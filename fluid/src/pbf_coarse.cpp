@@ -10,7 +10,7 @@
 //             crosses 1/2 between a fluid node and its air neighbour), solid (samples fill more
 //             than particles: no flux through it), fluid (the unknowns)
 //   solve     -lap psi = max(F - 1 - tolerance, 0) H^2 on the fluid nodes, conjugate gradients
-//             preconditioned by MIC(0)
+//             preconditioned by a multigrid V-cycle (coarse_multigrid.h)
 //   move      each particle by -share grad psi (bilinear), at most kCoarseMaxMove of its support
 //   bodies    rigid bodies of boundary plugins (WorldState::bodies) are unknowns of the same
 //             solve [Batty, Bertails & Bridson 2007]: the operator gains G M^-1 G^T, G the flux
@@ -1023,151 +1023,16 @@ const float* faceWeights(const CoarseGrid& cg) {
 }
 } // namespace
 
-// The modified incomplete Cholesky factor MIC(0) of the grid part of the operator [Bridson 2015,
-// "Fluid Simulation for Computer Graphics", 5.3]: per unknown a, precon_a = 1 / sqrt(e_a) with
-// e_a = A_aa - precon_l^2 - precon_b^2 - kMicTau (precon_l^2 [l's upper neighbour is fluid] +
-// precon_b^2 [b's right neighbour is fluid]), l and b a's left and lower neighbours (off-diagonal
-// entries -1); an e_a below kMicSafety A_aa falls back to A_aa. The unknowns are in node order,
-// row by row, so l and b come before a, and a left neighbour is always a - 1 (a right one a + 1).
-// Kept for the sweeps of applyPreconditioner: micLeft_a = precon_a precon_l (0 without l).
-// Slot `count` (no neighbour) holds 0 in precon. In a weighted operator (bodies: off-diagonal
-// entries -w, CoarseGrid::faceWeight) the same with w_al precon_l for precon_l in the squares and
-// in micLeft, w_ab precon_b for precon_b, and w_al w_l,up and w_ab w_b,right for the brackets;
-// with every w 1 the same operations on the same values.
-constexpr float kMicTau = 0.97f;
-constexpr float kMicSafety = 0.25f;
-void buildPreconditioner(CoarseGrid& cg, size_t count) {
-    const auto none = int32_t(count);
-    const int32_t* nb = cg.neighbours.data();
-    cg.precon.assign(count + 1, 0.0f);
-    cg.micLeft.assign(count + 1, 0.0f);
-    float* precon = cg.precon.data();
-    const float* w = faceWeights(cg);
-    for (size_t a = 0; a < count; ++a) {
-        const int32_t l = nb[4 * a + 0], b = nb[4 * a + 2];
-        const float ql = precon[l], qb = precon[b];
-        float pl = ql, pb = qb, upOfLeft = 0.0f, rightOfBelow = 0.0f;
-        if (w == nullptr) {
-            upOfLeft = l != none && nb[4 * size_t(l) + 3] != none ? 1.0f : 0.0f;
-            rightOfBelow = b != none && nb[4 * size_t(b) + 1] != none ? 1.0f : 0.0f;
-        } else {
-            pl = w[4 * a + 0] * ql;
-            pb = w[4 * a + 2] * qb;
-            upOfLeft = l != none ? w[4 * a + 0] * w[4 * size_t(l) + 3] : 0.0f;
-            rightOfBelow = b != none ? w[4 * a + 2] * w[4 * size_t(b) + 1] : 0.0f;
-        }
-        const float diagonal = cg.diagonal[a];
-        float e =
-            diagonal - pl * pl - pb * pb - kMicTau * (upOfLeft * ql * ql + rightOfBelow * qb * qb);
-        if (!(e >= kMicSafety * diagonal)) {
-            e = diagonal;
-        }
-        precon[a] = 1.0f / std::sqrt(e);
-        cg.micLeft[a] = precon[a] * pl;
-    }
-}
-
-// z = M^-1 r with M = L L^T the MIC(0) factor: L t = r forward in unknown order, then L^T z = t
-// backward (L's off-diagonal entries: -1 times the neighbour's precon). Along a row each value
-// waits on the one before it (one multiply-add), and on its lower (upper) neighbour in the row
-// before: so two rows run interleaved, the second one behind the first by at least its lower
-// (upper) neighbour, and the processor works both chains at once. Each value takes the same
-// operations on the same values as in plain unknown order. `rows`: the first unknown of each
-// node row, then the count (cg.rowStart). z keeps slot `count` at 0.
-void applyPreconditioner(const CoarseGrid& cg, size_t count, const float* r, float* z) {
-    const int32_t* nb = cg.neighbours.data();
-    const float* precon = cg.precon.data();
-    const float* left = cg.micLeft.data();
-    const uint32_t* rows = cg.rowStart.data();
-    const auto rowCount = int64_t(cg.rowStart.size()) - 1;
-    const auto none = int32_t(count);
-    z[count] = 0.0f;
-    // Forward: t_a = precon_a (r_a + precon_b t_b) + micLeft_a t_(a-1) (micLeft_a = 0 at the
-    // start of a run of the row).
-    // A weighted operator's faces (CoarseGrid::faceWeight): each neighbour's term times its
-    // face's coefficient.
-    const float* w = faceWeights(cg);
-    const auto forward = [&](uint32_t a, float& previous) {
-        const int32_t b = nb[4 * size_t(a) + 2];
-        const float pb = w != nullptr ? w[4 * size_t(a) + 2] * precon[b] : precon[b];
-        previous = precon[a] * (r[a] + pb * z[b]) + left[a] * previous;
-        z[a] = previous;
-    };
-    for (int64_t j = 0; j < rowCount; j += 2) {
-        uint32_t a = rows[j];
-        const uint32_t end = rows[j + 1];
-        uint32_t a2 = end;
-        const uint32_t end2 = j + 1 < rowCount ? rows[j + 2] : end;
-        float p1 = 0.0f, p2 = 0.0f;
-        while (a < end) {
-            forward(a, p1);
-            ++a;
-            if (a2 < end2) {
-                const int32_t below = nb[4 * size_t(a2) + 2];
-                if (below == none || below < int32_t(a)) {
-                    forward(a2, p2);
-                    ++a2;
-                }
-            }
-        }
-        for (; a2 < end2; ++a2) {
-            forward(a2, p2);
-        }
-    }
-    // Backward: z_a = precon_a (t_a + precon_a (z_right + z_up)), z_right = z_a+1 when a has a
-    // right neighbour (then micLeft_a+1 = precon_a+1 precon_a is not 0); row by row from the
-    // top, the row below behind by at least its upper neighbour.
-    const auto backward = [&](uint32_t a, float& next) {
-        const int32_t up = nb[4 * size_t(a) + 3];
-        const float pa = precon[a];
-        float right = nb[4 * size_t(a) + 1] != none ? next : 0.0f;
-        float above = z[up];
-        if (w != nullptr) {
-            right *= w[4 * size_t(a) + 1];
-            above *= w[4 * size_t(a) + 3];
-        }
-        next = pa * (z[a] + pa * (right + above));
-        z[a] = next;
-    };
-    for (int64_t j = rowCount - 1; j >= 0; j -= 2) {
-        uint32_t c1 = rows[j + 1];
-        const uint32_t low1 = rows[j];
-        uint32_t c2 = low1;
-        const uint32_t low2 = j >= 1 ? rows[j - 1] : low1;
-        float n1 = 0.0f, n2 = 0.0f;
-        while (c1 > low1) {
-            --c1;
-            backward(c1, n1);
-            if (c2 > low2) {
-                const int32_t up = nb[4 * size_t(c2 - 1) + 3];
-                if (up == none || up >= int32_t(c1)) {
-                    --c2;
-                    backward(c2, n2);
-                }
-            }
-        }
-        while (c2 > low2) {
-            --c2;
-            backward(c2, n2);
-        }
-    }
-}
-
-// Conjugate gradients, preconditioned by MIC(0) of the grid part of the operator, for the
+// Conjugate gradients, preconditioned by a multigrid V-cycle of the grid part of the operator
+// (coarse_multigrid.h; it replaced MIC(0), which took 3-5 times the iterations and twice the
+// time from 16,000 particles up: docs/position_based_method.md, "Coarse correction"), for the
 // potential psi of the active unknowns (with the bodies' terms when `coupled`: the
 // preconditioner of the grid part stays symmetric positive definite, and the solve converges
-// for the whole operator); bodySum gathers the bodies' flux. Returns cg.psi's data.
-float* solvePotential(CoarseGrid& cg, int nx, int ny, const std::vector<double>& mobility,
+// for the whole operator); bodySum gathers the bodies' flux. `nx`: nodes per row of the grid.
+// Returns cg.psi's data.
+float* solvePotential(CoarseGrid& cg, int nx, const std::vector<double>& mobility,
                       std::vector<double>& bodySum, bool coupled, uint32_t maxIterations) {
     const size_t count = cg.active.size();
-    // The first unknown of each node row (the unknowns are in node order), then the count.
-    cg.rowStart.assign(size_t(ny) + 1, uint32_t(count));
-    for (size_t a = count; a-- > 0;) {
-        cg.rowStart[cg.active[a] / uint32_t(nx)] = uint32_t(a);
-    }
-    for (size_t j = size_t(ny); j-- > 0;) {
-        cg.rowStart[j] = std::min(cg.rowStart[j], cg.rowStart[j + 1]);
-    }
     const auto none = int32_t(count);
     // (A psi)_a = diagonal_a psi_a - sum of the fluid neighbours' psi (air holds 0); the
     // diagonal's small shift keeps a closed container full of fluid solvable. The dot products
@@ -1184,7 +1049,14 @@ float* solvePotential(CoarseGrid& cg, int nx, int ny, const std::vector<double>&
     for (size_t a = 0; a < count; ++a) {
         cg.r[a] = cg.rhs[cg.active[a]];
     }
-    buildPreconditioner(cg, count);
+    cg.unknownI.resize(count);
+    cg.unknownJ.resize(count);
+    for (size_t a = 0; a < count; ++a) {
+        cg.unknownI[a] = cg.active[a] % uint32_t(nx);
+        cg.unknownJ[a] = cg.active[a] / uint32_t(nx);
+    }
+    cg.multigrid.build(count, cg.unknownI.data(), cg.unknownJ.data(), cg.diagonal.data(),
+                       cg.neighbours.data(), faceWeights(cg));
     // d keeps slot `count` at 0 for the missing neighbour, and zeros up to the padding.
     cg.d.assign(slots, 0.0f);
     cg.diagonal.resize(padded, 0.0f);
@@ -1233,7 +1105,7 @@ float* solvePotential(CoarseGrid& cg, int nx, int ny, const std::vector<double>&
     // The solve ends at kCoarseResidual of the start's residual.
     double rr = laneDot(r, r, padded);
     const double stop = rr * double(tuning::kCoarseResidual) * double(tuning::kCoarseResidual);
-    applyPreconditioner(cg, count, r, z);
+    cg.multigrid.apply(r, z);
     std::copy(z, z + count, d);
     double rz = laneDot(r, z, padded);
     for (uint32_t it = 0; it < maxIterations && rr > stop; ++it) {
@@ -1257,7 +1129,7 @@ float* solvePotential(CoarseGrid& cg, int nx, int ny, const std::vector<double>&
         if (!(rr > stop)) {
             break;
         }
-        applyPreconditioner(cg, count, r, z);
+        cg.multigrid.apply(r, z);
         const double next = laneDot(r, z, padded);
         if (!(rz > 0.0)) {
             break;
@@ -1358,7 +1230,7 @@ void pbfCoarseSolve(WorldState& s, const CoarseSettings& settings) {
     }
     cg.coupled = !cg.bodyFaces.empty();
     cg.bodySum.assign(cg.coupled ? 2 * s.bodies.size() : 0, 0.0);
-    solvePotential(cg, g.nx, g.ny, cg.mobility, cg.bodySum, cg.coupled, settings.maxIterations);
+    solvePotential(cg, g.nx, cg.mobility, cg.bodySum, cg.coupled, settings.maxIterations);
     nodeValues(cg, g.nx, g.ny);
     cg.solved = true;
 }

@@ -101,8 +101,8 @@ inline constexpr float kCoarseCell = 0.75f;
 inline constexpr float kCoarseTolerance = 0.05f;
 /// Conjugate-gradient iterations at most per solve.
 inline constexpr uint32_t kCoarseIterations = 100;
-/// Residual, relative to the start, that ends the (MIC(0)-preconditioned) solve: tighter
-/// changes no figure of the tank or the dam.
+/// Residual, relative to the start, that ends the solve: tighter changed no figure of the tank
+/// or the dam (read with the MIC(0) preconditioner the multigrid one replaced).
 inline constexpr float kCoarseResidual = 1e-2f;
 /// Diagonal shift of the coarse operator: a closed container full of fluid has no free surface
 /// to anchor the potential.

@@ -1,6 +1,7 @@
 // fluid — a world's internal state, shared by the API (world.cpp) and the solvers.
 #pragma once
 
+#include "coarse_multigrid.h"
 #include "grid.h"
 
 #include <fluid/contacts.h>
@@ -258,10 +259,8 @@ struct CoarseGrid {
     std::vector<float> fx, fy;             // per particle: its bilinear fractions in the cell
     std::vector<uint8_t> type;             // 0 air, 1 fluid, 2 solid
     std::vector<float> psi, rhs, r, d, q;  // potential and conjugate-gradient vectors
-    std::vector<float> z, precon, micLeft; // preconditioned residual; per unknown the MIC(0)
-                                           // factor and its product with its left neighbour's
+    std::vector<float> z;                  // preconditioned residual
     std::vector<uint32_t> active;          // the fluid nodes, in order (the unknowns)
-    std::vector<uint32_t> rowStart;        // first unknown of each node row, then the count
     std::vector<int32_t> slot;             // per node: its unknown, -1 for air and solid
     std::vector<float> diagonal;           // per unknown: the operator's diagonal
     std::vector<int32_t> neighbours;       // per unknown: 4 neighbouring unknowns (the unknowns'
@@ -329,6 +328,10 @@ struct CoarseGrid {
     // is 1 and faceWeight is empty.
     std::vector<float> open;
     std::vector<float> faceWeight;
+    // The solve's multigrid preconditioner (coarse_multigrid.h) and the unknowns' node
+    // coordinates (column, row) it is built from.
+    CoarseMultigrid multigrid;
+    std::vector<uint32_t> unknownI, unknownJ;
 };
 
 // A world object's tag in its handles (ParticleHandle::world): 1 for the first world the
