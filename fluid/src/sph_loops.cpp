@@ -22,6 +22,18 @@
 
 namespace fluid::detail {
 
+namespace {
+
+// True when the constants fillMaterialChannels reads are the same in a and b (NaN never is).
+bool sameChannelValues(const MaterialConstants& a, const MaterialConstants& b) {
+    return a.support == b.support && a.massPerDepth == b.massPerDepth &&
+           a.viscosity == b.viscosity && a.mass == b.mass && a.restDensity == b.restDensity &&
+           a.gamma == b.gamma && a.backgroundPressure == b.backgroundPressure &&
+           a.lattice == b.lattice && a.yielding == b.yielding;
+}
+
+} // namespace
+
 void fillMaterialChannels(WorldState& s, const TaskHook& tasks) {
     Particles& p = s.particles;
     const uint32_t n = p.size();
@@ -37,6 +49,24 @@ void fillMaterialChannels(WorldState& s, const TaskHook& tasks) {
                     [](const MaterialConstants& c) { return c.yielding && c.gamma > 0.0f; });
     for (auto* channel : {&p.skinGamma, &p.materialTag, &p.otherShare}) {
         channel->resize(skin ? n : 0);
+    }
+    // One material, with the constants, count and skin of the last fill, which was of one
+    // material too: each channel holds one value, which the sort cannot have changed (a
+    // 100,000-particle dam: 0.28 ms a sub-step on the sort's worker).
+    const uint16_t first = n > 0 ? p.material[0] : uint16_t(0);
+    const bool uniform = n > 0 && std::all_of(p.material.begin(), p.material.end(),
+                                              [first](uint16_t m) { return m == first; });
+    WorldState::UniformFill& last = s.materialFill;
+    if (uniform && last.uniform && last.material == first && last.count == n && last.skin == skin &&
+        sameChannelValues(last.constants, s.constants[first])) {
+        return;
+    }
+    last.uniform = uniform;
+    last.skin = skin;
+    last.material = first;
+    last.count = n;
+    if (uniform) {
+        last.constants = s.constants[first];
     }
     parallelFor(tasks, n, 1024, [&](uint32_t b, uint32_t e, uint32_t) {
         for (uint32_t i = b; i < e; ++i) {

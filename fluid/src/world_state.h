@@ -414,6 +414,15 @@ struct WorldState {
     YieldScratch yieldScratch;
     std::vector<float> sortScratch;   // also carries slots and materials (sortParticles)
     std::vector<double> sortScratchD; // expiry, only when some particle has a lifetime
+    // What the last fillMaterialChannels wrote when every particle had one material: their
+    // count, the material, whether the skin channels were filled, and its constants then
+    // (uniform false otherwise). A fill that would write the same values skips the writes.
+    struct UniformFill {
+        bool uniform = false, skin = false;
+        uint16_t material = 0;
+        uint32_t count = 0;
+        MaterialConstants constants;
+    } materialFill;
     uint64_t sorts = 0; // particle sorts so far (EmissionUndo: has this step reordered them?)
 
     std::vector<EmitterState> emitters;
