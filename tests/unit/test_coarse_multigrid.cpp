@@ -267,3 +267,23 @@ TEST_CASE("coarse multigrid: the same operator gives the same bits, rebuilt afte
     CHECK(first == again);
     CHECK(first == other);
 }
+
+TEST_CASE("coarse multigrid: unknowns apart from each other (spray) still coarsen to a small "
+          "exact level",
+          "[unit][coarse]") {
+    // Every other node of every other row is fluid: no two unknowns touch or share a 2 x 2
+    // cell, so the first coarsening does not shrink; the ones after it do.
+    const auto fluid = [](int x, int y) { return x % 2 == 0 && y % 2 == 0; };
+    const auto air = [](int, int) { return true; };
+    const auto weight = [](int, int, int, int) { return 1.0f; };
+    const Operator op = makeOperator(200, 200, fluid, air, weight);
+    REQUIRE(op.count == 10000);
+    CoarseMultigrid mg;
+    build(mg, op);
+    CHECK(mg.levels() <= 12);
+    // Each unknown is alone: A is diagonal, and conjugate gradients end in a few iterations.
+    const std::vector<float> b = randomVector(op.count, 5);
+    CHECK(pcgIterations(op, &mg, b, 1e-5) <= 16);
+    const std::vector<float> z = applyB(mg, b);
+    CHECK(dotProduct(b, z) > 0.0);
+}
