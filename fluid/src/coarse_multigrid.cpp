@@ -23,7 +23,7 @@ constexpr float kOverCorrection = 1.7f;
 
 } // namespace
 
-void CoarseMultigrid::build(size_t count, const uint32_t* i, const uint32_t* j,
+void CoarseMultigrid::build(size_t count, const uint32_t* node, uint32_t width,
                             const float* diagonal, const int32_t* nb, const float* w) {
     if (m_levels.empty()) {
         m_levels.resize(1);
@@ -41,8 +41,12 @@ void CoarseMultigrid::build(size_t count, const uint32_t* i, const uint32_t* j,
             l0.w[k] = nb[k] != int32_t(count) ? 1.0f : 0.0f;
         }
     }
-    l0.ci.assign(i, i + count);
-    l0.cj.assign(j, j + count);
+    l0.ci.resize(count);
+    l0.cj.resize(count);
+    for (size_t a = 0; a < count; ++a) {
+        l0.ci[a] = node[a] % width;
+        l0.cj[a] = node[a] / width;
+    }
     size_t used = 1;
     while (m_levels[used - 1].count > kCoarsest && used < kMaxLevels) {
         if (m_levels.size() <= used) {

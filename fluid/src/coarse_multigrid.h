@@ -25,12 +25,13 @@ namespace fluid::detail {
 /// applied on one thread at a time (the coarse solve's).
 class CoarseMultigrid {
 public:
-    /// Builds the levels from the finest operator: `count` unknowns, per unknown a its lattice
-    /// coordinates (i[a], j[a]; two unknowns never share them), its diagonal (> 0), its four
-    /// neighbours nb[4a..4a+3] (left, right, below, above, each at lattice distance 1; `count`
-    /// for none) and their faces' coefficients w[4a..4a+3] (>= 0, symmetric: a's face to b is
-    /// b's to a; null: every face 1). The operator must be symmetric positive definite.
-    void build(size_t count, const uint32_t* i, const uint32_t* j, const float* diagonal,
+    /// Builds the levels from the finest operator: `count` unknowns, per unknown a its node
+    /// node[a] on a lattice of rows `width` nodes long (column node % width, row node / width;
+    /// two unknowns never share one), its diagonal (> 0), its four neighbours nb[4a..4a+3]
+    /// (left, right, below, above, each at lattice distance 1; `count` for none) and their
+    /// faces' coefficients w[4a..4a+3] (>= 0, symmetric: a's face to b is b's to a; null: every
+    /// face 1). The operator must be symmetric positive definite.
+    void build(size_t count, const uint32_t* node, uint32_t width, const float* diagonal,
                const int32_t* nb, const float* w);
     /// z = B r, B one V-cycle from zero for A z = r over the unknowns of the last build (r and
     /// z hold `count` values; they may not overlap).

@@ -1049,13 +1049,7 @@ float* solvePotential(CoarseGrid& cg, int nx, const std::vector<double>& mobilit
     for (size_t a = 0; a < count; ++a) {
         cg.r[a] = cg.rhs[cg.active[a]];
     }
-    cg.unknownI.resize(count);
-    cg.unknownJ.resize(count);
-    for (size_t a = 0; a < count; ++a) {
-        cg.unknownI[a] = cg.active[a] % uint32_t(nx);
-        cg.unknownJ[a] = cg.active[a] / uint32_t(nx);
-    }
-    cg.multigrid.build(count, cg.unknownI.data(), cg.unknownJ.data(), cg.diagonal.data(),
+    cg.multigrid.build(count, cg.active.data(), uint32_t(nx), cg.diagonal.data(),
                        cg.neighbours.data(), faceWeights(cg));
     // d keeps slot `count` at 0 for the missing neighbour, and zeros up to the padding.
     cg.d.assign(slots, 0.0f);

@@ -328,10 +328,8 @@ struct CoarseGrid {
     // is 1 and faceWeight is empty.
     std::vector<float> open;
     std::vector<float> faceWeight;
-    // The solve's multigrid preconditioner (coarse_multigrid.h) and the unknowns' node
-    // coordinates (column, row) it is built from.
+    // The solve's multigrid preconditioner (coarse_multigrid.h).
     CoarseMultigrid multigrid;
-    std::vector<uint32_t> unknownI, unknownJ;
 };
 
 // A world object's tag in its handles (ParticleHandle::world): 1 for the first world the

@@ -21,7 +21,8 @@ using fluid::detail::CoarseMultigrid;
 // nothing, a small shift on every diagonal.
 struct Operator {
     size_t count = 0;
-    std::vector<uint32_t> i, j;
+    uint32_t width = 0;                  // nodes per lattice row
+    std::vector<uint32_t> i, j, node;    // per unknown: column, row, node (j width + i)
     std::vector<float> diagonal, w;
     std::vector<int32_t> nb;
     bool weighted = false;
@@ -49,6 +50,7 @@ struct Operator {
 template <class Fluid, class Air, class Weight>
 Operator makeOperator(int nx, int ny, Fluid&& fluid, Air&& air, Weight&& weight) {
     Operator op;
+    op.width = uint32_t(nx);
     std::vector<int32_t> slot(size_t(nx) * size_t(ny), -1);
     for (int y = 0; y < ny; ++y) {
         for (int x = 0; x < nx; ++x) {
@@ -56,6 +58,7 @@ Operator makeOperator(int nx, int ny, Fluid&& fluid, Air&& air, Weight&& weight)
                 slot[size_t(y) * size_t(nx) + size_t(x)] = int32_t(op.count++);
                 op.i.push_back(uint32_t(x));
                 op.j.push_back(uint32_t(y));
+                op.node.push_back(uint32_t(y * nx + x));
             }
         }
     }
@@ -120,7 +123,7 @@ double dotProduct(const std::vector<float>& a, const std::vector<float>& b) {
 }
 
 void build(CoarseMultigrid& mg, const Operator& op) {
-    mg.build(op.count, op.i.data(), op.j.data(), op.diagonal.data(), op.nb.data(),
+    mg.build(op.count, op.node.data(), op.width, op.diagonal.data(), op.nb.data(),
              op.weighted ? op.w.data() : nullptr);
 }
 
